@@ -1,0 +1,17 @@
+// Placeholder until its issue lands.
+#include <iostream>
+
+#include "app/arg_parser.hpp"
+#include "app/commands.hpp"
+
+namespace bhm::app {
+
+int cmd_simulate(const Args& args) {
+    ArgParser parser("simulate", "[OPTIONS]", "Not built yet.");
+    return run_command(parser, args, [](ArgParser&) {
+        std::cerr << "bhm simulate: not built yet\n";
+        return 1;
+    });
+}
+
+}  // namespace bhm::app

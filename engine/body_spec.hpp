@@ -1,0 +1,53 @@
+#pragma once
+// The input to the engine: one body on its lattice, its materials and the physical settings.
+// Everything here is SI. The engine knows nothing of JSON, CPPNs or fitness: evo/ and app/ fill this.
+#include <cstdint>
+#include <vector>
+
+namespace bhm::engine {
+
+//! One material of the palette (paper Table 1). Material index k in a lattice means materials[k-1].
+struct Material {
+    double youngs_modulus_pa = 5e6;   //!< E
+    double density_kg_m3 = 1000.0;    //!< rho
+    double poisson_ratio = 0.35;      //!< nu, in (-1, 0.5)
+    double cte_per_c = 0.0;           //!< linear thermal expansion; > 0 makes the voxel active
+    double static_friction = 1.0;     //!< mu_s against the floor
+    double dynamic_friction = 0.5;    //!< mu_k against the floor
+};
+
+struct Environment {
+    double gravity_m_s2 = -9.81;  //!< along z; negative pulls toward the floor
+    bool floor = true;            //!< penalty contact with the plane z = 0
+};
+
+struct Damping {
+    double bond_ratio = 1.0;        //!< fraction of critical damping of each link (Voxelyze zeta_internal)
+    double global_ratio = 0.01;     //!< damping of each voxel toward rest (zeta_global)
+    double collision_ratio = 0.8;   //!< damping of floor contact (zeta_collision)
+};
+
+struct Actuation {
+    double frequency_hz = 2.0;             //!< f in dT = A sin(2 pi f t + phase)
+    double temperature_amplitude_c = 14.47;//!< A
+    double start_s = 1.0;                  //!< actuation is off before this time (settling)
+};
+
+//! Lattice cell index: x + nx * (y + ny * z), x fastest (VoxCAD's convention).
+struct BodySpec {
+    int nx = 0, ny = 0, nz = 0;
+    double voxel_size_m = 0.01;
+    std::vector<std::uint8_t> material;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
+    std::vector<std::uint8_t> fixed;     //!< (nx*ny*nz) or empty; 1 = all six DOF held
+    std::vector<float> phase_rad;        //!< (nx*ny*nz) or empty; actuation phase per cell
+    std::vector<Material> materials;
+    Environment environment;
+    Damping damping;
+    Actuation actuation;
+    double dt_fraction = 0.9;  //!< fraction of the largest stable step
+
+    int cell_count() const { return nx * ny * nz; }
+    int cell_index(int x, int y, int z) const { return x + nx * (y + ny * z); }
+};
+
+}  // namespace bhm::engine

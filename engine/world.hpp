@@ -1,0 +1,53 @@
+#pragma once
+// The changing state of one simulation of one Model. Stepped by one thread; step() never allocates.
+// CONTRACT used by evo/ and render/: keep these public members; the engine may add more.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "engine/model.hpp"
+#include "engine/poses.hpp"
+
+namespace bhm::engine {
+
+class World {
+public:
+    explicit World(std::shared_ptr<const Model> model);
+    ~World();
+    World(World&&) noexcept;
+    World& operator=(World&&) noexcept;
+
+    const Model& model() const;
+
+    void step();                        //!< advance by one dt (no-op once diverged)
+    bool advance_to(double time_s);     //!< step until time_s() >= time_s; false if diverged
+
+    double time_s() const;
+    std::int64_t steps() const;
+    bool diverged() const;
+    const std::string& divergence_reason() const;
+
+    std::array<double, 3> center_of_mass_m() const;
+    std::array<double, 3> voxel_position_m(int v) const;
+    void read_poses(VoxelPoses& out) const;  //!< resizes out once, then reuses its storage
+
+    //! A constant external force on a voxel (tests, probes). Zero by default.
+    void set_external_force(int v, std::array<double, 3> force_n);
+
+    double kinetic_energy_j() const;
+    std::array<double, 3> linear_momentum() const;
+
+    struct State;
+
+private:
+    std::unique_ptr<State> state_;
+};
+
+//! Runs a world from t = 0 to total_s, calling observe(world) at t = 0 and every 1/sample_hz
+//! seconds of simulated time (and at the end). Stops early on divergence.
+void run(World& world, double total_s, double sample_hz,
+         const std::function<void(const World&)>& observe);
+
+}  // namespace bhm::engine

@@ -1,0 +1,119 @@
+#pragma once
+// One experiment file = one whole design problem (docs/experiment-format.md documents each field).
+// Values are SI; voxel counts only where the field name says so.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/body_spec.hpp"
+
+namespace bhm::evo {
+
+enum class Face { XMin = 0, XMax, YMin, YMax, ZMin, ZMax };
+inline constexpr std::array<const char*, 6> kFaceNames = {"x-", "x+", "y-", "y+", "z-", "z+"};
+
+struct MaterialEntry {
+    std::string name;
+    engine::Material physics;
+    std::array<float, 3> color{0.8f, 0.8f, 0.8f};  //!< RGB in [0, 1]
+    bool has_color = false;
+    bool active() const { return physics.cte_per_c > 0.0; }
+};
+
+enum class PhaseMode { Uniform, Random };
+
+struct Actuation {
+    double frequency_hz = 2.0;
+    double temperature_amplitude_c = 14.47;
+    PhaseMode phase = PhaseMode::Uniform;
+};
+
+enum class BoundaryKind { Free, Fixed };
+
+enum class OverrideKind { Fixed, Empty, Material };
+struct VoxelOverride {
+    std::array<int, 3> voxel{0, 0, 0};
+    OverrideKind kind = OverrideKind::Fixed;
+    int material = 0;  //!< 1-based, for OverrideKind::Material
+};
+
+struct Boundary {
+    std::array<BoundaryKind, 6> faces{};         //!< indexed by Face
+    std::array<int, 6> enclosure_thickness{};     //!< voxels of passive frame per face
+    int enclosure_material = 0;                   //!< 1-based material index; 0 = none
+    std::vector<VoxelOverride> voxel_overrides;
+    bool any_fixed_face() const {
+        for (auto f : faces)
+            if (f == BoundaryKind::Fixed) return true;
+        return false;
+    }
+};
+
+struct Simulation {
+    double settle_s = 1.0;
+    double evaluate_s = 10.0;
+    double dt_fraction = 0.9;
+    double bond_damping_ratio = 1.0;
+    double global_damping_ratio = 0.01;
+    double collision_damping_ratio = 0.8;
+    double record_fps = 30.0;
+};
+
+enum class FitnessMeasure { ComFinal3d, ComFinalYz, ComMax3d, ComMaxYz, BendAngleDeg };
+inline constexpr std::array<const char*, 5> kFitnessNames = {
+    "com_final_3d", "com_final_yz", "com_max_3d", "com_max_yz", "bend_angle_deg"};
+
+struct Constraints {
+    bool attached_to_fixed_face = false;
+    double min_fill_fraction = 0.0;
+    int min_active_voxels = 0;
+};
+
+struct Fitness {
+    FitnessMeasure measure = FitnessMeasure::ComFinal3d;
+    Constraints constraints;
+    bool minimize_active_voxels = false;  //!< optional third AFPO objective
+};
+
+struct CppnSettings {
+    int min_hidden_nodes = 4;   //!< paper Table 2: initial hidden nodes in [4, 10]
+    int max_hidden_nodes = 10;
+    double weight_range = 1.0;  //!< weights in [-range, range]
+    double mutation_weight_sigma = 0.5;
+};
+
+struct Evolution {
+    int population = 50;
+    int generations = 2000;
+    double wall_budget_h = 48.0;
+    int max_neutral_retries = 1500;
+    std::uint64_t seed = 1;
+    int threads = 0;  //!< 0 = all hardware threads
+    CppnSettings cppn;
+};
+
+struct Experiment {
+    std::string name;
+    std::string description;
+    std::array<int, 3> workspace_size{8, 8, 7};
+    double voxel_size_m = 0.01;
+    std::vector<MaterialEntry> materials;
+    Actuation actuation;
+    engine::Environment environment;
+    Boundary boundary;
+    Simulation simulation;
+    Fitness fitness;
+    Evolution evolution;
+};
+
+//! A body: material index per lattice cell, x fastest, then y, then z (VoxCAD's VXC layers).
+struct Body {
+    std::array<int, 3> size{0, 0, 0};
+    std::vector<std::uint8_t> cells;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
+    int cell_count() const { return size[0] * size[1] * size[2]; }
+    int index(int x, int y, int z) const { return x + size[0] * (y + size[1] * z); }
+};
+
+}  // namespace bhm::evo

@@ -1,0 +1,1 @@
+// Placeholder so the target exists before its issue lands; remove when real sources arrive.
