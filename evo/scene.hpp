@@ -1,0 +1,26 @@
+#pragma once
+// From an experiment and a body to the engine's input: the one place that maps the experiment's
+// boundary conditions, enclosure, overrides, materials, actuation and timing onto a BodySpec.
+#include <cstdint>
+
+#include "engine/body_spec.hpp"
+#include "evo/experiment.hpp"
+
+namespace bhm::evo {
+
+//! Places the body at the origin of the workspace, adds the enclosure frame (passive material,
+//! per-face thickness) and the voxel overrides (empty / material). The result has the workspace size.
+Body apply_frame_and_overrides(const Experiment& experiment, const Body& body);
+
+//! The engine input for a body already framed (apply_frame_and_overrides): voxels in a face layer
+//! marked fixed and voxels overridden as fixed are held; actuation starts at settle_s; per-voxel
+//! phase is 0 (uniform) or drawn from phase_seed (random). Throws std::invalid_argument.
+engine::BodySpec make_body_spec(const Experiment& experiment, const Body& framed_body,
+                                std::uint64_t phase_seed = 0);
+
+//! Total simulated time of one evaluation: settle_s + evaluate_s.
+inline double evaluation_seconds(const Experiment& e) {
+    return e.simulation.settle_s + e.simulation.evaluate_s;
+}
+
+}  // namespace bhm::evo
