@@ -14,23 +14,27 @@ struct Material {
     double cte_per_c = 0.0;           //!< linear thermal expansion; > 0 makes the voxel active
     double static_friction = 1.0;     //!< mu_s against the floor
     double dynamic_friction = 0.5;    //!< mu_k against the floor
+    bool operator==(const Material&) const = default;
 };
 
 struct Environment {
     double gravity_m_s2 = -9.81;  //!< along z; negative pulls toward the floor
     bool floor = true;            //!< penalty contact with the plane z = 0
+    bool operator==(const Environment&) const = default;
 };
 
 struct Damping {
     double bond_ratio = 1.0;        //!< fraction of critical damping of each link (Voxelyze zeta_internal)
     double global_ratio = 0.01;     //!< damping of each voxel toward rest (zeta_global)
     double collision_ratio = 0.8;   //!< damping of floor contact (zeta_collision)
+    bool operator==(const Damping&) const = default;
 };
 
 struct Actuation {
     double frequency_hz = 2.0;             //!< f in dT = A sin(2 pi f t + phase)
     double temperature_amplitude_c = 14.47;//!< A
     double start_s = 1.0;                  //!< actuation is off before this time (settling)
+    bool operator==(const Actuation&) const = default;
 };
 
 //! Lattice cell index: x + nx * (y + ny * z), x fastest (VoxCAD's convention).

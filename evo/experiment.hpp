@@ -20,6 +20,7 @@ struct MaterialEntry {
     std::array<float, 3> color{0.8f, 0.8f, 0.8f};  //!< RGB in [0, 1]
     bool has_color = false;
     bool active() const { return physics.cte_per_c > 0.0; }
+    bool operator==(const MaterialEntry&) const = default;
 };
 
 enum class PhaseMode { Uniform, Random };
@@ -28,6 +29,7 @@ struct Actuation {
     double frequency_hz = 2.0;
     double temperature_amplitude_c = 14.47;
     PhaseMode phase = PhaseMode::Uniform;
+    bool operator==(const Actuation&) const = default;
 };
 
 enum class BoundaryKind { Free, Fixed };
@@ -37,6 +39,7 @@ struct VoxelOverride {
     std::array<int, 3> voxel{0, 0, 0};
     OverrideKind kind = OverrideKind::Fixed;
     int material = 0;  //!< 1-based, for OverrideKind::Material
+    bool operator==(const VoxelOverride&) const = default;
 };
 
 struct Boundary {
@@ -49,6 +52,7 @@ struct Boundary {
             if (f == BoundaryKind::Fixed) return true;
         return false;
     }
+    bool operator==(const Boundary&) const = default;
 };
 
 struct Simulation {
@@ -59,6 +63,7 @@ struct Simulation {
     double global_damping_ratio = 0.01;
     double collision_damping_ratio = 0.8;
     double record_fps = 30.0;
+    bool operator==(const Simulation&) const = default;
 };
 
 enum class FitnessMeasure { ComFinal3d, ComFinalYz, ComMax3d, ComMaxYz, BendAngleDeg };
@@ -69,12 +74,14 @@ struct Constraints {
     bool attached_to_fixed_face = false;
     double min_fill_fraction = 0.0;
     int min_active_voxels = 0;
+    bool operator==(const Constraints&) const = default;
 };
 
 struct Fitness {
     FitnessMeasure measure = FitnessMeasure::ComFinal3d;
     Constraints constraints;
     bool minimize_active_voxels = false;  //!< optional third AFPO objective
+    bool operator==(const Fitness&) const = default;
 };
 
 struct CppnSettings {
@@ -82,6 +89,7 @@ struct CppnSettings {
     int max_hidden_nodes = 10;
     double weight_range = 1.0;  //!< weights in [-range, range]
     double mutation_weight_sigma = 0.5;
+    bool operator==(const CppnSettings&) const = default;
 };
 
 struct Evolution {
@@ -92,6 +100,7 @@ struct Evolution {
     std::uint64_t seed = 1;
     int threads = 0;  //!< 0 = all hardware threads
     CppnSettings cppn;
+    bool operator==(const Evolution&) const = default;
 };
 
 struct Experiment {
@@ -106,6 +115,7 @@ struct Experiment {
     Simulation simulation;
     Fitness fitness;
     Evolution evolution;
+    bool operator==(const Experiment&) const = default;
 };
 
 //! A body: material index per lattice cell, x fastest, then y, then z (VoxCAD's VXC layers).
@@ -114,6 +124,7 @@ struct Body {
     std::vector<std::uint8_t> cells;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
     int cell_count() const { return size[0] * size[1] * size[2]; }
     int index(int x, int y, int z) const { return x + size[0] * (y + size[1] * z); }
+    bool operator==(const Body&) const = default;
 };
 
 }  // namespace bhm::evo
