@@ -1,0 +1,268 @@
+// Replay files: a little-endian binary documented in docs/replay-format.md.
+// Encoding goes through explicit byte shuffles so the file is the same on any host.
+#include "engine/replay.hpp"
+
+#include <unistd.h>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace bhm::engine {
+
+namespace {
+
+constexpr char kMagic[8] = {'B', 'H', 'M', 'R', 'P', 'L', 'Y', '\0'};
+constexpr std::uint32_t kVersion = 1;
+// magic, version, nx, ny, nz, voxel_size_m, settle_s, voxel count
+constexpr std::uint64_t kHeaderBytes = 8 + 4 + 3 * 4 + 8 + 8 + 4;
+constexpr std::uint64_t kPerVoxelBytes = 4 + 1 + 1;  // cell, material, fixed
+constexpr std::uint64_t kFrameCountBytes = 4;
+constexpr std::uint64_t kFloatsPerVoxelFrame = 3 + 4 + 3;  // position, orientation, size
+
+std::uint64_t frame_bytes(std::uint64_t voxel_count) {
+    return 8 + 4 * kFloatsPerVoxelFrame * voxel_count;
+}
+
+class Encoder {
+  public:
+    void bytes(const void* data, std::size_t n) {
+        const auto* p = static_cast<const char*>(data);
+        out_.append(p, n);
+    }
+    void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
+    void u32(std::uint32_t v) {
+        for (int i = 0; i < 4; ++i)
+            out_.push_back(static_cast<char>((v >> (8 * i)) & 0xFFu));
+    }
+    void u64(std::uint64_t v) {
+        for (int i = 0; i < 8; ++i)
+            out_.push_back(static_cast<char>((v >> (8 * i)) & 0xFFu));
+    }
+    void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
+    void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
+    void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+    void f32_array(const std::vector<float>& values) {
+        for (float v : values)
+            f32(v);
+    }
+    void reserve(std::size_t n) { out_.reserve(n); }
+    const std::string& str() const { return out_; }
+
+  private:
+    std::string out_;
+};
+
+class Decoder {
+  public:
+    explicit Decoder(const std::string& data) : data_(data) {}
+    std::size_t offset() const { return offset_; }
+    std::uint8_t u8() { return static_cast<std::uint8_t>(data_[offset_++]); }
+    std::uint32_t u32() {
+        std::uint32_t v = 0;
+        for (int i = 0; i < 4; ++i)
+            v |= static_cast<std::uint32_t>(static_cast<unsigned char>(data_[offset_ + i]))
+                 << (8 * i);
+        offset_ += 4;
+        return v;
+    }
+    std::uint64_t u64() {
+        std::uint64_t v = 0;
+        for (int i = 0; i < 8; ++i)
+            v |= static_cast<std::uint64_t>(static_cast<unsigned char>(data_[offset_ + i]))
+                 << (8 * i);
+        offset_ += 8;
+        return v;
+    }
+    std::int32_t i32() { return static_cast<std::int32_t>(u32()); }
+    float f32() { return std::bit_cast<float>(u32()); }
+    double f64() { return std::bit_cast<double>(u64()); }
+    void f32_array(std::vector<float>& out, std::size_t n) {
+        out.resize(n);
+        for (auto& v : out)
+            v = f32();
+    }
+
+  private:
+    const std::string& data_;
+    std::size_t offset_ = 0;
+};
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    throw std::runtime_error(path + ": " + what);
+}
+
+void check_replay_for_writing(const std::string& path, const Replay& r) {
+    const std::size_t n = r.voxel_cell.size();
+    if (r.nx <= 0 || r.ny <= 0 || r.nz <= 0)
+        fail(path, "cannot write replay: lattice size must be positive");
+    if (r.voxel_material.size() != n || r.voxel_fixed.size() != n)
+        fail(path,
+             "cannot write replay: voxel_cell, voxel_material and voxel_fixed differ in length");
+    if (n > std::numeric_limits<std::uint32_t>::max() ||
+        r.frames.size() > std::numeric_limits<std::uint32_t>::max())
+        fail(path, "cannot write replay: too many voxels or frames");
+    for (std::size_t f = 0; f < r.frames.size(); ++f) {
+        const VoxelPoses& p = r.frames[f];
+        if (p.position_m.size() != 3 * n || p.orientation.size() != 4 * n ||
+            p.size_m.size() != 3 * n)
+            fail(path, "cannot write replay: frame " + std::to_string(f) + " does not hold " +
+                           std::to_string(n) + " voxels");
+    }
+}
+
+void write_atomically(const std::string& path, const std::string& contents) {
+    // The pid keeps two processes writing the same path from sharing a temp file.
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) fail(path, "cannot open temporary file " + tmp + " for writing");
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+        out.flush();
+        if (!out) {
+            std::error_code ignored;
+            std::filesystem::remove(tmp, ignored);
+            fail(path, "write failed (disk full?)");
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::error_code ignored;
+        std::filesystem::remove(tmp, ignored);
+        fail(path, "cannot rename temporary file into place: " + ec.message());
+    }
+}
+
+std::string read_whole_file(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
+    if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a replay file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open for reading");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) fail(path, "read error");
+    return buffer.str();
+}
+
+}  // namespace
+
+void write_replay(const std::string& path, const Replay& replay) {
+    check_replay_for_writing(path, replay);
+    const std::uint64_t n = replay.voxel_cell.size();
+    Encoder e;
+    e.reserve(kHeaderBytes + kPerVoxelBytes * n + kFrameCountBytes +
+              frame_bytes(n) * replay.frames.size());
+    e.bytes(kMagic, sizeof kMagic);
+    e.u32(kVersion);
+    e.i32(replay.nx);
+    e.i32(replay.ny);
+    e.i32(replay.nz);
+    e.f64(replay.voxel_size_m);
+    e.f64(replay.settle_s);
+    e.u32(static_cast<std::uint32_t>(n));
+    for (auto c : replay.voxel_cell)
+        e.i32(c);
+    for (auto m : replay.voxel_material)
+        e.u8(m);
+    for (auto f : replay.voxel_fixed)
+        e.u8(f);
+    e.u32(static_cast<std::uint32_t>(replay.frames.size()));
+    for (const VoxelPoses& p : replay.frames) {
+        e.f64(p.time_s);
+        e.f32_array(p.position_m);
+        e.f32_array(p.orientation);
+        e.f32_array(p.size_m);
+    }
+    write_atomically(path, e.str());
+}
+
+Replay read_replay(const std::string& path) {
+    const std::string data = read_whole_file(path);
+    const std::uint64_t length = data.size();
+    const auto truncated = [&](std::uint64_t expected, const char* where) {
+        fail(path, "truncated replay: " + std::string(where) + " needs " +
+                       std::to_string(expected) + " bytes, file has " + std::to_string(length));
+    };
+    if (length < sizeof kMagic && std::memcmp(data.data(), kMagic, length) == 0)
+        truncated(kHeaderBytes, "header");
+    if (length < sizeof kMagic || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
+        fail(path, "not a BHM replay file (bad magic)");
+    if (length < kHeaderBytes) truncated(kHeaderBytes, "header");
+
+    Decoder d(data);
+    for (std::size_t i = 0; i < sizeof kMagic; ++i)
+        d.u8();
+    const std::uint32_t version = d.u32();
+    if (version != kVersion)
+        fail(path, "unsupported replay version " + std::to_string(version) + " (this build reads " +
+                       std::to_string(kVersion) + ")");
+    Replay r;
+    r.nx = d.i32();
+    r.ny = d.i32();
+    r.nz = d.i32();
+    r.voxel_size_m = d.f64();
+    r.settle_s = d.f64();
+    const std::uint64_t n = d.u32();
+    if (r.nx <= 0 || r.ny <= 0 || r.nz <= 0)
+        fail(path, "corrupt replay: lattice size " + std::to_string(r.nx) + "x" +
+                       std::to_string(r.ny) + "x" + std::to_string(r.nz) + " is not positive");
+    const std::uint64_t cells = static_cast<std::uint64_t>(r.nx) *
+                                static_cast<std::uint64_t>(r.ny) * static_cast<std::uint64_t>(r.nz);
+    if (n > cells)
+        fail(path, "corrupt replay: " + std::to_string(n) + " voxels do not fit a lattice of " +
+                       std::to_string(cells) + " cells");
+    if (!(std::isfinite(r.voxel_size_m) && r.voxel_size_m > 0.0))
+        fail(path, "corrupt replay: voxel size is not a positive number");
+    if (!std::isfinite(r.settle_s) || r.settle_s < 0.0)
+        fail(path, "corrupt replay: settle time is not a non-negative number");
+
+    const std::uint64_t voxels_end = kHeaderBytes + kPerVoxelBytes * n;
+    if (length < voxels_end + kFrameCountBytes)
+        truncated(voxels_end + kFrameCountBytes, "voxel table");
+    r.voxel_cell.resize(n);
+    r.voxel_material.resize(n);
+    r.voxel_fixed.resize(n);
+    for (auto& c : r.voxel_cell) {
+        c = d.i32();
+        if (c < 0 || static_cast<std::uint64_t>(c) >= cells)
+            fail(path, "corrupt replay: voxel cell " + std::to_string(c) + " outside the lattice");
+    }
+    for (auto& m : r.voxel_material)
+        m = d.u8();
+    for (auto& f : r.voxel_fixed) {
+        f = d.u8();
+        if (f > 1)
+            fail(path, "corrupt replay: voxel fixed flag is " + std::to_string(f) + ", not 0 or 1");
+    }
+
+    const std::uint64_t frame_count = d.u32();
+    const std::uint64_t expected = voxels_end + kFrameCountBytes + frame_count * frame_bytes(n);
+    if (length < expected) truncated(expected, (std::to_string(frame_count) + " frames").c_str());
+    if (length > expected)
+        fail(path, "corrupt replay: " + std::to_string(length - expected) +
+                       " unexpected bytes after the last frame");
+
+    r.frames.resize(frame_count);
+    double previous_time = -std::numeric_limits<double>::infinity();
+    for (std::uint64_t f = 0; f < frame_count; ++f) {
+        VoxelPoses& p = r.frames[f];
+        p.time_s = d.f64();
+        if (!std::isfinite(p.time_s) || p.time_s < previous_time)
+            fail(path, "corrupt replay: frame " + std::to_string(f) +
+                           " time is not finite or goes backwards");
+        previous_time = p.time_s;
+        d.f32_array(p.position_m, 3 * n);
+        d.f32_array(p.orientation, 4 * n);
+        d.f32_array(p.size_m, 3 * n);
+    }
+    return r;
+}
+
+}  // namespace bhm::engine
