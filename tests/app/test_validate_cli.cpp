@@ -1,0 +1,108 @@
+// The bhm executable's validate command and usage errors, run as a user would run them.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace {
+const std::string kSource = BHM_SOURCE_DIR;
+const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
+
+struct Result {
+    int status;
+    std::string output;
+};
+
+Result run(const std::string& args) {
+    const std::string command = kBhm + " " + args + " 2>&1";
+    std::FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string out;
+    char buffer[4096];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+        out.append(buffer, n);
+    int raw = pclose(pipe);
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+}
+}  // namespace
+
+TEST_CASE("bhm validate accepts every preset") {
+    auto r = run("validate " + kSource + "/assets/experiments/*.json");
+    CHECK(r.status == 0);
+    CHECK(r.output.find("5 file(s) valid") != std::string::npos);
+}
+
+TEST_CASE("bhm validate reports every problem of a file, one per line") {
+    const auto dir = std::filesystem::temp_directory_path() / "bhm-validate-cli";
+    std::filesystem::create_directories(dir);
+    const auto path = (dir / "two-problems.json").string();
+    std::ofstream(path) << R"({"materials": [{"name": "p", "poisson_ratio": 0.7},
+        {"name": "a", "cte_per_c": 0.01, "youngs_modulus_pa": -1}]})";
+    auto r = run("validate " + path);
+    CHECK(r.status == 1);
+    CHECK(r.output.find(path + ":materials[0].poisson_ratio: must be in (-1, 0.5)") !=
+          std::string::npos);
+    CHECK(r.output.find(path + ":materials[1].youngs_modulus_pa:") != std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a body is checked against the experiment named with it") {
+    auto r = run("validate " + kSource + "/assets/experiments/quick-demo.json " + kSource +
+                 "/tests/data/bad/body-no-material.json");
+    CHECK(r.status == 1);
+    CHECK(r.output.find("body-no-material.json:layers[0]: material 7") != std::string::npos);
+}
+
+TEST_CASE("usage errors exit 2 with a one-line error and a hint") {
+    auto r = run("frobnicate");
+    CHECK(r.status == 2);
+    CHECK(r.output.rfind("bhm: unknown subcommand 'frobnicate'", 0) == 0);
+    r = run("validate --bogus x.json");
+    CHECK(r.status == 2);
+    CHECK(r.output.rfind("bhm validate: unknown option '--bogus'", 0) == 0);
+    r = run("validate");
+    CHECK(r.status == 2);
+    r = run("--version");
+    CHECK(r.status == 0);
+    CHECK(r.output.rfind("bhm ", 0) == 0);
+    for (const char* sub : {"studio", "validate", "simulate", "evolve", "render", "export"}) {
+        CAPTURE(sub);
+        r = run(std::string(sub) + " --help");
+        CHECK(r.status == 0);
+        CHECK(r.output.find("usage: bhm ") != std::string::npos);
+    }
+}
+
+TEST_CASE("mutated presets through the real binary never crash it") {
+    const auto dir = std::filesystem::temp_directory_path() / "bhm-validate-fuzz";
+    std::filesystem::create_directories(dir);
+    std::ifstream in(kSource + "/assets/experiments/paper-exp3.json");
+    std::stringstream s;
+    s << in.rdbuf();
+    const std::string original = s.str();
+    std::mt19937 rng(7);
+    for (int i = 0; i < 24; ++i) {
+        std::string text = original;
+        if (i % 2)
+            text.resize(rng() % text.size());
+        else
+            for (int k = 0; k < 4; ++k)
+                text[rng() % text.size()] = static_cast<char>(rng() % 256);
+        const auto path = (dir / ("m" + std::to_string(i) + ".json")).string();
+        std::ofstream(path, std::ios::binary) << text;
+        auto r = run("validate --quiet " + path);
+        CAPTURE(r.output);
+        CHECK((r.status == 0 || r.status == 1));
+    }
+    auto r = run("validate " + (dir / "does-not-exist.json").string());
+    CHECK(r.status == 1);
+    CHECK(r.output.find("does-not-exist.json:(file): no such file") != std::string::npos);
+    std::filesystem::remove_all(dir);
+}
