@@ -1,0 +1,151 @@
+#include "evo/fitness.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "engine/world.hpp"
+#include "evo/scene.hpp"
+
+namespace bhm::evo {
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+double norm(const Vec3& v) {
+    return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+std::size_t measure_index(FitnessMeasure m) {
+    return static_cast<std::size_t>(m);
+}
+
+//! The face whose layer is the base of the bend: the first fixed face, x- if none is fixed.
+Face bend_base_face(const Boundary& boundary) {
+    for (int f = 0; f < 6; ++f)
+        if (boundary.faces[static_cast<std::size_t>(f)] == BoundaryKind::Fixed)
+            return static_cast<Face>(f);
+    return Face::XMin;
+}
+
+}  // namespace
+
+double fitness_under(const FitnessReport& report, FitnessMeasure measure) {
+    return report.diverged ? kDivergedFitness : report.measures[measure_index(measure)];
+}
+
+MeasureTracker::MeasureTracker(const Experiment& experiment, const engine::World& world)
+    : settle_s_(experiment.simulation.settle_s), voxel_size_m_(experiment.voxel_size_m) {
+    const auto& model = world.model();
+    const Face face = bend_base_face(experiment.boundary);
+    const auto axis = static_cast<std::size_t>(face) / 2;
+    const bool base_on_high_side = static_cast<int>(face) % 2 == 1;
+    const int n = model.voxel_count();
+    if (n == 0) return;
+    int lo = model.voxel_coords(0)[axis], hi = lo;
+    for (int v = 1; v < n; ++v) {
+        lo = std::min(lo, model.voxel_coords(v)[axis]);
+        hi = std::max(hi, model.voxel_coords(v)[axis]);
+    }
+    if (lo == hi) return;  // one layer: no line to bend
+    const int base_layer = base_on_high_side ? hi : lo;
+    const int tip_layer = base_on_high_side ? lo : hi;
+    for (int v = 0; v < n; ++v) {
+        const int c = model.voxel_coords(v)[axis];
+        if (c == base_layer) base_voxels_.push_back(v);
+        if (c == tip_layer) tip_voxels_.push_back(v);
+    }
+}
+
+std::array<double, 3> MeasureTracker::centroid(const engine::World& world,
+                                               const std::vector<int>& voxels) const {
+    Vec3 sum{0.0, 0.0, 0.0};
+    for (int v : voxels) {
+        const auto p = world.voxel_position_m(v);
+        for (int k = 0; k < 3; ++k)
+            sum[static_cast<std::size_t>(k)] += p[static_cast<std::size_t>(k)];
+    }
+    for (auto& s : sum)
+        s /= static_cast<double>(voxels.size());
+    return sum;
+}
+
+void MeasureTracker::observe(const engine::World& world) {
+    // Samples land on or just after their nominal time; the tolerance keeps t = settle_s itself.
+    if (world.time_s() < settle_s_ - 1e-9) return;
+    const Vec3 com = world.center_of_mass_m();
+    const bool can_bend = !base_voxels_.empty() && !tip_voxels_.empty();
+    Vec3 direction{0.0, 0.0, 0.0};
+    if (can_bend) {
+        const Vec3 base = centroid(world, base_voxels_), tip = centroid(world, tip_voxels_);
+        for (std::size_t k = 0; k < 3; ++k)
+            direction[k] = tip[k] - base[k];
+    }
+    if (!has_reference_) {
+        has_reference_ = true;
+        com0_ = com;
+        direction0_ = direction;
+        return;  // every measure is 0 at the reference
+    }
+    const Vec3 d{com[0] - com0_[0], com[1] - com0_[1], com[2] - com0_[2]};
+    const double d3 = norm(d) / voxel_size_m_;
+    const double dyz = std::sqrt(d[1] * d[1] + d[2] * d[2]) / voxel_size_m_;
+    auto& m = measures_;
+    m[measure_index(FitnessMeasure::ComFinal3d)] = d3;
+    m[measure_index(FitnessMeasure::ComFinalYz)] = dyz;
+    m[measure_index(FitnessMeasure::ComMax3d)] =
+        std::max(m[measure_index(FitnessMeasure::ComMax3d)], d3);
+    m[measure_index(FitnessMeasure::ComMaxYz)] =
+        std::max(m[measure_index(FitnessMeasure::ComMaxYz)], dyz);
+    if (can_bend) {
+        const double lengths = norm(direction0_) * norm(direction);
+        if (lengths > 0.0) {
+            const double cosine = (direction0_[0] * direction[0] + direction0_[1] * direction[1] +
+                                   direction0_[2] * direction[2]) /
+                                  lengths;
+            const double angle =
+                std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+            auto& bend = m[measure_index(FitnessMeasure::BendAngleDeg)];
+            bend = std::max(bend, angle);
+        }
+    }
+}
+
+FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
+                            const std::atomic<bool>* cancel) {
+    const auto start = std::chrono::steady_clock::now();
+    // Random phases come from the run's seed (docs/experiment-format.md), which the experiment
+    // holds.
+    const auto spec = make_body_spec(experiment, framed_body, experiment.evolution.seed);
+    engine::World world(engine::Model::build(spec));
+    MeasureTracker tracker(experiment, world);
+    const double sample_hz =
+        experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
+    engine::run(world, evaluation_seconds(experiment), sample_hz, [&](const engine::World& w) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) throw EvaluationCancelled();
+        tracker.observe(w);
+    });
+
+    FitnessReport report;
+    report.measures = tracker.measures();
+    report.simulated_s = world.time_s();
+    report.steps = world.steps();
+    report.diverged = world.diverged();
+    if (report.diverged) report.divergence_reason = world.divergence_reason();
+    const bool finite = std::all_of(report.measures.begin(), report.measures.end(),
+                                    [](double v) { return std::isfinite(v); });
+    if (!report.diverged && !finite) {
+        report.diverged = true;
+        report.divergence_reason = "non-finite fitness measure";
+    }
+    if (report.diverged)
+        report.measures.fill(0.0);  // keep files free of NaN; fitness says diverged
+    report.fitness = fitness_under(report, experiment.fitness.measure);
+    report.sim_wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+}  // namespace bhm::evo

@@ -1,0 +1,77 @@
+#pragma once
+// The genotype: a CPPN (Stanley 2007) as paper Table 2 specifies it. Five input nodes (x, y, z,
+// d = distance from the centre, bias 1), two output nodes (material present, active or passive),
+// hidden nodes each applying one of seven functions, weighted edges in [-1, 1]. The graph is any
+// acyclic graph (not layered): node values are computed in topological order, each value used by
+// every consumer.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "evo/experiment.hpp"
+#include "evo/rng.hpp"
+
+namespace bhm::evo {
+
+//! Hidden-node functions of paper Table 2.
+enum class Activation : std::uint8_t { Sin, Abs, NegAbs, Square, NegSquare, SqrtAbs, NegSqrtAbs };
+inline constexpr int kActivationCount = 7;
+inline constexpr std::array<const char*, kActivationCount> kActivationNames = {
+    "sin", "abs", "neg_abs", "square", "neg_square", "sqrt_abs", "neg_sqrt_abs"};
+
+double activate(Activation function, double x);
+
+//! Node layout: inputs first, then outputs, then hidden nodes. Inputs take no edges in and
+//! outputs send no edges out, so the graph's sources and sinks are fixed.
+enum InputNode : int { kInputX = 0, kInputY, kInputZ, kInputD, kInputBias };
+enum OutputNode : int { kOutputMaterial = 5, kOutputActive = 6 };
+inline constexpr int kInputCount = 5;
+inline constexpr int kOutputCount = 2;
+inline constexpr int kFirstHidden = kInputCount + kOutputCount;
+
+struct CppnEdge {
+    int from = 0;  //!< node index (an input or a hidden node)
+    int to = 0;    //!< node index (a hidden or an output node)
+    double weight = 0.0;
+    bool operator==(const CppnEdge&) const = default;
+};
+
+struct Genome {
+    //! Function of each hidden node; hidden node h is node kFirstHidden + h.
+    std::vector<Activation> hidden;
+    std::vector<CppnEdge> edges;
+
+    int node_count() const { return kFirstHidden + static_cast<int>(hidden.size()); }
+    int hidden_count() const { return static_cast<int>(hidden.size()); }
+    static bool is_input(int node) { return node < kInputCount; }
+    static bool is_output(int node) { return node >= kInputCount && node < kFirstHidden; }
+    static bool is_hidden(int node) { return node >= kFirstHidden; }
+    bool operator==(const Genome&) const = default;
+};
+
+//! Empty when the genome is well formed: node indices in range, no edge into an input or out of an
+//! output, no self loop or duplicate edge, weights finite and within +-weight_range, acyclic.
+std::string genome_problem(const Genome& genome, double weight_range);
+
+//! True when adding from -> to keeps the graph acyclic (to does not already reach from).
+bool edge_keeps_acyclic(const Genome& genome, int from, int to);
+bool has_edge(const Genome& genome, int from, int to);
+
+//! Nodes in an order where every edge goes forward (Kahn's algorithm, smallest index first, so
+//! the order is deterministic). Throws std::invalid_argument if the graph has a cycle.
+std::vector<int> topological_order(const Genome& genome);
+
+//! A new random genome (paper Table 2): hidden node count uniform in [min, max]; each hidden node
+//! takes two edges from inputs or earlier hidden nodes; each output takes edges from up to three
+//! hidden nodes; every hidden node left without a consumer feeds a random output. Acyclic by
+//! construction (edges only go from earlier to later nodes).
+Genome random_genome(const CppnSettings& settings, Rng& rng);
+
+nlohmann::json genome_to_json(const Genome& genome);
+//! Throws std::invalid_argument naming the field when the JSON is not a well-formed genome.
+Genome genome_from_json(const nlohmann::json& json, double weight_range);
+
+}  // namespace bhm::evo
