@@ -39,6 +39,14 @@ public:
     double kinetic_energy_j() const;
     std::array<double, 3> linear_momentum() const;
 
+    // Additions (engine): diagnostics used by tests and probes.
+    //! Elastic energy of the links + gravitational (relative to z = 0) + floor penalty springs (J).
+    double potential_energy_j() const;
+    //! Total angular momentum about the world origin (kg m^2/s).
+    std::array<double, 3> angular_momentum() const;
+    //! Orientation of voxel v as a unit quaternion w, x, y, z (body to world).
+    std::array<double, 4> voxel_orientation(int v) const;
+
     struct State;
 
 private:

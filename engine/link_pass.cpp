@@ -1,0 +1,212 @@
+// The link pass: Euler-Bernoulli beam forces of every link of one lattice axis.
+//
+// Per link, in its co-rotational frame F (link_kinematics.hpp) with chord direction e, extension
+// x = |d| - rest, end rotations ta (- end) and tb (+ end) relative to F, their twists t = theta.e,
+// and k_b = E I / L, k_t = G J / L, k_a = E A / L:
+//   axial force    N = k_a x                                       (tension > 0)
+//   bending        M_a = -k_b (4 ta + 2 tb),  M_b = -k_b (2 ta + 4 tb)   (parts normal to e)
+//   torsion        M_a.e = k_t (t_b - t_a),   M_b.e = -M_a.e
+//   shear force    from moment balance about the - end, d x F_b = -(M_a + M_b):
+//                  F_b = -N e + e x (M_a + M_b) / |d|,   F_a = -F_b
+// which is the standard beam element stiffness (12EI/L^3, 6EI/L^2, 4EI/L, 2EI/L) with the
+// transverse end offsets absorbed by the frame. Forces and moments are built directly in world
+// coordinates (no rotation back from a local frame). Bond damping is Rayleigh damping C = beta K:
+// the same equations evaluated at deformation + beta * rate, the rate being the backward difference
+// of the deformation (for symplectic Euler positions this is the current velocity). Linear and
+// angular momentum are conserved exactly by construction: equal and opposite forces, and moments
+// that balance the couple of the forces.
+#include "engine/link_pass.hpp"
+
+#include <cmath>
+
+#include "engine/link_kinematics.hpp"
+
+namespace bhm::engine {
+namespace {
+
+// The voxel arrays seen from one axis: index 0 of each triple is the link axis.
+struct AxisView {
+    const double* p[3];
+    const double* q[4];  // w, then the vector part in local order
+    int stride;
+};
+
+AxisView axis_view(const Model::Data& model, const VoxelState& s, int axis) {
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    return {
+        {s.pos[axis].data(), s.pos[a1].data(), s.pos[a2].data()},
+        {s.quat[0].data(), s.quat[1 + axis].data(), s.quat[1 + a1].data(), s.quat[1 + a2].data()},
+        model.stride[axis]};
+}
+
+// The chord of slot c; an absent link sees a straight rest chord so its (discarded) numbers stay
+// finite whatever its neighbours do. Restrict pointers: nothing the link pass writes aliases them.
+BHM_ENGINE_INLINE LinkFrame frame_of(const double* __restrict p0, const double* __restrict p1,
+                                     const double* __restrict p2, const double* __restrict qw,
+                                     const double* __restrict q0, const double* __restrict q1,
+                                     const double* __restrict q2, int stride, float exists,
+                                     float rest_base, int c) {
+    const int b = c + stride;
+    const float dx = static_cast<float>(p0[b] - p0[c]) * exists + (1.0f - exists) * rest_base;
+    const float dy = static_cast<float>(p1[b] - p1[c]) * exists;
+    const float dz = static_cast<float>(p2[b] - p2[c]) * exists;
+    return link_frame(dx, dy, dz, static_cast<float>(qw[c]), static_cast<float>(q0[c]),
+                      static_cast<float>(q1[c]), static_cast<float>(q2[c]),
+                      static_cast<float>(qw[b]), static_cast<float>(q0[b]),
+                      static_cast<float>(q1[b]), static_cast<float>(q2[b]));
+}
+
+BHM_ENGINE_INLINE LinkFrame frame_of(const AxisView& v, float exists, float rest_base, int c) {
+    return frame_of(v.p[0], v.p[1], v.p[2], v.q[0], v.q[1], v.q[2], v.q[3], v.stride, exists,
+                    rest_base, c);
+}
+
+BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest) {
+    // Written so that NaN fails both tests.
+    return (std::fabs(extension) < rest) & (f.axis_cos > 0.0f);
+}
+
+}  // namespace
+
+int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& out, int axis,
+              float sin_t, float cos_t) {
+    const AxisView v = axis_view(model, voxels, axis);
+    const LinkParams& lp = model.links[axis];
+    const float* __restrict exists = lp.exists.data();
+    const float* __restrict k_axial = lp.k_axial.data();
+    const float* __restrict k_bend = lp.k_bend.data();
+    const float* __restrict k_torsion = lp.k_torsion.data();
+    const float* __restrict damp = lp.damp_steps.data();
+    const float* __restrict rest_base = lp.rest_base.data();
+    const float* __restrict rest_sin = lp.rest_sin.data();
+    const float* __restrict rest_cos = lp.rest_cos.data();
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    float* __restrict f0 = out.force[axis];
+    float* __restrict f1 = out.force[a1];
+    float* __restrict f2 = out.force[a2];
+    float* __restrict mn0 = out.moment_neg[axis];
+    float* __restrict mn1 = out.moment_neg[a1];
+    float* __restrict mn2 = out.moment_neg[a2];
+    float* __restrict mp0 = out.moment_pos[axis];
+    float* __restrict mp1 = out.moment_pos[a1];
+    float* __restrict mp2 = out.moment_pos[a2];
+    float* __restrict prev_len = out.prev_length;
+    float* __restrict pa0 = out.prev_theta_neg[0];
+    float* __restrict pa1 = out.prev_theta_neg[1];
+    float* __restrict pa2 = out.prev_theta_neg[2];
+    float* __restrict pb0 = out.prev_theta_pos[0];
+    float* __restrict pb1 = out.prev_theta_pos[1];
+    float* __restrict pb2 = out.prev_theta_pos[2];
+
+    const double* __restrict p0 = v.p[0];
+    const double* __restrict p1 = v.p[1];
+    const double* __restrict p2 = v.p[2];
+    const double* __restrict qw = v.q[0];
+    const double* __restrict q0 = v.q[1];
+    const double* __restrict q1 = v.q[2];
+    const double* __restrict q2 = v.q[3];
+    const int stride = v.stride;
+
+    int bad = 0;  // an integer sum: a float one would be an in-order (unvectorisable) reduction
+    const int n = model.cells;
+    // Every array is distinct (restrict on locals is not enough for GCC's dependence analysis).
+#pragma GCC ivdep
+    for (int c = 0; c < n; ++c) {
+        const LinkFrame f =
+            frame_of(p0, p1, p2, qw, q0, q1, q2, stride, exists[c], rest_base[c], c);
+        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
+        const float extension = f.length - rest;
+        bad += static_cast<int>((exists[c] > 0.0f) & !healthy(f, extension, rest));
+
+        // Deformation plus beta times its rate (Rayleigh damping), then the beam equations.
+        const float k = damp[c];
+        const float x = extension + k * (f.length - prev_len[c]);
+        const float ta0 = f.theta_neg[0] + k * (f.theta_neg[0] - pa0[c]);
+        const float ta1 = f.theta_neg[1] + k * (f.theta_neg[1] - pa1[c]);
+        const float ta2 = f.theta_neg[2] + k * (f.theta_neg[2] - pa2[c]);
+        const float tb0 = f.theta_pos[0] + k * (f.theta_pos[0] - pb0[c]);
+        const float tb1 = f.theta_pos[1] + k * (f.theta_pos[1] - pb1[c]);
+        const float tb2 = f.theta_pos[2] + k * (f.theta_pos[2] - pb2[c]);
+        prev_len[c] = f.length;
+        pa0[c] = f.theta_neg[0];
+        pa1[c] = f.theta_neg[1];
+        pa2[c] = f.theta_neg[2];
+        pb0[c] = f.theta_pos[0];
+        pb1[c] = f.theta_pos[1];
+        pb2[c] = f.theta_pos[2];
+
+        // Absent links have zero stiffness, so everything below is exactly zero for them.
+        const float kb = k_bend[c];
+        const float twist_a = ta0 * f.ex + ta1 * f.ey + ta2 * f.ez;
+        const float twist_b = tb0 * f.ex + tb1 * f.ey + tb2 * f.ez;
+        const float kt_twist = k_torsion[c] * (twist_b - twist_a);
+        // Bending acts on the normal parts only: add back the e components, then torsion.
+        const float along_a = kt_twist + kb * (4.0f * twist_a + 2.0f * twist_b);
+        const float along_b = -kt_twist + kb * (2.0f * twist_a + 4.0f * twist_b);
+        const float ma0 = -kb * (4.0f * ta0 + 2.0f * tb0) + along_a * f.ex;
+        const float ma1 = -kb * (4.0f * ta1 + 2.0f * tb1) + along_a * f.ey;
+        const float ma2 = -kb * (4.0f * ta2 + 2.0f * tb2) + along_a * f.ez;
+        const float mb0 = -kb * (2.0f * ta0 + 4.0f * tb0) + along_b * f.ex;
+        const float mb1 = -kb * (2.0f * ta1 + 4.0f * tb1) + along_b * f.ey;
+        const float mb2 = -kb * (2.0f * ta2 + 4.0f * tb2) + along_b * f.ez;
+        const float s0 = ma0 + mb0, s1 = ma1 + mb1, s2 = ma2 + mb2;
+        const float inv_len = 1.0f / f.length;
+        const float axial = k_axial[c] * x;
+        f0[c] = -axial * f.ex + (f.ey * s2 - f.ez * s1) * inv_len;
+        f1[c] = -axial * f.ey + (f.ez * s0 - f.ex * s2) * inv_len;
+        f2[c] = -axial * f.ez + (f.ex * s1 - f.ey * s0) * inv_len;
+        mn0[c] = ma0;
+        mn1[c] = ma1;
+        mn2[c] = ma2;
+        mp0[c] = mb0;
+        mp1[c] = mb1;
+        mp2[c] = mb2;
+    }
+    return bad;
+}
+
+int first_bad_link(const Model::Data& model, const VoxelState& voxels, int axis, float sin_t,
+                   float cos_t) {
+    const AxisView v = axis_view(model, voxels, axis);
+    const LinkParams& lp = model.links[axis];
+    for (int c = 0; c < model.cells; ++c) {
+        if (lp.exists[c] == 0.0f) continue;
+        const LinkFrame f = frame_of(v, 1.0f, lp.rest_base[c], c);
+        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
+        if (!healthy(f, f.length - rest, rest)) return c;
+    }
+    return -1;
+}
+
+double link_elastic_energy(const Model::Data& model, const VoxelState& voxels, int axis,
+                           float sin_t, float cos_t) {
+    const AxisView v = axis_view(model, voxels, axis);
+    const LinkParams& lp = model.links[axis];
+    double energy = 0.0;
+    for (int c = 0; c < model.cells; ++c) {
+        if (lp.exists[c] == 0.0f) continue;
+        const LinkFrame f = frame_of(v, 1.0f, lp.rest_base[c], c);
+        const double rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
+        const double x = f.length - rest;
+        const double e[3] = {f.ex, f.ey, f.ez};
+        double ta_e = 0.0, tb_e = 0.0, ta_ta = 0.0, tb_tb = 0.0, ta_tb = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const double ta = f.theta_neg[i], tb = f.theta_pos[i];
+            ta_e += ta * e[i];
+            tb_e += tb * e[i];
+            ta_ta += ta * ta;
+            tb_tb += tb * tb;
+            ta_tb += ta * tb;
+        }
+        // Normal parts: |ta_n|^2 = |ta|^2 - (ta.e)^2 etc. U_bend = k_b (2 ta_n^2 + 2 tb_n^2 + 2
+        // ta_n.tb_n)
+        const double bend =
+            2.0 * (ta_ta - ta_e * ta_e) + 2.0 * (tb_tb - tb_e * tb_e) + 2.0 * (ta_tb - ta_e * tb_e);
+        const double twist = tb_e - ta_e;
+        energy += 0.5 * lp.k_axial[c] * x * x + 0.5 * lp.k_torsion[c] * twist * twist +
+                  lp.k_bend[c] * bend;
+    }
+    return energy;
+}
+
+}  // namespace bhm::engine

@@ -1,0 +1,262 @@
+// Model::build: validates a BodySpec and precomputes every constant a step needs.
+#include "engine/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "engine/model_data.hpp"
+
+namespace bhm::engine {
+namespace {
+
+[[noreturn]] void reject(const std::string& what) {
+    throw std::invalid_argument("body spec: " + what);
+}
+
+bool finite(double x) {
+    return std::isfinite(x);
+}
+
+void validate(const BodySpec& spec) {
+    if (spec.nx <= 0 || spec.ny <= 0 || spec.nz <= 0)
+        reject("nx, ny, nz must be positive (got " + std::to_string(spec.nx) + " x " +
+               std::to_string(spec.ny) + " x " + std::to_string(spec.nz) + ")");
+    const long long cells = 1LL * spec.nx * spec.ny * spec.nz;
+    if (cells > (1LL << 26)) reject("lattice of " + std::to_string(cells) + " cells is too large");
+    if (!finite(spec.voxel_size_m) || spec.voxel_size_m <= 0.0)
+        reject("voxel_size_m must be positive");
+    if (static_cast<long long>(spec.material.size()) != cells)
+        reject("material has " + std::to_string(spec.material.size()) + " entries, expected " +
+               std::to_string(cells));
+    if (!spec.fixed.empty() && static_cast<long long>(spec.fixed.size()) != cells)
+        reject("fixed has " + std::to_string(spec.fixed.size()) + " entries, expected 0 or " +
+               std::to_string(cells));
+    if (!spec.phase_rad.empty() && static_cast<long long>(spec.phase_rad.size()) != cells)
+        reject("phase_rad has " + std::to_string(spec.phase_rad.size()) +
+               " entries, expected 0 or " + std::to_string(cells));
+    for (std::size_t k = 0; k < spec.materials.size(); ++k) {
+        const Material& m = spec.materials[k];
+        const std::string name = "materials[" + std::to_string(k) + "].";
+        if (!finite(m.youngs_modulus_pa) || m.youngs_modulus_pa <= 0.0)
+            reject(name + "youngs_modulus_pa must be positive");
+        if (!finite(m.density_kg_m3) || m.density_kg_m3 <= 0.0)
+            reject(name + "density_kg_m3 must be positive");
+        if (!finite(m.poisson_ratio) || m.poisson_ratio <= -1.0 || m.poisson_ratio >= 0.5)
+            reject(name + "poisson_ratio must be in (-1, 0.5)");
+        if (!finite(m.cte_per_c)) reject(name + "cte_per_c must be finite");
+        if (!finite(m.static_friction) || m.static_friction < 0.0)
+            reject(name + "static_friction must be >= 0");
+        if (!finite(m.dynamic_friction) || m.dynamic_friction < 0.0)
+            reject(name + "dynamic_friction must be >= 0");
+    }
+    bool any_voxel = false;
+    for (long long c = 0; c < cells; ++c) {
+        const int k = spec.material[c];
+        if (k == 0) continue;
+        any_voxel = true;
+        if (k > static_cast<int>(spec.materials.size()))
+            reject("material[" + std::to_string(c) + "] = " + std::to_string(k) + " but only " +
+                   std::to_string(spec.materials.size()) + " materials are defined");
+    }
+    if (!any_voxel) reject("the body has no voxels");
+    for (float p : spec.phase_rad)
+        if (!std::isfinite(p)) reject("phase_rad has a non-finite entry");
+    const Damping& d = spec.damping;
+    if (!finite(d.bond_ratio) || d.bond_ratio < 0.0) reject("damping.bond_ratio must be >= 0");
+    if (!finite(d.global_ratio) || d.global_ratio < 0.0)
+        reject("damping.global_ratio must be >= 0");
+    if (!finite(d.collision_ratio) || d.collision_ratio < 0.0)
+        reject("damping.collision_ratio must be >= 0");
+    const Actuation& a = spec.actuation;
+    if (!finite(a.frequency_hz) || a.frequency_hz < 0.0)
+        reject("actuation.frequency_hz must be >= 0");
+    if (!finite(a.temperature_amplitude_c))
+        reject("actuation.temperature_amplitude_c must be finite");
+    if (!finite(a.start_s)) reject("actuation.start_s must be finite");
+    if (!finite(spec.environment.gravity_m_s2)) reject("environment.gravity_m_s2 must be finite");
+    if (!finite(spec.dt_fraction) || spec.dt_fraction <= 0.0)
+        reject("dt_fraction must be positive");
+}
+
+// Two materials joined by a link act as springs in series: 2 a b / (a + b).
+double series(double a, double b) {
+    return 2.0 * a * b / (a + b);
+}
+
+double shear_modulus(const Material& m) {
+    return m.youngs_modulus_pa / (2.0 * (1.0 + m.poisson_ratio));
+}
+
+// Torsion constant of a square section of side a: J = 0.1406 a^4 (Saint-Venant, b/a = 1).
+constexpr double kSquareTorsionFactor = 0.1406;
+
+void resize_cells(Model::Data& d, int n) {
+    for (auto* v : {&d.occupied, &d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia,
+                    &d.linear_keep, &d.angular_keep, &d.floor_k, &d.floor_c, &d.mu_static,
+                    &d.mu_dynamic, &d.act_sin, &d.act_cos})
+        v->assign(n, 0.0);
+}
+
+void resize_links(LinkParams& p, int n) {
+    for (auto* v : {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.rest_base,
+                    &p.rest_sin, &p.rest_cos})
+        v->assign(n, 0.0f);
+}
+
+}  // namespace
+
+std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
+    validate(spec);
+    auto data = std::make_unique<Data>();
+    Data& d = *data;
+    d.spec = spec;
+    const double L = spec.voxel_size_m;
+    d.voxel_size_m = L;
+    d.cells = spec.cell_count();
+    d.pad = spec.nx * spec.ny;
+    d.stride = {1, spec.nx, spec.nx * spec.ny};
+    const int slots = d.cells + d.pad;
+
+    // Voxels in lattice order.
+    d.cell_voxel.assign(d.cells, -1);
+    for (int c = 0; c < d.cells; ++c) {
+        if (spec.material[c] == 0) continue;
+        d.cell_voxel[c] = static_cast<int>(d.voxel_cell.size());
+        d.voxel_cell.push_back(c);
+        d.voxel_material.push_back(spec.material[c]);
+        d.voxel_fixed.push_back(spec.fixed.empty() ? 0 : (spec.fixed[c] ? 1 : 0));
+    }
+
+    // Per cell constants.
+    resize_cells(d, slots);
+    const double volume = L * L * L;
+    double max_omega2 = 0.0;  // largest k/m (or k_rot/I) seen, for the stable step
+    for (std::size_t v = 0; v < d.voxel_cell.size(); ++v) {
+        const int c = d.voxel_cell[v];
+        const Material& mat = spec.materials[d.voxel_material[v] - 1];
+        const double m = mat.density_kg_m3 * volume;
+        const double inertia = m * L * L / 6.0;
+        const double k_axial = mat.youngs_modulus_pa * L;              // E A / L
+        const double k_rot = mat.youngs_modulus_pa * L * L * L / 3.0;  // 4 E I / L
+        d.occupied[c] = 1.0;
+        d.mass[c] = m;
+        d.total_mass_kg += m;
+        d.floor_k[c] = k_axial;
+        d.floor_c[c] = 2.0 * spec.damping.collision_ratio * std::sqrt(m * k_axial);
+        d.mu_static[c] = mat.static_friction;
+        d.mu_dynamic[c] = mat.dynamic_friction;
+        const double phase = spec.phase_rad.empty() ? 0.0 : spec.phase_rad[c];
+        const double amplitude = mat.cte_per_c * spec.actuation.temperature_amplitude_c;
+        // sin(w tau + phase) = sin(w tau) cos(phase) + cos(w tau) sin(phase)
+        d.act_sin[c] = amplitude * std::cos(phase);
+        d.act_cos[c] = amplitude * std::sin(phase);
+        if (amplitude != 0.0) d.any_active = true;
+        max_omega2 = std::max({max_omega2, k_axial / m, k_rot / inertia});
+    }
+
+    // Links: slot c of axis a joins c and c + stride[a] when both are occupied.
+    const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
+    const double torsion_over_l = kSquareTorsionFactor * std::pow(L, 4) / L;
+    for (int axis = 0; axis < 3; ++axis) {
+        LinkParams& p = d.links[axis];
+        resize_links(p, d.cells);
+        const int limit = axis == 0 ? spec.nx : (axis == 1 ? spec.ny : spec.nz);
+        for (int c = 0; c < d.cells; ++c) {
+            const int coord =
+                axis == 0 ? c % spec.nx : (axis == 1 ? (c / spec.nx) % spec.ny : c / d.pad);
+            p.rest_base[c] = static_cast<float>(L);  // keeps dummy slots well formed
+            if (coord + 1 >= limit) continue;
+            const int b = c + d.stride[axis];
+            if (spec.material[c] == 0 || spec.material[b] == 0) continue;
+            const Material& ma = spec.materials[spec.material[c] - 1];
+            const Material& mb = spec.materials[spec.material[b] - 1];
+            const double e = series(ma.youngs_modulus_pa, mb.youngs_modulus_pa);
+            const double g = series(shear_modulus(ma), shear_modulus(mb));
+            const double k_axial = e * L;
+            const double m_a = d.mass[c], m_b = d.mass[b];
+            const double reduced_mass = m_a * m_b / (m_a + m_b);
+            // Bond damping: c = 2 zeta sqrt(m_red k) is critical for the pair's axial mode;
+            // applied as Rayleigh damping (C = beta K) to every mode of the beam.
+            const double beta = 2.0 * spec.damping.bond_ratio * std::sqrt(reduced_mass / k_axial);
+            p.exists[c] = 1.0f;
+            p.k_axial[c] = static_cast<float>(k_axial);
+            p.k_bend[c] = static_cast<float>(e * beam_inertia_over_l);
+            p.k_torsion[c] = static_cast<float>(g * torsion_over_l);
+            p.damp_steps[c] = static_cast<float>(beta);  // divided by dt below
+            p.rest_sin[c] = static_cast<float>(0.5 * L * (d.act_sin[c] + d.act_sin[b]));
+            p.rest_cos[c] = static_cast<float>(0.5 * L * (d.act_cos[c] + d.act_cos[b]));
+            ++d.link_count;
+            const double m_min = std::min(m_a, m_b);
+            max_omega2 = std::max({max_omega2, k_axial / m_min,
+                                   4.0 * e * beam_inertia_over_l / (m_min * L * L / 6.0)});
+        }
+    }
+
+    // Voxelyze's recommended step: 1 / (2 pi sqrt(k_max / m_min)), rotational modes included.
+    d.stable_dt_s = 1.0 / (2.0 * std::numbers::pi * std::sqrt(max_omega2));
+    d.dt_s = spec.dt_fraction * d.stable_dt_s;
+    const double dt = d.dt_s;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float& s : d.links[axis].damp_steps)
+            s = static_cast<float>(s / dt);
+
+    for (std::size_t v = 0; v < d.voxel_cell.size(); ++v) {
+        const int c = d.voxel_cell[v];
+        const double m = d.mass[c];
+        const double inertia = m * L * L / 6.0;
+        const Material& mat = spec.materials[d.voxel_material[v] - 1];
+        const double c_lin =
+            2.0 * spec.damping.global_ratio * std::sqrt(m * mat.youngs_modulus_pa * L);
+        const double c_rot = 2.0 * spec.damping.global_ratio *
+                             std::sqrt(inertia * mat.youngs_modulus_pa * L * L * L / 3.0);
+        d.linear_keep[c] = 1.0 / (1.0 + dt * c_lin / m);
+        d.angular_keep[c] = 1.0 / (1.0 + dt * c_rot / inertia);
+        if (d.voxel_fixed[v]) continue;
+        d.movable[c] = 1.0;
+        d.dt_inv_mass[c] = dt / m;
+        d.dt_inv_inertia[c] = dt / inertia;
+    }
+    return std::make_shared<const Model>(std::move(data));
+}
+
+Model::Model(std::unique_ptr<Data> data) : data_(std::move(data)) {}
+Model::~Model() = default;
+
+int Model::voxel_count() const {
+    return static_cast<int>(data_->voxel_cell.size());
+}
+int Model::link_count() const {
+    return data_->link_count;
+}
+double Model::dt_s() const {
+    return data_->dt_s;
+}
+double Model::voxel_size_m() const {
+    return data_->voxel_size_m;
+}
+const BodySpec& Model::spec() const {
+    return data_->spec;
+}
+int Model::voxel_cell(int v) const {
+    return data_->voxel_cell.at(v);
+}
+std::array<int, 3> Model::voxel_coords(int v) const {
+    const int c = data_->voxel_cell.at(v);
+    const int nx = data_->spec.nx, ny = data_->spec.ny;
+    return {c % nx, (c / nx) % ny, c / (nx * ny)};
+}
+int Model::voxel_material(int v) const {
+    return data_->voxel_material.at(v);
+}
+bool Model::voxel_fixed(int v) const {
+    return data_->voxel_fixed.at(v) != 0;
+}
+double Model::total_mass_kg() const {
+    return data_->total_mass_kg;
+}
+
+}  // namespace bhm::engine

@@ -1,0 +1,26 @@
+#pragma once
+// Private to the engine: the second pass of a step. Each voxel gathers the forces of its (up to
+// six) links in a fixed order, adds gravity, its external force, floor contact and friction, and
+// is integrated with semi-implicit (symplectic) Euler.
+#include "engine/model_data.hpp"
+#include "engine/world_state.hpp"
+
+namespace bhm::engine {
+
+struct VoxelPassInput {
+    double sin_t = 0.0, cos_t = 0.0;  //!< actuation phase of the step (see Model::Data::act_sin)
+    double gravity_m_s2 = 0.0;
+    double floor_z = 0.0;  //!< height of the floor: 0, or -1e300 without one (never touched)
+};
+
+//! Integrates every voxel by one dt. A voxel whose new state would be non-finite or move more than
+//! one voxel (or turn more than one radian) in the step keeps its old state and is counted; the
+//! return value is that count (non-zero = diverged).
+int voxel_pass(const Model::Data& model, VoxelState& voxels,
+               const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
+
+//! Index of the first voxel cell the last voxel_pass refused (recomputed), or -1.
+int first_bad_voxel_cell(const Model::Data& model, VoxelState& voxels,
+                         const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
+
+}  // namespace bhm::engine

@@ -1,0 +1,290 @@
+// World: one simulation of one Model. A step = three link passes (x, y, z) + one voxel pass.
+#include "engine/world.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "engine/link_pass.hpp"
+#include "engine/voxel_pass.hpp"
+#include "engine/world_state.hpp"
+
+namespace bhm::engine {
+namespace {
+
+void init_voxels(const Model::Data& d, VoxelState& s) {
+    const int n = d.cells + d.pad;
+    const int nx = d.spec.nx, ny = d.spec.ny;
+    const double L = d.voxel_size_m;
+    for (int i = 0; i < 3; ++i) {
+        s.pos[i].assign(n, 0.0);
+        s.vel[i].assign(n, 0.0);
+        s.omega[i].assign(n, 0.0);
+        s.ext_force[i].assign(n, 0.0);
+    }
+    for (int i = 0; i < 4; ++i)
+        s.quat[i].assign(n, i == 0 ? 1.0 : 0.0);
+    s.stuck.assign(n, 0.0);
+    // Every slot, dummies and padding included, sits on its lattice point.
+    for (int c = 0; c < n; ++c) {
+        s.pos[0][c] = (c % nx + 0.5) * L;
+        s.pos[1][c] = ((c / nx) % ny + 0.5) * L;
+        s.pos[2][c] = (c / (nx * ny) + 0.5) * L;
+    }
+}
+
+void init_links(const Model::Data& d, LinkScratch& l) {
+    // 19 arrays; force and moments are read at c - stride, so each has pad slots in front.
+    const std::size_t span = static_cast<std::size_t>(d.pad) + d.cells;
+    l.storage.assign(19 * span, 0.0f);
+    float* base = l.storage.data() + d.pad;
+    auto next = [&]() {
+        float* p = base;
+        base += span;
+        return p;
+    };
+    for (int i = 0; i < 3; ++i)
+        l.force[i] = next();
+    for (int i = 0; i < 3; ++i)
+        l.moment_neg[i] = next();
+    for (int i = 0; i < 3; ++i)
+        l.moment_pos[i] = next();
+    l.prev_length = next();
+    for (int i = 0; i < 3; ++i)
+        l.prev_theta_neg[i] = next();
+    for (int i = 0; i < 3; ++i)
+        l.prev_theta_pos[i] = next();
+    // At t = 0 every link is straight at its lattice length.
+    for (int c = 0; c < d.cells; ++c)
+        l.prev_length[c] = static_cast<float>(d.voxel_size_m);
+}
+
+struct Phase {
+    double sin_t = 0.0, cos_t = 0.0;
+};
+
+Phase actuation_phase(const Model::Data& d, double t) {
+    const Actuation& a = d.spec.actuation;
+    const double tau = t - a.start_s;
+    if (!d.any_active || tau < 0.0) return {};
+    const double angle = 2.0 * std::numbers::pi * a.frequency_hz * tau;
+    return {std::sin(angle), std::cos(angle)};
+}
+
+const char* kAxisNames[3] = {"x", "y", "z"};
+
+}  // namespace
+
+World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State>()) {
+    if (!model) throw std::invalid_argument("World: null model");
+    state_->model = std::move(model);
+    state_->data = &state_->model->data();
+    init_voxels(*state_->data, state_->voxels);
+    for (auto& l : state_->links)
+        init_links(*state_->data, l);
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+const Model& World::model() const {
+    return *state_->model;
+}
+
+void World::step() {
+    State& s = *state_;
+    if (s.diverged) return;
+    const Model::Data& d = *s.data;
+    const double t = time_s();
+    const Phase phase = actuation_phase(d, t);
+    const float sin_t = static_cast<float>(phase.sin_t), cos_t = static_cast<float>(phase.cos_t);
+
+    int bad_links = 0;
+    for (int axis = 0; axis < 3; ++axis)
+        bad_links += link_pass(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
+    if (bad_links != 0) {
+        std::ostringstream why;
+        why << "link strain beyond 100% or shear beyond 90 degrees";
+        for (int axis = 0; axis < 3; ++axis) {
+            const int c = first_bad_link(d, s.voxels, axis, sin_t, cos_t);
+            if (c < 0) continue;
+            why << " (" << kAxisNames[axis] << " link from voxel " << d.cell_voxel[c]
+                << " to voxel " << d.cell_voxel[c + d.stride[axis]] << ")";
+            break;
+        }
+        why << " at t = " << t << " s, step " << s.steps;
+        s.diverged = true;
+        s.divergence_reason = why.str();
+        return;
+    }
+
+    VoxelPassInput in;
+    in.sin_t = phase.sin_t;
+    in.cos_t = phase.cos_t;
+    in.gravity_m_s2 = d.spec.environment.gravity_m_s2;
+    in.floor_z = d.spec.environment.floor ? 0.0 : -1e300;
+    const int bad_voxels = voxel_pass(d, s.voxels, s.links, in);
+    if (bad_voxels != 0) {
+        std::ostringstream why;
+        why << "voxel state non-finite or moving more than one voxel (or one radian) per step";
+        const int c = first_bad_voxel_cell(d, s.voxels, s.links, in);
+        if (c >= 0) why << " (voxel " << d.cell_voxel[c] << ")";
+        why << " at t = " << t << " s, step " << s.steps;
+        s.diverged = true;
+        s.divergence_reason = why.str();
+        return;
+    }
+    ++s.steps;
+}
+
+bool World::advance_to(double target_s) {
+    State& s = *state_;
+    const double dt = s.data->dt_s;
+    while (!s.diverged && static_cast<double>(s.steps) * dt < target_s)
+        step();
+    return !s.diverged;
+}
+
+double World::time_s() const {
+    return static_cast<double>(state_->steps) * state_->data->dt_s;
+}
+std::int64_t World::steps() const {
+    return state_->steps;
+}
+bool World::diverged() const {
+    return state_->diverged;
+}
+const std::string& World::divergence_reason() const {
+    return state_->divergence_reason;
+}
+
+std::array<double, 3> World::center_of_mass_m() const {
+    const Model::Data& d = *state_->data;
+    const VoxelState& s = state_->voxels;
+    std::array<double, 3> sum{0.0, 0.0, 0.0};
+    for (int c : d.voxel_cell)
+        for (int i = 0; i < 3; ++i)
+            sum[i] += d.mass[c] * s.pos[i][c];
+    for (double& x : sum)
+        x /= d.total_mass_kg;
+    return sum;
+}
+
+std::array<double, 3> World::voxel_position_m(int v) const {
+    const int c = state_->data->voxel_cell.at(v);
+    const VoxelState& s = state_->voxels;
+    return {s.pos[0][c], s.pos[1][c], s.pos[2][c]};
+}
+
+void World::read_poses(VoxelPoses& out) const {
+    const Model::Data& d = *state_->data;
+    const VoxelState& s = state_->voxels;
+    const int n = static_cast<int>(d.voxel_cell.size());
+    out.time_s = time_s();
+    out.position_m.resize(3 * static_cast<std::size_t>(n));
+    out.orientation.resize(4 * static_cast<std::size_t>(n));
+    out.size_m.resize(3 * static_cast<std::size_t>(n));
+    const Phase phase = actuation_phase(d, out.time_s);
+    for (int v = 0; v < n; ++v) {
+        const int c = d.voxel_cell[v];
+        for (int i = 0; i < 3; ++i)
+            out.position_m[3 * v + i] = static_cast<float>(s.pos[i][c]);
+        for (int i = 0; i < 4; ++i)
+            out.orientation[4 * v + i] = static_cast<float>(s.quat[i][c]);
+        const double size =
+            d.voxel_size_m * (1.0 + d.act_sin[c] * phase.sin_t + d.act_cos[c] * phase.cos_t);
+        for (int i = 0; i < 3; ++i)
+            out.size_m[3 * v + i] = static_cast<float>(size);
+    }
+}
+
+void World::set_external_force(int v, std::array<double, 3> force_n) {
+    const int c = state_->data->voxel_cell.at(v);
+    for (int i = 0; i < 3; ++i)
+        state_->voxels.ext_force[i][c] = force_n[i];
+}
+
+double World::kinetic_energy_j() const {
+    const Model::Data& d = *state_->data;
+    const VoxelState& s = state_->voxels;
+    const double L = d.voxel_size_m;
+    double e = 0.0;
+    for (int c : d.voxel_cell) {
+        const double m = d.mass[c], inertia = m * L * L / 6.0;
+        for (int i = 0; i < 3; ++i)
+            e += 0.5 * (m * s.vel[i][c] * s.vel[i][c] + inertia * s.omega[i][c] * s.omega[i][c]);
+    }
+    return e;
+}
+
+std::array<double, 3> World::linear_momentum() const {
+    const Model::Data& d = *state_->data;
+    const VoxelState& s = state_->voxels;
+    std::array<double, 3> p{0.0, 0.0, 0.0};
+    for (int c : d.voxel_cell)
+        for (int i = 0; i < 3; ++i)
+            p[i] += d.mass[c] * s.vel[i][c];
+    return p;
+}
+
+std::array<double, 3> World::angular_momentum() const {
+    const Model::Data& d = *state_->data;
+    const VoxelState& s = state_->voxels;
+    const double L = d.voxel_size_m;
+    std::array<double, 3> h{0.0, 0.0, 0.0};
+    for (int c : d.voxel_cell) {
+        const double m = d.mass[c], inertia = m * L * L / 6.0;
+        const double r[3] = {s.pos[0][c], s.pos[1][c], s.pos[2][c]};
+        const double v[3] = {s.vel[0][c], s.vel[1][c], s.vel[2][c]};
+        h[0] += m * (r[1] * v[2] - r[2] * v[1]) + inertia * s.omega[0][c];
+        h[1] += m * (r[2] * v[0] - r[0] * v[2]) + inertia * s.omega[1][c];
+        h[2] += m * (r[0] * v[1] - r[1] * v[0]) + inertia * s.omega[2][c];
+    }
+    return h;
+}
+
+double World::potential_energy_j() const {
+    const Model::Data& d = *state_->data;
+    const VoxelState& s = state_->voxels;
+    const Phase phase = actuation_phase(d, time_s());
+    double e = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+        e += link_elastic_energy(d, s, axis, static_cast<float>(phase.sin_t),
+                                 static_cast<float>(phase.cos_t));
+    const double g = d.spec.environment.gravity_m_s2;
+    for (int c : d.voxel_cell) {
+        e -= d.mass[c] * g * s.pos[2][c];
+        if (!d.spec.environment.floor) continue;
+        const double half =
+            0.5 * d.voxel_size_m * (1.0 + d.act_sin[c] * phase.sin_t + d.act_cos[c] * phase.cos_t);
+        const double penetration = half - s.pos[2][c];
+        if (penetration > 0.0) e += 0.5 * d.floor_k[c] * penetration * penetration;
+    }
+    return e;
+}
+
+std::array<double, 4> World::voxel_orientation(int v) const {
+    const int c = state_->data->voxel_cell.at(v);
+    const VoxelState& s = state_->voxels;
+    return {s.quat[0][c], s.quat[1][c], s.quat[2][c], s.quat[3][c]};
+}
+
+void run(World& world, double total_s, double sample_hz,
+         const std::function<void(const World&)>& observe) {
+    if (!(sample_hz > 0.0)) throw std::invalid_argument("run: sample_hz must be positive");
+    const double period = 1.0 / sample_hz;
+    const double dt = world.model().dt_s();
+    // Sample k is due at k / sample_hz; the last sample is at total_s.
+    for (std::int64_t k = 0;; ++k) {
+        double due = static_cast<double>(k) * period;
+        const bool last = due >= total_s - 0.5 * dt;
+        if (last) due = total_s;
+        if (!world.advance_to(due)) return;
+        if (observe) observe(world);
+        if (last) return;
+    }
+}
+
+}  // namespace bhm::engine

@@ -1,0 +1,51 @@
+#pragma once
+// Private to the engine: the changing state of one World, structure of arrays on the lattice grid
+// (see model_data.hpp for the layout). Double for pose and velocity (small per-step increments
+// must not be rounded away), float for the per-link scratch that the link kernel writes.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/model.hpp"
+#include "engine/model_data.hpp"
+#include "engine/world.hpp"
+
+namespace bhm::engine {
+
+//! Per voxel (per cell): 13 doubles of pose/velocity, the static-friction flag and the external
+//! force: 136 bytes per voxel.
+struct VoxelState {
+    std::array<std::vector<double>, 3> pos;    //!< centre (m)
+    std::array<std::vector<double>, 4> quat;   //!< w, x, y, z; body to world
+    std::array<std::vector<double>, 3> vel;    //!< m/s
+    std::array<std::vector<double>, 3> omega;  //!< rad/s, world frame
+    std::vector<double> stuck;                 //!< 1 = held by static friction
+    std::array<std::vector<double>, 3> ext_force;
+};
+
+//! Per link slot of one axis: the forces the link pass writes for the voxel pass to gather
+//! (world frame; the +end receives +force, the -end -force), and the link's deformation at the
+//! previous step (its backward difference is the deformation rate used by bond damping).
+struct LinkScratch {
+    std::vector<float> storage;     //!< all arrays below, each of (pad + cells + pad) floats
+    std::array<float*, 3> force{};  //!< on the + end; the - end gets the opposite
+    std::array<float*, 3> moment_neg{};
+    std::array<float*, 3> moment_pos{};
+    float* prev_length = nullptr;
+    std::array<float*, 3> prev_theta_neg{};
+    std::array<float*, 3> prev_theta_pos{};
+};
+
+struct World::State {
+    std::shared_ptr<const Model> model;
+    const Model::Data* data = nullptr;
+    VoxelState voxels;
+    std::array<LinkScratch, 3> links;
+    std::int64_t steps = 0;
+    bool diverged = false;
+    std::string divergence_reason;
+};
+
+}  // namespace bhm::engine
