@@ -52,6 +52,7 @@ struct Camera {
     }
 };
 
+// Mouse deltas are in window pixels with y down, as GLFW and ImGui report them.
 //! Drag by (dx, dy) pixels: yaw follows dx, pitch follows dy (clamped short of the poles).
 void orbit(Camera& camera, float dx_px, float dy_px, float radians_per_px = 0.008f);
 //! Moves the target so the point under the cursor follows the drag, in a viewport this tall.

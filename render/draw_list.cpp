@@ -35,10 +35,17 @@ glm::vec4 unit_quaternion(const float* wxyz) {
     return q / norm;
 }
 
-// Half extent of a rotated box along the world axes, for the framing bounds.
+// Half extent of a rotated box along the world axes (tight axis-aligned box): sum over the box's
+// own axes of |rotated axis| x half size.
 glm::vec3 rotated_half_extent(const BoxInstance& box) {
-    // A rotated box fits in the sphere of its half diagonal; tight enough for framing.
-    return glm::vec3(0.5f * glm::length(box.size));
+    const glm::vec3 half = 0.5f * box.size;
+    glm::vec3 extent(0.0f);
+    for (int axis = 0; axis < 3; ++axis) {
+        glm::vec3 local(0.0f);
+        local[axis] = half[axis];
+        extent += glm::abs(rotate_vector(box.orientation, local));
+    }
+    return extent;
 }
 
 void check_pose_count(const engine::VoxelPoses& poses, int voxel_count, const char* what) {
@@ -239,11 +246,14 @@ void add_com_trail(const Scene& scene, DrawList& list) {
 }  // namespace
 
 int DrawList::voxel_instance_count() const {
+    const auto is_body = [](const BoxInstance& b) {
+        return (static_cast<std::uint32_t>(b.flags) & kBoxGhost) == 0;
+    };
     int count = 0;
     for (const auto& b : boxes)
-        count += b.voxel >= 0.0f;
+        count += is_body(b);
     for (const auto& b : translucent_boxes)
-        count += b.voxel >= 0.0f;
+        count += is_body(b);
     return count;
 }
 

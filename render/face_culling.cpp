@@ -8,12 +8,6 @@ namespace bhm::render {
 
 namespace {
 
-glm::vec3 rotate(const glm::vec4& q, const glm::vec3& v) {
-    // v' = q v q*, with q = (w, x, y, z).
-    const glm::vec3 u{q.y, q.z, q.w};
-    return v + 2.0f * glm::cross(u, glm::cross(u, v) + q.x * v);
-}
-
 bool opaque(const BoxInstance& box) {
     return box.color.a >= 0.999f;
 }
@@ -36,9 +30,15 @@ bool faces_meet(const BoxInstance& a, const BoxInstance& b, int axis, float tole
 
 }  // namespace
 
+glm::vec3 rotate_vector(const glm::vec4& q, const glm::vec3& v) {
+    // v' = q v q*, expanded; q.x is the scalar part.
+    const glm::vec3 u{q.y, q.z, q.w};
+    return v + 2.0f * glm::cross(u, glm::cross(u, v) + q.x * v);
+}
+
 glm::vec3 box_corner(const BoxInstance& box, int sx, int sy, int sz) {
     const glm::vec3 local = 0.5f * glm::vec3(sx, sy, sz) * box.size;
-    return box.center + rotate(box.orientation, local);
+    return box.center + rotate_vector(box.orientation, local);
 }
 
 void cull_hidden_faces(const BodyView& body, std::vector<BoxInstance>& boxes,

@@ -21,6 +21,8 @@ namespace bhm::render {
 void cull_hidden_faces(const BodyView& body, std::vector<BoxInstance>& boxes,
                        float meet_tolerance = 0.01f);
 
+//! A vector turned by a unit quaternion (w, x, y, z).
+glm::vec3 rotate_vector(const glm::vec4& q, const glm::vec3& v);
 //! World position of corner (sx, sy, sz in {-1, 1}) of a box.
 glm::vec3 box_corner(const BoxInstance& box, int sx, int sy, int sz);
 

@@ -1,0 +1,61 @@
+// Colour maps: ends, monotone lightness where it matters, wrap-around where it must.
+#include <doctest/doctest.h>
+
+#include <glm/glm.hpp>
+
+#include "render/colormap.hpp"
+
+using namespace bhm::render;
+
+namespace {
+float luma(glm::vec4 c) {
+    return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+}  // namespace
+
+TEST_CASE("the sequential map gets lighter monotonically from dark to light") {
+    float previous = -1.0f;
+    for (int i = 0; i <= 100; ++i) {
+        const float l = luma(sample_color_map(ColorMapName::Sequential, i / 100.0f));
+        CHECK(l > previous);
+        previous = l;
+    }
+    CHECK(luma(sample_color_map(ColorMapName::Sequential, 0.0f)) < 0.15f);
+    CHECK(luma(sample_color_map(ColorMapName::Sequential, 1.0f)) > 0.8f);
+    CHECK(sample_color_map(ColorMapName::Sequential, -3.0f) ==
+          sample_color_map(ColorMapName::Sequential, 0.0f));
+    CHECK(sample_color_map(ColorMapName::Sequential, 7.0f) ==
+          sample_color_map(ColorMapName::Sequential, 1.0f));
+}
+
+TEST_CASE("the diverging map is white-ish in the middle, blue below and red above") {
+    const glm::vec4 mid = sample_color_map(ColorMapName::Diverging, 0.5f);
+    CHECK(mid.r > 0.9f);
+    CHECK(mid.g > 0.9f);
+    CHECK(mid.b > 0.9f);
+    const glm::vec4 low = sample_color_map(ColorMapName::Diverging, 0.0f);
+    const glm::vec4 high = sample_color_map(ColorMapName::Diverging, 1.0f);
+    CHECK(low.b > low.r);
+    CHECK(high.r > high.b);
+}
+
+TEST_CASE("the cyclic map wraps: phase 0 and a full turn get the same colour") {
+    const glm::vec4 a = sample_color_map(ColorMapName::Cyclic, 0.0f);
+    const glm::vec4 b = sample_color_map(ColorMapName::Cyclic, 1.0f);
+    const glm::vec4 half = sample_color_map(ColorMapName::Cyclic, 0.5f);
+    CHECK(a.r == doctest::Approx(b.r));
+    CHECK(a.g == doctest::Approx(b.g));
+    CHECK(a.b == doctest::Approx(b.b));
+    CHECK(glm::length(glm::vec3(a) - glm::vec3(half)) > 0.5f);
+}
+
+TEST_CASE("scalar ranges normalise and clamp; an empty range maps to the middle") {
+    const ScalarRange range{2.0f, 6.0f};
+    CHECK(range.normalize(2.0f) == 0.0f);
+    CHECK(range.normalize(5.0f) == doctest::Approx(0.75f));
+    CHECK(range.normalize(10.0f) == 1.0f);
+    CHECK(range.normalize(-1.0f) == 0.0f);
+    CHECK(ScalarRange{3.0f, 3.0f}.normalize(3.0f) == 0.5f);
+    CHECK(parse_color_map("diverging") == ColorMapName::Diverging);
+    CHECK_FALSE(parse_color_map("jet"));
+}
