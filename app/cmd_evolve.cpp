@@ -1,17 +1,187 @@
-// Placeholder until its issue lands.
+// bhm evolve: a headless AFPO run (evo::EvolutionRun) with a progress line, Ctrl-C handling and
+// --resume. Everything else lives in evo/; this file only wires it to the command line.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <string>
 
 #include "app/arg_parser.hpp"
 #include "app/commands.hpp"
+#include "evo/evolution_run.hpp"
+#include "evo/experiment_io.hpp"
 
 namespace bhm::app {
 
-int cmd_evolve(const Args& args) {
-    ArgParser parser("evolve", "[OPTIONS]", "Not built yet.");
-    return run_command(parser, args, [](ArgParser&) {
-        std::cerr << "bhm evolve: not built yet\n";
+namespace {
+
+const char* const kSummary =
+    "Evolves morphologies for EXPERIMENT with AFPO over CPPNs (paper section 3) and writes into "
+    "DIR:\n"
+    "  run.json                 experiment, seed, version, rule changes\n"
+    "  fitness.csv              generation, evaluations, simulations, best_fitness, "
+    "median_fitness,\n"
+    "                           best_age, best_id, diverged, wall_s (counts per generation)\n"
+    "  champion.json            genome, phenotype layers, fitness, generation found\n"
+    "  champions/gen-NNNNN.json every new champion\n"
+    "  champion.vxa             the champion for VoxCAD (VXA 1.0)\n"
+    "  checkpoint.json          after every generation (previous one: checkpoint.prev.json)\n"
+    "Stops at the generation or wall-time budget (experiment's evolution settings unless given),\n"
+    "or cleanly on Ctrl-C / SIGTERM: the generation in progress is abandoned and the last\n"
+    "checkpoint kept; --resume continues exactly where it stopped. The same seed gives the same\n"
+    "run whatever --threads is.\n"
+    "exit status: 0 done or stopped, 1 invalid input or failure, 2 usage error.";
+
+// The one piece of global state: where the signal handler raises the stop request.
+std::atomic<bool>* g_stop_flag = nullptr;
+
+extern "C" void handle_stop_signal(int) {
+    if (g_stop_flag) g_stop_flag->store(true);
+}
+
+void install_stop_handlers(std::atomic<bool>& flag) {
+    static_assert(std::atomic<bool>::is_always_lock_free,
+                  "the signal handler needs a lock-free flag");
+    g_stop_flag = &flag;
+    struct sigaction action {};
+    action.sa_handler = handle_stop_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;  // a second Ctrl-C ends the process at once
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+}
+
+void restore_default_handlers() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    g_stop_flag = nullptr;
+}
+
+std::string clock_text(double seconds) {
+    if (seconds < 0) return "?";
+    const long long s = static_cast<long long>(seconds + 0.5);
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%lld:%02lld:%02lld", s / 3600, (s / 60) % 60, s % 60);
+    return buffer;
+}
+
+void print_progress(const evo::GenerationReport& r) {
+    std::fprintf(
+        stderr,
+        "gen %d/%d  best %.6g%s  median %.6g  sims %d (%.2f/s)  diverged %d  elapsed %s  eta %s\n",
+        r.generation, r.generation_budget - 1, r.best_fitness, r.new_champion ? " *" : "",
+        r.median_fitness, r.simulations, r.simulations_per_s, r.diverged,
+        clock_text(r.elapsed_s).c_str(), clock_text(r.eta_s).c_str());
+}
+
+int evolve(ArgParser& args) {
+    const std::string experiment_path = args.positionals().at(0);
+    if (!args.has("--out")) throw UsageError("missing --out DIR");
+    evo::RunOptions options;
+    options.out_dir = args.get("--out");
+    if (args.has("--generations")) {
+        const long long n = args.get_int("--generations", 0);
+        if (n < 1 || n > 100000000) throw UsageError("--generations must be in [1, 1e8]");
+        options.generations = static_cast<int>(n);
+    }
+    if (args.has("--hours")) {
+        const double h = args.get_double("--hours", 0.0);
+        if (!(h > 0.0)) throw UsageError("--hours must be positive");
+        options.wall_budget_h = h;
+    }
+    if (args.has("--seed")) {
+        const long long s = args.get_int("--seed", 0);
+        if (s < 0) throw UsageError("--seed must be >= 0");
+        options.seed = static_cast<std::uint64_t>(s);
+    }
+    if (args.has("--threads")) {
+        const long long t = args.get_int("--threads", 0);
+        if (t < 0 || t > 1024) throw UsageError("--threads must be in [0, 1024] (0 = all cores)");
+        options.threads = static_cast<int>(t);
+    }
+
+    evo::Experiment experiment;
+    try {
+        experiment = evo::load_experiment(experiment_path);
+    } catch (const evo::ValidationError& e) {
+        for (const auto& p : e.problems)
+            std::cerr << p.to_string() << "\n";
         return 1;
-    });
+    }
+
+    std::unique_ptr<evo::EvolutionRun> run;
+    if (args.has("--resume")) {
+        run = evo::EvolutionRun::resume(options);
+        for (const auto& w : run->resume_warnings())
+            std::cerr << "bhm evolve: warning: " << w << "\n";
+        if (run->experiment().name != experiment.name)
+            std::cerr << "bhm evolve: warning: " << experiment_path << " is '" << experiment.name
+                      << "' but the run in " << options.out_dir << " is '" << run->experiment().name
+                      << "'; continuing with the run's own experiment\n";
+        std::cerr << "bhm evolve: resuming " << options.out_dir << " after generation "
+                  << run->state().generation << " (seed " << run->state().seed << ")\n";
+    } else {
+        run = std::make_unique<evo::EvolutionRun>(experiment, options);
+        std::cerr << "bhm evolve: " << experiment.name << " -> " << options.out_dir << " (seed "
+                  << run->state().seed << ", population " << experiment.evolution.population << ", "
+                  << run->threads() << " threads)\n";
+    }
+    run->set_report_callback(
+        [](std::shared_ptr<const evo::GenerationReport> r) { print_progress(*r); });
+
+    install_stop_handlers(run->stop_flag());
+    evo::StopReason reason;
+    try {
+        reason = run->run();
+    } catch (...) {
+        restore_default_handlers();
+        throw;
+    }
+    restore_default_handlers();
+
+    const auto& state = run->state();
+    switch (reason) {
+        case evo::StopReason::GenerationBudget:
+            std::cerr << "bhm evolve: generation budget reached (" << run->generation_budget()
+                      << ")\n";
+            break;
+        case evo::StopReason::WallBudget:
+            std::cerr << "bhm evolve: wall-time budget reached ("
+                      << clock_text(run->wall_budget_s()) << ")\n";
+            break;
+        case evo::StopReason::StopRequested:
+            std::cerr << "bhm evolve: stopped; "
+                      << (state.generation >= 0
+                              ? "last complete generation " + std::to_string(state.generation) +
+                                    ", checkpoint " + run->checkpoint_path() +
+                                    " (continue with --resume)"
+                              : std::string("no generation completed, nothing to resume"))
+                      << "\n";
+            break;
+    }
+    if (state.champion)
+        std::cout << "champion: id " << state.champion->individual.id << ", fitness "
+                  << state.champion->individual.report.fitness << " ("
+                  << evo::kFitnessNames[static_cast<std::size_t>(state.experiment.fitness.measure)]
+                  << "), found in generation " << state.champion->generation_found << "; "
+                  << options.out_dir << "/champion.json, champion.vxa\n";
+    return 0;
+}
+
+}  // namespace
+
+int cmd_evolve(const Args& args) {
+    ArgParser parser("evolve", "EXPERIMENT.json --out DIR [OPTIONS]", kSummary);
+    parser.positional("EXPERIMENT.json", "the experiment file (docs/experiment-format.md)")
+        .option("--out", "DIR", "run directory (created; must not hold a run unless --resume)")
+        .option("--generations", "N",
+                "total generations including generation 0 (default: experiment's)")
+        .option("--hours", "H", "wall-time budget in hours, across resumes (default: experiment's)")
+        .option("--seed", "S", "random seed (default: experiment's evolution.seed)")
+        .option("--threads", "T", "simulation threads, 0 = all cores (default: experiment's)")
+        .flag("--resume", "continue the run in DIR from its checkpoint");
+    return run_command(parser, args, evolve);
 }
 
 }  // namespace bhm::app

@@ -21,9 +21,12 @@ inline Experiment tiny_experiment(std::array<int, 3> size = {4, 3, 3}) {
     active.physics.cte_per_c = 0.01;
     e.materials = {passive, active};
     e.boundary.faces[static_cast<int>(Face::XMin)] = BoundaryKind::Fixed;
-    e.simulation.settle_s = 0.02;
-    e.simulation.evaluate_s = 0.08;
-    e.simulation.record_fps = 100.0;
+    // Short and fast: 0.04 s simulated (a 1 cm voxel's stable step is ~1.4e-5 s) with a 25 Hz
+    // drive so the window holds most of a period.
+    e.actuation.frequency_hz = 25.0;
+    e.simulation.settle_s = 0.01;
+    e.simulation.evaluate_s = 0.03;
+    e.simulation.record_fps = 200.0;
     e.fitness.measure = FitnessMeasure::ComMax3d;
     e.fitness.constraints.attached_to_fixed_face = true;
     e.fitness.constraints.min_active_voxels = 1;

@@ -1,0 +1,413 @@
+#include "evo/checkpoint.hpp"
+
+#include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "bhm_version.hpp"
+#include "evo/experiment_io.hpp"
+#include "evo/phenotype.hpp"
+
+namespace bhm::evo {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kFormat = "bhm-evolution-checkpoint";
+constexpr int kFormatVersion = 1;
+
+std::string hex(std::uint64_t v) {
+    char buffer[24];
+    std::snprintf(buffer, sizeof buffer, "%016" PRIx64, v);
+    return buffer;
+}
+
+struct FieldError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+//! Typed access that names the JSON path of whatever is missing or wrong.
+class Fields {
+  public:
+    Fields(const json& j, std::string path) : j_(j), path_(std::move(path)) {
+        if (!j_.is_object()) fail("", "expected an object");
+    }
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        throw FieldError(join(key) + ": " + message);
+    }
+    std::string join(const std::string& key) const {
+        if (key.empty()) return path_.empty() ? "(root)" : path_;
+        return path_.empty() ? key : path_ + "." + key;
+    }
+    const json& at(const std::string& key) const {
+        const auto it = j_.find(key);
+        if (it == j_.end()) fail(key, "missing");
+        return *it;
+    }
+    double number(const std::string& key) const {
+        const auto& v = at(key);
+        if (!v.is_number()) fail(key, "expected a number");
+        return v.get<double>();
+    }
+    std::int64_t integer(const std::string& key) const {
+        const auto& v = at(key);
+        if (!v.is_number_integer()) fail(key, "expected an integer");
+        return v.get<std::int64_t>();
+    }
+    bool boolean(const std::string& key) const {
+        const auto& v = at(key);
+        if (!v.is_boolean()) fail(key, "expected true or false");
+        return v.get<bool>();
+    }
+    std::string string(const std::string& key) const {
+        const auto& v = at(key);
+        if (!v.is_string()) fail(key, "expected a string");
+        return v.get<std::string>();
+    }
+    std::uint64_t hex64(const std::string& key) const {
+        const std::string s = string(key);
+        return parse_hex(s, join(key));
+    }
+    const json& array(const std::string& key) const {
+        const auto& v = at(key);
+        if (!v.is_array()) fail(key, "expected an array");
+        return v;
+    }
+    static std::uint64_t parse_hex(const std::string& s, const std::string& where) {
+        if (s.empty() || s.size() > 16 ||
+            s.find_first_not_of("0123456789abcdef") != std::string::npos)
+            throw FieldError(where + ": expected up to 16 lowercase hex digits");
+        return std::stoull(s, nullptr, 16);
+    }
+
+  private:
+    const json& j_;
+    std::string path_;
+};
+
+std::string item(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+FitnessReport report_from_json(const json& j, const std::string& path) {
+    const Fields f(j, path);
+    FitnessReport r;
+    r.fitness = f.number("fitness");
+    const Fields m(f.at("measures"), f.join("measures"));
+    for (std::size_t k = 0; k < r.measures.size(); ++k)
+        r.measures[k] = m.number(kFitnessNames[k]);
+    r.diverged = f.boolean("diverged");
+    r.divergence_reason = f.string("divergence_reason");
+    r.simulated_s = f.number("simulated_s");
+    r.steps = f.integer("steps");
+    r.sim_wall_s = f.number("sim_wall_s");
+    return r;
+}
+
+Individual individual_from_json(const json& j, const std::string& path, const Developer& developer,
+                                double weight_range) {
+    const Fields f(j, path);
+    Individual ind;
+    ind.id = f.integer("id");
+    ind.parent_id = f.integer("parent_id");
+    ind.age = static_cast<int>(f.integer("age"));
+    ind.born_generation = static_cast<int>(f.integer("born_generation"));
+    ind.evaluated = f.boolean("evaluated");
+    ind.valid = f.boolean("valid");
+    try {
+        ind.genome = genome_from_json(f.at("genome"), weight_range);
+    } catch (const std::invalid_argument& e) {
+        throw FieldError(path + "." + e.what());
+    }
+    ind.phenotype = developer.develop(ind.genome);
+    if (ind.phenotype.hash != f.hex64("phenotype_hash"))
+        f.fail("phenotype_hash",
+               "the genome develops into a different body (decoder or experiment changed?)");
+    ind.report = report_from_json(f.at("report"), f.join("report"));
+    return ind;
+}
+
+json history_row_to_json(const HistoryRow& h) {
+    return {{"generation", h.generation},
+            {"evaluations", h.evaluations},
+            {"simulations", h.simulations},
+            {"best_fitness", h.best_fitness},
+            {"median_fitness", h.median_fitness},
+            {"best_age", h.best_age},
+            {"best_id", h.best_id},
+            {"diverged", h.diverged},
+            {"wall_s", h.wall_s},
+            {"rules_version", h.rules_version}};
+}
+
+HistoryRow history_row_from_json(const json& j, const std::string& path) {
+    const Fields f(j, path);
+    HistoryRow h;
+    h.generation = static_cast<int>(f.integer("generation"));
+    h.evaluations = static_cast<int>(f.integer("evaluations"));
+    h.simulations = static_cast<int>(f.integer("simulations"));
+    h.best_fitness = f.number("best_fitness");
+    h.median_fitness = f.number("median_fitness");
+    h.best_age = static_cast<int>(f.integer("best_age"));
+    h.best_id = f.integer("best_id");
+    h.diverged = static_cast<int>(f.integer("diverged"));
+    h.wall_s = f.number("wall_s");
+    h.rules_version = static_cast<int>(f.integer("rules_version"));
+    return h;
+}
+
+//! The fitness block alone, parsed through the lead's experiment reader.
+Fitness fitness_from_json(const json& fitness_json, const Experiment& base,
+                          const std::string& where) {
+    json e = experiment_to_json(base);
+    e["fitness"] = fitness_json;
+    try {
+        return parse_experiment(e, where).fitness;
+    } catch (const std::exception& ex) {
+        throw FieldError(where + ": " + ex.what());
+    }
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("missing or unreadable");
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+}  // namespace
+
+json report_to_json(const FitnessReport& r) {
+    json measures = json::object();
+    for (std::size_t k = 0; k < r.measures.size(); ++k)
+        measures[kFitnessNames[k]] = r.measures[k];
+    return {{"fitness", r.fitness},         {"measures", measures},
+            {"diverged", r.diverged},       {"divergence_reason", r.divergence_reason},
+            {"simulated_s", r.simulated_s}, {"steps", r.steps},
+            {"sim_wall_s", r.sim_wall_s}};
+}
+
+json individual_to_json(const Individual& ind) {
+    return {{"id", ind.id},
+            {"parent_id", ind.parent_id},
+            {"age", ind.age},
+            {"born_generation", ind.born_generation},
+            {"evaluated", ind.evaluated},
+            {"valid", ind.valid},
+            {"phenotype_hash", hex(ind.phenotype.hash)},
+            {"genome", genome_to_json(ind.genome)},
+            {"report", report_to_json(ind.report)}};
+}
+
+json run_state_to_json(const RunState& s) {
+    json population = json::array();
+    for (const auto& ind : s.population)
+        population.push_back(individual_to_json(ind));
+    json history = json::array();
+    for (const auto& h : s.history)
+        history.push_back(history_row_to_json(h));
+    json changes = json::array();
+    for (const auto& c : s.rule_changes) {
+        Experiment e = s.experiment;
+        e.fitness = c.fitness;
+        changes.push_back(
+            {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}});
+    }
+    json cache = json::array();
+    for (const auto hash : s.cache.insertion_order()) {
+        const FitnessReport* r = s.cache.find(hash);
+        json measures = json::array();
+        for (double m : r->measures)
+            measures.push_back(m);
+        cache.push_back(
+            {hex(hash), r->diverged, r->steps, r->simulated_s, measures, r->divergence_reason});
+    }
+    json rng = json::array();
+    for (auto word : s.rng)
+        rng.push_back(hex(word));
+    json j = {{"format", kFormat},
+              {"format_version", kFormatVersion},
+              {"bhm_version", BHM_VERSION_STRING},
+              {"seed", hex(s.seed)},
+              {"generation", s.generation},
+              {"next_id", s.next_id},
+              {"rng", rng},
+              {"rules_version", s.rules_version},
+              {"elapsed_s", s.elapsed_s},
+              {"experiment", experiment_to_json(s.experiment)},
+              {"population", population},
+              {"pareto_rank", s.pareto_rank},
+              {"history", history},
+              {"rule_changes", changes},
+              {"cache_capacity", s.cache.capacity()},
+              {"cache", cache}};
+    j["champion"] = s.champion ? json{{"generation_found", s.champion->generation_found},
+                                      {"individual", individual_to_json(s.champion->individual)}}
+                               : json(nullptr);
+    return j;
+}
+
+RunState run_state_from_json(const json& j, const std::string& label) {
+    try {
+        const Fields f(j, "");
+        if (f.string("format") != kFormat)
+            f.fail("format", std::string("expected \"") + kFormat + "\"");
+        if (f.integer("format_version") != kFormatVersion)
+            f.fail("format_version",
+                   "unsupported version (expected " + std::to_string(kFormatVersion) + ")");
+        RunState s;
+        try {
+            s.experiment = parse_experiment(f.at("experiment"), label + ":experiment");
+        } catch (const std::exception& e) {
+            throw FieldError(std::string("experiment: ") + e.what());
+        }
+        s.seed = f.hex64("seed");
+        s.generation = static_cast<int>(f.integer("generation"));
+        s.next_id = f.integer("next_id");
+        const auto& rng = f.array("rng");
+        if (rng.size() != 4) f.fail("rng", "expected 4 words");
+        bool all_zero = true;
+        for (std::size_t k = 0; k < 4; ++k) {
+            if (!rng[k].is_string()) throw FieldError(item("rng", k) + ": expected a hex string");
+            s.rng[k] = Fields::parse_hex(rng[k].get<std::string>(), item("rng", k));
+            all_zero = all_zero && s.rng[k] == 0;
+        }
+        if (all_zero) f.fail("rng", "an all-zero state is not a valid xoshiro state");
+        s.rules_version = static_cast<int>(f.integer("rules_version"));
+        s.elapsed_s = f.number("elapsed_s");
+
+        const Developer developer(s.experiment);
+        const double range = s.experiment.evolution.cppn.weight_range;
+        const auto& population = f.array("population");
+        for (std::size_t i = 0; i < population.size(); ++i)
+            s.population.push_back(
+                individual_from_json(population[i], item("population", i), developer, range));
+        const auto& ranks = f.array("pareto_rank");
+        if (ranks.size() != s.population.size())
+            f.fail("pareto_rank", "one rank per population member expected");
+        for (const auto& r : ranks) {
+            if (!r.is_number_integer()) f.fail("pareto_rank", "expected integers");
+            s.pareto_rank.push_back(r.get<int>());
+        }
+        if (s.generation >= 0 &&
+            static_cast<int>(s.population.size()) != s.experiment.evolution.population)
+            f.fail("population", "size differs from evolution.population");
+
+        const auto& history = f.array("history");
+        for (std::size_t i = 0; i < history.size(); ++i)
+            s.history.push_back(history_row_from_json(history[i], item("history", i)));
+        if (static_cast<int>(s.history.size()) != s.generation + 1)
+            f.fail("history", "expected one row per completed generation");
+
+        const auto& changes = f.array("rule_changes");
+        for (std::size_t i = 0; i < changes.size(); ++i) {
+            const Fields c(changes[i], item("rule_changes", i));
+            s.rule_changes.push_back(
+                {static_cast<int>(c.integer("generation")),
+                 fitness_from_json(c.at("fitness"), s.experiment, c.join("fitness"))});
+        }
+
+        if (!f.at("champion").is_null()) {
+            const Fields c(f.at("champion"), "champion");
+            s.champion = ChampionRecord{
+                individual_from_json(c.at("individual"), "champion.individual", developer, range),
+                static_cast<int>(c.integer("generation_found"))};
+        }
+
+        const auto capacity = f.integer("cache_capacity");
+        if (capacity < 0) f.fail("cache_capacity", "must be >= 0");
+        s.cache = FitnessCache(static_cast<std::size_t>(capacity));
+        const auto& cache = f.array("cache");
+        for (std::size_t i = 0; i < cache.size(); ++i) {
+            const auto& e = cache[i];
+            const std::string where = item("cache", i);
+            if (!e.is_array() || e.size() != 6 || !e[0].is_string() || !e[1].is_boolean() ||
+                !e[2].is_number_integer() || !e[3].is_number() || !e[4].is_array() ||
+                e[4].size() != static_cast<std::size_t>(kMeasureCount) || !e[5].is_string())
+                throw FieldError(
+                    where + ": expected [hash, diverged, steps, simulated_s, measures, reason]");
+            FitnessReport r;
+            r.diverged = e[1].get<bool>();
+            r.steps = e[2].get<std::int64_t>();
+            r.simulated_s = e[3].get<double>();
+            for (std::size_t k = 0; k < r.measures.size(); ++k) {
+                if (!e[4][k].is_number()) throw FieldError(where + ": measures must be numbers");
+                r.measures[k] = e[4][k].get<double>();
+            }
+            r.divergence_reason = e[5].get<std::string>();
+            r.fitness = fitness_under(r, s.experiment.fitness.measure);
+            s.cache.insert(Fields::parse_hex(e[0].get<std::string>(), where), r);
+        }
+        return s;
+    } catch (const FieldError& e) {
+        throw std::runtime_error(label + ": " + e.what());
+    } catch (const json::exception& e) {
+        throw std::runtime_error(label + ": " + e.what());
+    }
+}
+
+void save_checkpoint(const std::string& dir, const RunState& state) {
+    const fs::path current = fs::path(dir) / kCheckpointFile;
+    const fs::path previous = fs::path(dir) / kPreviousCheckpointFile;
+    const fs::path tmp = fs::path(dir) / (std::string(kCheckpointFile) + ".tmp");
+    const std::string text = run_state_to_json(state).dump(1) + "\n";
+    {
+        std::FILE* out = std::fopen(tmp.c_str(), "wb");
+        if (!out) throw std::runtime_error(tmp.string() + ": cannot write the checkpoint");
+        const bool ok = std::fwrite(text.data(), 1, text.size(), out) == text.size();
+        const bool flushed = std::fflush(out) == 0;
+        const bool closed = std::fclose(out) == 0;
+        if (!ok || !flushed || !closed) {
+            std::error_code ignored;
+            fs::remove(tmp, ignored);
+            throw std::runtime_error(
+                tmp.string() + ": write failed (disk full?); the previous checkpoint is kept");
+        }
+    }
+    std::error_code ec;
+    if (fs::exists(current)) {
+        fs::rename(current, previous, ec);
+        if (ec)
+            throw std::runtime_error(previous.string() + ": cannot keep the previous checkpoint (" +
+                                     ec.message() + ")");
+    }
+    fs::rename(tmp, current, ec);
+    if (ec)
+        throw std::runtime_error(current.string() + ": cannot write the checkpoint (" +
+                                 ec.message() + ")");
+}
+
+LoadedCheckpoint load_checkpoint(const std::string& dir) {
+    LoadedCheckpoint out;
+    std::vector<std::string> problems;
+    for (const char* name : {kCheckpointFile, kPreviousCheckpointFile}) {
+        const std::string path = (fs::path(dir) / name).string();
+        try {
+            json j;
+            try {
+                j = json::parse(read_text(path));
+            } catch (const json::parse_error& e) {
+                throw std::runtime_error(std::string("not valid JSON (") + e.what() + ")");
+            }
+            out.state = run_state_from_json(j, path);
+            out.path = path;
+            for (const auto& p : problems)
+                out.warnings.push_back(p + "; using " + path);
+            return out;
+        } catch (const std::exception& e) {
+            std::string message = e.what();
+            if (message.rfind(path, 0) != 0) message = path + ": " + message;
+            problems.push_back(message);
+        }
+    }
+    throw std::runtime_error("no usable checkpoint in " + dir + ": " + problems[0] + "; " +
+                             problems[1]);
+}
+
+}  // namespace bhm::evo

@@ -1,0 +1,40 @@
+#pragma once
+// Checkpoints: the whole RunState as JSON, written after every generation. The write goes to a
+// temporary file first; the previous checkpoint is renamed checkpoint.prev.json, then the new one
+// takes its place, so a crash at any moment leaves at least one complete checkpoint. Loading
+// falls back to checkpoint.prev.json when checkpoint.json is missing or corrupt.
+//
+// Phenotypes are not stored: they are developed again from the genomes on load, and each one must
+// match its recorded hash (a check that the decoder and the experiment are unchanged).
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "evo/run_state.hpp"
+
+namespace bhm::evo {
+
+inline constexpr const char* kCheckpointFile = "checkpoint.json";
+inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
+
+nlohmann::json report_to_json(const FitnessReport& report);
+nlohmann::json individual_to_json(const Individual& individual);
+nlohmann::json run_state_to_json(const RunState& state);
+
+//! Throws std::runtime_error "LABEL: field.path: message" on anything missing or inconsistent.
+RunState run_state_from_json(const nlohmann::json& json, const std::string& label);
+
+//! Writes DIR/checkpoint.json, keeping the previous one as DIR/checkpoint.prev.json.
+void save_checkpoint(const std::string& dir, const RunState& state);
+
+struct LoadedCheckpoint {
+    RunState state;
+    std::string path;                   //!< the file actually used
+    std::vector<std::string> warnings;  //!< e.g. why checkpoint.json was skipped
+};
+//! Loads DIR/checkpoint.json, or DIR/checkpoint.prev.json when the first is missing or corrupt.
+//! Throws std::runtime_error naming both files and their problems when neither can be used.
+LoadedCheckpoint load_checkpoint(const std::string& dir);
+
+}  // namespace bhm::evo

@@ -1,0 +1,421 @@
+#include "evo/evolution_run.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "evo/afpo.hpp"
+#include "evo/checkpoint.hpp"
+#include "evo/constraints.hpp"
+#include "evo/experiment_io.hpp"
+#include "evo/mutation.hpp"
+#include "evo/worker_pool.hpp"
+
+namespace bhm::evo {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median_fitness(const std::vector<Individual>& population) {
+    if (population.empty()) return 0.0;
+    std::vector<double> f;
+    f.reserve(population.size());
+    for (const auto& m : population)
+        f.push_back(m.report.fitness);
+    std::sort(f.begin(), f.end());
+    const std::size_t n = f.size();
+    return n % 2 == 1 ? f[n / 2] : 0.5 * (f[n / 2 - 1] + f[n / 2]);
+}
+
+//! The best member: valid first, then fitness desc, age asc, id asc.
+const Individual& best_member(const std::vector<Individual>& population) {
+    return *std::min_element(population.begin(), population.end(),
+                             [](const Individual& a, const Individual& b) {
+                                 if (a.valid != b.valid) return a.valid;
+                                 if (a.report.fitness != b.report.fitness)
+                                     return a.report.fitness > b.report.fitness;
+                                 if (a.age != b.age) return a.age < b.age;
+                                 return a.id < b.id;
+                             });
+}
+
+Experiment read_original_experiment(const std::string& dir) {
+    const std::string path = (fs::path(dir) / "run.json").string();
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": missing");
+    std::stringstream text;
+    text << in.rdbuf();
+    const auto json = nlohmann::json::parse(text.str());
+    return parse_experiment(json.at("experiment"), path + ":experiment");
+}
+
+}  // namespace
+
+EvolutionRun::Start EvolutionRun::fresh_start(const Experiment& experiment,
+                                              const RunOptions& options) {
+    Start s;
+    s.original = experiment;
+    if (options.seed) s.original.evolution.seed = *options.seed;
+    s.state.experiment = s.original;
+    s.state.seed = s.original.evolution.seed;
+    s.state.rng = Rng(s.state.seed).state();
+    if (!options.out_dir.empty()) {
+        for (const char* name : {kCheckpointFile, kPreviousCheckpointFile})
+            if (fs::exists(fs::path(options.out_dir) / name))
+                throw std::runtime_error(options.out_dir + ": already holds a run (" + name +
+                                         "); continue it with --resume or choose another --out");
+    }
+    return s;
+}
+
+EvolutionRun::EvolutionRun(const Experiment& experiment, RunOptions options)
+    : EvolutionRun(fresh_start(experiment, options), options) {
+}  // a copy: argument order is unspecified
+
+std::unique_ptr<EvolutionRun> EvolutionRun::resume(RunOptions options) {
+    if (options.out_dir.empty()) throw std::invalid_argument("resuming needs the run directory");
+    auto loaded = load_checkpoint(options.out_dir);
+    if (options.seed && *options.seed != loaded.state.seed)
+        throw std::invalid_argument("--seed " + std::to_string(*options.seed) +
+                                    " differs from the run's seed " +
+                                    std::to_string(loaded.state.seed));
+    Start s;
+    s.state = std::move(loaded.state);
+    s.warnings = std::move(loaded.warnings);
+    s.checkpoint_path = loaded.path;
+    s.resumed = true;
+    try {
+        s.original = read_original_experiment(options.out_dir);
+    } catch (const std::exception& e) {
+        s.warnings.push_back(std::string(e.what()) +
+                             "; run.json will record the checkpoint's experiment");
+        s.original = s.state.experiment;
+    }
+    return std::unique_ptr<EvolutionRun>(new EvolutionRun(std::move(s), std::move(options)));
+}
+
+EvolutionRun::EvolutionRun(Start start, RunOptions options)
+    : options_(std::move(options)),
+      original_experiment_(std::move(start.original)),
+      state_(std::move(start.state)),
+      developer_(state_.experiment),
+      resume_warnings_(std::move(start.warnings)),
+      checkpoint_path_(std::move(start.checkpoint_path)) {
+    const auto& evolution = state_.experiment.evolution;
+    generation_budget_ = options_.generations.value_or(evolution.generations);
+    wall_budget_s_ = options_.wall_budget_h.value_or(evolution.wall_budget_h) * 3600.0;
+    threads_ = resolve_thread_count(options_.threads.value_or(evolution.threads));
+    if (generation_budget_ < 0) throw std::invalid_argument("the generation budget must be >= 0");
+    if (!(wall_budget_s_ > 0.0))
+        throw std::invalid_argument("the wall-time budget must be > 0 hours");
+    if (evolution.population < 1) throw std::invalid_argument("evolution.population must be >= 1");
+    if (!options_.out_dir.empty()) {
+        output_.emplace(options_.out_dir);
+        checkpoint_path_ = output_->path(kCheckpointFile);
+        if (!start.resumed || !fs::exists(output_->path("run.json")))
+            output_->write_run_info(original_experiment_, state_);
+    }
+}
+
+EvolutionRun::~EvolutionRun() = default;
+
+void EvolutionRun::set_paused(bool paused) {
+    {
+        std::lock_guard lock(control_mutex_);
+        paused_.store(paused);
+    }
+    control_changed_.notify_all();
+}
+
+void EvolutionRun::request_fitness_change(const Fitness& fitness) {
+    std::lock_guard lock(control_mutex_);
+    pending_fitness_ = fitness;
+    ++pending_serial_;
+}
+
+std::shared_ptr<const GenerationReport> EvolutionRun::latest_report() const {
+    std::lock_guard lock(report_mutex_);
+    return latest_;
+}
+
+void EvolutionRun::publish(std::shared_ptr<const GenerationReport> report) {
+    {
+        std::lock_guard lock(report_mutex_);
+        latest_ = report;
+    }
+    if (callback_) callback_(std::move(report));
+}
+
+bool EvolutionRun::draw_random_individual(Individual& out, Rng& rng, std::int64_t id,
+                                          int generation, const Constraints& constraints) const {
+    const auto& e = state_.experiment;
+    const int attempts = std::max(100, e.evolution.max_neutral_retries);
+    for (int attempt = 0; attempt < attempts; ++attempt) {
+        Genome genome = random_genome(e.evolution.cppn, rng);
+        Phenotype phenotype = developer_.develop(genome);
+        if (!constraint_violation(constraints, e.boundary, developer_.space(), phenotype).empty())
+            continue;
+        out = Individual{};
+        out.id = id;
+        out.born_generation = generation;
+        out.genome = std::move(genome);
+        out.phenotype = std::move(phenotype);
+        return true;
+    }
+    return false;
+}
+
+StopReason EvolutionRun::run() {
+    if (session_generations_ == 0) session_start_ = std::chrono::steady_clock::now();
+    for (;;) {
+        {
+            // A signal handler cannot notify, so poll the stop flag while paused.
+            std::unique_lock lock(control_mutex_);
+            while (paused_.load() && !stop_.load())
+                control_changed_.wait_for(lock, std::chrono::milliseconds(100));
+        }
+        if (stop_.load()) return StopReason::StopRequested;
+        if (state_.generation + 1 >= generation_budget_) return StopReason::GenerationBudget;
+        if (state_.elapsed_s >= wall_budget_s_) return StopReason::WallBudget;
+        if (!run_generation()) return StopReason::StopRequested;
+    }
+}
+
+bool EvolutionRun::run_generation() {
+    const auto start = std::chrono::steady_clock::now();
+    if (session_generations_ == 0) session_start_ = start;
+    const int g = state_.generation + 1;
+
+    // Everything below works on copies; state_ changes only once the generation is complete, so
+    // an abandoned generation leaves the last checkpoint's state intact.
+    Experiment rules = state_.experiment;
+    bool rules_changed = false;
+    std::uint64_t applied_serial = 0;
+    {
+        std::lock_guard lock(control_mutex_);
+        if (pending_fitness_) {
+            rules.fitness = *pending_fitness_;
+            applied_serial = pending_serial_;
+            rules_changed = true;
+        }
+    }
+    std::vector<Individual> population = state_.population;
+    std::optional<ChampionRecord> champion = state_.champion;
+    int rules_version = state_.rules_version;
+    if (rules_changed) {
+        ++rules_version;
+        for (auto& m : population) {
+            m.valid = constraint_violation(rules.fitness.constraints, rules.boundary,
+                                           developer_.space(), m.phenotype)
+                          .empty();
+            m.report.fitness =
+                m.valid ? fitness_under(m.report, rules.fitness.measure) : kInvalidFitness;
+        }
+        champion.reset();  // re-established from the re-scored population below
+    }
+
+    Rng rng;
+    rng.set_state(state_.rng);
+    std::int64_t next_id = state_.next_id;
+    const int population_size = rules.evolution.population;
+    const auto& constraints = rules.fitness.constraints;
+    std::vector<Individual> fresh;
+    int clones = 0, newcomers_skipped = 0;
+    if (g == 0) {
+        for (int i = 0; i < population_size; ++i) {
+            Individual ind;
+            if (!draw_random_individual(ind, rng, next_id, g, constraints))
+                throw std::runtime_error(
+                    "no valid random individual in " +
+                    std::to_string(std::max(100, rules.evolution.max_neutral_retries)) +
+                    " draws: the constraints may be too strict for this workspace");
+            ++next_id;
+            fresh.push_back(std::move(ind));
+        }
+    } else {
+        for (auto& m : population)
+            ++m.age;
+        for (const auto& parent : population) {
+            auto out =
+                mutate_until_new(parent.genome, parent.phenotype, developer_, constraints,
+                                 rules.evolution.cppn, rules.evolution.max_neutral_retries, rng);
+            Individual child;
+            child.id = next_id++;
+            child.parent_id = parent.id;
+            child.age = parent.age;
+            child.born_generation = g;
+            child.genome = std::move(out.genome);
+            child.phenotype = std::move(out.phenotype);
+            if (out.cloned) {  // same phenotype as the parent: same result
+                child.report = parent.report;
+                child.evaluated = parent.evaluated;
+                child.valid = parent.valid;
+                ++clones;
+            }
+            fresh.push_back(std::move(child));
+        }
+        Individual newcomer;
+        if (draw_random_individual(newcomer, rng, next_id, g, constraints)) {
+            ++next_id;
+            fresh.push_back(std::move(newcomer));
+        } else {
+            ++newcomers_skipped;
+        }
+    }
+
+    // Results: a clone's from its parent, then the cache, then one simulation per new phenotype.
+    int cache_hits = 0;
+    std::vector<int> job_of(fresh.size(), -1);
+    std::vector<std::size_t> jobs;
+    std::vector<std::uint64_t> job_hashes;
+    std::unordered_map<std::uint64_t, int> job_by_hash;
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+        auto& ind = fresh[i];
+        if (ind.evaluated) {
+            ++cache_hits;
+            continue;
+        }
+        if (const FitnessReport* hit = state_.cache.find(ind.phenotype.hash)) {
+            ind.report = *hit;
+            ind.report.fitness = fitness_under(*hit, rules.fitness.measure);
+            ind.evaluated = true;
+            ++cache_hits;
+            continue;
+        }
+        const auto [it, inserted] =
+            job_by_hash.emplace(ind.phenotype.hash, static_cast<int>(jobs.size()));
+        if (inserted) {
+            jobs.push_back(i);
+            job_hashes.push_back(ind.phenotype.hash);
+        } else {
+            ++cache_hits;  // a twin of an earlier new individual this generation
+        }
+        job_of[i] = it->second;
+    }
+    std::vector<FitnessReport> results(jobs.size());
+    try {
+        parallel_for(static_cast<int>(jobs.size()), threads_, [&](int j) {
+            results[static_cast<std::size_t>(j)] = evaluate_body(
+                rules, fresh[jobs[static_cast<std::size_t>(j)]].phenotype.body, &stop_);
+        });
+    } catch (const EvaluationCancelled&) {
+        return false;
+    }
+    int diverged = 0;
+    for (const auto& r : results)
+        diverged += r.diverged ? 1 : 0;
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+        if (job_of[i] < 0) continue;
+        fresh[i].report = results[static_cast<std::size_t>(job_of[i])];
+        fresh[i].evaluated = true;
+    }
+
+    // AFPO selection over the old population (aged) plus the new individuals.
+    std::vector<Individual> pool = std::move(population);
+    for (auto& f : fresh)
+        pool.push_back(std::move(f));
+    std::vector<AfpoObjectives> objectives;
+    objectives.reserve(pool.size());
+    for (const auto& m : pool)
+        objectives.push_back({m.report.fitness, m.age, m.phenotype.active_voxels, m.id});
+    const bool third_objective = rules.fitness.minimize_active_voxels;
+    const auto survivors = select_survivors(objectives, population_size, third_objective);
+    const auto ranks = pareto_ranks(objectives, third_objective);
+    std::vector<Individual> next_population;
+    std::vector<int> next_ranks;
+    for (int index : survivors) {
+        next_population.push_back(pool[static_cast<std::size_t>(index)]);
+        next_ranks.push_back(ranks[static_cast<std::size_t>(index)]);
+    }
+
+    const Individual& best = best_member(next_population);
+    bool new_champion = false;
+    if (!champion || best.report.fitness > champion->individual.report.fitness) {
+        champion = ChampionRecord{best, g};
+        new_champion = true;
+    }
+    const double generation_wall_s = seconds_since(start);
+
+    HistoryRow row;
+    row.generation = g;
+    row.evaluations = static_cast<int>(fresh.size());
+    row.simulations = static_cast<int>(jobs.size());
+    row.best_fitness = best.report.fitness;
+    row.median_fitness = median_fitness(next_population);
+    row.best_age = best.age;
+    row.best_id = best.id;
+    row.diverged = diverged;
+    row.wall_s = state_.elapsed_s + generation_wall_s;
+    row.rules_version = rules_version;
+
+    // Commit.
+    state_.experiment = rules;
+    state_.generation = g;
+    state_.next_id = next_id;
+    state_.rng = rng.state();
+    state_.rules_version = rules_version;
+    state_.elapsed_s = row.wall_s;
+    state_.population = std::move(next_population);
+    state_.pareto_rank = std::move(next_ranks);
+    state_.champion = champion;
+    state_.history.push_back(row);
+    if (rules_changed) state_.rule_changes.push_back({g, rules.fitness});
+    for (std::size_t j = 0; j < jobs.size(); ++j)
+        state_.cache.insert(job_hashes[j], results[j]);
+    {
+        std::lock_guard lock(control_mutex_);
+        if (rules_changed && pending_serial_ == applied_serial) pending_fitness_.reset();
+    }
+    ++session_generations_;
+
+    if (output_) {
+        if (rules_changed) output_->write_run_info(original_experiment_, state_);
+        output_->write_fitness_csv(state_.history);
+        if (new_champion) output_->write_champion(rules, *state_.champion);
+        output_->write_checkpoint(state_);
+    }
+
+    auto report = std::make_shared<GenerationReport>();
+    report->generation = g;
+    report->generation_budget = generation_budget_;
+    report->measure = rules.fitness.measure;
+    report->rules_version = rules_version;
+    report->rules_changed = rules_changed;
+    report->best_fitness = row.best_fitness;
+    report->median_fitness = row.median_fitness;
+    report->champion = *state_.champion;
+    report->new_champion = new_champion;
+    for (std::size_t k = 0; k < state_.population.size(); ++k) {
+        const auto& m = state_.population[k];
+        report->population.push_back(
+            {m.id, m.report.fitness, m.age, m.phenotype.voxels,
+             m.phenotype.voxels > 0
+                 ? static_cast<double>(m.phenotype.active_voxels) / m.phenotype.voxels
+                 : 0.0,
+             state_.pareto_rank[k], m.report.diverged, m.valid});
+    }
+    report->evaluations = row.evaluations;
+    report->simulations = row.simulations;
+    report->cache_hits = cache_hits;
+    report->clones = clones;
+    report->diverged = diverged;
+    report->newcomers_skipped = newcomers_skipped;
+    report->generation_wall_s = generation_wall_s;
+    report->elapsed_s = state_.elapsed_s;
+    report->simulations_per_s = generation_wall_s > 0.0 ? row.simulations / generation_wall_s : 0.0;
+    const double per_generation = seconds_since(session_start_) / session_generations_;
+    const double by_generations = (generation_budget_ - 1 - g) * per_generation;
+    report->eta_s = std::max(0.0, std::min(by_generations, wall_budget_s_ - state_.elapsed_s));
+    publish(std::move(report));
+    return true;
+}
+
+}  // namespace bhm::evo

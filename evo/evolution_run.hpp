@@ -1,0 +1,161 @@
+#pragma once
+// The AFPO run loop (paper section 3; Schmidt & Lipson 2010), shared by `bhm evolve` and the
+// studio.
+//
+// Generation 0: P random valid individuals. Generation g > 0: every member ages by one; each makes
+// one mutant (mutate_until_new) that inherits its age; one random newcomer of age 0 joins
+// (2P + 1 in the pool); the new ones are evaluated (cache first, then simulations on the worker
+// pool); Pareto selection on (fitness up, age down[, active voxels down]) cuts the pool back to P.
+//
+// Determinism: all random draws happen on the calling thread in a fixed order; workers only run
+// pure evaluations into pre-sized slots. The same seed gives the same history and champion
+// whatever the thread count, and a resumed run continues exactly as an uninterrupted one.
+//
+// Control (thread-safe, for a UI thread or a signal handler): request_stop() abandons the current
+// generation at the next simulation sample and returns from run() with the last completed
+// generation's checkpoint on disk; set_paused() holds the loop between generations;
+// request_fitness_change() swaps the fitness rules before the next generation and re-scores the
+// population under them (all measures are kept, so no new simulation is needed; members that now
+// break a constraint get kInvalidFitness). Reports are immutable snapshots handed to a callback
+// and kept as latest_report().
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "evo/phenotype.hpp"
+#include "evo/run_output.hpp"
+#include "evo/run_state.hpp"
+
+namespace bhm::evo {
+
+struct RunOptions {
+    std::string out_dir;                  //!< empty: keep everything in memory, write no files
+    std::optional<int> generations;       //!< total generations, generation 0 included
+    std::optional<double> wall_budget_h;  //!< wall-time budget across resumes
+    std::optional<int> threads;           //!< 0 = all hardware threads
+    std::optional<std::uint64_t> seed;    //!< new runs only; must match the checkpoint on resume
+};
+
+struct PopulationEntry {
+    std::int64_t id = 0;
+    double fitness = 0.0;
+    int age = 0;
+    int voxels = 0;
+    double active_fraction = 0.0;
+    int pareto_rank = 0;
+    bool diverged = false;
+    bool valid = true;
+};
+
+//! An immutable snapshot of one completed generation.
+struct GenerationReport {
+    int generation = 0;
+    int generation_budget = 0;
+    FitnessMeasure measure = FitnessMeasure::ComFinal3d;
+    int rules_version = 0;
+    bool rules_changed = false;  //!< the rules changed just before this generation
+    double best_fitness = 0.0;
+    double median_fitness = 0.0;
+    ChampionRecord champion;
+    bool new_champion = false;
+    std::vector<PopulationEntry> population;  //!< in selection order
+    int evaluations = 0;
+    int simulations = 0;
+    int cache_hits = 0;  //!< evaluations served by the cache, a clone's parent or a twin
+    int clones = 0;      //!< mutants that found no new valid phenotype in max_neutral_retries
+    int diverged = 0;
+    int newcomers_skipped = 0;  //!< no valid random newcomer found (over-strict constraints)
+    double generation_wall_s = 0.0;
+    double elapsed_s = 0.0;          //!< across resumes
+    double simulations_per_s = 0.0;  //!< this generation
+    double eta_s = -1.0;             //!< to the generation or wall budget; -1 unknown
+};
+
+using ReportCallback = std::function<void(std::shared_ptr<const GenerationReport>)>;
+
+enum class StopReason { GenerationBudget, WallBudget, StopRequested };
+
+class EvolutionRun {
+  public:
+    //! A new run. With an out_dir, refuses a directory that already holds a checkpoint (resume it
+    //! instead) and writes run.json. Throws std::invalid_argument / std::runtime_error.
+    EvolutionRun(const Experiment& experiment, RunOptions options);
+    //! Continues the run in options.out_dir from its checkpoint (or the previous one).
+    static std::unique_ptr<EvolutionRun> resume(RunOptions options);
+    ~EvolutionRun();
+    EvolutionRun(const EvolutionRun&) = delete;
+    EvolutionRun& operator=(const EvolutionRun&) = delete;
+
+    //! Runs generations until a budget is reached or a stop is requested.
+    StopReason run();
+    //! One generation; false when it was abandoned by a stop request (state unchanged).
+    bool run_generation();
+
+    void set_report_callback(ReportCallback callback) { callback_ = std::move(callback); }
+    void request_stop() { stop_.store(true); }
+    bool stop_requested() const { return stop_.load(); }
+    //! The flag itself, for an async-signal-safe store from a signal handler.
+    std::atomic<bool>& stop_flag() { return stop_; }
+    void set_paused(bool paused);
+    bool paused() const { return paused_.load(); }
+    void request_fitness_change(const Fitness& fitness);
+
+    std::shared_ptr<const GenerationReport> latest_report() const;
+    //! The state after the last completed generation. Only while run() is not executing.
+    const RunState& state() const { return state_; }
+    const Experiment& experiment() const { return state_.experiment; }
+    const Developer& developer() const { return developer_; }
+    const std::vector<std::string>& resume_warnings() const { return resume_warnings_; }
+    const std::string& checkpoint_path() const { return checkpoint_path_; }
+    int generation_budget() const { return generation_budget_; }
+    double wall_budget_s() const { return wall_budget_s_; }
+    int threads() const { return threads_; }
+
+  private:
+    struct Start {
+        Experiment original;  //!< as the run was started (run.json)
+        RunState state;
+        std::vector<std::string> warnings;
+        std::string checkpoint_path;
+        bool resumed = false;
+    };
+    static Start fresh_start(const Experiment& experiment, const RunOptions& options);
+    EvolutionRun(Start start, RunOptions options);
+    bool draw_random_individual(Individual& out, Rng& rng, std::int64_t id, int generation,
+                                const Constraints& constraints) const;
+    void publish(std::shared_ptr<const GenerationReport> report);
+
+    RunOptions options_;
+    Experiment original_experiment_;
+    RunState state_;
+    Developer developer_;
+    std::optional<RunOutput> output_;
+    int generation_budget_ = 0;
+    double wall_budget_s_ = 0.0;
+    int threads_ = 1;
+    std::vector<std::string> resume_warnings_;
+    std::string checkpoint_path_;
+
+    std::atomic<bool> stop_{false};
+    std::atomic<bool> paused_{false};
+    std::mutex control_mutex_;
+    std::condition_variable control_changed_;
+    std::optional<Fitness> pending_fitness_;
+    std::uint64_t pending_serial_ = 0;
+
+    mutable std::mutex report_mutex_;
+    std::shared_ptr<const GenerationReport> latest_;
+    ReportCallback callback_;
+
+    std::chrono::steady_clock::time_point session_start_;
+    int session_generations_ = 0;
+};
+
+}  // namespace bhm::evo

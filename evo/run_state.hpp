@@ -1,0 +1,58 @@
+#pragma once
+// Everything an evolution run is at the end of a generation: exactly what a checkpoint stores, so
+// a resumed run continues as if never interrupted.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "evo/experiment.hpp"
+#include "evo/fitness_cache.hpp"
+#include "evo/individual.hpp"
+#include "evo/rng.hpp"
+
+namespace bhm::evo {
+
+//! One row of fitness.csv. Counts are for that generation alone.
+struct HistoryRow {
+    int generation = 0;
+    int evaluations = 0;  //!< new individuals that needed a result (mutants, newcomer)
+    int simulations = 0;  //!< of those, the ones actually simulated (the rest came from the cache)
+    double best_fitness = 0.0;
+    double median_fitness = 0.0;
+    int best_age = 0;
+    std::int64_t best_id = 0;
+    int diverged = 0;       //!< simulations that diverged
+    double wall_s = 0.0;    //!< wall time since the run started (across resumes) at its end
+    int rules_version = 0;  //!< bumped by every change of fitness rules between generations
+    bool operator==(const HistoryRow&) const = default;
+};
+
+//! The best individual seen so far under the current rules.
+struct ChampionRecord {
+    Individual individual;
+    int generation_found = 0;
+};
+
+//! A change of the fitness rules (measure, constraints, objectives) applied before `generation`.
+struct RuleChange {
+    int generation = 0;
+    Fitness fitness;
+};
+
+struct RunState {
+    Experiment experiment;  //!< the current rules (fitness as last changed)
+    std::uint64_t seed = 0;
+    int generation = -1;  //!< last completed generation (-1: none yet)
+    std::int64_t next_id = 0;
+    Rng::State rng{};
+    int rules_version = 0;
+    double elapsed_s = 0.0;  //!< wall time spent on completed generations, across resumes
+    std::vector<Individual> population;  //!< in selection order
+    std::vector<int> pareto_rank;        //!< per population member, from the last selection
+    std::optional<ChampionRecord> champion;
+    std::vector<HistoryRow> history;
+    std::vector<RuleChange> rule_changes;
+    FitnessCache cache;
+};
+
+}  // namespace bhm::evo

@@ -1,0 +1,249 @@
+// The AFPO run loop end to end on a tiny workspace: pool sizes and ages, elitism, determinism
+// across thread counts, stop and resume equivalence, checkpoint fallback, rule changes, files.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "evo/checkpoint.hpp"
+#include "evo/constraints.hpp"
+#include "evo/evolution_run.hpp"
+#include "evo_test_support.hpp"
+#include "xml_check.hpp"
+
+using namespace bhm::evo;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("bhm-test-evo-" + name);
+    fs::remove_all(dir);
+    return dir;
+}
+
+std::string read_file(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+//! fitness.csv without its wall_s column (the only one that depends on the machine's speed).
+std::string csv_without_wall(const std::string& csv) {
+    std::stringstream in(csv), out;
+    std::string line;
+    while (std::getline(in, line))
+        out << line.substr(0, line.rfind(',')) << "\n";
+    return out.str();
+}
+
+std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
+    for (auto& r : rows)
+        r.wall_s = 0.0;
+    return rows;
+}
+
+RunOptions options(int generations, int threads, const std::string& dir = "") {
+    RunOptions o;
+    o.generations = generations;
+    o.threads = threads;
+    o.out_dir = dir;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("AFPO generations: pool 2P+1 cut to P, ages, newcomers, elitism") {
+    const auto e = test::tiny_experiment();
+    const int P = e.evolution.population;
+    EvolutionRun run(e, options(4, 2));
+    std::vector<std::shared_ptr<const GenerationReport>> reports;
+    run.set_report_callback([&](auto r) { reports.push_back(r); });
+    CHECK(run.run() == StopReason::GenerationBudget);
+    REQUIRE(reports.size() == 4);
+
+    double best_so_far = -1e300;
+    std::set<std::int64_t> previous_ids;
+    for (const auto& r : reports) {
+        CAPTURE(r->generation);
+        CHECK(static_cast<int>(r->population.size()) == P);
+        // Generation 0: P random individuals; later: P mutants plus one newcomer.
+        CHECK(r->evaluations == (r->generation == 0 ? P : P + 1));
+        CHECK(r->simulations + r->cache_hits == r->evaluations);
+        CHECK(r->simulations <= r->evaluations);
+        CHECK(r->best_fitness >= best_so_far);  // the best is always non-dominated: never lost
+        best_so_far = r->best_fitness;
+        CHECK(r->champion.individual.report.fitness == doctest::Approx(r->best_fitness));
+        for (const auto& m : r->population) {
+            CHECK(m.age >= 0);
+            CHECK(m.age <= r->generation);  // ages grow by one per generation at most
+            CHECK(m.fitness <= r->best_fitness);
+            CHECK(m.pareto_rank >= 0);
+            CHECK(m.valid);
+        }
+        std::set<std::int64_t> ids;
+        for (const auto& m : r->population)
+            ids.insert(m.id);
+        CHECK(ids.size() == static_cast<std::size_t>(P));  // no duplicates
+        // Survivors carried over keep their ids; new ids are larger than any before.
+        previous_ids = ids;
+    }
+    // Ages: a survivor of generation g-1 is exactly one older in generation g.
+    for (std::size_t k = 1; k < reports.size(); ++k)
+        for (const auto& m : reports[k]->population)
+            for (const auto& old : reports[k - 1]->population)
+                if (old.id == m.id) CHECK(m.age == old.age + 1);
+    // The newcomer (age 0) is never dominated: any age-0 member in a later generation is one.
+    const auto& state = run.state();
+    CHECK(state.history.size() == 4);
+    CHECK(state.next_id == P + 3 * (P + 1));
+    for (const auto& m : state.population) {
+        CHECK(m.phenotype == run.developer().develop(m.genome));
+        CHECK(constraint_violation(e.fitness.constraints, e.boundary, run.developer().space(),
+                                   m.phenotype)
+                  .empty());
+    }
+}
+
+TEST_CASE("the same seed gives the same run with 1 and 2 threads") {
+    const auto e = test::tiny_experiment();
+    EvolutionRun one(e, options(3, 1));
+    EvolutionRun two(e, options(3, 2));
+    one.run();
+    two.run();
+    CHECK(without_wall(one.state().history) == without_wall(two.state().history));
+    REQUIRE(one.state().champion);
+    REQUIRE(two.state().champion);
+    CHECK(one.state().champion->individual.genome == two.state().champion->individual.genome);
+    CHECK(one.state().champion->individual.report.fitness ==
+          two.state().champion->individual.report.fitness);
+    CHECK(one.state().rng == two.state().rng);
+    // A different seed gives a different run.
+    auto other = options(3, 2);
+    other.seed = 8;
+    EvolutionRun three(e, other);
+    three.run();
+    CHECK(three.state().champion->individual.genome != one.state().champion->individual.genome);
+}
+
+TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
+    const auto e = test::tiny_experiment();
+    const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
+    EvolutionRun uninterrupted(e, options(4, 2, whole.string()));
+    uninterrupted.run();
+
+    {
+        EvolutionRun first(e, options(4, 1, parts.string()));
+        first.set_report_callback([&](auto r) {
+            if (r->generation == 1) first.request_stop();  // as Ctrl-C would, between generations
+        });
+        CHECK(first.run() == StopReason::StopRequested);
+        CHECK(first.state().generation == 1);
+    }
+    auto resumed = EvolutionRun::resume(options(4, 2, parts.string()));
+    CHECK(resumed->resume_warnings().empty());
+    CHECK(resumed->state().generation == 1);
+    CHECK(resumed->run() == StopReason::GenerationBudget);
+
+    CHECK(csv_without_wall(read_file(parts / "fitness.csv")) ==
+          csv_without_wall(read_file(whole / "fitness.csv")));
+    CHECK(resumed->state().champion->individual.genome ==
+          uninterrupted.state().champion->individual.genome);
+    CHECK(resumed->state().rng == uninterrupted.state().rng);
+    CHECK(resumed->state().cache.insertion_order() ==
+          uninterrupted.state().cache.insertion_order());
+    for (std::size_t i = 0; i < uninterrupted.state().population.size(); ++i)
+        CHECK(resumed->state().population[i].id == uninterrupted.state().population[i].id);
+
+    // The run directory holds every promised file.
+    for (const char* name : {"run.json", "fitness.csv", "champion.json", "champion.vxa",
+                             "checkpoint.json", "checkpoint.prev.json", "champions/gen-00000.json"})
+        CHECK_MESSAGE(fs::exists(whole / name), name);
+    CHECK(read_file(whole / "fitness.csv").rfind(kFitnessCsvHeader, 0) == 0);
+    const auto run_json = nlohmann::json::parse(read_file(whole / "run.json"));
+    CHECK(run_json.at("seed") == e.evolution.seed);
+    CHECK(run_json.at("experiment").at("name") == "tiny");
+    const auto champion = nlohmann::json::parse(read_file(whole / "champion.json"));
+    CHECK(champion.at("fitness").get<double>() ==
+          uninterrupted.state().champion->individual.report.fitness);
+    CHECK(champion.at("phenotype").at("layers").size() == 3);
+    CHECK_NOTHROW(bhm::test::XmlReader::parse(read_file(whole / "champion.vxa")));
+    // A new run refuses a directory that already holds one.
+    CHECK_THROWS_WITH_AS(EvolutionRun(e, options(4, 1, whole.string())),
+                         doctest::Contains("--resume"), std::runtime_error);
+    fs::remove_all(whole);
+    fs::remove_all(parts);
+}
+
+TEST_CASE("a stop during a generation abandons it and leaves the state untouched") {
+    const auto e = test::tiny_experiment();
+    EvolutionRun run(e, options(3, 2));
+    REQUIRE(run.run_generation());
+    const auto before = run.state().history;
+    const auto rng = run.state().rng;
+    run.request_stop();
+    CHECK_FALSE(run.run_generation());  // cancelled at the first simulation sample
+    CHECK(run.state().generation == 0);
+    CHECK(run.state().history == before);
+    CHECK(run.state().rng == rng);
+}
+
+TEST_CASE("a corrupt checkpoint falls back to the previous one; both corrupt is a clear error") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = fresh_dir("corrupt");
+    EvolutionRun(e, options(2, 2, dir.string())).run();
+    std::ofstream(dir / "checkpoint.json") << "{\"format\": \"bhm-evolution-checkpoint\", trunc";
+    auto resumed = EvolutionRun::resume(options(3, 2, dir.string()));
+    REQUIRE(resumed->resume_warnings().size() == 1);
+    CHECK(resumed->resume_warnings()[0].find("checkpoint.json") != std::string::npos);
+    CHECK(resumed->state().generation == 0);  // the previous checkpoint: after generation 0
+    resumed->run();
+    EvolutionRun reference(e, options(3, 2));
+    reference.run();
+    CHECK(without_wall(resumed->state().history) == without_wall(reference.state().history));
+
+    std::ofstream(dir / "checkpoint.json") << "not json";
+    std::ofstream(dir / "checkpoint.prev.json") << "{}";
+    CHECK_THROWS_WITH_AS(EvolutionRun::resume(options(3, 2, dir.string())),
+                         doctest::Contains("checkpoint.prev.json: format: missing"),
+                         std::runtime_error);
+    fs::remove_all(dir);
+    CHECK_THROWS_WITH_AS(EvolutionRun::resume(options(3, 2, dir.string())),
+                         doctest::Contains("missing"), std::runtime_error);
+}
+
+TEST_CASE("a change of rules between generations re-scores the population and is recorded") {
+    const auto e = test::tiny_experiment();
+    EvolutionRun run(e, options(3, 2));
+    REQUIRE(run.run_generation());
+    Fitness rules = e.fitness;
+    rules.measure = FitnessMeasure::ComFinalYz;
+    rules.constraints.min_active_voxels = 6;
+    run.request_fitness_change(rules);
+    std::shared_ptr<const GenerationReport> report;
+    run.set_report_callback([&](auto r) { report = r; });
+    REQUIRE(run.run_generation());
+    REQUIRE(report);
+    CHECK(report->rules_changed);
+    CHECK(report->rules_version == 1);
+    CHECK(report->measure == FitnessMeasure::ComFinalYz);
+    CHECK(run.state().history.back().rules_version == 1);
+    CHECK(run.state().rule_changes.size() == 1);
+    CHECK(run.state().experiment.fitness.constraints.min_active_voxels == 6);
+    for (const auto& m : run.state().population) {
+        if (m.valid) {
+            CHECK(m.report.fitness == fitness_under(m.report, FitnessMeasure::ComFinalYz));
+            CHECK(m.phenotype.active_voxels >= 6);
+        } else {
+            CHECK(m.report.fitness == kInvalidFitness);
+            CHECK(m.phenotype.active_voxels < 6);
+        }
+    }
+    // Applied once: the next generation runs under the same rules without another change.
+    REQUIRE(run.run_generation());
+    CHECK_FALSE(report->rules_changed);
+    CHECK(report->rules_version == 1);
+}
