@@ -1,0 +1,180 @@
+// bench_evolve: evolution throughput on the paper presets, as CSV (one row per preset and thread
+// count). Full 11 s evaluations of the paper's bodies take minutes each, so each simulation here
+// covers the first --sim-seconds of the evaluation and the rate is scaled to full length (the
+// engine's cost is linear in simulated time: a fixed step). The coordinator's share of a
+// generation (P mutants with neutral retries, one newcomer, decoding) is timed for real.
+//
+//   bench_evolve [--sims N] [--sim-seconds S] [--threads-list 1,2] [--assets DIR] [--commit SHA]
+//                [PRESET...]
+//
+// Defaults: 4 simulations of 0.2 s per (preset, thread count), presets paper-exp1 and paper-exp3
+// from assets/experiments (run from the repository root, as scripts/bench.sh does), threads 1 and
+// 2. CSV on stdout, notes on stderr; the commit comes from --commit or $BHM_COMMIT.
+#include <sys/utsname.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "evo/constraints.hpp"
+#include "evo/experiment_io.hpp"
+#include "evo/fitness.hpp"
+#include "evo/mutation.hpp"
+#include "evo/phenotype.hpp"
+#include "evo/scene.hpp"
+#include "evo/worker_pool.hpp"
+
+using namespace bhm::evo;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+//! "x86_64 <CPU model>", commas removed so the field stays one CSV column.
+std::string machine_description() {
+    utsname names{};
+    std::string text = uname(&names) == 0 ? names.machine : "unknown-arch";
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind("model name", 0) == 0) {
+            text.push_back(' ');
+            text.append(line, line.find(':') + 2);
+            break;
+        }
+    std::replace(text.begin(), text.end(), ',', ' ');
+    return text;
+}
+
+struct Population {
+    std::vector<Genome> genomes;
+    std::vector<Phenotype> phenotypes;
+};
+
+//! P random valid individuals, as generation 0 draws them.
+Population random_population(const Experiment& e, const Developer& dev, int count, Rng& rng) {
+    Population p;
+    while (static_cast<int>(p.genomes.size()) < count) {
+        Genome g = random_genome(e.evolution.cppn, rng);
+        Phenotype ph = dev.develop(g);
+        if (!constraint_violation(e.fitness.constraints, e.boundary, dev.space(), ph).empty())
+            continue;
+        p.genomes.push_back(std::move(g));
+        p.phenotypes.push_back(std::move(ph));
+    }
+    return p;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+    const char* env_commit = std::getenv("BHM_COMMIT");
+    std::string commit = env_commit ? env_commit : "unknown";
+    std::string assets = "assets/experiments";
+    int sims = 4;
+    double sim_seconds = 0.2;
+    std::vector<int> thread_counts = {1, 2};
+    std::vector<std::string> presets;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--commit")
+            commit = value();
+        else if (a == "--assets")
+            assets = value();
+        else if (a == "--sims")
+            sims = std::stoi(value());
+        else if (a == "--sim-seconds")
+            sim_seconds = std::stod(value());
+        else if (a == "--threads-list") {
+            thread_counts.clear();
+            std::stringstream list(value());
+            std::string item;
+            while (std::getline(list, item, ','))
+                thread_counts.push_back(std::stoi(item));
+        } else
+            presets.push_back(a);
+    }
+    if (presets.empty()) presets = {"paper-exp1", "paper-exp3"};
+
+    std::cout
+        << "preset,threads,population,simulations,mean_voxels,simulated_s_each,full_evaluation_s,"
+           "wall_s,sim_s_per_wall_s,simulations_per_s_full,coordinator_s_per_generation,"
+           "generations_per_hour,hardware_threads,machine,commit"
+        << std::endl;
+    const std::string machine = machine_description();
+    for (const auto& preset : presets) {
+        const std::string path = assets + "/" + preset + ".json";
+        const Experiment full = load_experiment(path);
+        const Developer dev(full);
+        const int P = full.evolution.population;
+        Rng rng(full.evolution.seed);
+
+        // Coordinator work of one generation, measured: P mutants (with neutral retries) +
+        // newcomer.
+        Population population = random_population(full, dev, P, rng);
+        const auto t_coord = std::chrono::steady_clock::now();
+        for (int k = 0; k < P; ++k)
+            mutate_until_new(population.genomes[static_cast<std::size_t>(k)],
+                             population.phenotypes[static_cast<std::size_t>(k)], dev,
+                             full.fitness.constraints, full.evolution.cppn,
+                             full.evolution.max_neutral_retries, rng);
+        random_population(full, dev, 1, rng);
+        const double coordinator_s = seconds_since(t_coord);
+
+        // Simulations: the first sim_seconds of evaluations of the first `sims` random bodies.
+        Experiment shortened = full;
+        const double full_s = evaluation_seconds(full);
+        shortened.simulation.settle_s = std::min(full.simulation.settle_s, sim_seconds / 2);
+        shortened.simulation.evaluate_s = sim_seconds - shortened.simulation.settle_s;
+        double voxels = 0;
+        for (int k = 0; k < sims; ++k)
+            voxels += population.phenotypes[static_cast<std::size_t>(k % P)].voxels;
+        voxels /= sims;
+        for (int threads : thread_counts) {
+            std::vector<FitnessReport> reports(static_cast<std::size_t>(sims));
+            const auto t_sim = std::chrono::steady_clock::now();
+            parallel_for(sims, threads, [&](int k) {
+                reports[static_cast<std::size_t>(k)] = evaluate_body(
+                    shortened, population.phenotypes[static_cast<std::size_t>(k % P)].body);
+            });
+            const double wall_s = seconds_since(t_sim);
+            const double sim_rate =
+                sims * sim_seconds / wall_s;             // simulated seconds per wall second
+            const double full_rate = sim_rate / full_s;  // full evaluations per second
+            // A generation simulates at most P + 1 new bodies (fewer with cache hits and clones).
+            const double generation_s = coordinator_s + (P + 1) / full_rate;
+            char row[512];
+            std::snprintf(row, sizeof row,
+                          "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.3f,%.4f,%.6f,%.3f,%.3f,%u,%s,%s",
+                          preset.c_str(), threads, P, sims, voxels, sim_seconds, full_s, wall_s,
+                          sim_rate, full_rate, coordinator_s, 3600.0 / generation_s,
+                          std::thread::hardware_concurrency(), machine.c_str(), commit.c_str());
+            std::cout << row << std::endl;
+            std::cerr << preset << ", " << threads << " thread(s): " << full_rate
+                      << " full simulations/s, " << 3600.0 / generation_s << " generations/hour\n";
+        }
+    }
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::cerr << "bench_evolve: " << e.what() << "\n";
+        return 1;
+    }
+}
