@@ -12,7 +12,9 @@
 // transverse end offsets absorbed by the frame. Forces and moments are built directly in world
 // coordinates (no rotation back from a local frame). Bond damping is Rayleigh damping C = beta K:
 // the same equations evaluated at deformation + beta * rate, the rate being the backward difference
-// of the deformation (for symplectic Euler positions this is the current velocity). Linear and
+// of the deformation (for symplectic Euler positions this is the current velocity). As in Voxelyze,
+// the axial deformation is the extension beyond the actuated rest length, so damping resists the
+// elastic strain rate, not the thermal expansion itself. Linear and
 // angular momentum are conserved exactly by construction: equal and opposite forces, and moments
 // that balance the couple of the forces.
 #include "engine/link_pass.hpp"
@@ -90,7 +92,7 @@ int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& o
     float* __restrict mp0 = out.moment_pos[axis];
     float* __restrict mp1 = out.moment_pos[a1];
     float* __restrict mp2 = out.moment_pos[a2];
-    float* __restrict prev_len = out.prev_length;
+    float* __restrict prev_ext = out.prev_extension;
     float* __restrict pa0 = out.prev_theta_neg[0];
     float* __restrict pa1 = out.prev_theta_neg[1];
     float* __restrict pa2 = out.prev_theta_neg[2];
@@ -120,14 +122,14 @@ int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& o
 
         // Deformation plus beta times its rate (Rayleigh damping), then the beam equations.
         const float k = damp[c];
-        const float x = extension + k * (f.length - prev_len[c]);
+        const float x = extension + k * (extension - prev_ext[c]);
         const float ta0 = f.theta_neg[0] + k * (f.theta_neg[0] - pa0[c]);
         const float ta1 = f.theta_neg[1] + k * (f.theta_neg[1] - pa1[c]);
         const float ta2 = f.theta_neg[2] + k * (f.theta_neg[2] - pa2[c]);
         const float tb0 = f.theta_pos[0] + k * (f.theta_pos[0] - pb0[c]);
         const float tb1 = f.theta_pos[1] + k * (f.theta_pos[1] - pb1[c]);
         const float tb2 = f.theta_pos[2] + k * (f.theta_pos[2] - pb2[c]);
-        prev_len[c] = f.length;
+        prev_ext[c] = extension;
         pa0[c] = f.theta_neg[0];
         pa1[c] = f.theta_neg[1];
         pa2[c] = f.theta_neg[2];

@@ -62,14 +62,6 @@ Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScrat
     return a;
 }
 
-// cond ? a : b as a bitwise blend of two values already computed. GCC sinks the work of a plain
-// select into a branch, and a branch in the loop stops its vectorisation.
-__attribute__((always_inline)) inline double blend(bool cond, double a, double b) {
-    const std::uint64_t take_a = 0 - static_cast<std::uint64_t>(cond);
-    return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & take_a) |
-                                 (std::bit_cast<std::uint64_t>(b) & ~take_a));
-}
-
 // max(x, 0), exactly, as arithmetic.
 __attribute__((always_inline)) inline double positive_part(double x) {
     return 0.5 * (x + std::fabs(x));
@@ -100,15 +92,13 @@ __attribute__((always_inline)) inline Update integrate(const Arrays& a, const Vo
     const double vx = a.vel[0][c], vy = a.vel[1][c], vz = a.vel[2][c];
     const double dt_inv_m = a.dt_inv_mass[c];
 
-    // Floor contact. Written as arithmetic and selects between values computed unconditionally:
-    // GCC turns a select guarding work into a branch, and a branch stops the vectorisation.
+    // Floor contact.
     const double scale = 1.0 + a.act_sin[c] * in.sin_t + a.act_cos[c] * in.cos_t;
     const double penetration = 0.5 * a.voxel_size * scale - (a.pos[2][c] - in.floor_z);
     const double depth = positive_part(penetration);
     const bool contact = depth > 0.0;
     const double collision_damping = a.floor_c[c] * vz;
-    const double normal =
-        positive_part(a.floor_k[c] * depth - blend(contact, collision_damping, 0.0));
+    const double normal = positive_part(a.floor_k[c] * depth - (contact ? collision_damping : 0.0));
     f[2] += normal;
 
     Update u;
@@ -125,8 +115,8 @@ __attribute__((always_inline)) inline Update integrate(const Arrays& a, const Vo
     // (kinetic_dv is 0 off the floor; at speed 0 a positive kinetic_dv means `stops`.)
     const double kinetic_keep = 1.0 - kinetic_dv / (speed + 1e-300);
     const bool grip = held | stops;
-    const double keep_t = blend(grip, 0.0, kinetic_keep);
-    u.stuck = blend(grip, 1.0, 0.0);
+    const double keep_t = grip ? 0.0 : kinetic_keep;
+    u.stuck = grip ? 1.0 : 0.0;
 
     const double lin = a.linear_keep[c] * a.movable[c];
     u.v[0] *= keep_t * lin;
@@ -167,34 +157,33 @@ __attribute__((always_inline)) inline Update integrate(const Arrays& a, const Vo
 int voxel_pass(const Model::Data& d, VoxelState& s, const std::array<LinkScratch, 3>& links,
                const VoxelPassInput& in) {
     const Arrays a = arrays_of(d, s, links);
-    std::uint64_t refused = 0;  // 64-bit like the double lanes, so the sum vectorises
+    double* __restrict refused = s.refused.data();
     const int n = d.cells;
     // Each iteration reads and writes its own cell only (link scratch is read-only here).
 #pragma GCC ivdep
     for (int c = 0; c < n; ++c) {
         const Update u = integrate(a, in, c);
-        // A refused voxel keeps its old (finite) state; blend keeps every store unconditional.
-        refused += static_cast<std::uint64_t>(!u.ok);
-        auto keep = [&](double fresh, double old) __attribute__((always_inline)) {
-            return blend(u.ok, fresh, old);
-        };
+        // Written unconditionally (a conditional store would stop the vectorisation). A refused
+        // step is still finite: it starts from a checked state and parameters are bounded.
         for (int i = 0; i < 3; ++i) {
-            a.pos[i][c] = keep(u.p[i], a.pos[i][c]);
-            a.vel[i][c] = keep(u.v[i], a.vel[i][c]);
-            a.omega[i][c] = keep(u.w[i], a.omega[i][c]);
+            a.pos[i][c] = u.p[i];
+            a.vel[i][c] = u.v[i];
+            a.omega[i][c] = u.w[i];
         }
         for (int i = 0; i < 4; ++i)
-            a.quat[i][c] = keep(u.q[i], a.quat[i][c]);
-        a.stuck[c] = keep(u.stuck, a.stuck[c]);
+            a.quat[i][c] = u.q[i];
+        a.stuck[c] = u.stuck;
+        refused[c] = u.ok ? 0.0 : 1.0;
     }
-    return static_cast<int>(refused);
+    int count = 0;
+    for (int c = 0; c < n; ++c)
+        count += refused[c] != 0.0;
+    return count;
 }
 
-int first_bad_voxel_cell(const Model::Data& d, VoxelState& s,
-                         const std::array<LinkScratch, 3>& links, const VoxelPassInput& in) {
-    const Arrays a = arrays_of(d, s, links);
+int first_refused_cell(const Model::Data& d, const VoxelState& s) {
     for (int c = 0; c < d.cells; ++c)
-        if (!integrate(a, in, c).ok) return c;
+        if (s.refused[c] != 0.0) return c;
     return -1;
 }
 

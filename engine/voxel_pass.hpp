@@ -13,14 +13,13 @@ struct VoxelPassInput {
     double floor_z = 0.0;  //!< height of the floor: 0, or -1e300 without one (never touched)
 };
 
-//! Integrates every voxel by one dt. A voxel whose new state would be non-finite or move more than
-//! one voxel (or turn more than one radian) in the step keeps its old state and is counted; the
-//! return value is that count (non-zero = diverged).
+//! Integrates every voxel by one dt and returns how many voxels' new state is insane: moved more
+//! than one voxel or turned more than one radian in the step, or non-finite (non-zero = diverged;
+//! VoxelState::refused marks them).
 int voxel_pass(const Model::Data& model, VoxelState& voxels,
                const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
 
-//! Index of the first voxel cell the last voxel_pass refused (recomputed), or -1.
-int first_bad_voxel_cell(const Model::Data& model, VoxelState& voxels,
-                         const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
+//! The first cell the last voxel_pass marked as refused, or -1.
+int first_refused_cell(const Model::Data& model, const VoxelState& voxels);
 
 }  // namespace bhm::engine

@@ -26,6 +26,7 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
     for (int i = 0; i < 4; ++i)
         s.quat[i].assign(n, i == 0 ? 1.0 : 0.0);
     s.stuck.assign(n, 0.0);
+    s.refused.assign(n, 0.0);
     // Every slot, dummies and padding included, sits on its lattice point.
     for (int c = 0; c < n; ++c) {
         s.pos[0][c] = (c % nx + 0.5) * L;
@@ -50,14 +51,11 @@ void init_links(const Model::Data& d, LinkScratch& l) {
         l.moment_neg[i] = next();
     for (int i = 0; i < 3; ++i)
         l.moment_pos[i] = next();
-    l.prev_length = next();
+    l.prev_extension = next();
     for (int i = 0; i < 3; ++i)
         l.prev_theta_neg[i] = next();
     for (int i = 0; i < 3; ++i)
         l.prev_theta_pos[i] = next();
-    // At t = 0 every link is straight at its lattice length.
-    for (int c = 0; c < d.cells; ++c)
-        l.prev_length[c] = static_cast<float>(d.voxel_size_m);
 }
 
 struct Phase {
@@ -80,9 +78,21 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     if (!model) throw std::invalid_argument("World: null model");
     state_->model = std::move(model);
     state_->data = &state_->model->data();
-    init_voxels(*state_->data, state_->voxels);
-    for (auto& l : state_->links)
-        init_links(*state_->data, l);
+    const Model::Data& d = *state_->data;
+    init_voxels(d, state_->voxels);
+    // At t = 0 every link is straight at its lattice length; its extension is that length minus
+    // its (possibly already actuated) rest length, so the first damping rate is zero.
+    const Phase phase = actuation_phase(d, 0.0);
+    for (int axis = 0; axis < 3; ++axis) {
+        LinkScratch& l = state_->links[axis];
+        init_links(d, l);
+        const LinkParams& p = d.links[axis];
+        for (int c = 0; c < d.cells; ++c) {
+            const float rest = p.rest_base[c] + static_cast<float>(phase.sin_t) * p.rest_sin[c] +
+                               static_cast<float>(phase.cos_t) * p.rest_cos[c];
+            l.prev_extension[c] = static_cast<float>(d.voxel_size_m) - rest;
+        }
+    }
 }
 
 World::~World() = default;
@@ -129,7 +139,7 @@ void World::step() {
     if (bad_voxels != 0) {
         std::ostringstream why;
         why << "voxel state non-finite or moving more than one voxel (or one radian) per step";
-        const int c = first_bad_voxel_cell(d, s.voxels, s.links, in);
+        const int c = first_refused_cell(d, s.voxels);
         if (c >= 0) why << " (voxel " << d.cell_voxel[c] << ")";
         why << " at t = " << t << " s, step " << s.steps;
         s.diverged = true;

@@ -23,6 +23,7 @@ struct VoxelState {
     std::array<std::vector<double>, 3> omega;  //!< rad/s, world frame
     std::vector<double> stuck;                 //!< 1 = held by static friction
     std::array<std::vector<double>, 3> ext_force;
+    std::vector<double> refused;  //!< scratch of the voxel pass: 1 = insane new state
 };
 
 //! Per link slot of one axis: the forces the link pass writes for the voxel pass to gather
@@ -33,7 +34,7 @@ struct LinkScratch {
     std::array<float*, 3> force{};  //!< on the + end; the - end gets the opposite
     std::array<float*, 3> moment_neg{};
     std::array<float*, 3> moment_pos{};
-    float* prev_length = nullptr;
+    float* prev_extension = nullptr;
     std::array<float*, 3> prev_theta_neg{};
     std::array<float*, 3> prev_theta_pos{};
 };

@@ -1,0 +1,56 @@
+#pragma once
+// Bodies and measurements shared by the engine tests.
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "engine/body_spec.hpp"
+#include "engine/model.hpp"
+#include "engine/world.hpp"
+
+namespace bhm::engine::test {
+
+//! A solid nx x ny x nz box of material 1 (paper Table 1 passive by default), no floor, no gravity.
+inline BodySpec solid_box(int nx, int ny, int nz, Material material = {}) {
+    BodySpec s;
+    s.nx = nx;
+    s.ny = ny;
+    s.nz = nz;
+    s.material.assign(static_cast<std::size_t>(nx) * ny * nz, 1);
+    s.materials = {material};
+    s.environment.floor = false;
+    s.environment.gravity_m_s2 = 0.0;
+    return s;
+}
+
+//! Holds every voxel of the x = 0 layer.
+inline void fix_x_min_layer(BodySpec& s) {
+    s.fixed.assign(s.material.size(), 0);
+    for (int z = 0; z < s.nz; ++z)
+        for (int y = 0; y < s.ny; ++y)
+            s.fixed[s.cell_index(0, y, z)] = 1;
+}
+
+//! Mean displacement (m) along `axis` of the voxels of the layer x = layer, from the lattice.
+inline double layer_displacement(const World& w, int layer, int axis) {
+    const Model& m = w.model();
+    const double L = m.voxel_size_m();
+    double sum = 0.0;
+    int count = 0;
+    for (int v = 0; v < m.voxel_count(); ++v) {
+        const auto c = m.voxel_coords(v);
+        if (c[0] != layer) continue;
+        sum += w.voxel_position_m(v)[axis] - (c[axis] + 0.5) * L;
+        ++count;
+    }
+    return sum / count;
+}
+
+//! Index of the voxel at lattice coordinates (x, y, z); -1 if none.
+inline int voxel_at(const Model& m, int x, int y, int z) {
+    for (int v = 0; v < m.voxel_count(); ++v)
+        if (m.voxel_coords(v) == std::array<int, 3>{x, y, z}) return v;
+    return -1;
+}
+
+}  // namespace bhm::engine::test
