@@ -21,6 +21,7 @@
 
 #include <cmath>
 
+#include "engine/kernel_dispatch.hpp"
 #include "engine/link_kinematics.hpp"
 
 namespace bhm::engine {
@@ -70,8 +71,8 @@ BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest) 
 
 }  // namespace
 
-int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& out, int axis,
-              float sin_t, float cos_t) {
+BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxels,
+                                LinkScratch& out, int axis, float sin_t, float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
     const LinkParams& lp = model.links[axis];
     const float* __restrict exists = lp.exists.data();

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "engine/kernel_dispatch.hpp"
+
 namespace bhm::engine {
 namespace {
 
@@ -154,8 +156,9 @@ __attribute__((always_inline)) inline Update integrate(const Arrays& a, const Vo
 
 }  // namespace
 
-int voxel_pass(const Model::Data& d, VoxelState& s, const std::array<LinkScratch, 3>& links,
-               const VoxelPassInput& in) {
+BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
+                                 const std::array<LinkScratch, 3>& links,
+                                 const VoxelPassInput& in) {
     const Arrays a = arrays_of(d, s, links);
     double* __restrict refused = s.refused.data();
     const int n = d.cells;
