@@ -100,6 +100,8 @@ class EvolutionRun {
 
     void set_report_callback(ReportCallback callback) { callback_ = std::move(callback); }
     void request_stop() { stop_.store(true); }
+    //! Lets run() go on after a stop request was honoured (the studio's "continue").
+    void clear_stop() { stop_.store(false); }
     bool stop_requested() const { return stop_.load(); }
     //! The flag itself, for an async-signal-safe store from a signal handler.
     std::atomic<bool>& stop_flag() { return stop_; }

@@ -79,7 +79,11 @@ std::string vxa_document(const Experiment& e, const Body& body) {
         throw std::invalid_argument("VXA export: body cells do not match its size");
     std::ostringstream o;
     o << "<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>\n<VXA Version=\"1.0\">\n";
-    o << "<!-- Written by BHM Studio for experiment '" << escape_xml(e.name)
+    // "--" may not appear inside an XML comment.
+    std::string name = e.name;
+    for (std::size_t at = name.find("--"); at != std::string::npos; at = name.find("--", at))
+        name.replace(at, 2, "- ");
+    o << "<!-- Written by BHM Studio for experiment '" << escape_xml(name)
       << "'. VXA 1.0 has no settle delay: BHM starts actuation at t = "
       << format_number(e.simulation.settle_s) << " s. -->\n";
     o << "<Simulator>\n"

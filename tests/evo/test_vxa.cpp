@@ -24,11 +24,14 @@ TEST_CASE("the XML checker rejects what is not well formed") {
     CHECK_THROWS(XmlReader::parse("<a>&nbsp;</a>"));
     CHECK_THROWS(XmlReader::parse("<a><![CDATA[open</a>"));
     CHECK_THROWS(XmlReader::parse("<a>"));
+    CHECK_THROWS(XmlReader::parse("<!-- a -- b --><a/>"));
+    CHECK_THROWS(XmlReader::parse("<a><!-- a ---></a>"));
 }
 
 TEST_CASE("VXA of a known body: layers, palette and settings") {
     auto e = test::tiny_experiment({3, 2, 2});
     e.materials[0].name = "passive <soft> & \"tissue\"";
+    e.name = "dash--dash---end-";  // "--" is not allowed inside the XML comment that names it
     e.materials[1].color = {0.25f, 0.5f, 1.0f};
     e.actuation.frequency_hz = 4.0;
     Body body;

@@ -54,11 +54,19 @@ class XmlReader {
         if (at == std::string::npos) fail(std::string("missing ") + end);
         i_ = at + std::char_traits<char>::length(end);
     }
+    void comment() {  // "--" may not appear inside, nor '-' right before the closing "-->"
+        const auto end = s_.find("-->", i_ + 4);
+        if (end == std::string::npos) fail("unterminated comment");
+        const std::string body = s_.substr(i_ + 4, end - i_ - 4);
+        if (body.find("--") != std::string::npos || (!body.empty() && body.back() == '-'))
+            fail("'--' inside a comment");
+        i_ = end + 3;
+    }
     void skip_misc() {  // whitespace, comments, processing instructions
         for (;;) {
             skip_space();
             if (starts("<!--"))
-                skip_past("-->");
+                comment();
             else if (starts("<?"))
                 skip_past("?>");
             else
@@ -140,7 +148,7 @@ class XmlReader {
                 return e;
             }
             if (starts("<!--"))
-                skip_past("-->");
+                comment();
             else if (starts("<![CDATA[")) {
                 i_ += 9;
                 const auto end = s_.find("]]>", i_);
