@@ -283,15 +283,20 @@ std::array<double, 4> World::voxel_orientation(int v) const {
 
 void run(World& world, double total_s, double sample_hz,
          const std::function<void(const World&)>& observe) {
-    if (!(sample_hz > 0.0)) throw std::invalid_argument("run: sample_hz must be positive");
+    if (!(sample_hz > 0.0) || !std::isfinite(sample_hz))
+        throw std::invalid_argument("run: sample_hz must be positive");
     const double period = 1.0 / sample_hz;
-    const double dt = world.model().dt_s();
-    // Sample k is due at k / sample_hz; the last sample is at total_s.
-    for (std::int64_t k = 0;; ++k) {
+    const double half_step = 0.5 * world.model().dt_s();
+    // Sample k is due at k / sample_hz; the last one at total_s. A world handed over part way
+    // (time_s() > 0) is observed once now, then from the next due sample on.
+    if (world.diverged()) return;
+    if (observe) observe(world);
+    if (world.time_s() >= total_s - half_step) return;
+    for (auto k = static_cast<std::int64_t>(std::floor(world.time_s() / period)) + 1;; ++k) {
         double due = static_cast<double>(k) * period;
-        const bool last = due >= total_s - 0.5 * dt;
+        const bool last = due >= total_s - half_step;
         if (last) due = total_s;
-        if (!world.advance_to(due)) return;
+        if (!world.advance_to(due)) return;  // diverged: stop, the caller reads the reason
         if (observe) observe(world);
         if (last) return;
     }

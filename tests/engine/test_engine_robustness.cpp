@@ -154,6 +154,17 @@ TEST_CASE("run() observes at t = 0, every 1 / sample_hz and at the end") {
     }
 }
 
+TEST_CASE("run() continues a world handed over part way without repeating samples") {
+    World w(Model::build(solid_box(2, 1, 1)));
+    REQUIRE(w.advance_to(0.05));
+    std::vector<double> times;
+    run(w, 0.1, 50.0, [&](const World& world) { times.push_back(world.time_s()); });
+    REQUIRE(times.size() == 4);  // now (0.05), 0.06, 0.08, 0.1
+    for (std::size_t i = 1; i < times.size(); ++i)
+        CHECK(times[i] > times[i - 1]);
+    CHECK(times.back() == doctest::Approx(0.1).epsilon(1e-3));
+}
+
 TEST_CASE("read_poses reuses its storage and reports identity orientation at rest") {
     World w(Model::build(solid_box(3, 2, 1)));
     VoxelPoses p;
