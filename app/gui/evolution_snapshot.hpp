@@ -1,0 +1,68 @@
+#pragma once
+// What the evolution worker publishes for the UI after every generation (and on every change of
+// state): immutable, taken by the UI thread at the start of a frame (latest_slot.hpp).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "evo/experiment.hpp"
+
+namespace bhm::app::gui {
+
+enum class RunPhase { Idle, Running, Pausing, Paused, Stopping, Finished, Stopped, Failed };
+const char* run_phase_name(RunPhase phase);
+//! A run thread exists (running, pausing, paused or stopping).
+inline bool run_is_live(RunPhase p) {
+    return p == RunPhase::Running || p == RunPhase::Pausing || p == RunPhase::Paused ||
+           p == RunPhase::Stopping;
+}
+
+struct GenerationRecord {
+    int generation = 0;
+    double best_fitness = 0.0;     //!< best of the population under the rules of that generation
+    double median_fitness = 0.0;   //!< over evaluated, valid members
+    double elapsed_s = 0.0;        //!< wall time since the run started
+    std::int64_t evaluations = 0;  //!< simulations so far
+};
+
+//! A change of rules (constraints, fitness measure, boundary) between generations: the population
+//! was re-evaluated under the new rules from `generation` on.
+struct RuleChange {
+    int generation = 0;
+    std::string description;
+};
+
+struct PopulationMember {
+    std::int64_t id = 0;
+    double fitness = 0.0;
+    int age = 0;
+    int voxels = 0;
+    int active_voxels = 0;
+    int pareto_rank = 0;  //!< 0 = on the Pareto front of (fitness up, age down[, active down])
+    bool valid = true;    //!< false: breaks the current constraints
+    std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)
+    double active_fraction() const { return voxels > 0 ? double(active_voxels) / voxels : 0.0; }
+};
+
+struct EvolutionSnapshot {
+    RunPhase phase = RunPhase::Idle;
+    std::string message;  //!< last event or error, one line
+    std::string run_dir;
+    evo::Experiment experiment;  //!< the rules in force
+    int generation = 0;          //!< generations completed
+    int generation_budget = 0;
+    double best_fitness = 0.0;
+    double simulations_per_s = 0.0;
+    double elapsed_s = 0.0;
+    double eta_s = -1.0;  //!< negative while unknown
+    std::int64_t evaluations = 0;
+    std::vector<GenerationRecord> history;
+    std::vector<RuleChange> rule_changes;
+    std::vector<PopulationMember> population;  //!< sorted by fitness, best first
+    bool has_champion = false;
+    PopulationMember champion;  //!< best so far under the current rules
+    int champion_generation = 0;
+};
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,154 @@
+#include "app/gui/export_actions.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/view_renderer.hpp"
+#include "app/gui/view_scene.hpp"
+#include "app/gui/viewport.hpp"
+#include "evo/experiment_io.hpp"
+#include "evo/vxa.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+constexpr int kMaxExportSide = 16384;
+
+bool check_size(Studio& s, int width, int height) {
+    if (width < 1 || height < 1 || width > kMaxExportSide || height > kMaxExportSide) {
+        set_status(s,
+                   "export: size " + std::to_string(width) + "x" + std::to_string(height) +
+                       " is outside 1..16384 pixels",
+                   true);
+        return false;
+    }
+    return true;
+}
+
+const evo::Body* body_to_export(const Studio& s, const evo::Experiment** experiment) {
+    if (s.shown && s.shown->framed_body) {
+        *experiment = &s.shown->experiment;
+        return s.shown->framed_body.get();
+    }
+    if (s.run && s.run->has_champion && s.run->champion.body) {
+        *experiment = &s.run->experiment;
+        return s.run->champion.body.get();
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+render::Image render_view_image(const Studio& s, ViewRenderer& renderer, int width, int height) {
+    const render::DrawList list = build_view_draw_list(s);
+    return renderer.draw_to_image(list, s.view.camera, width, height, 4);
+}
+
+bool export_screenshot(Studio& s, ViewRenderer& renderer, const std::string& path, int width,
+                       int height) {
+    if (!check_size(s, width, height)) return false;
+    try {
+        render::write_png(path, render_view_image(s, renderer, width, height));
+        if (width * height > 4096 * 4096) renderer.release_export_buffer();
+        set_status(s, "screenshot written: " + path + " (" + std::to_string(width) + "x" +
+                          std::to_string(height) + ")");
+        return true;
+    } catch (const std::exception& e) {
+        set_status(s, std::string("screenshot: ") + e.what(), true);
+        return false;
+    }
+}
+
+bool start_frame_export(Studio& s, const std::string& folder, int width, int height, double fps) {
+    if (!s.shown || s.shown->replay.frames.empty()) {
+        set_status(s, "frame export: no simulated body to export", true);
+        return false;
+    }
+    if (!check_size(s, width, height)) return false;
+    if (!(fps > 0.0 && fps <= 1000.0)) {
+        set_status(s, "frame export: frames per second must be in (0, 1000]", true);
+        return false;
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec) {
+        set_status(s, folder + ": cannot create the folder: " + ec.message(), true);
+        return false;
+    }
+    auto& job = s.exports.frame_job;
+    job = {};
+    job.active = true;
+    job.folder = folder;
+    job.width = width;
+    job.height = height;
+    job.fps = fps;
+    job.total = static_cast<int>(std::floor(s.clock.duration_s * fps + 1e-6)) + 1;
+    set_status(s, "writing " + std::to_string(job.total) + " frames to " + folder);
+    return true;
+}
+
+void continue_frame_export(Studio& s, ViewRenderer& renderer) {
+    auto& job = s.exports.frame_job;
+    if (!job.active) return;
+    if (!s.shown) {
+        job.active = false;
+        set_status(s, "frame export stopped: the body is gone", true);
+        return;
+    }
+    const double t = job.next / job.fps;
+    render::Scene scene = simulation_scene(*s.shown, t, s.view);
+    const render::DrawList list = render::build_draw_list(scene);
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%05d.png", job.next);
+    try {
+        render::write_png(job.folder + name,
+                          renderer.draw_to_image(list, s.view.camera, job.width, job.height, 4));
+    } catch (const std::exception& e) {
+        job.active = false;
+        set_status(s, std::string("frame export: ") + e.what(), true);
+        return;
+    }
+    if (++job.next >= job.total) {
+        job.active = false;
+        set_status(s, "wrote " + std::to_string(job.total) + " frames to " + job.folder);
+    }
+}
+
+bool export_champion_vxa(Studio& s, const std::string& path) {
+    const evo::Experiment* experiment = nullptr;
+    const evo::Body* body = body_to_export(s, &experiment);
+    if (!body) {
+        set_status(s, "export: no champion or simulated body yet", true);
+        return false;
+    }
+    try {
+        evo::save_vxa(path, *experiment, *body);
+        set_status(s, "VXA written: " + path);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(s, e.what(), true);
+        return false;
+    }
+}
+
+bool export_champion_json(Studio& s, const std::string& path) {
+    const evo::Experiment* experiment = nullptr;
+    const evo::Body* body = body_to_export(s, &experiment);
+    if (!body) {
+        set_status(s, "export: no champion or simulated body yet", true);
+        return false;
+    }
+    try {
+        evo::save_body(path, *body);
+        set_status(s, "body JSON written: " + path);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(s, e.what(), true);
+        return false;
+    }
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,30 @@
+#pragma once
+// Exports: a screenshot of the 3D view at any size (rendered off-screen, not read from the
+// window), a replay as a numbered PNG sequence, and the champion as VXA (VoxCAD) and body JSON.
+#include <string>
+
+#include "app/gui/studio.hpp"
+#include "render/image.hpp"
+
+namespace bhm::app::gui {
+
+class ViewRenderer;
+
+//! The 3D view's scene and camera rendered at width x height.
+render::Image render_view_image(const Studio& studio, ViewRenderer& renderer, int width,
+                                int height);
+
+bool export_screenshot(Studio& studio, ViewRenderer& renderer, const std::string& path, int width,
+                       int height);
+
+//! Starts writing the shown replay as folder/frame_00000.png ... at fps; continue_frame_export
+//! writes one frame per call (one per UI frame) until done.
+bool start_frame_export(Studio& studio, const std::string& folder, int width, int height,
+                        double fps);
+void continue_frame_export(Studio& studio, ViewRenderer& renderer);
+
+//! The shown body (the champion while following it) as VXA / body JSON.
+bool export_champion_vxa(Studio& studio, const std::string& path);
+bool export_champion_json(Studio& studio, const std::string& path);
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,83 @@
+#include "app/gui/headless_session.hpp"
+
+#include <glad/gl.h>
+
+#include <imgui.h>
+
+#include "imgui_impl_opengl3.h"
+#include "render/gl_check.hpp"
+#include "render/offscreen.hpp"
+
+namespace bhm::app::gui {
+
+struct HeadlessStudio::Gl {
+    render::OffscreenTarget target;
+    ImGuiContext* imgui = nullptr;
+    bool backend = false;
+    Gl(int w, int h) : target(w, h, 1) {}
+};
+
+HeadlessStudio::HeadlessStudio(Studio& studio, int width, int height)
+    : studio_(studio), width_(width), height_(height), gl_(std::make_unique<Gl>(width, height)) {
+    gl_->target.bind();
+    IMGUI_CHECKVERSION();
+    gl_->imgui = ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // the layout lives in our settings file, not imgui.ini
+    io.LogFilename = nullptr;
+    io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
+    io.BackendPlatformName = "bhm-headless";
+    // Text fields understand the keys the GLFW backend maps; scripts press the same codes.
+    font_ = apply_studio_style(studio.settings.ui_scale);
+    if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
+        ImGui::DestroyContext(gl_->imgui);
+        throw std::runtime_error("ImGui OpenGL3 backend failed to initialise on OSMesa");
+    }
+    gl_->backend = true;
+    app_ = std::make_unique<StudioApp>(studio);
+}
+
+HeadlessStudio::~HeadlessStudio() {
+    app_.reset();
+    if (gl_->backend) ImGui_ImplOpenGL3_Shutdown();
+    if (gl_->imgui) ImGui::DestroyContext(gl_->imgui);
+}
+
+std::string HeadlessStudio::gl_renderer() const {
+    return gl_->target.gl_renderer();
+}
+
+void HeadlessStudio::frame(double dt_s) {
+    gl_->target.bind();
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(static_cast<float>(width_), static_cast<float>(height_));
+    io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
+    io.DeltaTime = static_cast<float>(dt_s > 0.0 ? dt_s : 1.0 / 60.0);
+    io.MousePos = ImVec2(input_.mouse.x, input_.mouse.y);
+    for (int b = 0; b < 3; ++b)
+        io.MouseDown[b] = input_.buttons[static_cast<std::size_t>(b)];
+    io.MouseWheel = input_.wheel;
+    input_.wheel = 0.0f;
+    io.KeyCtrl = input_.ctrl;
+    io.KeyShift = input_.shift;
+    for (bool& down : io.KeysDown)
+        down = false;
+    if (input_.key > 0 && input_.key < IM_ARRAYSIZE(io.KeysDown)) io.KeysDown[input_.key] = true;
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    app_->build_frame(dt_s);
+    ImGui::Render();
+    gl_->target.bind();
+    glViewport(0, 0, width_, height_);
+    glClearColor(0.9f, 0.9f, 0.92f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    render::check_gl_error("drawing the studio frame");
+}
+
+render::Image HeadlessStudio::capture() {
+    return gl_->target.read_image();
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,58 @@
+#pragma once
+// The real studio UI on an OSMesa (llvmpipe) context with no display: synthetic mouse and keyboard
+// go into ImGui exactly where the GLFW backend would put them, each frame is drawn off-screen and
+// can be read back. Scripts (script.hpp), tests and the benchmark drive the studio through this.
+#include <array>
+#include <memory>
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "app/gui/studio.hpp"
+#include "app/gui/studio_app.hpp"
+#include "render/image.hpp"
+
+namespace bhm::app::gui {
+
+//! Input state held between frames, copied into ImGuiIO before each NewFrame.
+struct SyntheticInput {
+    glm::vec2 mouse{-1.0f, -1.0f};
+    std::array<bool, 3> buttons{};
+    float wheel = 0.0f;  //!< consumed by the next frame
+    bool ctrl = false, shift = false;
+    int key = 0;  //!< GLFW key code held down (0 = none)
+};
+
+class HeadlessStudio {
+  public:
+    //! Creates the off-screen context, an ImGui context with the studio style and the app.
+    //! Throws std::runtime_error when OSMesa or the shaders fail.
+    HeadlessStudio(Studio& studio, int width, int height);
+    ~HeadlessStudio();
+    HeadlessStudio(const HeadlessStudio&) = delete;
+    HeadlessStudio& operator=(const HeadlessStudio&) = delete;
+
+    //! One full frame (input, UI, 3D view, ImGui drawing). dt_s advances the replay clock.
+    void frame(double dt_s = 1.0 / 60.0);
+    //! Pixels of the last frame, top row first.
+    render::Image capture();
+
+    SyntheticInput& input() { return input_; }
+    Studio& studio() { return studio_; }
+    StudioApp& app() { return *app_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const std::string& font() const { return font_; }
+    std::string gl_renderer() const;
+
+  private:
+    struct Gl;
+    Studio& studio_;
+    int width_, height_;
+    std::unique_ptr<Gl> gl_;
+    std::unique_ptr<StudioApp> app_;
+    SyntheticInput input_;
+    std::string font_;
+};
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,181 @@
+#include "app/gui/key_bindings.hpp"
+
+#define GLFW_INCLUDE_NONE  // GL comes from glad only
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "app/gui/studio_actions.hpp"
+
+namespace bhm::app::gui {
+
+const std::vector<KeyBinding>& key_bindings() {
+    static const std::vector<KeyBinding> table = {
+        {GLFW_KEY_Z, true, false, Action::Undo, "Ctrl+Z", "undo the last edit"},
+        {GLFW_KEY_Y, true, false, Action::Redo, "Ctrl+Y", "redo"},
+        {GLFW_KEY_Z, true, true, Action::Redo, "Ctrl+Shift+Z", "redo"},
+        {GLFW_KEY_N, true, false, Action::NewExperiment, "Ctrl+N", "new experiment"},
+        {GLFW_KEY_S, true, false, Action::SaveExperiment, "Ctrl+S", "save the experiment"},
+        {GLFW_KEY_F5, false, false, Action::StartOrResumeRun, "F5", "start or resume evolution"},
+        {GLFW_KEY_F6, false, false, Action::PauseRun, "F6", "pause evolution"},
+        {GLFW_KEY_F5, false, true, Action::StopRun, "Shift+F5", "stop evolution"},
+        {GLFW_KEY_SPACE, false, false, Action::PlayPause, "Space", "play / pause the replay"},
+        {GLFW_KEY_LEFT, false, false, Action::StepBack, "Left", "one replay frame back"},
+        {GLFW_KEY_RIGHT, false, false, Action::StepForward, "Right", "one replay frame forward"},
+        {GLFW_KEY_HOME, false, false, Action::ReplayStart, "Home", "replay to t = 0"},
+        {GLFW_KEY_END, false, false, Action::ReplayEnd, "End", "replay to the end"},
+        {GLFW_KEY_TAB, false, false, Action::ToggleViewMode, "Tab",
+         "switch the 3D view: workspace / simulation"},
+        {GLFW_KEY_1, false, false, Action::ViewIso, "1", "isometric view"},
+        {GLFW_KEY_2, false, false, Action::ViewFront, "2", "front view (along -y)"},
+        {GLFW_KEY_3, false, false, Action::ViewTop, "3", "top view"},
+        {GLFW_KEY_4, false, false, Action::ViewSide, "4", "side view (along -x)"},
+        {GLFW_KEY_F, false, false, Action::ToolFaces, "F", "painter: click faces (free / fixed)"},
+        {GLFW_KEY_V, false, false, Action::ToolVoxels, "V", "painter: paint voxels with the brush"},
+        {GLFW_KEY_F12, false, false, Action::Screenshot, "F12",
+         "screenshot of the 3D view (Export panel size and path)"},
+        {GLFW_KEY_F1, false, false, Action::ToggleHelp, "F1", "show / hide this help"},
+        {GLFW_KEY_Q, true, false, Action::Quit, "Ctrl+Q", "quit (settings are saved)"},
+    };
+    return table;
+}
+
+const std::vector<std::pair<const char*, const char*>>& mouse_gestures() {
+    static const std::vector<std::pair<const char*, const char*>> table = {
+        {"Left drag", "orbit the camera"},
+        {"Right or middle drag", "pan"},
+        {"Wheel", "zoom"},
+        {"Left click (Faces tool)", "cycle the face under the cursor: free / fixed"},
+        {"Left click (Voxels tool)", "paint the cell under the cursor with the brush"},
+        {"Shift + left click (Voxels)", "clear the cell's override"},
+    };
+    return table;
+}
+
+std::optional<KeyChord> parse_key_chord(const std::string& text) {
+    std::string s;
+    for (char c : text)
+        s += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    KeyChord chord;
+    for (;;) {
+        if (s.rfind("ctrl+", 0) == 0) {
+            chord.ctrl = true;
+            s = s.substr(5);
+        } else if (s.rfind("shift+", 0) == 0) {
+            chord.shift = true;
+            s = s.substr(6);
+        } else {
+            break;
+        }
+    }
+    static const std::pair<const char*, int> named[] = {
+        {"space", GLFW_KEY_SPACE},   {"left", GLFW_KEY_LEFT},   {"right", GLFW_KEY_RIGHT},
+        {"home", GLFW_KEY_HOME},     {"end", GLFW_KEY_END},     {"tab", GLFW_KEY_TAB},
+        {"escape", GLFW_KEY_ESCAPE}, {"enter", GLFW_KEY_ENTER}, {"delete", GLFW_KEY_DELETE},
+    };
+    for (const auto& [name, key] : named)
+        if (s == name) {
+            chord.key = key;
+            return chord;
+        }
+    if (s.size() == 1 && std::isalnum(static_cast<unsigned char>(s[0]))) {
+        chord.key = std::toupper(static_cast<unsigned char>(s[0]));  // GLFW letters/digits = ASCII
+        return chord;
+    }
+    if (s.size() >= 2 && s[0] == 'f' && std::all_of(s.begin() + 1, s.end(), ::isdigit)) {
+        const int n = std::stoi(s.substr(1));
+        if (n >= 1 && n <= 25) {
+            chord.key = GLFW_KEY_F1 + n - 1;
+            return chord;
+        }
+    }
+    return std::nullopt;
+}
+
+void dispatch_key_bindings(Studio& studio) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    for (const auto& binding : key_bindings()) {
+        if (!ImGui::IsKeyPressed(binding.key, false)) continue;
+        if (io.KeyCtrl != binding.ctrl || io.KeyShift != binding.shift) continue;
+        run_action(studio, binding.action);
+    }
+}
+
+void run_action(Studio& studio, Action action) {
+    switch (action) {
+        case Action::Undo:
+            undo(studio);
+            break;
+        case Action::Redo:
+            redo(studio);
+            break;
+        case Action::NewExperiment:
+            new_experiment(studio);
+            break;
+        case Action::SaveExperiment:
+            save_experiment(studio);
+            break;
+        case Action::StartOrResumeRun:
+            if (!resume_run(studio)) start_run(studio);
+            break;
+        case Action::PauseRun:
+            pause_run(studio);
+            break;
+        case Action::StopRun:
+            stop_run(studio);
+            break;
+        case Action::PlayPause:
+            toggle_playback(studio);
+            break;
+        case Action::StepBack:
+            step_replay(studio, -1);
+            break;
+        case Action::StepForward:
+            step_replay(studio, 1);
+            break;
+        case Action::ReplayStart:
+            studio.clock.seek(0.0);
+            break;
+        case Action::ReplayEnd:
+            studio.clock.seek(studio.clock.duration_s);
+            break;
+        case Action::ToggleViewMode:
+            set_view_mode(studio, studio.view.mode == ViewMode::Workspace ? ViewMode::Simulation
+                                                                          : ViewMode::Workspace);
+            break;
+        case Action::ViewIso:
+            set_named_view(studio, render::NamedView::Iso);
+            break;
+        case Action::ViewFront:
+            set_named_view(studio, render::NamedView::Front);
+            break;
+        case Action::ViewTop:
+            set_named_view(studio, render::NamedView::Top);
+            break;
+        case Action::ViewSide:
+            set_named_view(studio, render::NamedView::Side);
+            break;
+        case Action::ToolFaces:
+            studio.painter.tool = PainterTool::Faces;
+            set_view_mode(studio, ViewMode::Workspace);
+            break;
+        case Action::ToolVoxels:
+            studio.painter.tool = PainterTool::Voxels;
+            set_view_mode(studio, ViewMode::Workspace);
+            break;
+        case Action::Screenshot:
+            studio.screenshot_requested = true;
+            break;
+        case Action::ToggleHelp:
+            studio.show_help = !studio.show_help;
+            break;
+        case Action::Quit:
+            studio.quit_requested = true;
+            break;
+    }
+}
+
+}  // namespace bhm::app::gui

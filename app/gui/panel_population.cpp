@@ -1,0 +1,82 @@
+// The Fitness panel (the plot) and the Population panel: the current population with the Pareto
+// front marked; a click on a row simulates that individual for the 3D view.
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "app/gui/fitness_plot.hpp"
+#include "app/gui/panels.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+void draw_fitness_panel(Studio& s) {
+    const auto measure =
+        s.run ? s.run->experiment.fitness.measure : s.document.experiment().fitness.measure;
+    const std::vector<GenerationRecord> none;
+    const std::vector<RuleChange> no_changes;
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    s.fitness_plot.draw(s.run ? s.run->history : none, s.run ? s.run->rule_changes : no_changes,
+                        ImVec2(avail.x, std::max(60.0f, avail.y)), fitness_unit(measure));
+    record_widget(s, "fitness plot");
+}
+
+void draw_population_panel(Studio& s) {
+    if (!s.run || s.run->population.empty()) {
+        ImGui::TextDisabled("The population appears after the first generation.");
+        return;
+    }
+    const auto& run = *s.run;
+    const auto measure = run.experiment.fitness.measure;
+    ImGui::BeginDisabled(s.follow_champion);
+    if (tracked_button(s, "Follow champion")) follow_champion(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    int front = 0;
+    for (const auto& m : run.population)
+        front += m.pareto_rank == 0;
+    ImGui::TextDisabled("%zu individuals, %d on the Pareto front (*)", run.population.size(),
+                        front);
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
+    if (!ImGui::BeginTable("population", 6, flags, ImGui::GetContentRegionAvail())) return;
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupColumn("id");
+    ImGui::TableSetupColumn(measure == evo::FitnessMeasure::BendAngleDeg ? "fitness (deg)"
+                                                                         : "fitness (vox)");
+    ImGui::TableSetupColumn("age");
+    ImGui::TableSetupColumn("voxels");
+    ImGui::TableSetupColumn("active");
+    ImGui::TableSetupColumn("front");
+    ImGui::TableHeadersRow();
+    for (const auto& m : run.population) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        char id[48];
+        std::snprintf(id, sizeof id, "#%lld", static_cast<long long>(m.id));
+        const bool selected = s.shown && s.shown->id == m.id;
+        if (ImGui::Selectable(id, selected, ImGuiSelectableFlags_SpanAllColumns))
+            select_individual(s, m.id);
+        record_widget(s, std::string("individual ") + id);
+        ImGui::TableNextColumn();
+        if (!m.valid)
+            ImGui::TextDisabled("invalid");
+        else if (m.fitness < 0.0)
+            ImGui::TextDisabled("diverged");
+        else
+            ImGui::Text("%.3f", m.fitness);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", m.age);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", m.voxels);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.0f %%", 100.0 * m.active_fraction());
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
+    }
+    ImGui::EndTable();
+}
+
+}  // namespace bhm::app::gui

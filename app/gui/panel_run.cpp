@@ -1,0 +1,130 @@
+// The Run panel: start / pause / resume / stop, the run's budgets, threads and seed, and where it
+// stands (generation, best fitness, simulations/s, elapsed, ETA). Also opens or resumes a run
+// directory written by `bhm evolve`.
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/panels.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+void text_field(Studio& s, const char* id, const char* hint, std::string& value) {
+    char buffer[1024];
+    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
+    ImGui::SetNextItemWidth(-1.0f);
+    if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
+    record_widget(s, id + 2);
+}
+
+void controls(Studio& s) {
+    const RunPhase phase = s.evolution.phase();
+    const bool live = run_is_live(phase);
+    const float w = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4.0f;
+    ImGui::BeginDisabled(live);
+    if (tracked_button(s, "Start", ImVec2(w, 0))) start_run(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(phase != RunPhase::Running);
+    if (tracked_button(s, "Pause", ImVec2(w, 0))) pause_run(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(phase != RunPhase::Paused && phase != RunPhase::Pausing);
+    if (tracked_button(s, "Resume", ImVec2(w, 0))) resume_run(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!live || phase == RunPhase::Stopping);
+    if (tracked_button(s, "Stop", ImVec2(w, 0))) stop_run(s);
+    ImGui::EndDisabled();
+
+    if (!live) {
+        sync_draft(s);
+        auto& ev = s.draft.evolution;
+        ImGui::PushItemWidth(ImGui::GetFontSize() * 5.0f);
+        ImGui::InputInt("threads", &ev.threads, 0);
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "threads");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("worker threads; 0 = all hardware threads");
+        ImGui::SameLine();
+        ImGui::InputScalar("seed", ImGuiDataType_U64, &ev.seed);
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "seed");
+        ImGui::InputInt("generations", &ev.generations, 0);
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "generations");
+        ImGui::SameLine();
+        ImGui::InputDouble("h budget", &ev.wall_budget_h, 0.0, 0.0, "%.3g");
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
+        ImGui::PopItemWidth();
+        text_field(s, "##run dir", "run directory (empty: runs/<name>-<time>)", s.run_dir_field);
+    } else if (rules_differ_from_run(s)) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.45f, 0.0f, 1.0f));
+        ImGui::TextWrapped("Edited rules will apply %s.",
+                           phase == RunPhase::Paused ? "on Resume" : "after Apply (Constraints)");
+        ImGui::PopStyleColor();
+    }
+}
+
+void status(Studio& s) {
+    const auto& run = s.run;
+    if (!run || (run->phase == RunPhase::Idle && run->history.empty())) {
+        ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
+        return;
+    }
+    const auto measure = run->experiment.fitness.measure;
+    if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
+        auto cell = [](const char* name, const std::string& value) {
+            ImGui::TableNextColumn();
+            ImGui::TextDisabled("%s", name);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(value.c_str());
+        };
+        char text[64];
+        cell("state", s.showing_run_directory ? "viewing" : run_phase_name(run->phase));
+        std::snprintf(text, sizeof text, "%d / %d", run->generation, run->generation_budget);
+        cell("generation", text);
+        cell("best", run->has_champion ? format_fitness(run->best_fitness, measure) : "-");
+        std::snprintf(text, sizeof text, "%.2f", run->simulations_per_s);
+        cell("sims/s", text);
+        cell("elapsed", format_duration(run->elapsed_s));
+        cell("ETA", run->eta_s >= 0.0 ? format_duration(run->eta_s) : "-");
+        std::snprintf(text, sizeof text, "%lld", static_cast<long long>(run->evaluations));
+        cell("simulations", text);
+        cell("measure", evo::kFitnessNames[static_cast<std::size_t>(measure)]);
+        ImGui::EndTable();
+    }
+    if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
+    if (!run->message.empty()) ImGui::TextWrapped("%s", run->message.c_str());
+}
+
+void run_directory(Studio& s) {
+    if (!ImGui::TreeNode("Run directory (bhm evolve)")) return;
+    text_field(s, "##open run", "run directory", s.open_run_field);
+    if (tracked_button(s, "View")) open_run_directory(s, s.open_run_field);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("inspect, plot and replay it; refreshed as it grows");
+    ImGui::SameLine();
+    if (tracked_button(s, "Resume run")) resume_run_directory(s, s.open_run_field);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("continue it from its last checkpoint");
+    if (s.showing_run_directory) {
+        ImGui::SameLine();
+        if (tracked_button(s, "Close")) close_run_directory(s);
+        if (!s.run_directory.error().empty())
+            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1.0f), "%s",
+                               s.run_directory.error().c_str());
+    }
+    ImGui::TreePop();
+}
+
+}  // namespace
+
+void draw_run_panel(Studio& s) {
+    controls(s);
+    ImGui::Separator();
+    status(s);
+    run_directory(s);
+}
+
+}  // namespace bhm::app::gui

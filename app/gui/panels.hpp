@@ -1,0 +1,21 @@
+#pragma once
+// One function per panel; each draws into the current ImGui window (the layout places windows).
+#include "app/gui/studio.hpp"
+
+namespace bhm::app::gui {
+
+class ViewRenderer;
+
+void draw_menu_bar(Studio& studio);
+void draw_experiment_panel(Studio& studio);
+void draw_constraints_panel(Studio& studio);
+void draw_export_panel(Studio& studio, ViewRenderer& renderer);
+void draw_run_panel(Studio& studio);
+void draw_fitness_panel(Studio& studio);
+void draw_population_panel(Studio& studio);
+void draw_replay_panel(Studio& studio);
+void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
+void draw_help_window(Studio& studio);
+void draw_status_bar(Studio& studio);
+
+}  // namespace bhm::app::gui

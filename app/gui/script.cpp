@@ -1,0 +1,311 @@
+#include "app/gui/script.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "app/gui/export_actions.hpp"
+#include "app/gui/key_bindings.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/view_scene.hpp"
+#include "app/gui/viewport.hpp"
+#include "evo/experiment_io.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+// Draws frames until done() holds; between frames the UI thread sleeps a little so the workers
+// get the cores (as a person's studio would wait for vsync).
+void frames_until(HeadlessStudio& session, double timeout_s, const std::function<bool()>& done,
+                  const std::string& what) {
+    const auto start = Clock::now();
+    while (!done()) {
+        if (std::chrono::duration<double>(Clock::now() - start).count() > timeout_s)
+            throw ScriptError("timed out after " + std::to_string(timeout_s) + " s waiting for " +
+                              what);
+        session.frame();
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    session.frame();
+}
+
+glm::vec2 widget_center(HeadlessStudio& session, const std::string& name) {
+    auto& widgets = session.studio().widgets;
+    auto it = widgets.find(name);
+    if (it == widgets.end() || it->second.frame < session.studio().frame - 1) {
+        session.frame();  // it may appear once the UI caught up with the state
+        it = widgets.find(name);
+    }
+    if (it == widgets.end() || it->second.frame < session.studio().frame - 1)
+        throw ScriptError("no widget named '" + name + "' on screen");
+    return 0.5f * (it->second.min + it->second.max);
+}
+
+std::optional<evo::Face> parse_face(const std::string& name) {
+    for (int f = 0; f < 6; ++f)
+        if (name == evo::kFaceNames[static_cast<std::size_t>(f)]) return static_cast<evo::Face>(f);
+    return std::nullopt;
+}
+
+double timeout_of(const json& step, double fallback) {
+    return step.contains("timeout_s") ? step.at("timeout_s").get<double>() : fallback;
+}
+
+void click_face(HeadlessStudio& session, const std::string& name) {
+    const auto face = parse_face(name);
+    if (!face) throw ScriptError("unknown face '" + name + "' (x-, x+, y-, y+, z-, z+)");
+    Studio& s = session.studio();
+    run_action(s, Action::ToolFaces);
+    session.frame();  // lays the view out in workspace mode
+    const auto& e = s.document.experiment();
+    const LatticeBox box{e.workspace_size, e.voxel_size_m};
+    const auto pixel = project_to_pixel(s.view.camera, face_center_m(box, *face), s.view.size_px);
+    const auto hit =
+        pixel ? pick_box_face(ray_through_pixel(s.view.camera, *pixel, s.view.size_px), box)
+              : std::nullopt;
+    if (!hit || hit->face != *face)
+        throw ScriptError("face " + name +
+                          " is not visible from the current view (orbit or pick another view)");
+    click_at(session, s.view.origin_px + *pixel);
+}
+
+void click_cell(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const auto cell = step.at("click_cell").get<std::array<int, 3>>();
+    if (step.contains("brush")) {
+        const std::string brush = step.at("brush").get<std::string>();
+        bool known = false;
+        for (std::size_t k = 0; k < kPaintKindNames.size(); ++k)
+            if (brush == kPaintKindNames[k]) {
+                s.painter.brush = static_cast<PaintKind>(k);
+                known = true;
+            }
+        if (!known)
+            throw ScriptError("unknown brush '" + brush + "' (fixed, forbidden, material, clear)");
+    }
+    if (step.contains("material")) s.painter.brush_material = step.at("material").get<int>();
+    run_action(s, Action::ToolVoxels);
+    session.frame();
+    // Try the centres of the cell's six faces: the first one whose ray picks this cell.
+    const auto& e = s.document.experiment();
+    const LatticeBox box{e.workspace_size, e.voxel_size_m};
+    if (!box.contains_cell(cell)) throw ScriptError("cell is outside the workspace");
+    const auto occupied = painter_occupancy(e, painter_context_body(s));
+    const float L = static_cast<float>(e.voxel_size_m);
+    for (int f = 0; f < 6; ++f) {
+        glm::vec3 p{(cell[0] + 0.5f) * L, (cell[1] + 0.5f) * L, (cell[2] + 0.5f) * L};
+        p[f / 2] += (f % 2 ? 0.499f : -0.499f) * L;
+        const auto pixel = project_to_pixel(s.view.camera, p, s.view.size_px);
+        if (!pixel || pixel->x < 1 || pixel->y < 1 || pixel->x > s.view.size_px.x - 1 ||
+            pixel->y > s.view.size_px.y - 1)
+            continue;
+        const auto hit = pick_cell(
+            ray_through_pixel(s.view.camera, *pixel, s.view.size_px), box, s.painter.slice,
+            [&](const std::array<int, 3>& c) {
+                return occupied[static_cast<std::size_t>(
+                           c[0] + e.workspace_size[0] * (c[1] + e.workspace_size[1] * c[2]))] != 0;
+            });
+        if (hit && hit->cell == cell) {
+            click_at(session, s.view.origin_px + *pixel, step.value("shift", false));
+            return;
+        }
+    }
+    throw ScriptError("cell (" + std::to_string(cell[0]) + ", " + std::to_string(cell[1]) + ", " +
+                      std::to_string(cell[2]) +
+                      ") is hidden from this view (use a slice or another view)");
+}
+
+}  // namespace
+
+json load_script(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw ScriptError(path + ": cannot open the script");
+    std::ostringstream text;
+    text << in.rdbuf();
+    json steps;
+    try {
+        steps = json::parse(text.str());
+    } catch (const json::exception& e) {
+        throw ScriptError(path + ": not valid JSON: " + e.what());
+    }
+    if (!steps.is_array()) throw ScriptError(path + ": a script is a JSON array of steps");
+    return steps;
+}
+
+void click_at(HeadlessStudio& session, glm::vec2 position, bool shift) {
+    auto& in = session.input();
+    in.mouse = position;
+    in.shift = shift;
+    session.frame();  // hover first, as a real pointer arrives before it clicks
+    in.buttons[0] = true;
+    session.frame();
+    in.buttons[0] = false;
+    session.frame();  // the release acts after this frame's 3D view was drawn
+    in.shift = false;
+    session.frame();  // so draw once more: a screenshot next shows the result
+}
+
+void press_key(HeadlessStudio& session, const std::string& chord_text) {
+    const auto chord = parse_key_chord(chord_text);
+    if (!chord) throw ScriptError("unknown key '" + chord_text + "'");
+    auto& in = session.input();
+    in.ctrl = chord->ctrl;
+    in.shift = chord->shift;
+    in.key = chord->key;
+    session.frame();
+    in.key = 0;
+    in.ctrl = in.shift = false;
+    session.frame();
+}
+
+void set_experiment_field(Studio& studio, const std::string& path, const json& value) {
+    json doc = evo::experiment_to_json(studio.document.experiment());
+    // "a.b[2].c" -> JSON pointer /a/b/2/c
+    std::string pointer;
+    std::string token;
+    auto flush = [&] {
+        if (!token.empty()) pointer += "/" + token;
+        token.clear();
+    };
+    for (char c : path) {
+        if (c == '.' || c == '[' || c == ']')
+            flush();
+        else
+            token += c;
+    }
+    flush();
+    try {
+        json& target = doc.at(json::json_pointer(pointer));
+        target = value;
+    } catch (const json::exception&) {
+        throw ScriptError("set: the experiment has no field '" + path + "'");
+    }
+    evo::Experiment next;
+    try {
+        next = evo::parse_experiment(doc, document_label(studio.document));
+    } catch (const evo::ValidationError& e) {
+        studio.edit_problems = e.problems;
+        set_status(studio,
+                   "refused: " + e.problems.front().field + ": " + e.problems.front().message,
+                   true);
+        throw ScriptError(std::string("set ") + path +
+                          " refused: " + e.problems.front().to_string());
+    }
+    if (!apply_edit(studio, next, "set " + path))
+        throw ScriptError("set " + path + " refused: " + studio.edit_problems.front().to_string());
+}
+
+void run_step(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    if (!step.is_object() || step.empty())
+        throw ScriptError("a step is a JSON object such as {\"frames\": 3}");
+    if (step.contains("load")) {
+        if (!open_experiment(s, step.at("load").get<std::string>())) throw ScriptError(s.status);
+    } else if (step.contains("set")) {
+        set_experiment_field(s, step.at("set").get<std::string>(), step.at("value"));
+    } else if (step.contains("click")) {
+        click_at(session, widget_center(session, step.at("click").get<std::string>()));
+    } else if (step.contains("click_face")) {
+        click_face(session, step.at("click_face").get<std::string>());
+    } else if (step.contains("click_cell")) {
+        click_cell(session, step);
+    } else if (step.contains("key")) {
+        press_key(session, step.at("key").get<std::string>());
+    } else if (step.contains("view")) {
+        const auto view = render::parse_named_view(step.at("view").get<std::string>());
+        if (!view) throw ScriptError("unknown view (iso, front, top, side)");
+        set_named_view(s, *view);
+    } else if (step.contains("mode")) {
+        const std::string mode = step.at("mode").get<std::string>();
+        if (mode != "workspace" && mode != "simulation")
+            throw ScriptError("mode is workspace or simulation");
+        set_view_mode(s, mode == "workspace" ? ViewMode::Workspace : ViewMode::Simulation);
+    } else if (step.contains("wait_generations")) {
+        const int n = step.at("wait_generations").get<int>();
+        frames_until(
+            session, timeout_of(step, 300.0),
+            [&] {
+                const auto run = s.evolution.snapshot();
+                if (run && run->phase == RunPhase::Failed)
+                    throw ScriptError("the run failed: " + run->message);
+                return run && (run->generation >= n ||
+                               (!run_is_live(run->phase) && run->phase != RunPhase::Idle));
+            },
+            std::to_string(n) + " generations");
+        const auto run = s.evolution.snapshot();
+        if (!run || run->generation < n)
+            throw ScriptError("the run ended after " + std::to_string(run ? run->generation : 0) +
+                              " generations");
+    } else if (step.contains("wait_run")) {
+        const std::string want = step.at("wait_run").get<std::string>();
+        frames_until(
+            session, timeout_of(step, 300.0),
+            [&] {
+                const auto phase = s.evolution.phase();
+                return run_phase_name(phase) == want;
+            },
+            "the run to be " + want);
+    } else if (step.contains("select")) {
+        if (step.at("select") != "champion")
+            throw ScriptError("select: only \"champion\" is supported");
+        frames_until(
+            session, timeout_of(step, 30.0), [&] { return s.run && s.run->has_champion; },
+            "a champion");
+        const auto id = s.run->champion.id;
+        click_at(session, widget_center(session, "individual #" + std::to_string(id)));
+        if (s.simulator.pending_id() != id && !(s.shown && s.shown->id == id))
+            throw ScriptError("the click did not select the champion #" + std::to_string(id));
+    } else if (step.contains("wait_simulation")) {
+        frames_until(
+            session, timeout_of(step, 120.0),
+            [&] {
+                if (!s.simulator.last_error().empty()) throw ScriptError(s.simulator.last_error());
+                return !s.simulator.busy() && s.shown != nullptr;
+            },
+            "the simulation");
+    } else if (step.contains("replay")) {
+        const json& r = step.at("replay");
+        if (!s.shown) throw ScriptError("replay: no simulated body is shown");
+        if (r.contains("playing")) s.clock.playing = r.at("playing").get<bool>();
+        if (r.contains("time_s")) s.clock.seek(r.at("time_s").get<double>());
+        set_view_mode(s, ViewMode::Simulation);
+        session.frame(0.0);
+    } else if (step.contains("frames")) {
+        for (int i = step.at("frames").get<int>(); i > 0; --i)
+            session.frame();
+    } else if (step.contains("screenshot")) {
+        render::write_png(step.at("screenshot").get<std::string>(), session.capture());
+    } else if (step.contains("export_view")) {
+        const auto size = step.value("size", std::array<int, 2>{1280, 720});
+        if (!export_screenshot(s, session.app().renderer(),
+                               step.at("export_view").get<std::string>(), size[0], size[1]))
+            throw ScriptError(s.status);
+    } else if (step.contains("save")) {
+        if (!save_experiment_as(s, step.at("save").get<std::string>())) throw ScriptError(s.status);
+    } else {
+        throw ScriptError("unknown step " + step.dump());
+    }
+}
+
+void run_script(HeadlessStudio& session, const json& steps,
+                const std::function<void(int, const json&)>& after_step) {
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+        const json& step = steps[i];
+        try {
+            run_step(session, step);
+        } catch (const ScriptError& e) {
+            const std::string kind = step.is_object() && !step.empty() ? step.begin().key() : "?";
+            throw ScriptError("step " + std::to_string(i + 1) + " (" + kind + "): " + e.what());
+        } catch (const json::exception& e) {
+            throw ScriptError("step " + std::to_string(i + 1) + ": malformed: " + e.what());
+        }
+        if (after_step) after_step(static_cast<int>(i), step);
+    }
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,54 @@
+#pragma once
+// Scripted sessions for headless runs and tests: a JSON list of steps, each driving the studio
+// through the same mouse and keyboard paths a person uses (documented in docs/studio.md).
+//   {"load": "exp.json"}                       open an experiment (File > Open)
+//   {"set": "simulation.settle_s", "value": 0.2}  edit one field (validated, undoable)
+//   {"click": "Start"}                        click a widget by its label (buttons, rows)
+//   {"click_face": "x+"}                      Faces tool, click the face in the 3D view
+//   {"click_cell": [x, y, z], "brush": "fixed"|"forbidden"|"material"|"clear", "material": k}
+//   {"key": "ctrl+z"}                         press a shortcut (key_bindings.hpp)
+//   {"view": "iso"|"front"|"top"|"side"}     named camera view (keys 1-4)
+//   {"mode": "workspace"|"simulation"}
+//   {"wait_generations": 2, "timeout_s": 120}  frames until the run has completed that many
+//   {"wait_run": "finished"|"paused"|"stopped", "timeout_s": 60}
+//   {"select": "champion"}                    click the champion's row in the Population panel
+//   {"wait_simulation": true, "timeout_s": 60}  frames until the body asked for is shown
+//   {"replay": {"time_s": 5.0, "playing": false}}  scrub the replay
+//   {"frames": 10}                            draw that many frames
+//   {"screenshot": "ui.png"}                  the whole window, as drawn
+//   {"export_view": "view.png", "size": [w, h]}  off-screen render of the 3D view
+//   {"save": "exp.json"}                      File > Save As
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/gui/headless_session.hpp"
+
+namespace bhm::app::gui {
+
+struct ScriptError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+//! Reads a script file (a JSON array of step objects); throws ScriptError naming the file.
+nlohmann::json load_script(const std::string& path);
+
+//! Runs every step; throws ScriptError "step N (kind): reason" when one fails. after_step, when
+//! given, is called after each step with its index (tests check the state there).
+void run_script(HeadlessStudio& session, const nlohmann::json& steps,
+                const std::function<void(int, const nlohmann::json&)>& after_step = {});
+
+//! One step (exposed for tests).
+void run_step(HeadlessStudio& session, const nlohmann::json& step);
+
+//! Sets one experiment field by a dotted path ("materials[1].poisson_ratio") through the JSON
+//! form, the parser and apply_edit; throws ScriptError with the validator's message when refused.
+void set_experiment_field(Studio& studio, const std::string& path, const nlohmann::json& value);
+
+//! Mouse helpers: move, press and release over three frames at a window position.
+void click_at(HeadlessStudio& session, glm::vec2 position, bool shift = false);
+void press_key(HeadlessStudio& session, const std::string& chord);
+
+}  // namespace bhm::app::gui

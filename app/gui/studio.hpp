@@ -1,0 +1,136 @@
+#pragma once
+// The studio's whole state, one struct (Dear ImGui's examples, Box2D's samples): the document
+// being edited, the painter, the 3D view, the replay clock, the worker-backed evolution session
+// and body simulator, and the persisted settings. Panels are free functions over it (panels.hpp);
+// actions that the mouse, the keyboard and scripts share live in studio_actions.hpp.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "app/gui/body_simulator.hpp"
+#include "app/gui/constraint_edits.hpp"
+#include "app/gui/evolution_session.hpp"
+#include "app/gui/evolution_snapshot.hpp"
+#include "app/gui/experiment_document.hpp"
+#include "app/gui/fitness_plot.hpp"
+#include "app/gui/picking.hpp"
+#include "app/gui/replay_player.hpp"
+#include "app/gui/run_directory_watch.hpp"
+#include "app/gui/studio_settings.hpp"
+#include "render/camera.hpp"
+
+namespace bhm::app::gui {
+
+//! What the 3D view shows.
+enum class ViewMode {
+    Workspace,   //!< the experiment's workspace: faces, frame, overrides (the painter)
+    Simulation,  //!< a simulated body playing (live champion or a selected individual)
+};
+
+//! What a click in the 3D view does in Workspace mode.
+enum class PainterTool { Faces, Voxels };
+
+struct PainterState {
+    PainterTool tool = PainterTool::Faces;
+    PaintKind brush = PaintKind::Fixed;
+    int brush_material = 1;  //!< 1-based, for PaintKind::Material
+    Slice slice;
+    bool show_champion = true;  //!< draw the champion's body at rest inside the workspace
+    std::optional<std::array<int, 3>> hovered_cell;
+    std::optional<evo::Face> hovered_face;
+};
+
+struct ViewState {
+    ViewMode mode = ViewMode::Workspace;
+    render::Camera camera;
+    bool camera_needs_framing = true;  //!< frame the scene on the next draw (new workspace, view)
+    float zoom = 1.0f;                 //!< distance relative to the framed one
+    glm::vec2 origin_px{0.0f};         //!< top-left of the 3D image on screen (ImGui coordinates)
+    glm::vec2 size_px{0.0f};           //!< size of the 3D image (logical pixels)
+    bool hovered = false;
+    bool dragging = false;
+    int drag_button = -1;
+    float drag_distance_px = 0.0f;
+    bool show_edges = true;
+    bool show_trail = true;
+    bool show_start_beside = false;  //!< the t = 0 state as a ghost beside the current one
+    int samples = 4;                 //!< MSAA samples of the 3D view
+};
+
+struct ExportState {
+    std::string screenshot_path = "bhm-view.png";
+    int screenshot_width = 1920, screenshot_height = 1080;
+    std::string frames_folder = "bhm-frames";
+    int frames_width = 1280, frames_height = 720;
+    double frames_fps = 30.0;
+    std::string champion_vxa_path = "champion.vxa";
+    std::string champion_json_path = "champion.json";
+    //! A frame sequence in progress: one frame is written per UI frame so the UI stays live.
+    struct FrameJob {
+        bool active = false;
+        std::string folder;
+        int width = 0, height = 0;
+        double fps = 30.0;
+        int next = 0, total = 0;
+    } frame_job;
+};
+
+//! Screen rectangles of named widgets, recorded as they are drawn: scripts click them through the
+//! same mouse path a person uses (script.hpp).
+struct WidgetRect {
+    glm::vec2 min{0.0f}, max{0.0f};
+    int frame = -1;  //!< frame it was last drawn in
+};
+
+struct Studio {
+    ExperimentDocument document;
+    //! The copy the Experiment panel's fields edit while a field is active; committed through
+    //! apply_edit when the field is left, re-read from the document whenever it changes.
+    evo::Experiment draft;
+    std::size_t draft_revision = static_cast<std::size_t>(-1);
+    std::string path_field;  //!< File > Open / Save As text field
+    StudioSettings settings;
+    std::string settings_path;  //!< empty: settings are not persisted (headless tests)
+
+    PainterState painter;
+    ViewState view;
+    ReplayClock clock;
+    ExportState exports;
+
+    EvolutionSession evolution;
+    RunDirectoryWatch run_directory;               //!< a run directory opened for viewing
+    std::shared_ptr<const EvolutionSnapshot> run;  //!< the one shown: live session or directory
+    bool showing_run_directory = false;
+    std::string run_dir_field;   //!< where the next run is written
+    std::string open_run_field;  //!< run directory to open
+
+    BodySimulator simulator;
+    std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
+    std::uint64_t shown_version = 0;
+    bool follow_champion = true;  //!< replace the shown body when a new champion appears
+    std::int64_t requested_champion = -1;
+    std::int64_t selected_id = -1;  //!< population row selected
+
+    std::string status;  //!< one-line message in the status bar
+    bool status_is_error = false;
+    std::vector<evo::Problem> edit_problems;  //!< why the last edit was refused
+    bool show_help = false;
+    bool screenshot_requested = false;  //!< F12: written by the app at the end of the frame
+    bool show_demo_metrics = false;
+    bool quit_requested = false;
+
+    FitnessPlot fitness_plot;  //!< hover state of the plot
+
+    int frame = 0;
+    double frame_dt_s = 1.0 / 60.0;
+    double fps = 0.0;
+    std::map<std::string, WidgetRect> widgets;
+};
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,384 @@
+#include "app/gui/studio_actions.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+
+#include "evo/experiment_io.hpp"
+#include "evo/scene.hpp"
+
+namespace bhm::app::gui {
+
+void set_status(Studio& studio, const std::string& message, bool is_error) {
+    studio.status = message;
+    studio.status_is_error = is_error;
+}
+
+// --- Document ------------------------------------------------------------------------------
+
+bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label) {
+    auto problems = studio.document.edit(next, label);
+    studio.edit_problems = problems;
+    if (!problems.empty()) {
+        const auto& p = problems.front();
+        set_status(studio, "refused: " + p.field + ": " + p.message, true);
+        return false;
+    }
+    if (!label.empty()) set_status(studio, label);
+    return true;
+}
+
+void new_experiment(Studio& studio) {
+    studio.document = ExperimentDocument();
+    studio.view.camera_needs_framing = true;
+    studio.edit_problems.clear();
+    set_status(studio, "new experiment");
+}
+
+bool open_experiment(Studio& studio, const std::string& path) {
+    try {
+        auto experiment = evo::load_experiment(path);
+        studio.document.reset(experiment, path);
+        studio.settings.remember(path);
+        studio.path_field = path;
+        studio.view.camera_needs_framing = true;
+        studio.edit_problems.clear();
+        set_view_mode(studio, ViewMode::Workspace);
+        set_status(studio, "opened " + path);
+        return true;
+    } catch (const evo::ValidationError& e) {
+        studio.edit_problems = e.problems;
+        set_status(studio,
+                   e.problems.empty() ? std::string(e.what()) : e.problems.front().to_string(),
+                   true);
+    } catch (const std::exception& e) {
+        set_status(studio, path + ": " + e.what(), true);
+    }
+    return false;
+}
+
+bool save_experiment_as(Studio& studio, const std::string& path) {
+    if (path.empty()) {
+        set_status(studio, "save: type a file name in the path field first", true);
+        return false;
+    }
+    try {
+        evo::save_experiment(path, studio.document.experiment());
+        studio.document.mark_saved(path);
+        studio.settings.remember(path);
+        set_status(studio, "saved " + path);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+bool save_experiment(Studio& studio) {
+    const std::string path =
+        studio.document.path().empty() ? studio.path_field : studio.document.path();
+    return save_experiment_as(studio, path);
+}
+
+bool undo(Studio& studio) {
+    const std::string label = studio.document.undo_label();
+    if (!studio.document.undo()) {
+        set_status(studio, "nothing to undo");
+        return false;
+    }
+    set_status(studio, "undo: " + label);
+    return true;
+}
+
+bool redo(Studio& studio) {
+    const std::string label = studio.document.redo_label();
+    if (!studio.document.redo()) {
+        set_status(studio, "nothing to redo");
+        return false;
+    }
+    set_status(studio, "redo: " + label);
+    return true;
+}
+
+// --- Painter -------------------------------------------------------------------------------
+
+bool cycle_face(Studio& studio, evo::Face face) {
+    const auto& e = studio.document.experiment();
+    const auto kind = next_face_kind(e.boundary.faces[static_cast<int>(face)]);
+    return apply_edit(studio, with_face_kind(e, face, kind), face_edit_label(face, kind));
+}
+
+bool set_enclosure_thickness(Studio& studio, evo::Face face, int voxels) {
+    const auto& e = studio.document.experiment();
+    return apply_edit(studio, with_enclosure_thickness(e, face, voxels),
+                      std::string("enclosure ") + evo::kFaceNames[static_cast<int>(face)] + " " +
+                          std::to_string(voxels) + " voxels");
+}
+
+bool paint_cell(Studio& studio, const std::array<int, 3>& cell) {
+    const auto& p = studio.painter;
+    return apply_edit(studio,
+                      with_override(studio.document.experiment(), cell, p.brush, p.brush_material),
+                      paint_edit_label(cell, p.brush, p.brush_material));
+}
+
+// --- Evolution -----------------------------------------------------------------------------
+
+namespace {
+
+std::string fresh_run_dir(const evo::Experiment& e) {
+    const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm tm{};
+    localtime_r(&now, &tm);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
+    std::string name = e.name.empty() ? std::string("run") : e.name;
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '-';
+    return "runs/" + name + "-" + stamp;
+}
+
+// What a live run can take between generations: the fitness rules (measure, constraints,
+// objectives). Boundary changes alter the bodies themselves and need a new run.
+bool same_rules(const evo::Experiment& a, const evo::Experiment& b) {
+    return a.fitness == b.fitness;
+}
+
+}  // namespace
+
+bool start_run(Studio& studio) {
+    if (run_is_live(studio.evolution.phase())) {
+        set_status(studio, "a run is already going: stop it first", true);
+        return false;
+    }
+    std::string dir = studio.run_dir_field.empty() ? fresh_run_dir(studio.document.experiment())
+                                                   : studio.run_dir_field;
+    try {
+        studio.evolution.start(studio.document.experiment(), dir);
+        close_run_directory(studio);
+        studio.run_dir_field.clear();
+        studio.follow_champion = true;
+        studio.requested_champion = -1;
+        set_status(studio, "evolution started: " + dir);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+bool pause_run(Studio& studio) {
+    if (studio.evolution.phase() != RunPhase::Running) return false;
+    studio.evolution.pause();
+    set_status(studio, "pausing at the end of this generation");
+    return true;
+}
+
+bool resume_run(Studio& studio) {
+    const auto phase = studio.evolution.phase();
+    if (phase != RunPhase::Paused && phase != RunPhase::Pausing) return false;
+    if (rules_differ_from_run(studio)) apply_rules_to_run(studio);
+    studio.evolution.resume();
+    set_status(studio, "evolution resumed");
+    return true;
+}
+
+bool stop_run(Studio& studio) {
+    if (!run_is_live(studio.evolution.phase())) return false;
+    studio.evolution.stop();
+    set_status(studio, "stopping at the end of this generation (the checkpoint is kept)");
+    return true;
+}
+
+bool resume_run_directory(Studio& studio, const std::string& run_dir) {
+    if (run_is_live(studio.evolution.phase())) {
+        set_status(studio, "a run is already going: stop it first", true);
+        return false;
+    }
+    try {
+        studio.evolution.resume_from(run_dir);
+        close_run_directory(studio);
+        studio.follow_champion = true;
+        studio.requested_champion = -1;
+        set_status(studio, "resumed " + run_dir);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+bool rules_differ_from_run(const Studio& studio) {
+    const auto snapshot = studio.evolution.snapshot();
+    if (!snapshot || !run_is_live(studio.evolution.phase())) return false;
+    return !same_rules(snapshot->experiment, studio.document.experiment());
+}
+
+bool apply_rules_to_run(Studio& studio) {
+    const auto snapshot = studio.evolution.snapshot();
+    if (!snapshot || !run_is_live(studio.evolution.phase())) {
+        set_status(studio, "no run to change", true);
+        return false;
+    }
+    const auto& doc = studio.document.experiment();
+    if (snapshot->experiment.fitness == doc.fitness) return false;
+    evo::Experiment rules = snapshot->experiment;
+    rules.fitness = doc.fitness;
+    studio.evolution.change_rules(rules);
+    set_status(studio,
+               "fitness rules changed: the population is re-scored before the next generation");
+    return true;
+}
+
+bool boundary_differs_from_run(const Studio& studio) {
+    const auto snapshot = studio.evolution.snapshot();
+    if (!snapshot || !run_is_live(studio.evolution.phase())) return false;
+    return !(snapshot->experiment.boundary == studio.document.experiment().boundary);
+}
+
+// --- Run directory -------------------------------------------------------------------------
+
+bool open_run_directory(Studio& studio, const std::string& run_dir) {
+    try {
+        studio.run_directory.open(run_dir);
+        studio.run_directory.refresh();
+        studio.showing_run_directory = true;
+        studio.follow_champion = true;
+        studio.requested_champion = -1;
+        studio.run = studio.run_directory.snapshot();
+        if (studio.run) {
+            // Show the run's experiment in the editor (a copy; the run directory is never written).
+            studio.document.reset(studio.run->experiment, "");
+            studio.view.camera_needs_framing = true;
+        }
+        set_status(studio, "watching run directory " + run_dir);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+void close_run_directory(Studio& studio) {
+    studio.run_directory.close();
+    studio.showing_run_directory = false;
+}
+
+// --- Bodies and replay ---------------------------------------------------------------------
+
+namespace {
+
+const PopulationMember* find_member(const EvolutionSnapshot& run, std::int64_t id) {
+    if (run.has_champion && run.champion.id == id) return &run.champion;
+    for (const auto& m : run.population)
+        if (m.id == id) return &m;
+    return nullptr;
+}
+
+void request_simulation(Studio& studio, const EvolutionSnapshot& run, const PopulationMember& m,
+                        const std::string& label) {
+    if (!m.body) return;
+    SimulationRequest request;
+    request.id = m.id;
+    request.label = label;
+    request.experiment = run.experiment;
+    request.framed_body = m.body;
+    studio.simulator.request(std::move(request));
+}
+
+}  // namespace
+
+bool select_individual(Studio& studio, std::int64_t id) {
+    if (!studio.run) return false;
+    const PopulationMember* m = find_member(*studio.run, id);
+    if (!m || !m->body) {
+        set_status(studio, "individual #" + std::to_string(id) + " is not in the population", true);
+        return false;
+    }
+    studio.selected_id = id;
+    const bool champion = studio.run->has_champion && studio.run->champion.id == id;
+    studio.follow_champion = champion;
+    if (champion) studio.requested_champion = id;
+    request_simulation(
+        studio, *studio.run, *m,
+        (champion ? "champion #" : "individual #") + std::to_string(id) +
+            (champion ? ", generation " + std::to_string(studio.run->champion_generation) : ""));
+    set_status(studio, "simulating individual #" + std::to_string(id));
+    return true;
+}
+
+void follow_champion(Studio& studio) {
+    studio.follow_champion = true;
+    studio.requested_champion = -1;  // update_studio requests it again
+}
+
+void set_view_mode(Studio& studio, ViewMode mode) {
+    if (studio.view.mode != mode) studio.view.camera_needs_framing = true;
+    studio.view.mode = mode;
+}
+
+void toggle_playback(Studio& studio) {
+    if (!studio.shown) return;
+    if (!studio.clock.playing && studio.clock.time_s >= studio.clock.duration_s)
+        studio.clock.time_s = 0.0;
+    studio.clock.playing = !studio.clock.playing;
+}
+
+void step_replay(Studio& studio, int frames) {
+    if (!studio.shown) return;
+    const double fps = studio.shown->experiment.simulation.record_fps;
+    studio.clock.step_frames(frames, fps > 0.0 ? 1.0 / fps : 1.0 / 30.0);
+}
+
+void set_named_view(Studio& studio, render::NamedView view) {
+    render::Bounds unit;
+    unit.add(glm::vec3(0.0f));
+    unit.add(glm::vec3(1.0f));
+    const auto named = render::named_view(view, unit, 1.0f);
+    studio.view.camera.yaw_rad = named.yaw_rad;
+    studio.view.camera.pitch_rad = named.pitch_rad;
+    studio.view.camera.orthographic = named.orthographic;
+    studio.view.zoom = 1.0f;
+    studio.view.camera_needs_framing = true;
+}
+
+// --- Per frame -----------------------------------------------------------------------------
+
+void update_studio(Studio& studio) {
+    // The snapshot to show: a watched run directory, else the live (or last) session.
+    if (studio.showing_run_directory) {
+        if (studio.frame % 30 == 0 && studio.run_directory.refresh())
+            studio.run = studio.run_directory.snapshot();
+    } else {
+        studio.run = studio.evolution.snapshot();
+    }
+
+    // A new champion: simulate it for the live view.
+    if (studio.follow_champion && studio.run && studio.run->has_champion &&
+        studio.run->champion.id != studio.requested_champion) {
+        studio.requested_champion = studio.run->champion.id;
+        request_simulation(studio, *studio.run, studio.run->champion,
+                           "champion #" + std::to_string(studio.run->champion.id) +
+                               ", generation " + std::to_string(studio.run->champion_generation));
+    }
+
+    // A finished simulation: show it (the clock keeps its time, so playback continues in step).
+    if (studio.simulator.version() != studio.shown_version) {
+        studio.shown_version = studio.simulator.version();
+        auto next = studio.simulator.latest();
+        if (next && (!studio.shown || next->id != studio.shown->id)) {
+            if (!studio.shown) {  // the first body of a session: start playing it
+                studio.clock.playing = true;
+                set_view_mode(studio, ViewMode::Simulation);
+            }
+        }
+        studio.shown = next;
+    }
+    if (studio.shown) {
+        const auto& frames = studio.shown->replay.frames;
+        studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);
+    }
+    studio.clock.advance(studio.frame_dt_s);
+}
+
+}  // namespace bhm::app::gui

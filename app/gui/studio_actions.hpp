@@ -1,0 +1,71 @@
+#pragma once
+// Everything the user can do, as functions over the Studio: panels, the key-binding table and
+// scripts call these, so a keyboard shortcut, a button and a script step run the same code.
+// Failures never throw out of here: they become the status line (one line naming the file/field).
+#include <array>
+#include <string>
+
+#include "app/gui/studio.hpp"
+
+namespace bhm::app::gui {
+
+//! Sets the status line (and the error flag) shown at the bottom of the window.
+void set_status(Studio& studio, const std::string& message, bool is_error = false);
+
+// --- Document ------------------------------------------------------------------------------
+//! Validates and applies an edited experiment; on refusal the status shows the validator's first
+//! message and studio.edit_problems all of them. Returns true when applied (or unchanged).
+bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label);
+void new_experiment(Studio& studio);
+bool open_experiment(Studio& studio, const std::string& path);
+bool save_experiment_as(Studio& studio, const std::string& path);
+bool save_experiment(Studio& studio);  //!< to the current path (Save As when untitled)
+bool undo(Studio& studio);
+bool redo(Studio& studio);
+
+// --- Painter -------------------------------------------------------------------------------
+bool cycle_face(Studio& studio, evo::Face face);
+bool set_enclosure_thickness(Studio& studio, evo::Face face, int voxels);
+bool paint_cell(Studio& studio, const std::array<int, 3>& cell);  //!< with the current brush
+
+// --- Evolution -----------------------------------------------------------------------------
+//! Starts a run of the document's experiment into studio.run_dir_field (a fresh folder under
+//! runs/ when empty), the same files and checkpoints as `bhm evolve`.
+bool start_run(Studio& studio);
+bool pause_run(Studio& studio);
+bool resume_run(Studio& studio);
+bool stop_run(Studio& studio);
+bool resume_run_directory(Studio& studio, const std::string& run_dir);
+//! Sends the document's fitness rules (measure, constraints, objectives) to the paused or running
+//! session; the population is re-scored before the next generation and the change is marked.
+bool apply_rules_to_run(Studio& studio);
+//! The document's fitness rules differ from those of the live run.
+bool rules_differ_from_run(const Studio& studio);
+//! The document's boundary (faces, frame, overrides) differs from the live run's: it applies to
+//! the next run only.
+bool boundary_differs_from_run(const Studio& studio);
+
+// --- Run directory -------------------------------------------------------------------------
+bool open_run_directory(Studio& studio, const std::string& run_dir);
+void close_run_directory(Studio& studio);
+
+// --- Bodies and replay ---------------------------------------------------------------------
+//! Simulates population member `id` of the shown run for the 3D view (follow_champion off).
+bool select_individual(Studio& studio, std::int64_t id);
+//! Back to following the champion: its simulation is shown as soon as it is ready.
+void follow_champion(Studio& studio);
+void set_view_mode(Studio& studio, ViewMode mode);
+void toggle_playback(Studio& studio);
+void step_replay(Studio& studio, int frames);
+
+// --- Camera --------------------------------------------------------------------------------
+void set_named_view(Studio& studio, render::NamedView view);
+
+// --- Export --------------------------------------------------------------------------------
+// These need the GL context and the renderer; the implementations live in studio_app.cpp.
+
+//! Per-frame housekeeping before the panels: takes new snapshots, starts champion simulations,
+//! advances the replay clock.
+void update_studio(Studio& studio);
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,191 @@
+#include "app/gui/studio_app.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <imgui.h>
+
+#include "app/gui/export_actions.hpp"
+#include "app/gui/key_bindings.hpp"
+#include "app/gui/panels.hpp"
+#include "app/gui/studio_actions.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+constexpr ImGuiWindowFlags kTileFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                                        ImGuiWindowFlags_NoBringToFrontOnFocus |
+                                        ImGuiWindowFlags_NoSavedSettings;
+
+// Font files from Debian's fonts-dejavu-core; ImGui's built-in font when absent.
+constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// Places a tile; returns its size after Begin (the user may have dragged an edge this frame).
+ImVec2 begin_tile(const char* name, ImVec2 pos, ImVec2 size, ImGuiWindowFlags extra = 0) {
+    ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
+    ImGui::SetNextWindowSize(size, ImGuiCond_Always);
+    ImGui::Begin(name, nullptr, kTileFlags | extra);
+    return ImGui::GetWindowSize();
+}
+
+}  // namespace
+
+std::string apply_studio_style(float scale) {
+    ImGuiIO& io = ImGui::GetIO();
+    ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::StyleColorsLight(&style);
+    style.WindowRounding = 0.0f;
+    style.FrameRounding = 3.0f;
+    style.GrabRounding = 3.0f;
+    style.TabRounding = 3.0f;
+    style.WindowBorderSize = 1.0f;
+    style.FrameBorderSize = 1.0f;
+    style.WindowPadding = ImVec2(8.0f, 6.0f);
+    style.ItemSpacing = ImVec2(6.0f, 5.0f);
+    style.ScrollbarSize = 12.0f;
+    ImVec4* c = style.Colors;
+    c[ImGuiCol_WindowBg] = ImVec4(0.965f, 0.968f, 0.975f, 1.0f);
+    c[ImGuiCol_TitleBg] = ImVec4(0.86f, 0.88f, 0.91f, 1.0f);
+    c[ImGuiCol_TitleBgActive] = ImVec4(0.80f, 0.84f, 0.90f, 1.0f);
+    c[ImGuiCol_Header] = ImVec4(0.80f, 0.85f, 0.93f, 1.0f);
+    c[ImGuiCol_HeaderHovered] = ImVec4(0.72f, 0.80f, 0.92f, 1.0f);
+    c[ImGuiCol_HeaderActive] = ImVec4(0.20f, 0.38f, 0.66f, 1.0f);
+    c[ImGuiCol_Button] = ImVec4(0.84f, 0.87f, 0.92f, 1.0f);
+    c[ImGuiCol_ButtonHovered] = ImVec4(0.70f, 0.79f, 0.92f, 1.0f);
+    c[ImGuiCol_ButtonActive] = ImVec4(0.55f, 0.68f, 0.88f, 1.0f);
+    c[ImGuiCol_FrameBg] = ImVec4(1.0f, 1.0f, 1.0f, 1.0f);
+    c[ImGuiCol_Border] = ImVec4(0.0f, 0.0f, 0.0f, 0.16f);
+    c[ImGuiCol_FrameBgHovered] = ImVec4(0.93f, 0.95f, 0.99f, 1.0f);
+    style.ScaleAllSizes(scale);
+
+    std::error_code ec;
+    if (std::filesystem::exists(kFontPath, ec)) {
+        ImFontConfig config;
+        config.OversampleH = 2;
+        if (io.Fonts->AddFontFromFileTTF(kFontPath, 15.0f * scale, &config)) return "DejaVu Sans";
+    }
+    ImFontConfig config;
+    config.SizePixels = 13.0f * scale;
+    io.Fonts->AddFontDefault(&config);
+    return "ImGui default";
+}
+
+StudioApp::StudioApp(Studio& studio) : studio_(studio) {}
+
+void StudioApp::build_frame(double wall_dt_s) {
+    Studio& s = studio_;
+    s.frame_dt_s = wall_dt_s;
+    ++s.frame;
+    update_studio(s);
+    dispatch_key_bindings(s);
+    layout_and_panels();
+    if (s.screenshot_requested) {
+        s.screenshot_requested = false;
+        export_screenshot(s, renderer_, s.exports.screenshot_path, s.exports.screenshot_width,
+                          s.exports.screenshot_height);
+    }
+    continue_frame_export(s, renderer_);
+}
+
+void StudioApp::layout_and_panels() {
+    Studio& s = studio_;
+    auto& layout = s.settings.layout;
+    draw_menu_bar(s);
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float top = ImGui::GetFrameHeight();
+    const float status_h = ImGui::GetFrameHeight() + 2.0f;
+    const float height = std::max(100.0f, display.y - top - status_h);
+    const float min_centre = 200.0f;
+    layout.left_px = std::clamp(layout.left_px, 150.0f,
+                                std::max(150.0f, display.x - layout.right_px - min_centre));
+    layout.right_px = std::clamp(layout.right_px, 150.0f,
+                                 std::max(150.0f, display.x - layout.left_px - min_centre));
+    const float centre_x = layout.left_px,
+                centre_w = std::max(16.0f, display.x - layout.left_px - layout.right_px);
+    layout.bottom_px = std::clamp(layout.bottom_px, 60.0f, std::max(60.0f, height - 120.0f));
+    layout.run_px = std::clamp(layout.run_px, 80.0f, std::max(80.0f, height - 200.0f));
+    layout.plot_px =
+        std::clamp(layout.plot_px, 80.0f, std::max(80.0f, height - layout.run_px - 100.0f));
+
+    // Left column: the design problem.
+    layout.left_px = begin_tile("Design", {0, top}, {layout.left_px, height}).x;
+    if (ImGui::BeginTabBar("design tabs")) {
+        if (ImGui::BeginTabItem("Experiment")) {
+            draw_experiment_panel(s);
+            ImGui::EndTabItem();
+        }
+        if (ImGui::BeginTabItem("Constraints")) {
+            draw_constraints_panel(s);
+            ImGui::EndTabItem();
+        }
+        if (ImGui::BeginTabItem("Export")) {
+            draw_export_panel(s, renderer_);
+            ImGui::EndTabItem();
+        }
+        ImGui::EndTabBar();
+    }
+    ImGui::End();
+
+    // Centre: the 3D view over the replay timeline.
+    const float view_h = height - layout.bottom_px;
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(4.0f, 4.0f));
+    begin_tile("3D view", {centre_x, top}, {centre_w, view_h},
+               ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoScrollbar |
+                   ImGuiWindowFlags_NoScrollWithMouse);
+    ImGui::PopStyleVar();
+    draw_viewport_panel(s, renderer_);
+    ImGui::End();
+    const ImVec2 replay = begin_tile("Replay", {centre_x, top + view_h},
+                                     {centre_w, layout.bottom_px}, ImGuiWindowFlags_NoScrollbar);
+    layout.bottom_px = replay.y;
+    draw_replay_panel(s);
+    ImGui::End();
+
+    // Right column: evolution.
+    const float right_x = display.x - layout.right_px;
+    const ImVec2 run = begin_tile("Run", {right_x, top}, {layout.right_px, layout.run_px});
+    layout.right_px = run.x;
+    layout.run_px = run.y;
+    draw_run_panel(s);
+    ImGui::End();
+    layout.plot_px = begin_tile("Fitness", {right_x, top + layout.run_px},
+                                {layout.right_px, layout.plot_px}, ImGuiWindowFlags_NoScrollbar)
+                         .y;
+    draw_fitness_panel(s);
+    ImGui::End();
+    const float population_y = top + layout.run_px + layout.plot_px;
+    begin_tile("Population", {right_x, population_y},
+               {layout.right_px, top + height - population_y}, ImGuiWindowFlags_NoResize);
+    draw_population_panel(s);
+    ImGui::End();
+
+    // Status bar.
+    ImGui::SetNextWindowPos({0, display.y - status_h}, ImGuiCond_Always);
+    ImGui::SetNextWindowSize({display.x, status_h}, ImGuiCond_Always);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8.0f, 2.0f));
+    ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | kTileFlags);
+    ImGui::PopStyleVar();
+    draw_status_bar(s);
+    ImGui::End();
+
+    draw_help_window(s);
+}
+
+void store_view_settings(Studio& s) {
+    s.settings.camera.yaw_rad = s.view.camera.yaw_rad;
+    s.settings.camera.pitch_rad = s.view.camera.pitch_rad;
+    s.settings.camera.orthographic = s.view.camera.orthographic;
+    s.settings.camera.zoom = s.view.zoom;
+}
+
+void restore_view_settings(Studio& s) {
+    s.view.camera.yaw_rad = s.settings.camera.yaw_rad;
+    s.view.camera.pitch_rad = s.settings.camera.pitch_rad;
+    s.view.camera.orthographic = s.settings.camera.orthographic;
+    s.view.camera.fov_y_rad = 0.55f;
+    s.view.zoom = s.settings.camera.zoom;
+    s.view.camera_needs_framing = true;
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,45 @@
+#pragma once
+// Small widgets shared by the panels: buttons that scripts can find, numeric fields with units that
+// commit through the document's validation, section titles and tooltips.
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/studio.hpp"
+
+namespace bhm::app::gui {
+
+//! Records the last item's rectangle under `name` (scripts click it by that name).
+void record_widget(Studio& studio, const std::string& name);
+//! A button recorded under its label (without the "##id" part).
+bool tracked_button(Studio& studio, const char* label, ImVec2 size = ImVec2(0, 0));
+
+//! Field editors bound to studio.draft. They return true when an edit is complete (Enter, focus
+//! left, a drag released, a box ticked): the caller then calls commit_draft with a label.
+//! The unit is printed after the field; the hint (ranges, paper values) shows on hover.
+bool field_double(const char* label, double& value, const char* unit, const char* hint,
+                  const char* format = "%.6g");
+bool field_int(const char* label, int& value, const char* unit, const char* hint);
+bool field_u64(const char* label, std::uint64_t& value, const char* hint);
+bool field_bool(const char* label, bool& value, const char* hint);
+bool field_text(const char* label, std::string& value, const char* hint, bool multiline = false);
+
+//! Applies studio.draft through apply_edit (validation, undo); reverts the draft when refused.
+void commit_draft(Studio& studio, const std::string& label);
+//! Re-reads the draft from the document when it changed and no field is being edited.
+void sync_draft(Studio& studio);
+
+//! A bold-ish section title with a separator line.
+void section_title(const char* title);
+//! "(?)" marker with a tooltip.
+void help_marker(const char* text);
+//! Width for a field so the unit fits after it.
+float field_width();
+
+//! "12.34 deg" / "3.21 voxels": the fitness with the unit of its measure.
+std::string format_fitness(double fitness, evo::FitnessMeasure measure);
+const char* fitness_unit(evo::FitnessMeasure measure);
+//! "1 h 02 min", "3 min 05 s", "12.3 s".
+std::string format_duration(double seconds);
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,202 @@
+#include "app/gui/view_scene.hpp"
+
+#include <algorithm>
+
+#include "app/gui/constraint_edits.hpp"
+#include "app/gui/replay_player.hpp"
+#include "evo/scene.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+constexpr glm::vec4 kForbiddenColor{0.25f, 0.25f, 0.28f, 0.45f};
+constexpr glm::vec4 kFixedMarkerColor{0.18f, 0.72f, 0.30f, 0.55f};
+
+std::array<render::FaceMarking, 6> face_markings(const evo::Boundary& boundary) {
+    std::array<render::FaceMarking, 6> faces{};
+    for (int f = 0; f < 6; ++f)
+        faces[static_cast<std::size_t>(f)] =
+            boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed
+                ? render::FaceMarking::Fixed
+                : render::FaceMarking::Free;
+    return faces;
+}
+
+bool in_frame(const evo::Experiment& e, const std::array<int, 3>& c) {
+    const auto& t = e.boundary.enclosure_thickness;
+    for (int a = 0; a < 3; ++a) {
+        if (c[a] < t[2 * a]) return true;
+        if (c[a] >= e.workspace_size[a] - t[2 * a + 1]) return true;
+    }
+    return false;
+}
+
+evo::Body empty_workspace_body(const evo::Experiment& e) {
+    evo::Body body;
+    body.size = e.workspace_size;
+    body.cells.assign(static_cast<std::size_t>(body.cell_count()), 0);
+    return body;
+}
+
+}  // namespace
+
+std::vector<glm::vec4> material_colors(const evo::Experiment& experiment) {
+    std::vector<glm::vec4> colors;
+    for (const auto& m : experiment.materials) {
+        if (m.has_color)
+            colors.emplace_back(m.color[0], m.color[1], m.color[2], 1.0f);
+        else
+            colors.push_back(m.active() ? render::palette::kActive : render::palette::kPassive);
+    }
+    return colors;
+}
+
+PainterMaterials painter_materials(const evo::Experiment& experiment) {
+    const int m = static_cast<int>(experiment.materials.size());
+    return {m + 1, m + 2, m + 3};
+}
+
+std::vector<std::uint8_t> painter_occupancy(const evo::Experiment& e, const evo::Body* context) {
+    const bool use_context = context && context->size == e.workspace_size;
+    const evo::Body framed =
+        evo::apply_frame_and_overrides(e, use_context ? *context : empty_workspace_body(e));
+    std::vector<std::uint8_t> occupied(framed.cells.size(), 0);
+    for (std::size_t i = 0; i < framed.cells.size(); ++i)
+        occupied[i] = framed.cells[i] != 0;
+    for (const auto& o : e.boundary.voxel_overrides) {
+        const auto& v = o.voxel;
+        if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= framed.size[0] || v[1] >= framed.size[1] ||
+            v[2] >= framed.size[2])
+            continue;
+        occupied[static_cast<std::size_t>(framed.index(v[0], v[1], v[2]))] = 1;
+    }
+    return occupied;
+}
+
+render::Scene workspace_scene(const evo::Experiment& e, const PainterState& painter,
+                              const evo::Body* context) {
+    const bool use_context = context && context->size == e.workspace_size;
+    const evo::Body framed =
+        evo::apply_frame_and_overrides(e, use_context ? *context : empty_workspace_body(e));
+    const PainterMaterials extra = painter_materials(e);
+
+    // Per cell: the material to draw and whether it is held.
+    std::vector<std::uint8_t> material(framed.cells.begin(), framed.cells.end());
+    std::vector<std::uint8_t> held(material.size(), 0);
+    for (int z = 0; z < framed.size[2]; ++z)
+        for (int y = 0; y < framed.size[1]; ++y)
+            for (int x = 0; x < framed.size[0]; ++x) {
+                const auto i = static_cast<std::size_t>(framed.index(x, y, z));
+                // The frame overwrites the outer layers (evo/scene.hpp); overrides come after it.
+                if (material[i] != 0 && e.boundary.enclosure_material != 0 &&
+                    in_frame(e, {x, y, z}) && find_override(e, {x, y, z}) < 0)
+                    material[i] = static_cast<std::uint8_t>(extra.frame);
+            }
+    for (const auto& o : e.boundary.voxel_overrides) {
+        const auto& v = o.voxel;
+        if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= framed.size[0] || v[1] >= framed.size[1] ||
+            v[2] >= framed.size[2])
+            continue;
+        const auto i = static_cast<std::size_t>(framed.index(v[0], v[1], v[2]));
+        if (o.kind == evo::OverrideKind::Empty)
+            material[i] = static_cast<std::uint8_t>(extra.forbidden);
+        if (o.kind == evo::OverrideKind::Fixed) {
+            if (material[i] == 0) material[i] = static_cast<std::uint8_t>(extra.fixed);
+            held[i] = 1;
+        }
+    }
+
+    render::Scene scene;
+    auto& body = scene.body;
+    body.nx = framed.size[0], body.ny = framed.size[1], body.nz = framed.size[2];
+    body.voxel_size_m = e.voxel_size_m;
+    for (int z = 0; z < framed.size[2]; ++z)
+        for (int y = 0; y < framed.size[1]; ++y)
+            for (int x = 0; x < framed.size[0]; ++x) {
+                const auto i = static_cast<std::size_t>(framed.index(x, y, z));
+                if (material[i] == 0 || painter.slice.hides({x, y, z})) continue;
+                body.voxel_cell.push_back(static_cast<std::int32_t>(i));
+                body.voxel_material.push_back(material[i]);
+                body.voxel_fixed.push_back(held[i]);
+            }
+    body.poses = render::rest_poses(body);
+    scene.workspace = e.workspace_size;
+    scene.material_colors = material_colors(e);
+    scene.material_colors.push_back(render::palette::kEnclosure);
+    scene.material_colors.push_back(kForbiddenColor);
+    scene.material_colors.push_back(kFixedMarkerColor);
+    scene.faces = face_markings(e.boundary);
+    scene.options.show_legend = false;
+    return scene;
+}
+
+render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const ViewState& view) {
+    const auto& replay = simulated.replay;
+    const auto& e = simulated.experiment;
+    render::Scene scene;
+    auto& body = scene.body;
+    body.nx = replay.nx, body.ny = replay.ny, body.nz = replay.nz;
+    body.voxel_size_m = replay.voxel_size_m;
+    body.voxel_cell = replay.voxel_cell;
+    body.voxel_material = replay.voxel_material;
+    body.voxel_fixed = replay.voxel_fixed;
+    body.poses = replay.frames.empty() ? render::rest_poses(body) : poses_at(replay, t_s);
+    scene.workspace = e.workspace_size;
+    scene.material_colors = material_colors(e);
+    scene.faces = face_markings(e.boundary);
+    scene.options.show_edges = view.show_edges;
+    scene.options.show_legend = false;
+    if (view.show_trail && !simulated.com_m.empty()) {
+        const int last = std::max(0, frame_index_at(replay, t_s));
+        scene.options.com_trail_m.assign(simulated.com_m.begin(),
+                                         simulated.com_m.begin() + last + 1);
+    }
+    if (view.show_start_beside && !replay.frames.empty()) {
+        scene.ghost_poses = replay.frames.front();
+        scene.options.show_ghost = true;
+        scene.options.ghost_offset_m = {
+            0.0f, static_cast<float>((replay.ny + 1) * replay.voxel_size_m), 0.0f};
+    }
+    return scene;
+}
+
+void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, double voxel_size_m,
+                        glm::vec4 color) {
+    const float s = static_cast<float>(voxel_size_m);
+    const glm::vec3 lo{cell[0] * s, cell[1] * s, cell[2] * s};
+    const glm::vec3 hi = lo + glm::vec3(s);
+    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z},
+                            {lo.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z},
+                            {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    const int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                              {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    for (const auto& edge : edges) {
+        list.lines.push_back({c[edge[0]], color, 3.0f});
+        list.lines.push_back({c[edge[1]], color, 3.0f});
+    }
+}
+
+void add_face_highlight(render::DrawList& list, const std::array<int, 3>& workspace,
+                        double voxel_size_m, evo::Face face, glm::vec4 color) {
+    const float s = static_cast<float>(voxel_size_m);
+    const glm::vec3 hi{workspace[0] * s, workspace[1] * s, workspace[2] * s};
+    const int axis = static_cast<int>(face) / 2;
+    const float level = static_cast<int>(face) % 2 ? hi[axis] : 0.0f;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    glm::vec3 corner[4];
+    const float us[4] = {0.0f, hi[u], hi[u], 0.0f}, vs[4] = {0.0f, 0.0f, hi[v], hi[v]};
+    for (int k = 0; k < 4; ++k) {
+        corner[k][axis] = level;
+        corner[k][u] = us[k];
+        corner[k][v] = vs[k];
+    }
+    for (int k : {0, 1, 2, 0, 2, 3})
+        list.translucent_triangles.push_back({corner[k], color});
+    for (int k = 0; k < 4; ++k) {
+        list.lines.push_back({corner[k], glm::vec4(glm::vec3(color), 1.0f), 3.0f});
+        list.lines.push_back({corner[(k + 1) % 4], glm::vec4(glm::vec3(color), 1.0f), 3.0f});
+    }
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,86 @@
+#include "app/gui/viewport.hpp"
+
+#include <glm/glm.hpp>
+
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/view_scene.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+constexpr glm::vec4 kHoverFace{1.0f, 0.78f, 0.10f, 0.30f};
+constexpr glm::vec4 kHoverCell{1.0f, 0.62f, 0.0f, 1.0f};
+
+LatticeBox workspace_box(const evo::Experiment& e) {
+    return {e.workspace_size, e.voxel_size_m};
+}
+
+}  // namespace
+
+const evo::Body* painter_context_body(const Studio& s) {
+    if (!s.painter.show_champion || !s.run || !s.run->has_champion || !s.run->champion.body)
+        return nullptr;
+    return s.run->champion.body.get();
+}
+
+render::DrawList build_view_draw_list(const Studio& s) {
+    const auto& e = s.document.experiment();
+    if (s.view.mode == ViewMode::Simulation && s.shown) {
+        return render::build_draw_list(simulation_scene(*s.shown, s.clock.time_s, s.view));
+    }
+    render::Scene scene = workspace_scene(e, s.painter, painter_context_body(s));
+    scene.options.show_edges = s.view.show_edges;
+    render::DrawList list = render::build_draw_list(scene);
+    if (s.painter.tool == PainterTool::Faces && s.painter.hovered_face)
+        add_face_highlight(list, e.workspace_size, e.voxel_size_m, *s.painter.hovered_face,
+                           kHoverFace);
+    if (s.painter.tool == PainterTool::Voxels && s.painter.hovered_cell)
+        add_cell_highlight(list, *s.painter.hovered_cell, e.voxel_size_m, kHoverCell);
+    return list;
+}
+
+void frame_view_camera(Studio& s, const render::DrawList& list, float aspect) {
+    if (!s.view.camera_needs_framing) return;
+    render::Bounds bounds = list.workspace_bounds.valid ? list.workspace_bounds : list.bounds;
+    if (s.view.mode == ViewMode::Simulation && s.view.show_start_beside) bounds.add(list.bounds);
+    render::frame_bounds(s.view.camera, bounds, aspect);
+    s.view.camera.distance_m /= std::max(0.05f, s.view.zoom);
+    s.view.camera_needs_framing = false;
+}
+
+void update_hover(Studio& s, std::optional<glm::vec2> pixel) {
+    auto& p = s.painter;
+    p.hovered_face.reset();
+    p.hovered_cell.reset();
+    if (!pixel || s.view.mode != ViewMode::Workspace || s.view.size_px.x < 1.0f) return;
+    const auto& e = s.document.experiment();
+    const Ray ray = ray_through_pixel(s.view.camera, *pixel, s.view.size_px);
+    if (p.tool == PainterTool::Faces) {
+        if (auto hit = pick_box_face(ray, workspace_box(e))) p.hovered_face = hit->face;
+        return;
+    }
+    const auto occupied = painter_occupancy(e, painter_context_body(s));
+    const auto box = workspace_box(e);
+    auto hit = pick_cell(ray, box, p.slice, [&](const std::array<int, 3>& c) {
+        return occupied[static_cast<std::size_t>(
+                   c[0] + e.workspace_size[0] * (c[1] + e.workspace_size[1] * c[2]))] != 0;
+    });
+    if (hit) p.hovered_cell = hit->cell;
+}
+
+bool click_in_view(Studio& s, glm::vec2 pixel, bool shift) {
+    if (s.view.mode != ViewMode::Workspace) return false;
+    update_hover(s, pixel);
+    const auto& p = s.painter;
+    if (p.tool == PainterTool::Faces) return p.hovered_face && cycle_face(s, *p.hovered_face);
+    if (!p.hovered_cell) return false;
+    if (shift) {
+        const auto cell = *p.hovered_cell;
+        return apply_edit(s, with_override(s.document.experiment(), cell, PaintKind::Clear),
+                          paint_edit_label(cell, PaintKind::Clear, 0));
+    }
+    return paint_cell(s, *p.hovered_cell);
+}
+
+}  // namespace bhm::app::gui
