@@ -1,6 +1,7 @@
 // The AFPO run loop end to end on a tiny workspace: pool sizes and ages, elitism, determinism
 // across thread counts, stop and resume equivalence, checkpoint fallback, rule changes, files.
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -19,7 +20,9 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("bhm-test-evo-" + name);
+    // The process id keeps concurrent test runs on one machine apart.
+    const fs::path dir =
+        fs::temp_directory_path() / ("bhm-test-evo-" + name + "-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     return dir;
 }

@@ -1,6 +1,7 @@
 // VXA export: well-formed XML with the right palette, settings and layers; the checker itself
 // rejects malformed documents.
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <clocale>
 #include <filesystem>
@@ -99,7 +100,9 @@ TEST_CASE("save_vxa writes the document atomically") {
     Body body;
     body.size = {2, 1, 1};
     body.cells = {1, 2};
-    const auto path = (std::filesystem::temp_directory_path() / "bhm-test-champion.vxa").string();
+    const auto path = (std::filesystem::temp_directory_path() /
+                       ("bhm-test-champion-" + std::to_string(::getpid()) + ".vxa"))
+                          .string();
     save_vxa(path, e, body);
     std::ifstream in(path);
     std::stringstream s;
