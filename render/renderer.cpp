@@ -262,17 +262,23 @@ void Renderer::draw(const DrawList& list, const Camera& camera, int width_px, in
     gl.draw_lines(list.lines);
     glDisable(GL_POLYGON_OFFSET_FILL);
 
-    // Translucent pass: no depth writes, back to front. Boundary faces behind the workspace
-    // centre go first, then translucent voxels sorted by depth, then the nearer faces.
+    // Translucent pass: no depth writes, back to front. Boundary faces (quads of six vertices)
+    // behind the workspace centre go first, then translucent voxels by depth, then nearer faces.
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
     const float middle = glm::dot(list.workspace_bounds.center(), forward);
     std::vector<TriangleVertex> far_faces, near_faces;
     for (std::size_t i = 0; i + 5 < list.translucent_triangles.size(); i += 6) {
+        const auto& t = list.translucent_triangles;
+        // A plane seen face-on would veil the whole picture: its outline (a line) is enough.
+        const glm::vec3 normal =
+            glm::cross(t[i + 1].position - t[i].position, t[i + 2].position - t[i].position);
+        const float length = glm::length(normal);
+        if (length > 0.0f && std::fabs(glm::dot(normal / length, forward)) > 0.97f) continue;
         glm::vec3 centroid(0.0f);
         for (std::size_t k = 0; k < 6; ++k)
-            centroid += list.translucent_triangles[i + k].position;
+            centroid += t[i + k].position;
         auto& out = glm::dot(centroid / 6.0f, forward) > middle ? far_faces : near_faces;
         out.insert(out.end(), list.translucent_triangles.begin() + static_cast<std::ptrdiff_t>(i),
                    list.translucent_triangles.begin() + static_cast<std::ptrdiff_t>(i + 6));
