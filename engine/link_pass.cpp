@@ -111,7 +111,9 @@ BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxe
     const int stride = v.stride;
 
     int bad = 0;  // an integer sum: a float one would be an in-order (unvectorisable) reduction
-    const int n = model.cells;
+    // Slots of the last stride cells never hold a link (their + neighbour is off the lattice);
+    // their scratch stays zero from the World's construction.
+    const int n = model.cells - stride;
     // Every array is distinct (restrict on locals is not enough for GCC's dependence analysis).
 #pragma GCC ivdep
     for (int c = 0; c < n; ++c) {
