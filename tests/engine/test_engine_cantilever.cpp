@@ -93,6 +93,20 @@ TEST_CASE("cantilever deflection is linear in gravity and in 1/E") {
     CHECK(d_base == doctest::Approx(base.discrete_tip()).epsilon(0.03));
 }
 
+TEST_CASE("a tip load bends a 20x1x1 cantilever by F l^3 / (3 E I)") {
+    BodySpec s = solid_box(20, 1, 1);
+    fix_x_min_layer(s);
+    s.damping.global_ratio = 0.003;
+    auto model = Model::build(s);
+    World w(model);
+    const double force = 1e-3, L = s.voxel_size_m, E = s.materials[0].youngs_modulus_pa;
+    w.set_external_force(voxel_at(*model, 19, 0, 0), {0.0, 0.0, -force});
+    REQUIRE(w.advance_to(1.5));
+    const double l = 19.0 * L;  // fixed voxel's centre to the loaded voxel's centre
+    const double expected = force * l * l * l / (3.0 * E * std::pow(L, 4) / 12.0);
+    CHECK(-layer_displacement(w, 19, 2) == doctest::Approx(expected).epsilon(0.02));
+}
+
 TEST_CASE("a soft cantilever droops past 60 degrees without stretching or diverging") {
     Material soft;
     soft.youngs_modulus_pa = 1e5;  // w l^3 / (E I) ~ 45: far beyond small deflection
