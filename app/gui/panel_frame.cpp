@@ -1,5 +1,7 @@
 // The menu bar, the help window (every shortcut, from the one key-binding table) and the status
 // bar.
+#include <algorithm>
+
 #include <imgui.h>
 
 #include "app/gui/key_bindings.hpp"
@@ -63,40 +65,52 @@ void draw_menu_bar(Studio& s) {
 void draw_help_window(Studio& s) {
     if (!s.show_help) return;
     const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float font = ImGui::GetFontSize();
     ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing,
                             ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowSize(ImVec2(ImGui::GetFontSize() * 34.0f, ImGui::GetFontSize() * 36.0f),
+    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 58.0f),
+                                    std::min(display.y - 60.0f, font * 33.0f)),
                              ImGuiCond_Appearing);
     if (!ImGui::Begin("Help: shortcuts and mouse", &s.show_help, ImGuiWindowFlags_NoCollapse)) {
         ImGui::End();
         return;
     }
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
-    section_title("Keyboard");
-    if (ImGui::BeginTable("keys", 2, flags)) {
-        for (const auto& b : key_bindings()) {
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(b.keys);
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(b.description);
+    if (ImGui::BeginTable("help layout", 2, ImGuiTableFlags_SizingStretchSame)) {
+        ImGui::TableNextColumn();
+        section_title("Keyboard");
+        if (ImGui::BeginTable("keys", 2, flags)) {
+            for (const auto& b : key_bindings()) {
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(b.keys);
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(b.description);
+            }
+            ImGui::EndTable();
         }
+        ImGui::TableNextColumn();
+        section_title("Mouse in the 3D view");
+        if (ImGui::BeginTable("mouse", 2, flags)) {
+            for (const auto& [gesture, what] : mouse_gestures()) {
+                ImGui::TableNextColumn();
+                ImGui::TextWrapped("%s", gesture);
+                ImGui::TableNextColumn();
+                ImGui::TextWrapped("%s", what);
+            }
+            ImGui::EndTable();
+        }
+        section_title("Units");
+        ImGui::TextWrapped(
+            "Inputs are SI (m, s, Pa, kg/m^3, Hz, degC). Fitness is in voxel lengths "
+            "(centre-of-mass measures) or degrees (bend angle), measured from the end of "
+            "settling.");
+        section_title("Colours");
+        ImGui::TextWrapped(
+            "Green faces are fixed, purple faces free. Hatched voxels are held; dark "
+            "translucent cells are forbidden; grey translucent cells are the enclosure frame. "
+            "The orange line is the centre-of-mass trail.");
         ImGui::EndTable();
     }
-    section_title("Mouse in the 3D view");
-    if (ImGui::BeginTable("mouse", 2, flags)) {
-        for (const auto& [gesture, what] : mouse_gestures()) {
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(gesture);
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(what);
-        }
-        ImGui::EndTable();
-    }
-    section_title("Units");
-    ImGui::TextWrapped(
-        "Inputs are SI (m, s, Pa, kg/m^3, Hz, degC). Fitness is in voxel lengths "
-        "(centre-of-mass measures) or degrees (bend angle), measured from the end "
-        "of settling.");
     ImGui::End();
 }
 

@@ -99,7 +99,7 @@ void draw_replay_panel(Studio& s) {
         ImGui::Text("t = %.3f s / %.3f s   %s", clock.time_s, clock.duration_s,
                     clock.time_s < settle ? "(settling, actuation off)" : "(actuated)");
     } else {
-        ImGui::TextDisabled("no simulation yet: start a run or select an individual");
+        ImGui::TextDisabled("no simulation yet");
     }
     timeline(s, std::max(ImGui::GetContentRegionAvail().y, ImGui::GetFontSize() * 2.5f));
 }

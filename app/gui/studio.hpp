@@ -46,9 +46,18 @@ struct PainterState {
     std::optional<evo::Face> hovered_face;
 };
 
+//! The renderer's iso view angles (render::NamedView::Iso), the studio's default camera.
+inline render::Camera iso_camera() {
+    render::Camera c;
+    c.yaw_rad = -0.9425f;
+    c.pitch_rad = 0.534f;
+    c.fov_y_rad = 0.55f;
+    return c;
+}
+
 struct ViewState {
     ViewMode mode = ViewMode::Workspace;
-    render::Camera camera;
+    render::Camera camera = iso_camera();
     bool camera_needs_framing = true;  //!< frame the scene on the next draw (new workspace, view)
     float zoom = 1.0f;                 //!< distance relative to the framed one
     glm::vec2 origin_px{0.0f};         //!< top-left of the 3D image on screen (ImGui coordinates)

@@ -96,9 +96,16 @@ int run_window(Studio& studio, const WindowOptions& options) {
 }
 
 int run_headless(Studio& studio, const HeadlessOptions& options) {
+    nlohmann::json steps = nlohmann::json::array();
+    try {
+        if (!options.script.empty()) steps = load_script(options.script);  // names the file
+    } catch (const ScriptError& e) {
+        std::cerr << "bhm studio: " << e.what() << "\n";
+        return 1;
+    }
     HeadlessStudio session(studio, options.width, options.height);
     try {
-        if (!options.script.empty()) run_script(session, load_script(options.script));
+        run_script(session, steps);
     } catch (const ScriptError& e) {
         std::cerr << "bhm studio: " << options.script << ": " << e.what() << "\n";
         return 1;

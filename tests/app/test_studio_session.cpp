@@ -1,0 +1,187 @@
+// Scripted headless sessions of the real studio UI (OSMesa): painter clicks, shortcuts, refused
+// edits, screenshots against goldens, and evolution runs driven through the Run panel's buttons.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "app/gui/headless_session.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+
+namespace {
+
+evo::BoundaryKind face_kind(const Studio& s, evo::Face f) {
+    return s.document.experiment().boundary.faces[static_cast<int>(f)];
+}
+
+}  // namespace
+
+TEST_CASE("studio session: face clicks, undo / redo shortcuts, voxel painting, refused edits") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment({5, 4, 3}), "");
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"frames": 3}])"));
+    CHECK(face_kind(studio, evo::Face::XMax) == evo::BoundaryKind::Free);
+
+    run_script(session, json::parse(R"([{"click_face": "x+"}])"));
+    CHECK(face_kind(studio, evo::Face::XMax) == evo::BoundaryKind::Fixed);
+    CHECK(studio.document.undo_label() == "face x+ fixed");
+    CHECK(studio.status == "face x+ fixed");
+
+    run_script(session, json::parse(R"([{"key": "ctrl+z"}])"));
+    CHECK(face_kind(studio, evo::Face::XMax) == evo::BoundaryKind::Free);
+    CHECK_FALSE(studio.document.can_undo());
+    run_script(session, json::parse(R"([{"key": "ctrl+y"}])"));
+    CHECK(face_kind(studio, evo::Face::XMax) == evo::BoundaryKind::Fixed);
+
+    // The top-front-right cell, seen from the iso view, painted forbidden; then fixed.
+    run_script(session, json::parse(R"([{"click_cell": [4, 0, 2], "brush": "forbidden"}])"));
+    REQUIRE(studio.document.experiment().boundary.voxel_overrides.size() == 1);
+    auto o = studio.document.experiment().boundary.voxel_overrides[0];
+    CHECK(o.voxel == std::array<int, 3>{4, 0, 2});
+    CHECK(o.kind == evo::OverrideKind::Empty);
+    run_script(session, json::parse(R"([{"click_cell": [1, 0, 2], "brush": "fixed"}])"));
+    REQUIRE(studio.document.experiment().boundary.voxel_overrides.size() == 2);
+    o = studio.document.experiment().boundary.voxel_overrides[1];
+    CHECK(o.voxel == std::array<int, 3>{1, 0, 2});
+    CHECK(o.kind == evo::OverrideKind::Fixed);
+    run_script(session, json::parse(R"([{"key": "ctrl+z"}])"));
+    CHECK(studio.document.experiment().boundary.voxel_overrides.size() == 1);
+
+    // An invalid value is refused with the validator's message and changes nothing.
+    const auto before = studio.document.experiment();
+    CHECK_THROWS_WITH_AS(
+        run_script(session,
+                   json::parse(R"([{"set": "materials[0].poisson_ratio", "value": 0.7}])")),
+        doctest::Contains("materials[0].poisson_ratio: must be in (-1, 0.5)"), ScriptError);
+    CHECK(studio.document.experiment() == before);
+    CHECK(studio.status_is_error);
+    run_script(session, json::parse(R"([{"set": "simulation.evaluate_s", "value": 0.5}])"));
+    CHECK(studio.document.experiment().simulation.evaluate_s == 0.5);
+
+    // A step that cannot be done names the step.
+    CHECK_THROWS_WITH_AS(run_script(session, json::parse(R"([{"frames": 1}, {"click": "Nope"}])")),
+                         "step 2 (click): no widget named 'Nope' on screen", ScriptError);
+
+    run_script(session, json::parse(R"([{"view": "iso"}, {"frames": 2}])"));
+    testing::check_studio_golden("painter", session.capture(), session.font());
+}
+
+TEST_CASE("studio session: the help panel lists every shortcut (golden)") {
+    Studio studio;
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"key": "f1"}, {"frames": 3}])"));
+    CHECK(studio.show_help);
+    testing::check_studio_golden("help", session.capture(), session.font());
+    run_script(session, json::parse(R"([{"key": "f1"}])"));
+    CHECK_FALSE(studio.show_help);
+}
+
+TEST_CASE("studio session: Start runs two generations, the champion is selected and replayed") {
+    const auto dir = testing::fresh_dir("session-run");
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([
+        {"click": "Start"},
+        {"wait_generations": 2, "timeout_s": 240},
+        {"wait_run": "finished", "timeout_s": 60},
+        {"select": "champion"},
+        {"wait_simulation": true, "timeout_s": 120},
+        {"replay": {"time_s": 0.3, "playing": false}}])"));
+    const auto run = studio.evolution.snapshot();
+    REQUIRE(run);
+    CHECK(run->phase == RunPhase::Finished);
+    CHECK(run->generation == 2);
+    CHECK(run->history.size() == 2);
+    CHECK(run->population.size() == 4);
+    REQUIRE(run->has_champion);
+    CHECK(run->champion.fitness >= 0.0);
+    // The same files as bhm evolve.
+    for (const char* name : {"run.json", "fitness.csv", "champion.json", "checkpoint.json"})
+        CHECK_MESSAGE(std::filesystem::exists(dir / "run" / name), name);
+    // The champion was simulated again for the view, with the same fitness evolution measured.
+    REQUIRE(studio.shown);
+    CHECK(studio.shown->id == run->champion.id);
+    CHECK(studio.shown->fitness == doctest::Approx(run->champion.fitness).epsilon(1e-9));
+    CHECK(studio.shown->label.find("champion #" + std::to_string(run->champion.id)) == 0);
+    CHECK(studio.view.mode == ViewMode::Simulation);
+    CHECK(studio.clock.time_s == doctest::Approx(0.3));
+    CHECK(studio.clock.duration_s == doctest::Approx(0.4).epsilon(0.02));
+}
+
+TEST_CASE("studio session: pause, change the fitness measure, resume; stop and resume the folder") {
+    const auto dir = testing::fresh_dir("session-rules");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 4;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([
+        {"click": "Start"},
+        {"wait_generations": 1, "timeout_s": 240},
+        {"click": "Pause"},
+        {"wait_run": "paused", "timeout_s": 120},
+        {"set": "fitness.measure", "value": "com_final_3d"},
+        {"click": "Resume"},
+        {"wait_generations": 3, "timeout_s": 240},
+        {"click": "Stop"},
+        {"wait_run": "stopped", "timeout_s": 120}])"));
+    auto run = studio.evolution.snapshot();
+    REQUIRE(run);
+    CHECK(run->experiment.fitness.measure == evo::FitnessMeasure::ComFinal3d);
+    REQUIRE(run->rule_changes.size() == 1);
+    CHECK(run->rule_changes[0].description.find("com_final_3d") != std::string::npos);
+    const int stopped_at = run->generation;
+    CHECK(stopped_at >= 3);
+    CHECK(stopped_at < 4);
+
+    // Resume the folder from its checkpoint: it finishes the budget of 4 generations.
+    REQUIRE(resume_run_directory(studio, (dir / "run").string()));
+    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    run = studio.evolution.snapshot();
+    CHECK(run->generation == 4);
+    CHECK(run->history.size() == 4);
+    CHECK(run->rule_changes.size() == 1);
+}
+
+TEST_CASE("studio session: a simulated body replays at t = 5 s with the settle phase first") {
+    auto e = testing::tiny_experiment({2, 2, 1});
+    e.simulation.settle_s = 0.2;
+    e.simulation.evaluate_s = 5.0;
+    Studio studio;
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    SimulationRequest request;
+    request.id = 3;
+    request.label = "test body";
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"replay": {"time_s": 5.0, "playing": false}},
+                                        {"frames": 2}])"));
+    REQUIRE(studio.shown);
+    CHECK(studio.clock.time_s == 5.0);
+    CHECK(studio.clock.duration_s == doctest::Approx(5.2).epsilon(0.01));
+    const auto& replay = studio.shown->replay;
+    CHECK(replay.settle_s == 0.2);
+    const int frame = frame_index_at(replay, 5.0);
+    CHECK(std::abs(replay.frames[static_cast<std::size_t>(frame)].time_s - 5.0) < 1.0 / 30.0);
+    CHECK(std::abs(frame - 150) <= 1);  // 30 frames per second
+    // Playing on from 5 s advances with the UI's frame time.
+    run_script(session, json::parse(R"([{"key": "space"}, {"frames": 6}])"));
+    CHECK(studio.clock.playing);
+    CHECK(studio.clock.time_s > 5.0);
+}
