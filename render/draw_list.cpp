@@ -232,7 +232,7 @@ void add_origin_star(const Scene& scene, DrawList& list) {
         at = {body.poses.position_m[3 * i], body.poses.position_m[3 * i + 1],
               body.poses.position_m[3 * i + 2]};
     }
-    list.markers.push_back({at, palette::kStar, 14.0f, MarkerShape::Star});
+    list.markers.push_back({at, palette::kStar, 16.0f, MarkerShape::Star});
 }
 
 void add_com_trail(const Scene& scene, DrawList& list) {

@@ -53,7 +53,7 @@ enum class MarkerShape : std::uint8_t { Star };
 struct Marker {
     glm::vec3 position{0.0f};
     glm::vec4 color{1.0f};
-    float size_px = 18.0f;  //!< outer radius
+    float size_px = 14.0f;  //!< outer radius in a 720-pixel-high picture (scaled with height)
     MarkerShape shape = MarkerShape::Star;
 };
 

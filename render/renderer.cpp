@@ -303,12 +303,14 @@ void Renderer::draw(const DrawList& list, const Camera& camera, int width_px, in
     // Markers over everything: a dark rim, then the fill.
     glDisable(GL_DEPTH_TEST);
     if (!list.markers.empty()) {
+        // Sizes are given for a 720-pixel-high picture and follow the picture's height.
+        const float scale = std::clamp(static_cast<float>(h) / 720.0f, 0.6f, 2.0f);
         std::vector<MarkerInstance> instances;
         for (const auto& m : list.markers)
             instances.push_back(
-                {m.position, glm::vec4(0.25f, 0.18f, 0.02f, 1.0f), m.size_px + 2.5f});
+                {m.position, glm::vec4(0.25f, 0.18f, 0.02f, 1.0f), scale * m.size_px + 2.5f});
         for (const auto& m : list.markers)
-            instances.push_back({m.position, m.color, m.size_px});
+            instances.push_back({m.position, m.color, scale * m.size_px});
         gl.marker.use();
         gl.marker.set("u_view_proj", view_proj);
         gl.marker.set("u_viewport_px", viewport);
