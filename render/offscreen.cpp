@@ -23,9 +23,20 @@ struct OffscreenTarget::State {
     GLuint resolve_fbo = 0, resolve_rb = 0;
     std::vector<std::uint8_t> scratch;
 
+    // glad's function pointers are process-wide: a GLFW window loaded in between would leave
+    // them pointing into libGL. We remember one of ours and reload when it changed.
+    PFNGLCLEARPROC loaded_clear = nullptr;
+
     void make_current() {
         if (!OSMesaMakeCurrent(context, osmesa_buffer.data(), GL_UNSIGNED_BYTE, 16, 16))
             throw std::runtime_error("OSMesa: cannot make the off-screen context current");
+        if (glad_glClear != loaded_clear || !loaded_clear) load_functions();
+    }
+
+    void load_functions() {
+        if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(OSMesaGetProcAddress)))
+            throw std::runtime_error("OSMesa: cannot load the OpenGL 3.3 functions");
+        loaded_clear = glad_glClear;
     }
 };
 
@@ -51,10 +62,11 @@ OffscreenTarget::OffscreenTarget(int width, int height, int samples)
     if (!state_->context)
         throw std::runtime_error(
             "OSMesa: cannot create an OpenGL 3.3 core context (is libosmesa6 installed?)");
-    state_->make_current();
-    if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(OSMesaGetProcAddress))) {
+    try {
+        state_->make_current();  // loads the GL functions too
+    } catch (...) {
         OSMesaDestroyContext(state_->context);
-        throw std::runtime_error("OSMesa: cannot load the OpenGL 3.3 functions");
+        throw;
     }
     GLint max_samples = 1;
     glGetIntegerv(GL_MAX_SAMPLES, &max_samples);

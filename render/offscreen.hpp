@@ -8,6 +8,8 @@
 
 namespace bhm::render {
 
+//! Destroy it before main returns (not as a static): Mesa's exit handlers run before static
+//! destructors, and a context torn down after them can crash.
 class OffscreenTarget {
   public:
     //! Creates the context (current afterwards, glad loaded) and a width x height target with

@@ -37,6 +37,7 @@ Window::Window(int width, int height, const std::string& title, int samples) {
         glfwTerminate();
         throw std::runtime_error("GLFW: cannot load the OpenGL 3.3 functions");
     }
+    loaded_clear_ = reinterpret_cast<void*>(glad_glClear);
     if (samples > 1) glEnable(GL_MULTISAMPLE);
 }
 
@@ -47,6 +48,13 @@ Window::~Window() {
 
 void Window::make_current() {
     glfwMakeContextCurrent(window_);
+    // glad's pointers are process-wide: an OSMesa target used in between leaves them pointing
+    // into libOSMesa. Reload when ours were replaced.
+    if (reinterpret_cast<void*>(glad_glClear) != loaded_clear_) {
+        if (!gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress)))
+            throw std::runtime_error("GLFW: cannot load the OpenGL 3.3 functions");
+        loaded_clear_ = reinterpret_cast<void*>(glad_glClear);
+    }
 }
 bool Window::should_close() const {
     return glfwWindowShouldClose(window_);
@@ -74,7 +82,7 @@ int Window::framebuffer_height() const {
 }
 
 void Window::bind() {
-    glfwMakeContextCurrent(window_);
+    make_current();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, framebuffer_width(), framebuffer_height());
 }

@@ -18,6 +18,7 @@ class Window {
     Window& operator=(const Window&) = delete;
 
     GLFWwindow* handle() const { return window_; }
+    //! Makes the context current (reloading glad's pointers if another context replaced them).
     void make_current();
     bool should_close() const;
     void poll_events();
@@ -31,6 +32,7 @@ class Window {
 
   private:
     GLFWwindow* window_ = nullptr;
+    void* loaded_clear_ = nullptr;  //!< a glad pointer as we loaded it, to notice other loaders
 };
 
 }  // namespace bhm::render

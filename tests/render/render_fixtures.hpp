@@ -66,9 +66,21 @@ inline engine::VoxelPoses curled_poses(const BodyView& body) {
     return poses;
 }
 
-//! One off-screen target for all GL tests of this binary (creating llvmpipe contexts is slow).
+//! One off-screen target and renderer for all GL tests of this binary (creating llvmpipe
+//! contexts is slow). Never destroyed: Mesa's own exit handlers run before static destructors
+//! and a context torn down after them crashes (seen with DISPLAY set).
+struct SharedGl {
+    std::unique_ptr<OffscreenTarget> target;
+    std::unique_ptr<Renderer> renderer;
+};
+
+inline SharedGl& shared_gl() {
+    static SharedGl* gl = new SharedGl;  // reachable until exit, so not a leak
+    return *gl;
+}
+
 inline OffscreenTarget& shared_target(int width = 320, int height = 240) {
-    static std::unique_ptr<OffscreenTarget> target;
+    auto& target = shared_gl().target;
     if (!target) target = std::make_unique<OffscreenTarget>(width, height, 4);
     if (target->width() != width || target->height() != height) target->resize(width, height);
     target->bind();
@@ -77,7 +89,7 @@ inline OffscreenTarget& shared_target(int width = 320, int height = 240) {
 
 inline Renderer& shared_renderer() {
     shared_target();
-    static std::unique_ptr<Renderer> renderer;
+    auto& renderer = shared_gl().renderer;
     if (!renderer) renderer = std::make_unique<Renderer>();
     return *renderer;
 }
