@@ -85,6 +85,9 @@ OffscreenTarget::~OffscreenTarget() {
     if (!state_->context) return;
     state_->make_current();
     delete_framebuffers();
+    // Release it first: GL calls made after this (other objects' destructors) then reach Mesa's
+    // no-context stubs instead of a destroyed context.
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
     OSMesaDestroyContext(state_->context);
 }
 
