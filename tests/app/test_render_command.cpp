@@ -156,6 +156,41 @@ TEST_CASE("bhm render --video says clearly when ffmpeg is missing") {
     CHECK_FALSE(fs::exists(f.out("v.mp4")));
 }
 
+TEST_CASE("bhm render --video pipes raw frames to ffmpeg and moves the file into place") {
+    Fixture f;
+    // A stand-in ffmpeg that stores what it reads in the file named last; and one that fails.
+    const fs::path bin = f.dir / "bin";
+    fs::create_directories(bin);
+    const auto script = [&](const std::string& name, const std::string& body) {
+        const fs::path path = bin / name / "ffmpeg";
+        fs::create_directories(path.parent_path());
+        std::FILE* out = std::fopen(path.c_str(), "w");
+        REQUIRE(out != nullptr);
+        std::fputs(("#!/bin/sh\n" + body).c_str(), out);
+        std::fclose(out);
+        fs::permissions(path, fs::perms::owner_all);
+        return "PATH=" + path.parent_path().string() + ":/usr/bin:/bin";
+    };
+    const std::string good = script("good", "for a; do out=\"$a\"; done\ncat > \"$out\"\n");
+    auto r = run(kExperiment + " --replay " + f.replay_path + " --video " + f.out("v.mp4") +
+                     " --frames 4 --size 64x48 --fps 12",
+                 good);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("4 frames at 12 fps") != std::string::npos);
+    REQUIRE(fs::exists(f.out("v.mp4")));
+    CHECK(fs::file_size(f.out("v.mp4")) == 4u * 64u * 48u * 4u);  // RGBA frames, nothing else
+    CHECK_FALSE(fs::exists(f.out("v.mp4.tmp.mp4")));
+
+    const std::string bad = script("bad", "cat > /dev/null\nexit 1\n");
+    r = run(kExperiment + " --replay " + f.replay_path + " --video " + f.out("w.mp4") +
+                " --frames 2 --size 64x48",
+            bad);
+    CHECK(r.status == 1);
+    CHECK(r.output.find("ffmpeg failed") != std::string::npos);
+    CHECK_FALSE(fs::exists(f.out("w.mp4")));
+    CHECK_FALSE(fs::exists(f.out("w.mp4.tmp.mp4")));
+}
+
 TEST_CASE("bhm render refuses bad input with one line naming the file or option") {
     Fixture f;
     const std::string base = kExperiment + " --body " + f.body_path + " --out " + f.out("x.png");
