@@ -1,6 +1,10 @@
 // Renderer speed: frames per second for a 2,000-voxel body at 1280x720 on OSMesa (llvmpipe).
 // The studio needs >= 30 fps with one core left to it (evolution runs on the other): run with
-// LP_NUM_THREADS=1 to measure that case. Writes CSV to stdout (or --out FILE).
+// LP_NUM_THREADS=1 to measure that case. Cases: build_draw_list (CPU only), frame_draw (draw list
+// + draw + glFinish, the camera orbiting: a studio frame), frame_draw_readback (draw + resolve +
+// read the pixels: a bhm render video frame before encoding); each at rest (hidden faces culled)
+// and deformed (every voxel moved, turned and resized: most shared faces must be drawn), with 1
+// and 4 samples per pixel. CSV on stdout (also to --out FILE); the commit comes from $BHM_COMMIT.
 //   bench_render [--frames N] [--size WxH] [--out results.csv]
 #include <glad/gl.h>
 
@@ -79,8 +83,10 @@ int main(int argc, char** argv) {
         }
     }
     const char* threads = std::getenv("LP_NUM_THREADS");
+    const char* env_commit = std::getenv("BHM_COMMIT");  // set by scripts/bench.sh
+    const std::string commit = env_commit ? env_commit : "unknown";
     std::ostringstream csv;
-    csv << "case,pose,voxels,width,height,samples,lp_threads,frames,ms_per_frame,fps\n";
+    csv << "case,pose,voxels,width,height,samples,lp_threads,frames,ms_per_frame,fps,commit\n";
     try {
         const float aspect = static_cast<float>(width) / static_cast<float>(height);
         for (const bool deformed : {false, true}) {
@@ -95,10 +101,12 @@ int main(int argc, char** argv) {
                 const double ms = 1e3 * seconds_since(start) / frames;
                 csv << "build_draw_list," << pose << "," << scene.body.voxel_count() << ",0,0,0,"
                     << (threads ? threads : "auto") << "," << frames << "," << ms << "," << 1e3 / ms
-                    << "\n";
+                    << "," << commit << "\n";
             }
             for (int samples : {1, 4}) {
                 OffscreenTarget target(width, height, samples);
+                if (!deformed && samples == 1)
+                    std::cerr << "bench_render: " << target.gl_renderer() << "\n";
                 Renderer renderer;
                 const DrawList list = build_draw_list(scene);
                 Camera camera = named_view(NamedView::Iso, list.bounds, aspect);
@@ -120,7 +128,7 @@ int main(int argc, char** argv) {
                 csv << "frame_draw," << pose << "," << scene.body.voxel_count() << "," << width
                     << "," << height << "," << target.samples() << ","
                     << (threads ? threads : "auto") << "," << frames << "," << ms << "," << 1e3 / ms
-                    << "\n";
+                    << "," << commit << "\n";
                 // draw + read back: what bhm render pays per video frame (before PNG/ffmpeg).
                 start = Clock::now();
                 for (int f = 0; f < frames; ++f) {
@@ -132,7 +140,7 @@ int main(int argc, char** argv) {
                 csv << "frame_draw_readback," << pose << "," << scene.body.voxel_count() << ","
                     << width << "," << height << "," << target.samples() << ","
                     << (threads ? threads : "auto") << "," << frames << "," << ms << "," << 1e3 / ms
-                    << "\n";
+                    << "," << commit << "\n";
             }
         }
     } catch (const std::exception& e) {
