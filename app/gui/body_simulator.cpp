@@ -11,6 +11,26 @@
 
 namespace bhm::app::gui {
 
+std::vector<int> surface_voxels(const engine::Replay& replay) {
+    const int nx = replay.nx, ny = replay.ny, nz = replay.nz;
+    std::vector<std::uint8_t> filled(static_cast<std::size_t>(nx) * ny * nz, 0);
+    for (const auto cell : replay.voxel_cell)
+        filled[static_cast<std::size_t>(cell)] = 1;
+    auto occupied = [&](int x, int y, int z) {
+        return x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz &&
+               filled[static_cast<std::size_t>(x + nx * (y + ny * z))] != 0;
+    };
+    std::vector<int> surface;
+    for (std::size_t v = 0; v < replay.voxel_cell.size(); ++v) {
+        const int cell = replay.voxel_cell[v];
+        const int x = cell % nx, y = (cell / nx) % ny, z = cell / (nx * ny);
+        if (!occupied(x - 1, y, z) || !occupied(x + 1, y, z) || !occupied(x, y - 1, z) ||
+            !occupied(x, y + 1, z) || !occupied(x, y, z - 1) || !occupied(x, y, z + 1))
+            surface.push_back(static_cast<int>(v));
+    }
+    return surface;
+}
+
 SimulatedBody simulate_body(const SimulationRequest& request, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const evo::Experiment& experiment = request.experiment;
@@ -40,6 +60,7 @@ SimulatedBody simulate_body(const SimulationRequest& request, const std::atomic<
     for (const auto& m : experiment.materials)
         density.push_back(m.physics.density_kg_m3);
     out.com_m = centre_of_mass_per_frame(out.replay, density);
+    out.surface_voxels = surface_voxels(out.replay);
     out.measures = tracker.measures();
     out.diverged = world.diverged();
     if (out.diverged) out.divergence_reason = world.divergence_reason();

@@ -37,7 +37,10 @@ struct SimulatedBody {
     evo::Experiment experiment;
     std::shared_ptr<const evo::Body> framed_body;
     engine::Replay replay;
-    std::vector<glm::vec3> com_m;                       //!< centre of mass per replay frame
+    std::vector<glm::vec3> com_m;  //!< centre of mass per replay frame
+    //! Voxels with at least one empty face neighbour on the lattice: the only ones that can be
+    //! seen (the view draws these; a solid 20x8x7 body has 580 of 1120).
+    std::vector<int> surface_voxels;
     std::array<double, evo::kMeasureCount> measures{};  //!< by evo::FitnessMeasure
     double fitness = 0.0;  //!< under the experiment's measure (kDivergedFitness if diverged)
     bool diverged = false;
@@ -47,6 +50,10 @@ struct SimulatedBody {
         return measures[static_cast<int>(evo::FitnessMeasure::BendAngleDeg)];
     }
 };
+
+//! Indices of the voxels of a replay's lattice that have an empty face neighbour (or touch the
+//! lattice's edge).
+std::vector<int> surface_voxels(const engine::Replay& replay);
 
 //! Runs one request on the calling thread; cancel (may be null) aborts with EvaluationCancelled.
 //! Throws std::invalid_argument for a body the engine cannot build.

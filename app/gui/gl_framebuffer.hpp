@@ -21,6 +21,8 @@ class GlFramebuffer {
     void resolve();
     //! Colour texture for ImGui::Image (bottom row first, as GL stores it); valid after resolve().
     unsigned texture() const { return texture_; }
+    //! The framebuffer holding the resolved colour (for glBlitFramebuffer).
+    unsigned read_framebuffer() const { return resolve_fbo_ ? resolve_fbo_ : draw_fbo_; }
     //! Reads the resolved colour, top row first, alpha 255.
     render::Image read_image();
 

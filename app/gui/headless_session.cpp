@@ -1,6 +1,7 @@
 #include "app/gui/headless_session.hpp"
 
 #include <glad/gl.h>
+#include <malloc.h>
 
 #include <imgui.h>
 
@@ -10,6 +11,11 @@
 
 namespace bhm::app::gui {
 
+void keep_freed_memory_for_rendering() {
+    mallopt(M_MMAP_THRESHOLD, 16 << 20);   // blocks below 16 MB come from the heap
+    mallopt(M_TRIM_THRESHOLD, 128 << 20);  // and up to 128 MB of free heap is kept
+}
+
 struct HeadlessStudio::Gl {
     render::OffscreenTarget target;
     ImGuiContext* imgui = nullptr;
@@ -18,7 +24,9 @@ struct HeadlessStudio::Gl {
 };
 
 HeadlessStudio::HeadlessStudio(Studio& studio, int width, int height)
-    : studio_(studio), width_(width), height_(height), gl_(std::make_unique<Gl>(width, height)) {
+    : studio_(studio), width_(width), height_(height) {
+    keep_freed_memory_for_rendering();
+    gl_ = std::make_unique<Gl>(width, height);
     gl_->target.bind();
     IMGUI_CHECKVERSION();
     gl_->imgui = ImGui::CreateContext();
@@ -70,9 +78,11 @@ void HeadlessStudio::frame(double dt_s) {
     ImGui::Render();
     gl_->target.bind();
     glViewport(0, 0, width_, height_);
-    glClearColor(0.9f, 0.9f, 0.92f, 1.0f);
+    const ImVec4 clear = ui_clear_color();
+    glClearColor(clear.x, clear.y, clear.z, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glFinish();  // the frame is done when this returns, as a window's swap would wait for it
     render::check_gl_error("drawing the studio frame");
 }
 

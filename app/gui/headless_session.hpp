@@ -14,6 +14,12 @@
 
 namespace bhm::app::gui {
 
+//! Keeps freed heap memory in the process instead of returning it to the kernel at once. llvmpipe
+//! allocates and frees megabytes of binned scene data every frame; with glibc's defaults that
+//! memory goes back and forth through brk/munmap and page faults, about a quarter of a frame's
+//! CPU time (measured with perf, tests/bench/bench_studio.cpp). Process-wide, so app/ only.
+void keep_freed_memory_for_rendering();
+
 //! Input state held between frames, copied into ImGuiIO before each NewFrame.
 struct SyntheticInput {
     glm::vec2 mouse{-1.0f, -1.0f};

@@ -13,8 +13,10 @@
 namespace bhm::app::gui {
 
 void draw_fitness_panel(Studio& s) {
+    // Before a run has history, label the axis with the measure the next run will use.
+    const bool has_run = s.run && !s.run->history.empty();
     const auto measure =
-        s.run ? s.run->experiment.fitness.measure : s.document.experiment().fitness.measure;
+        has_run ? s.run->experiment.fitness.measure : s.document.experiment().fitness.measure;
     const std::vector<GenerationRecord> none;
     const std::vector<RuleChange> no_changes;
     const ImVec2 avail = ImGui::GetContentRegionAvail();

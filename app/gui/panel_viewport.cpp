@@ -175,10 +175,14 @@ void draw_viewport_panel(Studio& s, ViewRenderer& renderer) {
     frame_view_camera(s, list, size.x / size.y);
     const int fb_w = static_cast<int>(size.x * io.DisplayFramebufferScale.x);
     const int fb_h = static_cast<int>(size.y * io.DisplayFramebufferScale.y);
-    const unsigned texture =
-        renderer.draw_to_texture(list, s.view.camera, fb_w, fb_h, s.view.samples);
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture)), size,
-                 ImVec2(0, 1), ImVec2(1, 0));
+    renderer.draw_to_texture(list, s.view.camera, fb_w, fb_h, s.view.samples);
+    // The image is copied into the UI's framebuffer in draw order; the invisible button owns
+    // the mouse over it (ImGui then reports io.WantCaptureMouse, and windows do not drag).
+    ImGui::InvisibleButton("3d view", size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
+    renderer.add_view_blit(ImGui::GetWindowDrawList(), origin,
+                           ImVec2(origin.x + size.x, origin.y + size.y));
     record_widget(s, "3d view");
     // ImGui decides hovering, so a popup or another window over the view keeps the mouse
     // (the io.WantCaptureMouse rule for an embedded view).

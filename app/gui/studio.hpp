@@ -139,6 +139,9 @@ struct Studio {
     int frame = 0;
     double frame_dt_s = 1.0 / 60.0;
     double fps = 0.0;
+    //! Longest time a frame spent taking the workers' snapshots (ms): the UI never waits for
+    //! evolution, so this stays far below a frame (bench_studio reports it).
+    double max_update_ms = 0.0;
     std::map<std::string, WidgetRect> widgets;
 };
 

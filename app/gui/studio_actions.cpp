@@ -303,7 +303,9 @@ bool select_individual(Studio& studio, std::int64_t id) {
         studio, *studio.run, *m,
         (champion ? "champion #" : "individual #") + std::to_string(id) +
             (champion ? ", generation " + std::to_string(studio.run->champion_generation) : ""));
-    set_status(studio, "simulating individual #" + std::to_string(id));
+    set_status(studio,
+               std::string(champion ? "simulating the champion #" : "simulating individual #") +
+                   std::to_string(id));
     return true;
 }
 

@@ -5,6 +5,8 @@
 #include <memory>
 #include <string>
 
+#include <imgui.h>
+
 #include "app/gui/studio.hpp"
 #include "app/gui/view_renderer.hpp"
 
@@ -14,6 +16,10 @@ namespace bhm::app::gui {
 //! after ImGui::CreateContext and before the renderer backend builds the font atlas.
 //! Returns the font used ("DejaVu Sans" or "ImGui default").
 std::string apply_studio_style(float scale);
+
+//! The colour the runners clear the framebuffer to before ImGui draws: the tiled panels have no
+//! backgrounds of their own (see studio_app.cpp).
+ImVec4 ui_clear_color();
 
 class StudioApp {
   public:

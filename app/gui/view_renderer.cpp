@@ -37,6 +37,40 @@ unsigned ViewRenderer::draw_to_texture(const render::DrawList& list, const rende
     return view_.texture();
 }
 
+namespace {
+
+// Runs inside ImGui_ImplOpenGL3_RenderDrawData with the UI framebuffer bound for drawing and
+// glViewport(0, 0, framebuffer width, height) set by the backend.
+void blit_view(const ImDrawList*, const ImDrawCmd* command) {
+    const auto& b = *static_cast<const ViewRenderer::Blit*>(command->UserCallbackData);
+    if (!b.framebuffer) return;
+    GLint viewport[4] = {0, 0, 0, 0}, read = 0;
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, b.framebuffer);
+    const int x0 = static_cast<int>(b.min.x * b.scale.x);
+    const int top = static_cast<int>(b.min.y * b.scale.y);
+    const int y0 = viewport[3] - top - b.height;  // GL rows run bottom-up
+    glBlitFramebuffer(0, 0, b.width, b.height, x0, y0, x0 + b.width, y0 + b.height,
+                      GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+    if (scissor) glEnable(GL_SCISSOR_TEST);
+}
+
+}  // namespace
+
+void ViewRenderer::add_view_blit(ImDrawList* list, ImVec2 min, ImVec2 max) {
+    blit_.framebuffer = view_.read_framebuffer();
+    blit_.width = view_.width();
+    blit_.height = view_.height();
+    blit_.min = min;
+    blit_.max = max;
+    blit_.scale = ImGui::GetIO().DisplayFramebufferScale;
+    list->AddCallback(blit_view, &blit_);
+}
+
 render::Image ViewRenderer::draw_to_image(const render::DrawList& list,
                                           const render::Camera& camera, int width_px, int height_px,
                                           int samples) {

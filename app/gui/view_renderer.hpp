@@ -3,6 +3,8 @@
 // texture and off-screen exports of any size). Lives on the GL thread; needs a current context.
 #include <memory>
 
+#include <imgui.h>
+
 #include "app/gui/gl_framebuffer.hpp"
 #include "render/camera.hpp"
 #include "render/draw_list.hpp"
@@ -20,11 +22,25 @@ class ViewRenderer {
     //! Draws off-screen at any size and reads the pixels back (screenshots, frame sequences).
     render::Image draw_to_image(const render::DrawList& list, const render::Camera& camera,
                                 int width_px, int height_px, int samples = 4);
+    //! Queues a copy of the view drawn by draw_to_texture into the UI's framebuffer over the
+    //! rectangle [min, max] (ImGui coordinates), in the draw order of `list` (an ImDrawList
+    //! callback, so ImGui draws its overlays after it). On a software rasterizer a framebuffer
+    //! blit costs a fraction of a textured, blended quad of the same size.
+    void add_view_blit(ImDrawList* list, ImVec2 min, ImVec2 max);
+
     //! Frees the export buffer (large screenshots allocate a lot).
     void release_export_buffer() { export_ = std::make_unique<GlFramebuffer>(); }
 
+    struct Blit {
+        unsigned framebuffer = 0;
+        int width = 0, height = 0;    //!< source, in pixels
+        ImVec2 min{0, 0}, max{0, 0};  //!< destination, ImGui coordinates
+        ImVec2 scale{1, 1};           //!< framebuffer pixels per ImGui unit
+    };
+
   private:
     render::Renderer renderer_;
+    Blit blit_;
     GlFramebuffer view_;
     std::unique_ptr<GlFramebuffer> export_ = std::make_unique<GlFramebuffer>();
 };

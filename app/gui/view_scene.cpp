@@ -131,6 +131,29 @@ render::Scene workspace_scene(const evo::Experiment& e, const PainterState& pain
     return scene;
 }
 
+namespace {
+
+// The poses of the listed voxels only.
+engine::VoxelPoses subset_poses(const engine::VoxelPoses& all, const std::vector<int>& voxels) {
+    engine::VoxelPoses out;
+    out.time_s = all.time_s;
+    out.position_m.reserve(3 * voxels.size());
+    out.orientation.reserve(4 * voxels.size());
+    out.size_m.reserve(3 * voxels.size());
+    for (const int v : voxels) {
+        const auto i = static_cast<std::ptrdiff_t>(v);
+        out.position_m.insert(out.position_m.end(), all.position_m.begin() + 3 * i,
+                              all.position_m.begin() + 3 * i + 3);
+        out.orientation.insert(out.orientation.end(), all.orientation.begin() + 4 * i,
+                               all.orientation.begin() + 4 * i + 4);
+        out.size_m.insert(out.size_m.end(), all.size_m.begin() + 3 * i,
+                          all.size_m.begin() + 3 * i + 3);
+    }
+    return out;
+}
+
+}  // namespace
+
 render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const ViewState& view) {
     const auto& replay = simulated.replay;
     const auto& e = simulated.experiment;
@@ -138,10 +161,22 @@ render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const
     auto& body = scene.body;
     body.nx = replay.nx, body.ny = replay.ny, body.nz = replay.nz;
     body.voxel_size_m = replay.voxel_size_m;
-    body.voxel_cell = replay.voxel_cell;
-    body.voxel_material = replay.voxel_material;
-    body.voxel_fixed = replay.voxel_fixed;
-    body.poses = replay.frames.empty() ? render::rest_poses(body) : poses_at(replay, t_s);
+    // Only voxels that can be seen: a voxel enclosed on all six faces is hidden by its
+    // neighbours (all materials are opaque here), and a software rasterizer pays for every box.
+    const bool all = simulated.surface_voxels.empty();
+    const std::size_t n = all ? replay.voxel_cell.size() : simulated.surface_voxels.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto v = all ? k : static_cast<std::size_t>(simulated.surface_voxels[k]);
+        body.voxel_cell.push_back(replay.voxel_cell[v]);
+        body.voxel_material.push_back(replay.voxel_material[v]);
+        body.voxel_fixed.push_back(v < replay.voxel_fixed.size() ? replay.voxel_fixed[v] : 0);
+    }
+    if (replay.frames.empty()) {
+        body.poses = render::rest_poses(body);
+    } else {
+        const auto poses = poses_at(replay, t_s);
+        body.poses = all ? poses : subset_poses(poses, simulated.surface_voxels);
+    }
     scene.workspace = e.workspace_size;
     scene.material_colors = material_colors(e);
     scene.faces = face_markings(e.boundary);
@@ -153,7 +188,8 @@ render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const
                                          simulated.com_m.begin() + last + 1);
     }
     if (view.show_start_beside && !replay.frames.empty()) {
-        scene.ghost_poses = replay.frames.front();
+        scene.ghost_poses = all ? replay.frames.front()
+                                : subset_poses(replay.frames.front(), simulated.surface_voxels);
         scene.options.show_ghost = true;
         scene.options.ghost_offset_m = {
             0.0f, static_cast<float>((replay.ny + 1) * replay.voxel_size_m), 0.0f};

@@ -43,6 +43,7 @@ bool animating(const Studio& s) {
 int run_window(Studio& studio, const WindowOptions& options) {
     const int width = options.width > 0 ? options.width : studio.settings.window_width;
     const int height = options.height > 0 ? options.height : studio.settings.window_height;
+    keep_freed_memory_for_rendering();
     render::Window window(width, height, "BHM Studio", 1);
     window.set_vsync(true);
     IMGUI_CHECKVERSION();
@@ -80,7 +81,8 @@ int run_window(Studio& studio, const WindowOptions& options) {
             ImGui::Render();
             window.bind();
             glViewport(0, 0, window.framebuffer_width(), window.framebuffer_height());
-            glClearColor(0.9f, 0.9f, 0.92f, 1.0f);
+            const ImVec4 clear = ui_clear_color();
+            glClearColor(clear.x, clear.y, clear.z, 1.0f);
             glClear(GL_COLOR_BUFFER_BIT);
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             window.swap_buffers();
