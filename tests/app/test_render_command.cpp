@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -47,7 +48,8 @@ Result run(const std::string& args, const std::string& env = "") {
 // A workspace-sized temp folder with a 4 x 3 x 2 body (muscle on top) and a replay of it that
 // sags over 1 s: every voxel moves down by 2 mm x t, the free end (x = 3) also along +x.
 struct Fixture {
-    fs::path dir = fs::temp_directory_path() / "bhm-render-cli";
+    // One folder per process: ctest runs test cases in parallel processes.
+    fs::path dir = fs::temp_directory_path() / ("bhm-render-cli-" + std::to_string(::getpid()));
     std::string body_path, replay_path;
     evo::Experiment experiment = evo::load_experiment(kExperiment);
     evo::Body body;
