@@ -238,9 +238,12 @@ void add_origin_star(const Scene& scene, DrawList& list) {
 void add_com_trail(const Scene& scene, DrawList& list) {
     const auto& trail = scene.options.com_trail_m;
     for (std::size_t i = 1; i < trail.size(); ++i)
-        add_line(list.lines, trail[i - 1], trail[i], palette::kComTrail, kTrailLinePx);
+        add_line(list.lines_on_top, trail[i - 1], trail[i], palette::kComTrail, kTrailLinePx);
     for (const auto& p : trail)
         list.bounds.add(p);
+    // The current centre of mass: a small dot at the trail's end.
+    if (!trail.empty())
+        list.markers.push_back({trail.back(), palette::kComTrail, 5.0f, MarkerShape::Dot});
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ struct TriangleVertex {
     glm::vec4 color{1.0f};
 };
 
-enum class MarkerShape : std::uint8_t { Star };
+enum class MarkerShape : std::uint8_t { Star, Dot };
 
 //! A screen-facing symbol of constant pixel size, drawn over everything.
 struct Marker {
@@ -67,8 +67,10 @@ struct DrawList {
     std::vector<BoxInstance> boxes;              //!< opaque, drawn first
     std::vector<BoxInstance> translucent_boxes;  //!< alpha < 1, sorted back to front at draw time
     std::vector<LineVertex> lines;               //!< pairs: segment i is lines[2i], lines[2i+1]
-    std::vector<TriangleVertex> floor;           //!< opaque floor plane, under the grid
-    std::vector<LineVertex> floor_lines;         //!< the grid on the floor (pairs, like lines)
+    //! Pairs drawn over everything (the centre-of-mass trail runs inside the body).
+    std::vector<LineVertex> lines_on_top;
+    std::vector<TriangleVertex> floor;    //!< opaque floor plane, under the grid
+    std::vector<LineVertex> floor_lines;  //!< the grid on the floor (pairs, like lines)
     std::vector<TriangleVertex> translucent_triangles;  //!< boundary faces, drawn after boxes
     std::vector<Marker> markers;
     bool axes_gizmo = false;

@@ -63,6 +63,21 @@ std::vector<glm::vec2> star_triangles() {
     return triangles;
 }
 
+// A disc of outer radius 1 as a triangle fan around its centre.
+std::vector<glm::vec2> dot_triangles() {
+    constexpr float kPi = 3.14159265358979f;
+    constexpr int kSides = 20;
+    std::vector<glm::vec2> triangles;
+    for (int i = 0; i < kSides; ++i) {
+        const float a0 = 2.0f * kPi * static_cast<float>(i) / kSides;
+        const float a1 = 2.0f * kPi * static_cast<float>(i + 1) / kSides;
+        triangles.push_back({0.0f, 0.0f});
+        triangles.push_back({std::cos(a0), std::sin(a0)});
+        triangles.push_back({std::cos(a1), std::sin(a1)});
+    }
+    return triangles;
+}
+
 void float_attribute(GLuint index, int components, GLsizei stride, std::size_t offset,
                      GLuint divisor = 0) {
     glEnableVertexAttribArray(index);
@@ -99,7 +114,8 @@ struct Renderer::Gl {
     GLuint flat_vao = 0, flat_vbo = 0;
     GLuint marker_vao = 0, star_vbo = 0, marker_vbo = 0;
     GLuint empty_vao = 0;
-    GLsizei star_vertex_count = 0;
+    std::array<GLint, 2> shape_first{};  // indexed by MarkerShape
+    std::array<GLsizei, 2> shape_count{};
     std::vector<BoxInstance> sorted;   // scratch: translucent boxes back to front
     std::vector<BoxInstance> visible;  // scratch: boxes with at least one face to draw
 
@@ -138,8 +154,12 @@ struct Renderer::Gl {
         float_attribute(0, 3, sizeof(TriangleVertex), offsetof(TriangleVertex, position));
         float_attribute(1, 4, sizeof(TriangleVertex), offsetof(TriangleVertex, color));
 
-        const auto star = star_triangles();
-        star_vertex_count = static_cast<GLsizei>(star.size());
+        // All marker shapes in one buffer: shape k is vertices [shape_first[k], +shape_count[k]).
+        auto star = star_triangles();
+        const auto dot = dot_triangles();
+        shape_first = {0, static_cast<GLint>(star.size())};
+        shape_count = {static_cast<GLsizei>(star.size()), static_cast<GLsizei>(dot.size())};
+        star.insert(star.end(), dot.begin(), dot.end());
         glGenVertexArrays(1, &marker_vao);
         glGenBuffers(1, &star_vbo);
         glGenBuffers(1, &marker_vbo);
@@ -300,24 +320,33 @@ void Renderer::draw(const DrawList& list, const Camera& camera, int width_px, in
     gl.draw_triangles(near_faces);
     glDepthMask(GL_TRUE);
 
-    // Markers over everything: a dark rim, then the fill.
+    // Lines and markers over everything. Markers: a dark rim, then the fill, per shape.
     glDisable(GL_DEPTH_TEST);
+    gl.line.use();
+    gl.draw_lines(list.lines_on_top);
     if (!list.markers.empty()) {
         // Sizes are given for a 720-pixel-high picture and follow the picture's height.
         const float scale = std::clamp(static_cast<float>(h) / 720.0f, 0.6f, 2.0f);
-        std::vector<MarkerInstance> instances;
-        for (const auto& m : list.markers)
-            instances.push_back(
-                {m.position, glm::vec4(0.25f, 0.18f, 0.02f, 1.0f), scale * m.size_px + 2.5f});
-        for (const auto& m : list.markers)
-            instances.push_back({m.position, m.color, scale * m.size_px});
         gl.marker.use();
         gl.marker.set("u_view_proj", view_proj);
         gl.marker.set("u_viewport_px", viewport);
         glBindVertexArray(gl.marker_vao);
-        upload(gl.marker_vbo, instances);
-        glDrawArraysInstanced(GL_TRIANGLES, 0, gl.star_vertex_count,
-                              static_cast<GLsizei>(instances.size()));
+        for (std::size_t shape = 0; shape < gl.shape_first.size(); ++shape) {
+            std::vector<MarkerInstance> instances;
+            for (int pass = 0; pass < 2; ++pass)
+                for (const auto& m : list.markers) {
+                    if (static_cast<std::size_t>(m.shape) != shape) continue;
+                    if (pass == 0)
+                        instances.push_back({m.position, glm::vec4(0.25f, 0.18f, 0.02f, 1.0f),
+                                             scale * m.size_px + 2.5f});
+                    else
+                        instances.push_back({m.position, m.color, scale * m.size_px});
+                }
+            if (instances.empty()) continue;
+            upload(gl.marker_vbo, instances);
+            glDrawArraysInstanced(GL_TRIANGLES, gl.shape_first[shape], gl.shape_count[shape],
+                                  static_cast<GLsizei>(instances.size()));
+        }
     }
 
     // Screen-space overlay in pixels.

@@ -267,14 +267,19 @@ TEST_CASE("ghost of t = 0: translucent, offset, not counted as body voxels") {
     CHECK(list.bounds.max.y >= 0.1f + 0.04f - 1e-4f);  // framing includes the ghost beside
 }
 
-TEST_CASE("centre-of-mass trail becomes a polyline") {
+TEST_CASE("centre-of-mass trail: a polyline drawn over the body, a dot at its end") {
     Scene scene = row_scene(2);
     scene.options.com_trail_m = {{0, 0, 0}, {0.01f, 0, 0}, {0.02f, 0.01f, 0}};
     const DrawList list = build_draw_list(scene);
-    const auto trail = std::count_if(list.lines.begin(), list.lines.end(), [](const LineVertex& v) {
-        return v.color == palette::kComTrail;
-    });
-    CHECK(trail == 4);  // two segments
+    REQUIRE(list.lines_on_top.size() == 4);  // two segments
+    for (const auto& v : list.lines_on_top)
+        CHECK(v.color == palette::kComTrail);
+    CHECK(list.lines_on_top[3].position == glm::vec3(0.02f, 0.01f, 0.0f));
+    REQUIRE(list.markers.size() == 2);  // the star and the dot
+    const auto dot = std::find_if(list.markers.begin(), list.markers.end(),
+                                  [](const Marker& m) { return m.shape == MarkerShape::Dot; });
+    REQUIRE(dot != list.markers.end());
+    CHECK(dot->position == glm::vec3(0.02f, 0.01f, 0.0f));
 }
 
 TEST_CASE("inconsistent scenes are refused with a clear reason") {
