@@ -12,6 +12,7 @@
 #include "app/gui/key_bindings.hpp"
 #include "app/gui/panels.hpp"
 #include "app/gui/studio_actions.hpp"
+#include "app/gui/ui_widgets.hpp"
 
 namespace bhm::app::gui {
 
@@ -134,15 +135,21 @@ void StudioApp::layout_and_panels() {
     // Left column: the design problem.
     layout.left_px = begin_tile("Design", {0, top}, {layout.left_px, height}).x;
     if (ImGui::BeginTabBar("design tabs")) {
-        if (ImGui::BeginTabItem("Experiment")) {
+        const bool experiment_open = ImGui::BeginTabItem("Experiment");
+        record_widget(s, "tab Experiment");
+        if (experiment_open) {
             draw_experiment_panel(s);
             ImGui::EndTabItem();
         }
-        if (ImGui::BeginTabItem("Constraints")) {
+        const bool constraints_open = ImGui::BeginTabItem("Constraints");
+        record_widget(s, "tab Constraints");
+        if (constraints_open) {
             draw_constraints_panel(s);
             ImGui::EndTabItem();
         }
-        if (ImGui::BeginTabItem("Export")) {
+        const bool export_open = ImGui::BeginTabItem("Export");
+        record_widget(s, "tab Export");
+        if (export_open) {
             draw_export_panel(s, renderer_);
             ImGui::EndTabItem();
         }

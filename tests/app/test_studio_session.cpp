@@ -4,10 +4,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 
 #include "app/gui/headless_session.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
+#include "evo/experiment_io.hpp"
+#include "render/image.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -115,6 +118,48 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
     CHECK(studio.view.mode == ViewMode::Simulation);
     CHECK(studio.clock.time_s == doctest::Approx(0.3));
     CHECK(studio.clock.duration_s == doctest::Approx(0.4).epsilon(0.02));
+
+    // Exports from the Export tab: the champion as VXA and body JSON, the replay as frames, and
+    // the 3D view at a size of its own.
+    studio.exports.champion_vxa_path = (dir / "champion.vxa").string();
+    studio.exports.champion_json_path = (dir / "champion-body.json").string();
+    studio.exports.frames_folder = (dir / "frames").string();
+    studio.exports.frames_width = 160;
+    studio.exports.frames_height = 100;
+    studio.exports.frames_fps = 10.0;
+    const auto view_png = (dir / "view.png").string();
+    run_script(session, json::array({{{"click", "tab Export"}},
+                                     {{"click", "Save VXA"}},
+                                     {{"click", "Save body JSON"}},
+                                     {{"click", "Write frames"}},
+                                     {{"frames", 8}},
+                                     {{"export_view", view_png}, {"size", {320, 200}}}}));
+    CHECK(evo::load_body(studio.exports.champion_json_path) == *studio.shown->framed_body);
+    std::ifstream vxa(studio.exports.champion_vxa_path);
+    const std::string vxa_text((std::istreambuf_iterator<char>(vxa)),
+                               std::istreambuf_iterator<char>());
+    CHECK(vxa_text.find("<VXA") != std::string::npos);
+    for (int i = 0; i <= 4; ++i) {  // 0.4 s at 10 frames/s: t = 0, 0.1, ..., 0.4
+        const auto frame = dir / "frames" / ("frame_0000" + std::to_string(i) + ".png");
+        REQUIRE_MESSAGE(std::filesystem::exists(frame), frame.string());
+    }
+    CHECK_FALSE(std::filesystem::exists(dir / "frames" / "frame_00005.png"));
+    const auto frame = render::read_png((dir / "frames" / "frame_00004.png").string());
+    CHECK(frame.width == 160);
+    CHECK(frame.height == 100);
+    const auto view = render::read_png(view_png);
+    CHECK(view.width == 320);
+    CHECK(view.height == 200);
+
+    // The folder the run wrote, opened as a run directory, shows the same history and champion.
+    REQUIRE(open_run_directory(studio, (dir / "run").string()));
+    session.frame();
+    REQUIRE(studio.run);
+    CHECK(studio.run->history.size() == 2);
+    CHECK(studio.run->champion.id == run->champion.id);
+    CHECK(studio.run->champion.fitness == run->champion.fitness);
+    CHECK(*studio.run->champion.body == *run->champion.body);
+    CHECK(studio.run->history.back().best_fitness == run->history.back().best_fitness);
 }
 
 TEST_CASE("studio session: pause, change the fitness measure, resume; stop and resume the folder") {
