@@ -43,6 +43,10 @@ HeadlessStudio::HeadlessStudio(Studio& studio, int width, int height)
     }
     gl_->backend = true;
     app_ = std::make_unique<StudioApp>(studio);
+    // ImGui ignores the mouse over windows in the frames they appear in (they are laid out
+    // hidden first): settle the layout so a script's first click lands.
+    for (int i = 0; i < 3; ++i)
+        frame();
 }
 
 HeadlessStudio::~HeadlessStudio() {

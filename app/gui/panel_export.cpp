@@ -21,6 +21,12 @@ void path_field(Studio& s, const char* id, std::string& value) {
     record_widget(s, id + 2);
 }
 
+void hint(const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
+}
+
 void size_fields(const char* id, int& width, int& height) {
     int size[2] = {width, height};
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 9.0f);
@@ -42,7 +48,7 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     ImGui::SameLine();
     if (tracked_button(s, "Save PNG"))
         export_screenshot(s, renderer, x.screenshot_path, x.screenshot_width, x.screenshot_height);
-    ImGui::TextDisabled("rendered off-screen at that size, with the view's camera");
+    hint("rendered off-screen at that size, with the view's camera");
 
     section_title("Replay as a frame sequence");
     path_field(s, "##frames folder", x.frames_folder);
@@ -61,7 +67,7 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
             start_frame_export(s, x.frames_folder, x.frames_width, x.frames_height, x.frames_fps);
         ImGui::EndDisabled();
     }
-    ImGui::TextDisabled("frame_00000.png ... over the whole simulated time");
+    hint("frame_00000.png ... over the whole simulated time");
 
     section_title("Champion (or the body shown)");
     path_field(s, "##vxa path", x.champion_vxa_path);

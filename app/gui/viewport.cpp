@@ -11,6 +11,7 @@ namespace {
 
 constexpr glm::vec4 kHoverFace{1.0f, 0.78f, 0.10f, 0.30f};
 constexpr glm::vec4 kHoverCell{1.0f, 0.62f, 0.0f, 1.0f};
+constexpr glm::vec4 kFixedFaceTint{0.10f, 0.62f, 0.22f, 0.28f};
 
 LatticeBox workspace_box(const evo::Experiment& e) {
     return {e.workspace_size, e.voxel_size_m};
@@ -32,6 +33,12 @@ render::DrawList build_view_draw_list(const Studio& s) {
     render::Scene scene = workspace_scene(e, s.painter, painter_context_body(s));
     scene.options.show_edges = s.view.show_edges;
     render::DrawList list = render::build_draw_list(scene);
+    // The renderer's fixed-face tint is faint over a light background; the painter's job is to
+    // show which faces hold the body, so fixed faces get a second green layer here.
+    for (int f = 0; f < 6; ++f)
+        if (e.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
+            add_face_highlight(list, e.workspace_size, e.voxel_size_m, static_cast<evo::Face>(f),
+                               kFixedFaceTint);
     if (s.painter.tool == PainterTool::Faces && s.painter.hovered_face)
         add_face_highlight(list, e.workspace_size, e.voxel_size_m, *s.painter.hovered_face,
                            kHoverFace);
