@@ -4,6 +4,7 @@
 // and body simulator, and the persisted settings. Panels are free functions over it (panels.hpp);
 // actions that the mouse, the keyboard and scripts share live in studio_actions.hpp.
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -116,6 +117,7 @@ struct Studio {
     RunDirectoryWatch run_directory;               //!< a run directory opened for viewing
     std::shared_ptr<const EvolutionSnapshot> run;  //!< the one shown: live session or directory
     bool showing_run_directory = false;
+    std::chrono::steady_clock::time_point last_directory_check{};
     std::string run_dir_field;   //!< where the next run is written
     std::string open_run_field;  //!< run directory to open
 

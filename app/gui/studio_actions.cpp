@@ -349,8 +349,12 @@ void set_named_view(Studio& studio, render::NamedView view) {
 void update_studio(Studio& studio) {
     // The snapshot to show: a watched run directory, else the live (or last) session.
     if (studio.showing_run_directory) {
-        if (studio.frame % 30 == 0 && studio.run_directory.refresh())
-            studio.run = studio.run_directory.snapshot();
+        // Twice a second is enough for a run that writes once per generation; stat() is cheap.
+        const auto now = std::chrono::steady_clock::now();
+        if (now - studio.last_directory_check > std::chrono::milliseconds(500)) {
+            studio.last_directory_check = now;
+            if (studio.run_directory.refresh()) studio.run = studio.run_directory.snapshot();
+        }
     } else {
         studio.run = studio.evolution.snapshot();
     }

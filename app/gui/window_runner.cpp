@@ -59,6 +59,7 @@ int run_window(Studio& studio, const WindowOptions& options) {
         auto last = std::chrono::steady_clock::now();
         double fps_accumulator = 0.0;
         int fps_frames = 0;
+        std::string shown_title;
         for (int frame = 0; !window.should_close() && !studio.quit_requested; ++frame) {
             if (options.max_frames > 0 && frame >= options.max_frames) break;
             if (animating(studio) || frame < 3)
@@ -73,6 +74,13 @@ int run_window(Studio& studio, const WindowOptions& options) {
                 studio.fps = fps_frames / fps_accumulator;
                 fps_accumulator = 0.0;
                 fps_frames = 0;
+            }
+            // The title names the document and marks unsaved changes.
+            const std::string title = "BHM Studio - " + document_label(studio.document) +
+                                      (studio.document.dirty() ? " *" : "");
+            if (title != shown_title) {
+                glfwSetWindowTitle(window.handle(), title.c_str());
+                shown_title = title;
             }
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
