@@ -246,12 +246,15 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
         studio.follow_champion = true;
         studio.requested_champion = -1;
         studio.run = studio.run_directory.snapshot();
-        if (studio.run) {
+        std::string note;
+        if (studio.run && !studio.document.dirty()) {
             // Show the run's experiment in the editor (a copy; the run directory is never written).
             studio.document.reset(studio.run->experiment, "");
             studio.view.camera_needs_framing = true;
+        } else if (studio.run) {
+            note = " (the editor keeps your unsaved experiment)";
         }
-        set_status(studio, "watching run directory " + run_dir);
+        set_status(studio, "watching run directory " + run_dir + note);
         return true;
     } catch (const std::exception& e) {
         set_status(studio, e.what(), true);

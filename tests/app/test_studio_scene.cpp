@@ -1,0 +1,110 @@
+// What the 3D view draws, checked on the CPU: the painter's workspace scene (frame, overrides,
+// slice), the cells picking treats as occupied, and the simulated body with hidden voxels culled.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+
+#include "app/gui/body_simulator.hpp"
+#include "app/gui/constraint_edits.hpp"
+#include "app/gui/view_scene.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+
+namespace {
+
+int count_material(const render::BodyView& body, int material) {
+    return static_cast<int>(
+        std::count(body.voxel_material.begin(), body.voxel_material.end(), material));
+}
+
+}  // namespace
+
+TEST_CASE("studio scene: the painter shows the frame, the overrides and the slice") {
+    auto e = testing::tiny_experiment({4, 3, 3});
+    e = with_enclosure_thickness(e, evo::Face::XMin, 1);  // the x = 0 layer: 9 frame cells
+    e = with_override(e, {2, 1, 1}, PaintKind::Empty);
+    e = with_override(e, {3, 0, 0}, PaintKind::Fixed);
+    e = with_override(e, {3, 2, 2}, PaintKind::Material, 2);
+    const auto extra = painter_materials(e);
+    CHECK(extra.frame == 3);
+    CHECK(extra.forbidden == 4);
+    CHECK(extra.fixed == 5);
+
+    const PainterState painter;
+    const auto scene = workspace_scene(e, painter, nullptr);
+    const auto& body = scene.body;
+    CHECK(body.voxel_count() == 9 + 3);
+    CHECK(count_material(body, extra.frame) == 9);
+    CHECK(count_material(body, extra.forbidden) == 1);
+    CHECK(count_material(body, extra.fixed) == 1);
+    CHECK(count_material(body, 2) == 1);
+    for (int v = 0; v < body.voxel_count(); ++v) {
+        const auto c = body.voxel_coords(v);
+        const bool held = c == std::array<int, 3>{3, 0, 0};
+        CHECK(body.voxel_fixed[static_cast<std::size_t>(v)] == (held ? 1 : 0));
+    }
+    CHECK(scene.faces[0] == render::FaceMarking::Fixed);
+    CHECK(scene.faces[1] == render::FaceMarking::Free);
+    REQUIRE(scene.material_colors.size() == 5);
+    CHECK(scene.material_colors[2].a < 1.0f);  // the frame is see-through
+
+    // The same cells are what picking stops at.
+    const auto occupied = painter_occupancy(e, nullptr);
+    CHECK(std::count(occupied.begin(), occupied.end(), 1) == 12);
+
+    // A slice at z = 0 hides the two upper layers.
+    PainterState sliced;
+    sliced.slice = {2, 0};
+    const auto low = workspace_scene(e, sliced, nullptr);
+    CHECK(low.body.voxel_count() == 3 + 1);  // frame column at z = 0, the fixed marker
+}
+
+TEST_CASE("studio scene: a champion inside the workspace is shown under the frame") {
+    auto e = testing::tiny_experiment({3, 2, 2});
+    evo::Body champion;
+    champion.size = {3, 2, 2};
+    champion.cells.assign(12, 2);
+    const auto scene = workspace_scene(e, PainterState{}, &champion);
+    CHECK(scene.body.voxel_count() == 12);
+    CHECK(count_material(scene.body, 2) == 12);
+    evo::Body wrong_size = champion;
+    wrong_size.size = {2, 3, 2};  // not this workspace: not drawn
+    CHECK(workspace_scene(e, PainterState{}, &wrong_size).body.voxel_count() == 0);
+}
+
+TEST_CASE("studio scene: only voxels with an empty neighbour are drawn") {
+    engine::Replay replay;
+    replay.nx = replay.ny = replay.nz = 3;
+    for (int cell = 0; cell < 27; ++cell) {
+        replay.voxel_cell.push_back(cell);
+        replay.voxel_material.push_back(1);
+        replay.voxel_fixed.push_back(0);
+    }
+    const auto surface = surface_voxels(replay);
+    CHECK(surface.size() == 26);
+    CHECK(std::find(surface.begin(), surface.end(), 13) == surface.end());  // the centre
+
+    SimulatedBody simulated;
+    simulated.experiment = testing::tiny_experiment({3, 3, 3});
+    simulated.replay = replay;
+    engine::VoxelPoses poses;
+    poses.time_s = 0.0;
+    for (int v = 0; v < 27; ++v) {
+        poses.position_m.insert(poses.position_m.end(),
+                                {0.01f * (v % 3), 0.01f * (v / 3 % 3), 0.01f * (v / 9)});
+        poses.orientation.insert(poses.orientation.end(), {1, 0, 0, 0});
+        poses.size_m.insert(poses.size_m.end(), {0.01f, 0.01f, 0.01f});
+    }
+    simulated.replay.frames = {poses};
+    simulated.surface_voxels = surface;
+    ViewState view;
+    const auto scene = simulation_scene(simulated, 0.0, view);
+    CHECK(scene.body.voxel_count() == 26);
+    CHECK(scene.body.poses.voxel_count() == 26);
+    // Voxel 14 (cell (2, 1, 1)) is the 14th drawn (the centre, 13, is skipped): same position.
+    CHECK(scene.body.voxel_cell[13] == 14);
+    CHECK(scene.body.poses.position_m[3 * 13] == poses.position_m[3 * 14]);
+    CHECK(render::build_draw_list(scene).voxel_instance_count() == 26);
+}
