@@ -4,3 +4,6 @@
 extern "C" const char* __lsan_default_suppressions() {
     return "leak:libOSMesa.so\n";
 }
+extern "C" const char* __lsan_default_options() {
+    return "print_suppressions=0";
+}
