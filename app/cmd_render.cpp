@@ -189,6 +189,8 @@ int render_command(ArgParser& args) {
     ReplaySceneOptions replay_options;
     replay_options.ghost = args.has("--ghost");
     replay_options.ghost_beside = ghost == "beside";
+    // Beside means across the line of sight: along x when looking along y (front view).
+    replay_options.ghost_axis = *view == render::NamedView::Front ? 0 : 1;
     replay_options.trail = args.has("--trail");
     replay_options.interpolate = !args.has("--nearest");
     const std::vector<float>* phases = spec ? &spec->phase_rad : nullptr;

@@ -100,9 +100,12 @@ render::Scene replay_scene(const evo::Experiment& experiment, const engine::Repl
     if (options.ghost) {
         scene.ghost_poses = replay.frames.front();
         scene.options.show_ghost = true;
-        if (options.ghost_beside)
-            scene.options.ghost_offset_m = {
-                0.0f, static_cast<float>((replay.ny + 1) * replay.voxel_size_m), 0.0f};
+        if (options.ghost_beside) {
+            const int axis = options.ghost_axis == 0 ? 0 : 1;
+            const int cells = axis == 0 ? replay.nx : replay.ny;
+            scene.options.ghost_offset_m[axis] =
+                static_cast<float>((cells + 1) * replay.voxel_size_m);
+        }
     }
     if (options.trail) {
         // Weighted by density: voxels of one size weigh what their material weighs.

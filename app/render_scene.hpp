@@ -38,7 +38,8 @@ ScalarColoring parse_scalar_coloring(const std::string& name);
 
 struct ReplaySceneOptions {
     bool ghost = false;         //!< the t = 0 state as a translucent ghost
-    bool ghost_beside = false;  //!< beside the body (+y, one voxel apart) instead of over it
+    bool ghost_beside = false;  //!< beside the body (one voxel apart) instead of over it
+    int ghost_axis = 1;         //!< the axis it is moved along when beside: 0 = +x, 1 = +y
     bool trail = false;         //!< centre-of-mass trail up to the time shown
     bool interpolate = true;    //!< blend frames, or the last frame at or before the time
 };

@@ -269,7 +269,11 @@ TEST_CASE("replay scenes: poses at the time, ghost beside, trail, displacement i
     CHECK(scene.body.poses.time_s == doctest::Approx(0.5));
     CHECK(scene.ghost_poses.has_value());
     CHECK(scene.options.ghost_offset_m.y == doctest::Approx(0.07f));  // (6 + 1) voxels of 1 cm
-    CHECK(scene.options.com_trail_m.size() == 6);                     // frames at 0, 0.1 ... 0.5
+    options.ghost_axis = 0;  // front view: beside along x, (8 + 1) voxels
+    const render::Scene along_x = app::replay_scene(f.experiment, replay, 0.5, options);
+    CHECK(along_x.options.ghost_offset_m.x == doctest::Approx(0.09f));
+    CHECK(along_x.options.ghost_offset_m.y == 0.0f);
+    CHECK(scene.options.com_trail_m.size() == 6);  // frames at 0, 0.1 ... 0.5
     app::apply_scalar_coloring(scene, app::ScalarColoring::Displacement, &replay.frames.front());
     // Voxels away from the free end moved 1 mm = 0.1 voxel.
     CHECK(scene.options.voxel_scalar[0] == doctest::Approx(0.1f).epsilon(1e-3));
