@@ -131,29 +131,17 @@ int render_command(ArgParser& args) {
         throw UsageError("--time must be >= 0");
 
     // Inputs: every problem of both files before giving up.
-    std::vector<evo::Problem> problems;
     evo::Experiment experiment;
     evo::Body body;
-    bool experiment_ok = false, body_ok = false;
+    bool body_ok = false;
     try {
-        experiment = evo::load_experiment(experiment_path);
-        experiment_ok = true;
+        auto loaded = evo::load_experiment_and_body(experiment_path, args.get("--body", ""));
+        experiment = std::move(loaded.experiment);
+        body_ok = loaded.body.has_value();
+        if (body_ok) body = std::move(*loaded.body);
     } catch (const evo::ValidationError& e) {
-        problems.insert(problems.end(), e.problems.begin(), e.problems.end());
+        return report_problems(e.problems);
     }
-    if (args.has("--body")) {
-        try {
-            body = evo::load_body(args.get("--body"));
-            body_ok = true;
-        } catch (const evo::ValidationError& e) {
-            problems.insert(problems.end(), e.problems.begin(), e.problems.end());
-        }
-        if (experiment_ok && body_ok) {
-            auto more = evo::validate_body_against(body, experiment, args.get("--body"));
-            problems.insert(problems.end(), more.begin(), more.end());
-        }
-    }
-    if (!problems.empty()) return report_problems(problems);
 
     std::optional<engine::BodySpec> spec;
     if (body_ok) {

@@ -67,27 +67,15 @@ int simulate(ArgParser& args) {
         throw UsageError("--seconds must be positive");
 
     // Both files are read before reporting, so one run lists every problem of both.
-    std::vector<evo::Problem> problems;
     evo::Experiment experiment;
     evo::Body body;
-    bool experiment_ok = false, body_ok = false;
     try {
-        experiment = evo::load_experiment(experiment_path);
-        experiment_ok = true;
+        auto loaded = evo::load_experiment_and_body(experiment_path, body_path);
+        experiment = std::move(loaded.experiment);
+        body = std::move(*loaded.body);
     } catch (const evo::ValidationError& e) {
-        problems.insert(problems.end(), e.problems.begin(), e.problems.end());
+        return report_problems(e.problems);
     }
-    try {
-        body = evo::load_body(body_path);
-        body_ok = true;
-    } catch (const evo::ValidationError& e) {
-        problems.insert(problems.end(), e.problems.begin(), e.problems.end());
-    }
-    if (experiment_ok && body_ok) {
-        auto more = evo::validate_body_against(body, experiment, body_path);
-        problems.insert(problems.end(), more.begin(), more.end());
-    }
-    if (!problems.empty()) return report_problems(problems);
 
     const double total_s = args.get_double("--seconds", evo::evaluation_seconds(experiment));
     const double settle_s = experiment.simulation.settle_s;

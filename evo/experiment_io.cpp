@@ -664,4 +664,30 @@ std::vector<Problem> validate_body_against(const Body& body, const Experiment& e
     return problems;
 }
 
+ExperimentAndBody load_experiment_and_body(const std::string& experiment_path,
+                                           const std::string& body_path) {
+    std::vector<Problem> problems;
+    ExperimentAndBody out;
+    bool experiment_ok = false;
+    try {
+        out.experiment = load_experiment(experiment_path);
+        experiment_ok = true;
+    } catch (const ValidationError& e) {
+        problems.insert(problems.end(), e.problems.begin(), e.problems.end());
+    }
+    if (!body_path.empty()) {
+        try {
+            out.body = load_body(body_path);
+            if (experiment_ok) {
+                auto more = validate_body_against(*out.body, out.experiment, body_path);
+                problems.insert(problems.end(), more.begin(), more.end());
+            }
+        } catch (const ValidationError& e) {
+            problems.insert(problems.end(), e.problems.begin(), e.problems.end());
+        }
+    }
+    if (!problems.empty()) throw ValidationError(std::move(problems));
+    return out;
+}
+
 }  // namespace bhm::evo

@@ -1,6 +1,7 @@
 #pragma once
 // Reading, validating and writing experiment and body files (docs/experiment-format.md).
 // Validation reports every problem, one per line, as "file:field: message".
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,6 +43,15 @@ void save_body(const std::string& path, const Body& body);
 //! Problems of a body against an experiment (size larger than the workspace, unknown material...).
 std::vector<Problem> validate_body_against(const Body& body, const Experiment& experiment,
                                            const std::string& file_label);
+
+struct ExperimentAndBody {
+    Experiment experiment;
+    std::optional<Body> body;
+};
+//! Loads an experiment and, when body_path is not empty, a body checked against it; reads both
+//! before giving up and throws one ValidationError listing every problem of both files.
+ExperimentAndBody load_experiment_and_body(const std::string& experiment_path,
+                                           const std::string& body_path);
 
 //! Writes text to path atomically: path.tmp then rename. Throws std::runtime_error on failure.
 void write_file_atomically(const std::string& path, const std::string& contents);
