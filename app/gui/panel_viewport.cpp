@@ -47,14 +47,18 @@ void toolbar(Studio& s) {
     }
     next_item(item_width("ortho", true));
     if (ImGui::Checkbox("ortho", &s.view.camera.orthographic)) s.view.camera_needs_framing = true;
+    record_widget(s, "ortho");
     next_item(item_width("edges", true));
     ImGui::Checkbox("edges", &s.view.show_edges);
+    record_widget(s, "edges");
     if (s.view.mode == ViewMode::Simulation) {
         next_item(item_width("COM trail", true));
         ImGui::Checkbox("COM trail", &s.view.show_trail);
+        record_widget(s, "COM trail");
         next_item(item_width("start beside", true));
         if (ImGui::Checkbox("start beside", &s.view.show_start_beside))
             s.view.camera_needs_framing = true;
+        record_widget(s, "start beside");
     }
 }
 

@@ -14,7 +14,7 @@ struct PanelLayout {
     float left_px = 360.0f;    //!< experiment / constraints column
     float right_px = 400.0f;   //!< run, fitness plot, population column
     float bottom_px = 132.0f;  //!< replay timeline under the 3D view
-    float run_px = 240.0f;     //!< run control panel height in the right column
+    float run_px = 270.0f;     //!< run control panel height in the right column
     float plot_px = 250.0f;    //!< fitness plot height
     bool operator==(const PanelLayout&) const = default;
 };
