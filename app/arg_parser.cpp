@@ -81,7 +81,9 @@ bool ArgParser::parse(const std::vector<std::string>& args) {
     return true;
 }
 
-bool ArgParser::has(const std::string& name) const { return values_.count(name) != 0; }
+bool ArgParser::has(const std::string& name) const {
+    return values_.count(name) != 0;
+}
 
 std::string ArgParser::get(const std::string& name, const std::string& fallback) const {
     auto it = values_.find(name);
@@ -115,7 +117,8 @@ std::string ArgParser::usage() const {
     out << "usage: bhm " << command_ << " " << synopsis_ << "\n\n" << summary_ << "\n";
     if (!positional_specs_.empty()) {
         out << "\narguments:\n";
-        for (const auto& p : positional_specs_) out << "  " << p.name << "\n      " << p.help << "\n";
+        for (const auto& p : positional_specs_)
+            out << "  " << p.name << "\n      " << p.help << "\n";
     }
     out << "\noptions:\n";
     for (const auto& o : options_) {

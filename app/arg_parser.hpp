@@ -20,7 +20,7 @@ struct OptionSpec {
 };
 
 class ArgParser {
-public:
+  public:
     ArgParser(std::string command, std::string synopsis, std::string summary);
     ArgParser& option(std::string name, std::string value_name, std::string help);
     ArgParser& flag(std::string name, std::string help);
@@ -40,7 +40,7 @@ public:
     std::string usage() const;
     const std::string& command() const { return command_; }
 
-private:
+  private:
     const OptionSpec* find(const std::string& name) const;
     std::string command_, synopsis_, summary_;
     std::vector<OptionSpec> options_;

@@ -54,7 +54,8 @@ int run_export(ArgParser& parser) {
     try {
         return export_body(parser);
     } catch (const evo::ValidationError& e) {
-        for (const auto& p : e.problems) std::cerr << p.to_string() << "\n";
+        for (const auto& p : e.problems)
+            std::cerr << p.to_string() << "\n";
         return 1;
     }
 }
@@ -62,17 +63,20 @@ int run_export(ArgParser& parser) {
 }  // namespace
 
 int cmd_export(const Args& args) {
-    ArgParser parser("export", "(EXPERIMENT.json --body BODY.json | RUN_DIR) [--vxa OUT.vxa] "
-                               "[--body-out BODY.json] [--experiment-out EXPERIMENT.json]",
-                     "Exports a body framed by its experiment (enclosure and overrides applied), or the\n"
-                     "champion of a run directory written by 'bhm evolve', as a VXA 1.0 file that\n"
-                     "VoxCAD opens, as a body JSON file, and/or the experiment as JSON. Files are\n"
-                     "written atomically.");
+    ArgParser parser(
+        "export",
+        "(EXPERIMENT.json --body BODY.json | RUN_DIR) [--vxa OUT.vxa] "
+        "[--body-out BODY.json] [--experiment-out EXPERIMENT.json]",
+        "Exports a body framed by its experiment (enclosure and overrides applied), or the\n"
+        "champion of a run directory written by 'bhm evolve', as a VXA 1.0 file that\n"
+        "VoxCAD opens, as a body JSON file, and/or the experiment as JSON. Files are\n"
+        "written atomically.");
     parser.positional("SOURCE", "an experiment file (with --body) or a run directory");
     parser.option("--body", "BODY.json", "the body to export (with an experiment file)");
     parser.option("--vxa", "OUT.vxa", "write a VoxCAD VXA 1.0 file");
     parser.option("--body-out", "BODY.json", "write the (framed) body as a body file");
-    parser.option("--experiment-out", "FILE.json", "write the experiment as a full experiment file");
+    parser.option("--experiment-out", "FILE.json",
+                  "write the experiment as a full experiment file");
     return run_command(parser, args, run_export);
 }
 

@@ -40,21 +40,22 @@ int validate_body(ArgParser& parser) {
             }
         }
     }
-    for (const auto& p : problems) std::cerr << p.to_string() << "\n";
+    for (const auto& p : problems)
+        std::cerr << p.to_string() << "\n";
     if (!problems.empty()) return 1;
-    if (!parser.has("--quiet"))
-        std::cout << parser.positionals().size() << " file(s) valid\n";
+    if (!parser.has("--quiet")) std::cout << parser.positionals().size() << " file(s) valid\n";
     return 0;
 }
 
 }  // namespace
 
 int cmd_validate(const Args& args) {
-    ArgParser parser("validate", "FILE... [--quiet]",
-                     "Checks experiment and body files and reports every problem, one per line, as\n"
-                     "file:field: message. A body file is recognised by its \"layers\" key; bodies are\n"
-                     "also checked against the first experiment named in the same call.\n"
-                     "Exit status: 0 when every file is valid, 1 when not, 2 on a usage error.");
+    ArgParser parser(
+        "validate", "FILE... [--quiet]",
+        "Checks experiment and body files and reports every problem, one per line, as\n"
+        "file:field: message. A body file is recognised by its \"layers\" key; bodies are\n"
+        "also checked against the first experiment named in the same call.\n"
+        "Exit status: 0 when every file is valid, 1 when not, 2 on a usage error.");
     parser.positional("FILE", "experiment (.json) or body (.json) file", true, true);
     parser.flag("--quiet", "print nothing when valid");
     return run_command(parser, args, validate_body);

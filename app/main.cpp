@@ -26,7 +26,8 @@ constexpr Subcommand kSubcommands[] = {
 
 void print_usage(std::ostream& out) {
     out << "usage: bhm [SUBCOMMAND] [ARGS...]\n       bhm --version\n\nsubcommands:\n";
-    for (const auto& s : kSubcommands) out << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << "\n";
+    for (const auto& s : kSubcommands)
+        out << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << "\n";
     out << "\n'bhm SUBCOMMAND --help' describes each one.\n";
 }
 

@@ -14,7 +14,9 @@ namespace {
 
 nlohmann::json read_json(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path + ": cannot be read (is this a run directory written by 'bhm evolve'?)");
+    if (!in)
+        throw std::runtime_error(
+            path + ": cannot be read (is this a run directory written by 'bhm evolve'?)");
     auto json = nlohmann::json::parse(in, nullptr, false);
     if (json.is_discarded() || !json.is_object())
         throw std::runtime_error(path + ": not valid JSON (the file is damaged)");
@@ -33,8 +35,8 @@ RunChampion load_run_champion(const std::string& run_dir) {
     out.experiment = evo::parse_experiment(run["experiment"], run_path + " (experiment)");
     // Rule changes made during the run (studio: expert in the loop) replace the fitness section;
     // the champion was judged under the last of them.
-    if (auto changes = run.find("rule_changes"); changes != run.end() && changes->is_array() &&
-                                                 !changes->empty()) {
+    if (auto changes = run.find("rule_changes");
+        changes != run.end() && changes->is_array() && !changes->empty()) {
         auto j = evo::experiment_to_json(out.experiment);
         j["fitness"] = changes->back().at("fitness");
         out.experiment = evo::parse_experiment(j, run_path + " (rule_changes)");

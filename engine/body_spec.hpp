@@ -1,6 +1,7 @@
 #pragma once
 // The input to the engine: one body on its lattice, its materials and the physical settings.
-// Everything here is SI. The engine knows nothing of JSON, CPPNs or fitness: evo/ and app/ fill this.
+// Everything here is SI. The engine knows nothing of JSON, CPPNs or fitness: evo/ and app/ fill
+// this.
 #include <cstdint>
 #include <vector>
 
@@ -8,12 +9,12 @@ namespace bhm::engine {
 
 //! One material of the palette (paper Table 1). Material index k in a lattice means materials[k-1].
 struct Material {
-    double youngs_modulus_pa = 5e6;   //!< E
-    double density_kg_m3 = 1000.0;    //!< rho
-    double poisson_ratio = 0.35;      //!< nu, in (-1, 0.5)
-    double cte_per_c = 0.0;           //!< linear thermal expansion; > 0 makes the voxel active
-    double static_friction = 1.0;     //!< mu_s against the floor
-    double dynamic_friction = 0.5;    //!< mu_k against the floor
+    double youngs_modulus_pa = 5e6;  //!< E
+    double density_kg_m3 = 1000.0;   //!< rho
+    double poisson_ratio = 0.35;     //!< nu, in (-1, 0.5)
+    double cte_per_c = 0.0;          //!< linear thermal expansion; > 0 makes the voxel active
+    double static_friction = 1.0;    //!< mu_s against the floor
+    double dynamic_friction = 0.5;   //!< mu_k against the floor
     bool operator==(const Material&) const = default;
 };
 
@@ -24,16 +25,17 @@ struct Environment {
 };
 
 struct Damping {
-    double bond_ratio = 1.0;        //!< fraction of critical damping of each link (Voxelyze zeta_internal)
-    double global_ratio = 0.01;     //!< damping of each voxel toward rest (zeta_global)
-    double collision_ratio = 0.8;   //!< damping of floor contact (zeta_collision)
+    double bond_ratio =
+        1.0;  //!< fraction of critical damping of each link (Voxelyze zeta_internal)
+    double global_ratio = 0.01;    //!< damping of each voxel toward rest (zeta_global)
+    double collision_ratio = 0.8;  //!< damping of floor contact (zeta_collision)
     bool operator==(const Damping&) const = default;
 };
 
 struct Actuation {
-    double frequency_hz = 2.0;             //!< f in dT = A sin(2 pi f t + phase)
-    double temperature_amplitude_c = 14.47;//!< A
-    double start_s = 1.0;                  //!< actuation is off before this time (settling)
+    double frequency_hz = 2.0;               //!< f in dT = A sin(2 pi f t + phase)
+    double temperature_amplitude_c = 14.47;  //!< A
+    double start_s = 1.0;                    //!< actuation is off before this time (settling)
     bool operator==(const Actuation&) const = default;
 };
 

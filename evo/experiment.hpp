@@ -43,9 +43,9 @@ struct VoxelOverride {
 };
 
 struct Boundary {
-    std::array<BoundaryKind, 6> faces{};         //!< indexed by Face
-    std::array<int, 6> enclosure_thickness{};     //!< voxels of passive frame per face
-    int enclosure_material = 0;                   //!< 1-based material index; 0 = none
+    std::array<BoundaryKind, 6> faces{};       //!< indexed by Face
+    std::array<int, 6> enclosure_thickness{};  //!< voxels of passive frame per face
+    int enclosure_material = 0;                //!< 1-based material index; 0 = none
     std::vector<VoxelOverride> voxel_overrides;
     bool any_fixed_face() const {
         for (auto f : faces)
@@ -85,7 +85,7 @@ struct Fitness {
 };
 
 struct CppnSettings {
-    int min_hidden_nodes = 4;   //!< paper Table 2: initial hidden nodes in [4, 10]
+    int min_hidden_nodes = 4;  //!< paper Table 2: initial hidden nodes in [4, 10]
     int max_hidden_nodes = 10;
     double weight_range = 1.0;  //!< weights in [-range, range]
     double mutation_weight_sigma = 0.5;

@@ -5,8 +5,8 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -34,7 +34,9 @@ std::string problems_summary(const std::vector<Problem>& problems) {
     return s;
 }
 
-std::vector<std::string> face_names() { return {kFaceNames.begin(), kFaceNames.end()}; }
+std::vector<std::string> face_names() {
+    return {kFaceNames.begin(), kFaceNames.end()};
+}
 
 std::string read_text(const std::string& path) {
     std::error_code ec;
@@ -127,8 +129,8 @@ void parse_boundary(JsonReader& r, const json& b, const std::string& path, Bound
         const std::string fpath = JsonReader::join(path, "faces");
         r.check_keys(*faces, fpath, face_names());
         for (int f = 0; f < 6; ++f)
-            out.faces[f] = static_cast<BoundaryKind>(
-                r.choice(*faces, kFaceNames[f], fpath, {"free", "fixed"}, static_cast<int>(out.faces[f])));
+            out.faces[f] = static_cast<BoundaryKind>(r.choice(
+                *faces, kFaceNames[f], fpath, {"free", "fixed"}, static_cast<int>(out.faces[f])));
     }
     if (const json* enc = r.object(b, "enclosure", path)) {
         const std::string epath = JsonReader::join(path, "enclosure");
@@ -137,8 +139,8 @@ void parse_boundary(JsonReader& r, const json& b, const std::string& path, Bound
             const std::string tpath = JsonReader::join(epath, "thickness_voxels");
             r.check_keys(*t, tpath, face_names());
             for (int f = 0; f < 6; ++f)
-                out.enclosure_thickness[f] = static_cast<int>(
-                    r.integer(*t, kFaceNames[f], tpath, out.enclosure_thickness[f], 0, kMaxDimension));
+                out.enclosure_thickness[f] = static_cast<int>(r.integer(
+                    *t, kFaceNames[f], tpath, out.enclosure_thickness[f], 0, kMaxDimension));
         }
         out.enclosure_material =
             static_cast<int>(r.integer(*enc, "material", epath, out.enclosure_material, 0, 255));
@@ -165,7 +167,8 @@ void parse_boundary(JsonReader& r, const json& b, const std::string& path, Bound
                 r.choice(o, "kind", ipath, {"fixed", "empty", "material"}, 0));
             v.material = static_cast<int>(r.integer(o, "material", ipath, 0, 0, 255));
             if (v.kind == OverrideKind::Material && !o.contains("material"))
-                r.problem(JsonReader::join(ipath, "material"), "is required when kind is \"material\"");
+                r.problem(JsonReader::join(ipath, "material"),
+                          "is required when kind is \"material\"");
             out.voxel_overrides.push_back(v);
         }
     }
@@ -213,11 +216,12 @@ Experiment parse_experiment(const json& root, const std::string& file) {
 
     if (const json* a = r.object(root, "actuation", "")) {
         r.check_keys(*a, "actuation", {"frequency_hz", "temperature_amplitude_c", "phase"});
-        e.actuation.frequency_hz = r.number(*a, "frequency_hz", "actuation", e.actuation.frequency_hz);
+        e.actuation.frequency_hz =
+            r.number(*a, "frequency_hz", "actuation", e.actuation.frequency_hz);
         e.actuation.temperature_amplitude_c = r.number(*a, "temperature_amplitude_c", "actuation",
                                                        e.actuation.temperature_amplitude_c);
-        e.actuation.phase = static_cast<PhaseMode>(
-            r.choice(*a, "phase", "actuation", {"uniform", "random"}, 0));
+        e.actuation.phase =
+            static_cast<PhaseMode>(r.choice(*a, "phase", "actuation", {"uniform", "random"}, 0));
     }
 
     if (const json* env = r.object(root, "environment", "")) {
@@ -227,7 +231,8 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         e.environment.floor = r.boolean(*env, "floor", "environment", e.environment.floor);
     }
 
-    if (const json* b = r.object(root, "boundary", "")) parse_boundary(r, *b, "boundary", e.boundary);
+    if (const json* b = r.object(root, "boundary", ""))
+        parse_boundary(r, *b, "boundary", e.boundary);
 
     if (const json* s = r.object(root, "simulation", "")) {
         auto& sim = e.simulation;
@@ -237,7 +242,8 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         sim.settle_s = r.number(*s, "settle_s", "simulation", sim.settle_s);
         sim.evaluate_s = r.number(*s, "evaluate_s", "simulation", sim.evaluate_s);
         sim.dt_fraction = r.number(*s, "dt_fraction", "simulation", sim.dt_fraction);
-        sim.bond_damping_ratio = r.number(*s, "bond_damping_ratio", "simulation", sim.bond_damping_ratio);
+        sim.bond_damping_ratio =
+            r.number(*s, "bond_damping_ratio", "simulation", sim.bond_damping_ratio);
         sim.global_damping_ratio =
             r.number(*s, "global_damping_ratio", "simulation", sim.global_damping_ratio);
         sim.collision_damping_ratio =
@@ -247,21 +253,22 @@ Experiment parse_experiment(const json& root, const std::string& file) {
 
     if (const json* f = r.object(root, "fitness", "")) {
         r.check_keys(*f, "fitness", {"measure", "constraints", "minimize_active_voxels"});
-        e.fitness.measure = static_cast<FitnessMeasure>(r.choice(
-            *f, "measure", "fitness", {kFitnessNames.begin(), kFitnessNames.end()},
-            static_cast<int>(e.fitness.measure)));
+        e.fitness.measure = static_cast<FitnessMeasure>(
+            r.choice(*f, "measure", "fitness", {kFitnessNames.begin(), kFitnessNames.end()},
+                     static_cast<int>(e.fitness.measure)));
         e.fitness.minimize_active_voxels =
             r.boolean(*f, "minimize_active_voxels", "fitness", e.fitness.minimize_active_voxels);
         if (const json* c = r.object(*f, "constraints", "fitness")) {
             auto& con = e.fitness.constraints;
             const std::string cpath = "fitness.constraints";
-            r.check_keys(*c, cpath, {"attached_to_fixed_face", "min_fill_fraction", "min_active_voxels"});
+            r.check_keys(*c, cpath,
+                         {"attached_to_fixed_face", "min_fill_fraction", "min_active_voxels"});
             con.attached_to_fixed_face =
                 r.boolean(*c, "attached_to_fixed_face", cpath, con.attached_to_fixed_face);
             con.min_fill_fraction = r.number(*c, "min_fill_fraction", cpath, con.min_fill_fraction);
-            con.min_active_voxels = static_cast<int>(
-                r.integer(*c, "min_active_voxels", cpath, con.min_active_voxels, -1'000'000'000LL,
-                          1'000'000'000LL));
+            con.min_active_voxels =
+                static_cast<int>(r.integer(*c, "min_active_voxels", cpath, con.min_active_voxels,
+                                           -1'000'000'000LL, 1'000'000'000LL));
         }
     }
 
@@ -272,8 +279,10 @@ Experiment parse_experiment(const json& root, const std::string& file) {
                      {"population", "generations", "wall_budget_h", "max_neutral_retries", "seed",
                       "threads", "cppn"});
         constexpr long long kBig = 1'000'000'000LL;
-        evo.population = static_cast<int>(r.integer(*ev, "population", path, evo.population, -kBig, kBig));
-        evo.generations = static_cast<int>(r.integer(*ev, "generations", path, evo.generations, -kBig, kBig));
+        evo.population =
+            static_cast<int>(r.integer(*ev, "population", path, evo.population, -kBig, kBig));
+        evo.generations =
+            static_cast<int>(r.integer(*ev, "generations", path, evo.generations, -kBig, kBig));
         evo.wall_budget_h = r.number(*ev, "wall_budget_h", path, evo.wall_budget_h);
         evo.max_neutral_retries = static_cast<int>(
             r.integer(*ev, "max_neutral_retries", path, evo.max_neutral_retries, -kBig, kBig));
@@ -283,18 +292,20 @@ Experiment parse_experiment(const json& root, const std::string& file) {
             else if (it->is_number_integer())
                 r.problem("evolution.seed", "must be a non-negative integer");
             else
-                r.problem("evolution.seed", "expected an integer, got " + JsonReader::type_name(*it));
+                r.problem("evolution.seed",
+                          "expected an integer, got " + JsonReader::type_name(*it));
         }
         evo.threads = static_cast<int>(r.integer(*ev, "threads", path, evo.threads, -kBig, kBig));
         if (const json* c = r.object(*ev, "cppn", path)) {
             auto& cp = evo.cppn;
             const std::string cpath = "evolution.cppn";
-            r.check_keys(*c, cpath,
-                         {"min_hidden_nodes", "max_hidden_nodes", "weight_range", "mutation_weight_sigma"});
-            cp.min_hidden_nodes =
-                static_cast<int>(r.integer(*c, "min_hidden_nodes", cpath, cp.min_hidden_nodes, -kBig, kBig));
-            cp.max_hidden_nodes =
-                static_cast<int>(r.integer(*c, "max_hidden_nodes", cpath, cp.max_hidden_nodes, -kBig, kBig));
+            r.check_keys(
+                *c, cpath,
+                {"min_hidden_nodes", "max_hidden_nodes", "weight_range", "mutation_weight_sigma"});
+            cp.min_hidden_nodes = static_cast<int>(
+                r.integer(*c, "min_hidden_nodes", cpath, cp.min_hidden_nodes, -kBig, kBig));
+            cp.max_hidden_nodes = static_cast<int>(
+                r.integer(*c, "max_hidden_nodes", cpath, cp.max_hidden_nodes, -kBig, kBig));
             cp.weight_range = r.number(*c, "weight_range", cpath, cp.weight_range);
             cp.mutation_weight_sigma =
                 r.number(*c, "mutation_weight_sigma", cpath, cp.mutation_weight_sigma);
@@ -361,8 +372,9 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         (m.cte_per_c > 0 ? has_active : has_passive) = true;
     }
     if (!e.materials.empty() && !(has_active && has_passive))
-        bad("materials", "evolution needs a passive material (cte_per_c = 0) and an active one "
-                         "(cte_per_c > 0)");
+        bad("materials",
+            "evolution needs a passive material (cte_per_c = 0) and an active one "
+            "(cte_per_c > 0)");
 
     if (!finite(e.actuation.frequency_hz) || e.actuation.frequency_hz < 0 ||
         e.actuation.frequency_hz > 1000)
@@ -374,8 +386,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         double strain = e.materials[i].physics.cte_per_c * e.actuation.temperature_amplitude_c;
         if (finite(strain) && strain >= 0.9)
             bad("actuation.temperature_amplitude_c",
-                "with materials[" + std::to_string(i) +
-                    "].cte_per_c gives a linear strain of " + std::to_string(strain) +
+                "with materials[" + std::to_string(i) + "].cte_per_c gives a linear strain of " +
+                    std::to_string(strain) +
                     " (must stay below 0.9: a voxel cannot shrink to nothing)");
     }
 
@@ -395,12 +407,13 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     }
     if (any_enclosure) {
         if (b.enclosure_material < 1 || b.enclosure_material > nmat)
-            bad("boundary.enclosure.material",
-                "must name a material 1.." + std::to_string(nmat) + " when the frame has a thickness");
+            bad("boundary.enclosure.material", "must name a material 1.." + std::to_string(nmat) +
+                                                   " when the frame has a thickness");
         else if (e.materials[b.enclosure_material - 1].active())
             bad("boundary.enclosure.material", "the enclosure frame must be a passive material");
     } else if (b.enclosure_material < 0 || b.enclosure_material > nmat) {
-        bad("boundary.enclosure.material", "must be 0 (none) or a material 1.." + std::to_string(nmat));
+        bad("boundary.enclosure.material",
+            "must be 0 (none) or a material 1.." + std::to_string(nmat));
     }
     for (size_t i = 0; i < b.voxel_overrides.size(); ++i) {
         const auto& o = b.voxel_overrides[i];
@@ -415,14 +428,16 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     }
 
     const auto& s = e.simulation;
-    if (!finite(s.settle_s) || s.settle_s < 0 || s.settle_s > 1e4) bad("simulation.settle_s", "must be in [0, 10000] seconds");
+    if (!finite(s.settle_s) || s.settle_s < 0 || s.settle_s > 1e4)
+        bad("simulation.settle_s", "must be in [0, 10000] seconds");
     if (!finite(s.evaluate_s) || s.evaluate_s <= 0 || s.evaluate_s > 1e5)
         bad("simulation.evaluate_s", "must be in (0, 100000] seconds");
     if (!finite(s.dt_fraction) || s.dt_fraction <= 0 || s.dt_fraction > 1)
         bad("simulation.dt_fraction", "must be in (0, 1] (a fraction of the largest stable step)");
     if (!finite(s.bond_damping_ratio) || s.bond_damping_ratio < 0 || s.bond_damping_ratio > 10)
         bad("simulation.bond_damping_ratio", "must be in [0, 10]");
-    if (!finite(s.global_damping_ratio) || s.global_damping_ratio < 0 || s.global_damping_ratio > 10)
+    if (!finite(s.global_damping_ratio) || s.global_damping_ratio < 0 ||
+        s.global_damping_ratio > 10)
         bad("simulation.global_damping_ratio", "must be in [0, 10]");
     if (!finite(s.collision_damping_ratio) || s.collision_damping_ratio < 0 ||
         s.collision_damping_ratio > 10)
@@ -440,13 +455,16 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("fitness.constraints.min_active_voxels", "must be in [0, workspace voxels]");
 
     const auto& ev = e.evolution;
-    if (ev.population < 2 || ev.population > 100000) bad("evolution.population", "must be in [2, 100000]");
-    if (ev.generations < 0 || ev.generations > 100000000) bad("evolution.generations", "must be >= 0");
+    if (ev.population < 2 || ev.population > 100000)
+        bad("evolution.population", "must be in [2, 100000]");
+    if (ev.generations < 0 || ev.generations > 100000000)
+        bad("evolution.generations", "must be >= 0");
     if (!finite(ev.wall_budget_h) || ev.wall_budget_h <= 0 || ev.wall_budget_h > 1e5)
         bad("evolution.wall_budget_h", "must be in (0, 100000] hours");
     if (ev.max_neutral_retries < 0 || ev.max_neutral_retries > 10000000)
         bad("evolution.max_neutral_retries", "must be in [0, 10000000]");
-    if (ev.threads < 0 || ev.threads > 1024) bad("evolution.threads", "must be in [0, 1024] (0 = all cores)");
+    if (ev.threads < 0 || ev.threads > 1024)
+        bad("evolution.threads", "must be in [0, 1024] (0 = all cores)");
     const auto& cp = ev.cppn;
     if (cp.min_hidden_nodes < 0 || cp.min_hidden_nodes > 1000)
         bad("evolution.cppn.min_hidden_nodes", "must be in [0, 1000]");
@@ -485,7 +503,8 @@ json experiment_to_json(const Experiment& e) {
     j["actuation"] = {{"frequency_hz", e.actuation.frequency_hz},
                       {"temperature_amplitude_c", e.actuation.temperature_amplitude_c},
                       {"phase", e.actuation.phase == PhaseMode::Uniform ? "uniform" : "random"}};
-    j["environment"] = {{"gravity_m_s2", e.environment.gravity_m_s2}, {"floor", e.environment.floor}};
+    j["environment"] = {{"gravity_m_s2", e.environment.gravity_m_s2},
+                        {"floor", e.environment.floor}};
     json faces, thickness;
     for (int f = 0; f < 6; ++f) {
         faces[kFaceNames[f]] = e.boundary.faces[f] == BoundaryKind::Fixed ? "fixed" : "free";
@@ -498,9 +517,11 @@ json experiment_to_json(const Experiment& e) {
         if (o.kind == OverrideKind::Material) oj["material"] = o.material;
         overrides.push_back(oj);
     }
-    j["boundary"] = {{"faces", faces},
-                     {"enclosure", {{"thickness_voxels", thickness}, {"material", e.boundary.enclosure_material}}},
-                     {"voxel_overrides", overrides}};
+    j["boundary"] = {
+        {"faces", faces},
+        {"enclosure",
+         {{"thickness_voxels", thickness}, {"material", e.boundary.enclosure_material}}},
+        {"voxel_overrides", overrides}};
     const auto& s = e.simulation;
     j["simulation"] = {{"settle_s", s.settle_s},
                        {"evaluate_s", s.evaluate_s},
@@ -543,7 +564,8 @@ void write_file_atomically(const std::string& path, const std::string& contents)
         if (written != contents.size() || !flushed || !closed) {
             std::error_code ignored;
             fs::remove(tmp, ignored);
-            throw std::runtime_error(path + ": write failed (disk full?); the previous file is unchanged");
+            throw std::runtime_error(path +
+                                     ": write failed (disk full?); the previous file is unchanged");
         }
     }
     std::error_code ec;
@@ -602,16 +624,18 @@ Body parse_body(const json& root, const std::string& file) {
             }
             const auto& text = layer.get_ref<const std::string&>();
             if (text.size() != per_layer) {
-                r.problem(field, "has " + std::to_string(text.size()) + " characters, expected nx*ny = " +
-                                     std::to_string(per_layer));
+                r.problem(field, "has " + std::to_string(text.size()) +
+                                     " characters, expected nx*ny = " + std::to_string(per_layer));
                 continue;
             }
             for (size_t k = 0; k < text.size(); ++k) {
                 char ch = text[k];
                 if (ch < '0' || ch > '9') {
-                    r.problem(field, "character " + std::to_string(k) + " ('" +
-                                         std::string(1, std::isprint(static_cast<unsigned char>(ch)) ? ch : '?') +
-                                         "') is not a material digit 0-9");
+                    r.problem(field,
+                              "character " + std::to_string(k) + " ('" +
+                                  std::string(
+                                      1, std::isprint(static_cast<unsigned char>(ch)) ? ch : '?') +
+                                  "') is not a material digit 0-9");
                     break;
                 }
                 body.cells[z * per_layer + k] = static_cast<std::uint8_t>(ch - '0');
@@ -622,7 +646,9 @@ Body parse_body(const json& root, const std::string& file) {
     return body;
 }
 
-Body load_body(const std::string& path) { return parse_body(parse_json_text(read_text(path), path), path); }
+Body load_body(const std::string& path) {
+    return parse_body(parse_json_text(read_text(path), path), path);
+}
 
 json body_to_json(const Body& body) {
     json layers = json::array();
@@ -646,8 +672,9 @@ std::vector<Problem> validate_body_against(const Body& body, const Experiment& e
     for (int i = 0; i < 3; ++i)
         if (body.size[i] > e.workspace_size[i]) {
             problems.push_back({file, "size[" + std::to_string(i) + "]",
-                                "body is larger than the workspace (" + std::to_string(body.size[i]) +
-                                    " > " + std::to_string(e.workspace_size[i]) + ")"});
+                                "body is larger than the workspace (" +
+                                    std::to_string(body.size[i]) + " > " +
+                                    std::to_string(e.workspace_size[i]) + ")"});
         }
     const int nmat = static_cast<int>(e.materials.size());
     const size_t per_layer = static_cast<size_t>(body.size[0]) * body.size[1];
@@ -656,8 +683,9 @@ std::vector<Problem> validate_body_against(const Body& body, const Experiment& e
             size_t z = per_layer ? k / per_layer : 0;
             problems.push_back({file, "layers[" + std::to_string(z) + "]",
                                 "material " + std::to_string(body.cells[k]) + " at character " +
-                                    std::to_string(k - z * per_layer) + " has no entry in materials (" +
-                                    std::to_string(nmat) + " defined)"});
+                                    std::to_string(k - z * per_layer) +
+                                    " has no entry in materials (" + std::to_string(nmat) +
+                                    " defined)"});
             break;
         }
     }

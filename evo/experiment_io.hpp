@@ -29,7 +29,8 @@ struct ValidationError : std::runtime_error {
 Experiment load_experiment(const std::string& path);
 Experiment parse_experiment(const nlohmann::json& json, const std::string& file_label);
 //! Validates without throwing; the list is empty when the experiment is valid.
-std::vector<Problem> validate_experiment(const Experiment& experiment, const std::string& file_label);
+std::vector<Problem> validate_experiment(const Experiment& experiment,
+                                         const std::string& file_label);
 
 nlohmann::json experiment_to_json(const Experiment& experiment);
 //! Writes atomically (temp file + rename); throws std::runtime_error naming the path.

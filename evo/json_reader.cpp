@@ -8,7 +8,8 @@ namespace bhm::evo {
 
 int edit_distance(const std::string& a, const std::string& b) {
     std::vector<int> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
+    for (size_t j = 0; j <= b.size(); ++j)
+        row[j] = static_cast<int>(j);
     for (size_t i = 1; i <= a.size(); ++i) {
         int diagonal = row[0];
         row[0] = static_cast<int>(i);
@@ -75,9 +76,9 @@ std::string format_number(double v) {
 }
 }  // namespace
 
-double JsonReader::number(const nlohmann::json& obj, const std::string& key, const std::string& path,
-                          double fallback, std::optional<double> min, std::optional<double> max,
-                          bool min_exclusive, bool max_exclusive) {
+double JsonReader::number(const nlohmann::json& obj, const std::string& key,
+                          const std::string& path, double fallback, std::optional<double> min,
+                          std::optional<double> max, bool min_exclusive, bool max_exclusive) {
     auto it = obj.find(key);
     if (it == obj.end()) return fallback;
     const std::string field = join(path, key);
@@ -181,7 +182,8 @@ int JsonReader::choice(const nlohmann::json& obj, const std::string& key, const 
     for (size_t i = 0; i < choices.size(); ++i)
         if (choices[i] == value) return static_cast<int>(i);
     std::string message = "'" + value + "' is not one of";
-    for (const auto& c : choices) message += " " + c;
+    for (const auto& c : choices)
+        message += " " + c;
     if (auto suggestion = closest_match(value, choices); !suggestion.empty())
         message += " (did you mean '" + suggestion + "'?)";
     problem(field, message);

@@ -19,7 +19,7 @@ int edit_distance(const std::string& a, const std::string& b);
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
 
 class JsonReader {
-public:
+  public:
     JsonReader(std::string file_label, std::vector<Problem>& problems)
         : file_(std::move(file_label)), problems_(problems) {}
 
@@ -53,7 +53,7 @@ public:
     }
     static std::string type_name(const nlohmann::json& v);
 
-private:
+  private:
     std::string file_;
     std::vector<Problem>& problems_;
 };

@@ -68,11 +68,13 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
     spec.material = framed.cells;
     spec.fixed.assign(framed.cells.size(), 0);
     spec.phase_rad.assign(framed.cells.size(), 0.0f);
-    for (const auto& m : e.materials) spec.materials.push_back(m.physics);
+    for (const auto& m : e.materials)
+        spec.materials.push_back(m.physics);
     for (auto cell : framed.cells)
         if (cell > spec.materials.size())
-            throw std::invalid_argument("body uses material " + std::to_string(cell) + " but only " +
-                                        std::to_string(spec.materials.size()) + " are defined");
+            throw std::invalid_argument("body uses material " + std::to_string(cell) +
+                                        " but only " + std::to_string(spec.materials.size()) +
+                                        " are defined");
 
     const int n[3] = {spec.nx, spec.ny, spec.nz};
     for (int z = 0; z < spec.nz; ++z)
@@ -81,19 +83,23 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
                 const int c[3] = {x, y, z};
                 bool fixed = false;
                 for (int axis = 0; axis < 3; ++axis) {
-                    if (e.boundary.faces[2 * axis] == BoundaryKind::Fixed && c[axis] == 0) fixed = true;
-                    if (e.boundary.faces[2 * axis + 1] == BoundaryKind::Fixed && c[axis] == n[axis] - 1)
+                    if (e.boundary.faces[2 * axis] == BoundaryKind::Fixed && c[axis] == 0)
+                        fixed = true;
+                    if (e.boundary.faces[2 * axis + 1] == BoundaryKind::Fixed &&
+                        c[axis] == n[axis] - 1)
                         fixed = true;
                 }
                 const int k = spec.cell_index(x, y, z);
                 spec.fixed[k] = fixed ? 1 : 0;
                 if (e.actuation.phase == PhaseMode::Random) {
-                    double u = static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) * 0x1.0p-53;
+                    double u = static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) *
+                               0x1.0p-53;
                     spec.phase_rad[k] = static_cast<float>(2.0 * std::numbers::pi * u);
                 }
             }
     for (const auto& o : e.boundary.voxel_overrides)
-        if (o.kind == OverrideKind::Fixed) spec.fixed[spec.cell_index(o.voxel[0], o.voxel[1], o.voxel[2])] = 1;
+        if (o.kind == OverrideKind::Fixed)
+            spec.fixed[spec.cell_index(o.voxel[0], o.voxel[1], o.voxel[2])] = 1;
 
     spec.environment = e.environment;
     spec.damping.bond_ratio = e.simulation.bond_damping_ratio;

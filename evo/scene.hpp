@@ -9,7 +9,8 @@
 namespace bhm::evo {
 
 //! Places the body at the origin of the workspace, adds the enclosure frame (passive material,
-//! per-face thickness) and the voxel overrides (empty / material). The result has the workspace size.
+//! per-face thickness) and the voxel overrides (empty / material). The result has the workspace
+//! size.
 Body apply_frame_and_overrides(const Experiment& experiment, const Body& body);
 
 //! The engine input for a body already framed (apply_frame_and_overrides): voxels in a face layer

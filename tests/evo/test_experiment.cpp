@@ -48,7 +48,8 @@ TEST_CASE("every preset validates and matches the paper's settings") {
     CHECK(exp1.simulation.settle_s == 1.0);
     CHECK(exp1.simulation.evaluate_s == 10.0);
     CHECK_FALSE(exp1.fitness.constraints.attached_to_fixed_face);
-    CHECK(load_experiment(preset_path("paper-exp1-attached")).fitness.constraints.attached_to_fixed_face);
+    CHECK(load_experiment(preset_path("paper-exp1-attached"))
+              .fitness.constraints.attached_to_fixed_face);
 }
 
 TEST_CASE("experiment round trip: load, save, load is identical") {
@@ -69,7 +70,8 @@ TEST_CASE("experiment round trip: load, save, load is identical") {
 
 TEST_CASE("missing keys take the documented defaults") {
     auto e = parse_experiment(nlohmann::json::parse(R"({"materials": [
-        {"name": "p", "cte_per_c": 0}, {"name": "a", "cte_per_c": 0.01}]})"), "mem");
+        {"name": "p", "cte_per_c": 0}, {"name": "a", "cte_per_c": 0.01}]})"),
+                              "mem");
     CHECK(e.workspace_size == std::array<int, 3>{8, 8, 7});
     CHECK(e.voxel_size_m == 0.01);
     CHECK(e.simulation.dt_fraction == 0.9);
@@ -83,7 +85,8 @@ TEST_CASE("missing keys take the documented defaults") {
 TEST_CASE("unknown keys get a did-you-mean suggestion") {
     try {
         parse_experiment(nlohmann::json::parse(R"({"materials": [{"name": "p"}, {"name": "a",
-            "cte_per_c": 0.01}], "simulation": {"settle": 1}})"), "mem.json");
+            "cte_per_c": 0.01}], "simulation": {"settle": 1}})"),
+                         "mem.json");
         FAIL("expected a ValidationError");
     } catch (const ValidationError& e) {
         REQUIRE(e.problems.size() == 1);
@@ -144,17 +147,19 @@ TEST_CASE("body round trip and framing") {
     inner.cells.assign(18 * 6 * 5, 2);
     auto framed = apply_frame_and_overrides(exp3, inner);
     CHECK(framed.size == std::array<int, 3>{20, 8, 7});
-    CHECK(framed.cells[framed.index(0, 0, 0)] == 1);     // frame corner
-    CHECK(framed.cells[framed.index(19, 4, 3)] == 1);    // x+ frame
-    CHECK(framed.cells[framed.index(1, 1, 1)] == 2);     // design space starts inside the frame
+    CHECK(framed.cells[framed.index(0, 0, 0)] == 1);   // frame corner
+    CHECK(framed.cells[framed.index(19, 4, 3)] == 1);  // x+ frame
+    CHECK(framed.cells[framed.index(1, 1, 1)] == 2);   // design space starts inside the frame
     CHECK(framed.cells[framed.index(18, 6, 5)] == 2);
     int frame = 0;
-    for (auto c : framed.cells) frame += c == 1;
+    for (auto c : framed.cells)
+        frame += c == 1;
     CHECK(frame == 20 * 8 * 7 - 18 * 6 * 5);
 
     auto spec = make_body_spec(exp3, framed, 0);
     int fixed = 0;
-    for (auto f : spec.fixed) fixed += f;
+    for (auto f : spec.fixed)
+        fixed += f;
     CHECK(fixed == 8 * 7);  // the whole x- layer
     CHECK(spec.actuation.start_s == 1.0);
 }
@@ -167,12 +172,16 @@ TEST_CASE("mutated presets never crash the loader") {
         for (int i = 0; i < 80; ++i) {
             std::string text = original;
             switch (i % 4) {
-                case 0: text.resize(rng() % text.size()); break;  // truncated
+                case 0:
+                    text.resize(rng() % text.size());
+                    break;  // truncated
                 case 1:
-                    for (int k = 0; k < 3; ++k) text[rng() % text.size()] = static_cast<char>(rng() % 256);
+                    for (int k = 0; k < 3; ++k)
+                        text[rng() % text.size()] = static_cast<char>(rng() % 256);
                     break;
                 case 2: {  // a number replaced by a string, an array, null or a huge value
-                    static const char* replacements[] = {"\"x\"", "[]", "null", "1e400", "-7", "{}", "true"};
+                    static const char* replacements[] = {"\"x\"", "[]", "null", "1e400",
+                                                         "-7",    "{}", "true"};
                     auto pos = text.find_first_of("0123456789", rng() % text.size());
                     if (pos != std::string::npos)
                         text = text.substr(0, pos) + replacements[rng() % 7] + text.substr(pos + 1);
@@ -180,7 +189,8 @@ TEST_CASE("mutated presets never crash the loader") {
                 }
                 default: {  // a key renamed
                     auto pos = text.find('"', rng() % text.size());
-                    if (pos != std::string::npos && pos + 1 < text.size()) text.insert(pos + 1, "z");
+                    if (pos != std::string::npos && pos + 1 < text.size())
+                        text.insert(pos + 1, "z");
                 }
             }
             try {
