@@ -9,6 +9,7 @@ packages=(
   libosmesa6-dev libgl1-mesa-dri libgl-dev mesa-common-dev
   nlohmann-json3-dev doctest-dev python3-glad
   xvfb xauth
+  fonts-dejavu-core
 )
 
 missing=()
