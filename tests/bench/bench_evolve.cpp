@@ -29,31 +29,15 @@
 #include "evo/mutation.hpp"
 #include "evo/phenotype.hpp"
 #include "evo/scene.hpp"
+#include "tests/bench/bench_machine.hpp"
 #include "evo/worker_pool.hpp"
 
 using namespace bhm::evo;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-//! "x86_64 <CPU model>", commas removed so the field stays one CSV column.
-std::string machine_description() {
-    utsname names{};
-    std::string text = uname(&names) == 0 ? names.machine : "unknown-arch";
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind("model name", 0) == 0) {
-            text.push_back(' ');
-            text.append(line, line.find(':') + 2);
-            break;
-        }
-    std::replace(text.begin(), text.end(), ',', ' ');
-    return text;
-}
+using bhm::bench::machine_description;
+using bhm::bench::seconds_since;
 
 struct Population {
     std::vector<Genome> genomes;

@@ -28,30 +28,15 @@
 #include "app/gui/headless_session.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "evo/scene.hpp"
+#include "tests/bench/bench_machine.hpp"
 
 using namespace bhm;
 using namespace bhm::app::gui;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-std::string machine_description() {
-    utsname names{};
-    std::string text = uname(&names) == 0 ? names.machine : "unknown-arch";
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind("model name", 0) == 0) {
-            text.push_back(' ');
-            text.append(line, line.find(':') + 2);
-            break;
-        }
-    std::replace(text.begin(), text.end(), ',', ' ');
-    return text;
-}
+using bhm::bench::machine_description;
+using bhm::bench::seconds_since;
 
 // Paper experiment 3's workspace and frame (20x8x7, one-voxel passive enclosure), Table 1
 // materials, with short times so the benchmark's simulations take seconds.
