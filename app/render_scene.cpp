@@ -30,7 +30,7 @@ render::Scene scene_frame(const evo::Experiment& experiment) {
 
 }  // namespace
 
-std::vector<glm::vec4> render_material_colors(const evo::Experiment& experiment) {
+std::vector<glm::vec4> experiment_material_colors(const evo::Experiment& experiment) {
     std::vector<glm::vec4> colors;
     for (const auto& m : experiment.materials) {
         if (m.has_color)
@@ -38,6 +38,11 @@ std::vector<glm::vec4> render_material_colors(const evo::Experiment& experiment)
         else
             colors.push_back(m.active() ? render::palette::kActive : render::palette::kPassive);
     }
+    return colors;
+}
+
+std::vector<glm::vec4> render_material_colors(const evo::Experiment& experiment) {
+    std::vector<glm::vec4> colors = experiment_material_colors(experiment);
     colors.push_back(render::palette::kEnclosure);
     return colors;
 }

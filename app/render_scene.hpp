@@ -16,6 +16,9 @@
 
 namespace bhm::app {
 
+//! One colour per material, index 0 = material 1: the material's own colour, else by activity.
+std::vector<glm::vec4> experiment_material_colors(const evo::Experiment& experiment);
+
 //! RGBA per material (index k-1 for material k): the experiment's colour, else muscle red for
 //! active and tissue blue for passive materials; then one more entry, the translucent enclosure
 //! colour, used for frame voxels (see mark_enclosure_voxels).

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "app/gui/constraint_edits.hpp"
+#include "app/render_scene.hpp"
 #include "app/gui/replay_player.hpp"
 #include "evo/scene.hpp"
 
@@ -42,14 +43,7 @@ evo::Body empty_workspace_body(const evo::Experiment& e) {
 }  // namespace
 
 std::vector<glm::vec4> material_colors(const evo::Experiment& experiment) {
-    std::vector<glm::vec4> colors;
-    for (const auto& m : experiment.materials) {
-        if (m.has_color)
-            colors.emplace_back(m.color[0], m.color[1], m.color[2], 1.0f);
-        else
-            colors.push_back(m.active() ? render::palette::kActive : render::palette::kPassive);
-    }
-    return colors;
+    return experiment_material_colors(experiment);
 }
 
 PainterMaterials painter_materials(const evo::Experiment& experiment) {
