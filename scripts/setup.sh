@@ -10,6 +10,10 @@ packages=(
   nlohmann-json3-dev doctest-dev python3-glad
   xvfb xauth
   fonts-dejavu-core
+  calculix-ccx
+  libopenmpi-dev openmpi-bin
+  ffmpeg
+  pybind11-dev python3-pybind11 python3-numpy python3-dev
 )
 
 missing=()
