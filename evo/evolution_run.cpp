@@ -113,6 +113,8 @@ EvolutionRun::EvolutionRun(Start start, RunOptions options)
     generation_budget_ = options_.generations.value_or(evolution.generations);
     wall_budget_s_ = options_.wall_budget_h.value_or(evolution.wall_budget_h) * 3600.0;
     threads_ = resolve_thread_count(options_.threads.value_or(evolution.threads));
+    evaluator_ =
+        options_.evaluator ? options_.evaluator : std::make_shared<ThreadEvaluator>(threads_);
     if (generation_budget_ < 0) throw std::invalid_argument("the generation budget must be >= 0");
     if (!(wall_budget_s_ > 0.0))
         throw std::invalid_argument("the wall-time budget must be > 0 hours");
@@ -300,12 +302,14 @@ bool EvolutionRun::run_generation() {
         }
         job_of[i] = it->second;
     }
-    std::vector<FitnessReport> results(jobs.size());
+    std::vector<FitnessReport> results;
+    EvaluationBatch batch;
+    batch.rules = &rules;
+    batch.cancel = &stop_;
+    for (const std::size_t i : jobs)
+        batch.bodies.push_back(&fresh[i].phenotype.body);
     try {
-        parallel_for(static_cast<int>(jobs.size()), threads_, [&](int j) {
-            results[static_cast<std::size_t>(j)] = evaluate_body(
-                rules, fresh[jobs[static_cast<std::size_t>(j)]].phenotype.body, &stop_);
-        });
+        evaluator_->evaluate(batch, results);
     } catch (const EvaluationCancelled&) {
         return false;
     }

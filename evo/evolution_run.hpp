@@ -4,12 +4,14 @@
 //
 // Generation 0: P random valid individuals. Generation g > 0: every member ages by one; each makes
 // one mutant (mutate_until_new) that inherits its age; one random newcomer of age 0 joins
-// (2P + 1 in the pool); the new ones are evaluated (cache first, then simulations on the worker
-// pool); Pareto selection on (fitness up, age down[, active voxels down]) cuts the pool back to P.
+// (2P + 1 in the pool); the new ones are evaluated (cache first, then simulations on the
+// evaluator: the worker pool, or MPI ranks, evo/evaluator.hpp); Pareto selection on (fitness up,
+// age down[, active voxels down]) cuts the pool back to P.
 //
 // Determinism: all random draws happen on the calling thread in a fixed order; workers only run
 // pure evaluations into pre-sized slots. The same seed gives the same history and champion
-// whatever the thread count, and a resumed run continues exactly as an uninterrupted one.
+// whatever the thread count or evaluator, and a resumed run continues exactly as an uninterrupted
+// one.
 //
 // Control (thread-safe, for a UI thread or a signal handler): request_stop() abandons the current
 // generation at the next simulation sample and returns from run() with the last completed
@@ -29,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "evo/evaluator.hpp"
 #include "evo/phenotype.hpp"
 #include "evo/run_output.hpp"
 #include "evo/run_state.hpp"
@@ -41,6 +44,8 @@ struct RunOptions {
     std::optional<double> wall_budget_h;  //!< wall-time budget across resumes
     std::optional<int> threads;           //!< 0 = all hardware threads
     std::optional<std::uint64_t> seed;    //!< new runs only; must match the checkpoint on resume
+    //! Where simulations run; null: a ThreadEvaluator with `threads` threads in this process.
+    std::shared_ptr<Evaluator> evaluator;
 };
 
 struct PopulationEntry {
@@ -99,6 +104,11 @@ class EvolutionRun {
     bool run_generation();
 
     void set_report_callback(ReportCallback callback) { callback_ = std::move(callback); }
+    //! Replaces where simulations run (RunOptions::evaluator; null: this process's threads).
+    //! Only while run() is not executing.
+    void set_evaluator(std::shared_ptr<Evaluator> evaluator) {
+        evaluator_ = evaluator ? std::move(evaluator) : std::make_shared<ThreadEvaluator>(threads_);
+    }
     void request_stop() { stop_.store(true); }
     //! Lets run() go on after a stop request was honoured (the studio's "continue").
     void clear_stop() { stop_.store(false); }
@@ -142,6 +152,7 @@ class EvolutionRun {
     int generation_budget_ = 0;
     double wall_budget_s_ = 0.0;
     int threads_ = 1;
+    std::shared_ptr<Evaluator> evaluator_;
     std::vector<std::string> resume_warnings_;
     std::string checkpoint_path_;
 
