@@ -94,6 +94,8 @@ std::string item(const std::string& path, std::size_t i) {
     return path + "[" + std::to_string(i) + "]";
 }
 
+}  // namespace
+
 FitnessReport report_from_json(const json& j, const std::string& path) {
     const Fields f(j, path);
     FitnessReport r;
@@ -108,6 +110,8 @@ FitnessReport report_from_json(const json& j, const std::string& path) {
     r.sim_wall_s = f.number("sim_wall_s");
     return r;
 }
+
+namespace {
 
 Individual individual_from_json(const json& j, const std::string& path, const Developer& developer,
                                 double weight_range) {
