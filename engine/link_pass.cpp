@@ -30,8 +30,8 @@ namespace {
 // The voxel arrays seen from one axis: index 0 of each triple is the link axis.
 struct AxisView {
     const double* p[3];
-    const double* q[4];  // w, then the vector part in local order
-    int stride;
+    const double* q[4];     // w, then the vector part in local order
+    const int* plus;        // + neighbour of each slot (y, z); x uses slot + 1
 };
 
 AxisView axis_view(const Model::Data& model, const VoxelState& s, int axis) {
@@ -39,29 +39,34 @@ AxisView axis_view(const Model::Data& model, const VoxelState& s, int axis) {
     return {
         {s.pos[axis].data(), s.pos[a1].data(), s.pos[a2].data()},
         {s.quat[0].data(), s.quat[1 + axis].data(), s.quat[1 + a1].data(), s.quat[1 + a2].data()},
-        model.stride[axis]};
+        model.plus[axis].data()};
 }
 
-// The chord of slot c; an absent link sees a straight rest chord so its (discarded) numbers stay
-// finite whatever its neighbours do. Restrict pointers: nothing the link pass writes aliases them.
+// The chord of the link from voxel a to voxel b; an absent link sees a straight rest chord so its
+// (discarded) numbers stay finite whatever its neighbours do. Restrict pointers: nothing the link
+// pass writes aliases them.
 BHM_ENGINE_INLINE LinkFrame frame_of(const double* __restrict p0, const double* __restrict p1,
                                      const double* __restrict p2, const double* __restrict qw,
                                      const double* __restrict q0, const double* __restrict q1,
-                                     const double* __restrict q2, int stride, float exists,
-                                     float rest_base, int c) {
-    const int b = c + stride;
-    const float dx = static_cast<float>(p0[b] - p0[c]) * exists + (1.0f - exists) * rest_base;
-    const float dy = static_cast<float>(p1[b] - p1[c]) * exists;
-    const float dz = static_cast<float>(p2[b] - p2[c]) * exists;
-    return link_frame(dx, dy, dz, static_cast<float>(qw[c]), static_cast<float>(q0[c]),
-                      static_cast<float>(q1[c]), static_cast<float>(q2[c]),
+                                     const double* __restrict q2, int a, int b, float exists,
+                                     float rest_base) {
+    const float dx = static_cast<float>(p0[b] - p0[a]) * exists + (1.0f - exists) * rest_base;
+    const float dy = static_cast<float>(p1[b] - p1[a]) * exists;
+    const float dz = static_cast<float>(p2[b] - p2[a]) * exists;
+    return link_frame(dx, dy, dz, static_cast<float>(qw[a]), static_cast<float>(q0[a]),
+                      static_cast<float>(q1[a]), static_cast<float>(q2[a]),
                       static_cast<float>(qw[b]), static_cast<float>(q0[b]),
                       static_cast<float>(q1[b]), static_cast<float>(q2[b]));
 }
 
-BHM_ENGINE_INLINE LinkFrame frame_of(const AxisView& v, float exists, float rest_base, int c) {
-    return frame_of(v.p[0], v.p[1], v.p[2], v.q[0], v.q[1], v.q[2], v.q[3], v.stride, exists,
-                    rest_base, c);
+BHM_ENGINE_INLINE int plus_of(const AxisView& v, int axis, int c) {
+    return axis == 0 ? c + 1 : v.plus[c];
+}
+
+BHM_ENGINE_INLINE LinkFrame frame_of(const AxisView& v, int axis, float exists, float rest_base,
+                                     int c) {
+    return frame_of(v.p[0], v.p[1], v.p[2], v.q[0], v.q[1], v.q[2], v.q[3], c, plus_of(v, axis, c),
+                    exists, rest_base);
 }
 
 BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest) {
@@ -69,11 +74,11 @@ BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest) 
     return (std::fabs(extension) < rest) & (f.axis_cos > 0.0f);
 }
 
-}  // namespace
-
-BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxels,
-                                LinkScratch& out, int axis, float sin_t, float cos_t) {
-    const AxisView v = axis_view(model, voxels, axis);
+// One axis's loop over every link slot. kContiguous: the + end of slot c is voxel c + 1 (x links
+// in lattice order), so nothing is gathered; otherwise it is plus[c].
+template <bool kContiguous>
+BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, LinkScratch& out,
+                                int axis, float sin_t, float cos_t) {
     const LinkParams& lp = model.links[axis];
     const float* __restrict exists = lp.exists.data();
     const float* __restrict k_axial = lp.k_axial.data();
@@ -83,6 +88,7 @@ BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxe
     const float* __restrict rest_base = lp.rest_base.data();
     const float* __restrict rest_sin = lp.rest_sin.data();
     const float* __restrict rest_cos = lp.rest_cos.data();
+    const int* __restrict plus = v.plus;
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     float* __restrict f0 = out.force[axis];
     float* __restrict f1 = out.force[a1];
@@ -108,17 +114,15 @@ BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxe
     const double* __restrict q0 = v.q[1];
     const double* __restrict q1 = v.q[2];
     const double* __restrict q2 = v.q[3];
-    const int stride = v.stride;
 
     int bad = 0;  // an integer sum: a float one would be an in-order (unvectorisable) reduction
-    // Slots of the last stride cells never hold a link (their + neighbour is off the lattice);
-    // their scratch stays zero from the World's construction.
-    const int n = model.cells - stride;
+    // A whole number of vectors: the dummy slots past the last voxel hold no link.
+    const int n = model.slots;
     // Every array is distinct (restrict on locals is not enough for GCC's dependence analysis).
 #pragma GCC ivdep
     for (int c = 0; c < n; ++c) {
-        const LinkFrame f =
-            frame_of(p0, p1, p2, qw, q0, q1, q2, stride, exists[c], rest_base[c], c);
+        const int b = kContiguous ? c + 1 : plus[c];
+        const LinkFrame f = frame_of(p0, p1, p2, qw, q0, q1, q2, c, b, exists[c], rest_base[c]);
         const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
         const float extension = f.length - rest;
         bad += static_cast<int>((exists[c] > 0.0f) & !healthy(f, extension, rest));
@@ -170,13 +174,22 @@ BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxe
     return bad;
 }
 
+}  // namespace
+
+BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxels,
+                                LinkScratch& out, int axis, float sin_t, float cos_t) {
+    const AxisView v = axis_view(model, voxels, axis);
+    return axis == 0 ? link_loop<true>(model, v, out, axis, sin_t, cos_t)
+                     : link_loop<false>(model, v, out, axis, sin_t, cos_t);
+}
+
 int first_bad_link(const Model::Data& model, const VoxelState& voxels, int axis, float sin_t,
                    float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
     const LinkParams& lp = model.links[axis];
-    for (int c = 0; c < model.cells; ++c) {
+    for (int c = 0; c < model.voxels; ++c) {
         if (lp.exists[c] == 0.0f) continue;
-        const LinkFrame f = frame_of(v, 1.0f, lp.rest_base[c], c);
+        const LinkFrame f = frame_of(v, axis, 1.0f, lp.rest_base[c], c);
         const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
         if (!healthy(f, f.length - rest, rest)) return c;
     }
@@ -188,9 +201,9 @@ double link_elastic_energy(const Model::Data& model, const VoxelState& voxels, i
     const AxisView v = axis_view(model, voxels, axis);
     const LinkParams& lp = model.links[axis];
     double energy = 0.0;
-    for (int c = 0; c < model.cells; ++c) {
+    for (int c = 0; c < model.voxels; ++c) {
         if (lp.exists[c] == 0.0f) continue;
-        const LinkFrame f = frame_of(v, 1.0f, lp.rest_base[c], c);
+        const LinkFrame f = frame_of(v, axis, 1.0f, lp.rest_base[c], c);
         const double rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
         const double x = f.length - rest;
         const double e[3] = {f.ex, f.ey, f.ez};

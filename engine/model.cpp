@@ -100,17 +100,68 @@ double shear_modulus(const Material& m) {
 // Torsion constant of a square section of side a: J = 0.1406 a^4 (Saint-Venant, b/a = 1).
 constexpr double kSquareTorsionFactor = 0.1406;
 
-void resize_cells(Model::Data& d, int n) {
-    for (auto* v : {&d.occupied, &d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia,
-                    &d.linear_keep, &d.angular_keep, &d.floor_k, &d.floor_c, &d.mu_static,
-                    &d.mu_dynamic, &d.act_sin, &d.act_cos})
+void resize_voxels(Model::Data& d, int n) {
+    for (auto* v : {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep,
+                    &d.angular_keep, &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic,
+                    &d.act_sin, &d.act_cos})
         v->assign(n, 0.0);
 }
 
-void resize_links(LinkParams& p, int n) {
-    for (auto* v : {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.rest_base,
-                    &p.rest_sin, &p.rest_cos})
+void resize_links(LinkParams& p, int n, float voxel_size) {
+    for (auto* v : {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.rest_sin,
+                    &p.rest_cos})
         v->assign(n, 0.0f);
+    p.rest_base.assign(n, voxel_size);  // keeps absent slots well formed
+}
+
+// The compact voxel list in lattice order, its bounding-box origin and the neighbour tables.
+void build_layout(Model::Data& d) {
+    const BodySpec& spec = d.spec;
+    const int cells = spec.cell_count();
+    d.cell_voxel.assign(cells, -1);
+    d.origin_cell = {spec.nx, spec.ny, spec.nz};
+    for (int c = 0; c < cells; ++c) {
+        if (spec.material[c] == 0) continue;
+        d.cell_voxel[c] = static_cast<int>(d.voxel_cell.size());
+        d.voxel_cell.push_back(c);
+        d.voxel_material.push_back(spec.material[c]);
+        d.voxel_fixed.push_back(spec.fixed.empty() ? 0 : (spec.fixed[c] ? 1 : 0));
+        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
+                                     c / (spec.nx * spec.ny)};
+        for (int i = 0; i < 3; ++i)
+            d.origin_cell[i] = std::min(d.origin_cell[i], xyz[i]);
+    }
+    d.voxels = static_cast<int>(d.voxel_cell.size());
+    d.slots = (d.voxels + kLanes - 1) / kLanes * kLanes;
+    d.stored = d.slots + 1;
+    const double L = spec.voxel_size_m;
+    for (int i = 0; i < 3; ++i)
+        d.origin_m[i] = d.origin_cell[i] * L;
+
+    // Dummies rest at the relative origin's cell centre; real voxels on their lattice points.
+    d.rest_position.assign(d.stored, {0.5 * L, 0.5 * L, 0.5 * L});
+    const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
+    const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
+    for (int a = 0; a < 3; ++a) {
+        d.plus[a].resize(d.stored);
+        d.minus[a].assign(d.stored, kNoLink);
+        for (int v = 0; v < d.stored; ++v)
+            d.plus[a][v] = v;
+    }
+    for (int v = 0; v < d.voxels; ++v) {
+        const int c = d.voxel_cell[v];
+        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
+                                     c / (spec.nx * spec.ny)};
+        for (int i = 0; i < 3; ++i)
+            d.rest_position[v][i] = (xyz[i] - d.origin_cell[i] + 0.5) * L;
+        for (int a = 0; a < 3; ++a) {
+            if (xyz[a] + 1 >= limit[a]) continue;
+            const int b = d.cell_voxel[c + stride[a]];
+            if (b < 0) continue;
+            d.plus[a][v] = b;
+            d.minus[a][b] = v;
+        }
+    }
 }
 
 }  // namespace
@@ -122,70 +173,52 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     d.spec = spec;
     const double L = spec.voxel_size_m;
     d.voxel_size_m = L;
-    d.cells = spec.cell_count();
-    d.pad = spec.nx * spec.ny;
-    d.stride = {1, spec.nx, spec.nx * spec.ny};
-    const int slots = d.cells + d.pad;
+    build_layout(d);
+    const int n = d.voxels;
 
-    // Voxels in lattice order.
-    d.cell_voxel.assign(d.cells, -1);
-    for (int c = 0; c < d.cells; ++c) {
-        if (spec.material[c] == 0) continue;
-        d.cell_voxel[c] = static_cast<int>(d.voxel_cell.size());
-        d.voxel_cell.push_back(c);
-        d.voxel_material.push_back(spec.material[c]);
-        d.voxel_fixed.push_back(spec.fixed.empty() ? 0 : (spec.fixed[c] ? 1 : 0));
-    }
-
-    // Per cell constants.
-    resize_cells(d, slots);
+    // Per voxel constants.
+    resize_voxels(d, d.stored);
     const double volume = L * L * L;
     double max_omega2 = 0.0;  // largest k/m (or k_rot/I) seen, for the stable step
-    for (std::size_t v = 0; v < d.voxel_cell.size(); ++v) {
+    for (int v = 0; v < n; ++v) {
         const int c = d.voxel_cell[v];
         const Material& mat = spec.materials[d.voxel_material[v] - 1];
         const double m = mat.density_kg_m3 * volume;
         const double inertia = m * L * L / 6.0;
         const double k_axial = mat.youngs_modulus_pa * L;              // E A / L
         const double k_rot = mat.youngs_modulus_pa * L * L * L / 3.0;  // 4 E I / L
-        d.occupied[c] = 1.0;
-        d.mass[c] = m;
+        d.mass[v] = m;
         d.total_mass_kg += m;
-        d.floor_k[c] = k_axial;
-        d.floor_c[c] = 2.0 * spec.damping.collision_ratio * std::sqrt(m * k_axial);
-        d.mu_static[c] = mat.static_friction;
-        d.mu_dynamic[c] = mat.dynamic_friction;
+        d.floor_k[v] = k_axial;
+        d.floor_c[v] = 2.0 * spec.damping.collision_ratio * std::sqrt(m * k_axial);
+        d.mu_static[v] = mat.static_friction;
+        d.mu_dynamic[v] = mat.dynamic_friction;
         const double phase = spec.phase_rad.empty() ? 0.0 : spec.phase_rad[c];
         const double amplitude = mat.cte_per_c * spec.actuation.temperature_amplitude_c;
         // sin(w tau + phase) = sin(w tau) cos(phase) + cos(w tau) sin(phase)
-        d.act_sin[c] = amplitude * std::cos(phase);
-        d.act_cos[c] = amplitude * std::sin(phase);
+        d.act_sin[v] = amplitude * std::cos(phase);
+        d.act_cos[v] = amplitude * std::sin(phase);
         if (amplitude != 0.0) d.any_active = true;
         max_omega2 = std::max({max_omega2, k_axial / m, k_rot / inertia});
     }
 
-    // Links: slot c of axis a joins c and c + stride[a] when both are occupied.
+    // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
     std::array<std::vector<double>, 3> link_omega2;                // per link: max(k/m, k_rot/I)
     const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
     const double torsion_over_l = kSquareTorsionFactor * std::pow(L, 4) / L;
     for (int axis = 0; axis < 3; ++axis) {
         LinkParams& p = d.links[axis];
-        resize_links(p, d.cells);
-        link_omega2[axis].assign(d.cells, 0.0);
-        const int limit = axis == 0 ? spec.nx : (axis == 1 ? spec.ny : spec.nz);
-        for (int c = 0; c < d.cells; ++c) {
-            const int coord =
-                axis == 0 ? c % spec.nx : (axis == 1 ? (c / spec.nx) % spec.ny : c / d.pad);
-            p.rest_base[c] = static_cast<float>(L);  // keeps dummy slots well formed
-            if (coord + 1 >= limit) continue;
-            const int b = c + d.stride[axis];
-            if (spec.material[c] == 0 || spec.material[b] == 0) continue;
-            const Material& ma = spec.materials[spec.material[c] - 1];
-            const Material& mb = spec.materials[spec.material[b] - 1];
+        resize_links(p, d.stored, static_cast<float>(L));
+        link_omega2[axis].assign(d.stored, 0.0);
+        for (int v = 0; v < n; ++v) {
+            const int b = d.plus[axis][v];
+            if (b == v) continue;
+            const Material& ma = spec.materials[d.voxel_material[v] - 1];
+            const Material& mb = spec.materials[d.voxel_material[b] - 1];
             const double e = series(ma.youngs_modulus_pa, mb.youngs_modulus_pa);
             const double g = series(shear_modulus(ma), shear_modulus(mb));
             const double k_axial = e * L;
-            const double m_a = d.mass[c], m_b = d.mass[b];
+            const double m_a = d.mass[v], m_b = d.mass[b];
             const double reduced_mass = m_a * m_b / (m_a + m_b);
             // Bond damping as Voxelyze: c = 2 zeta sqrt(m k) on each end's velocity relative to
             // the link's midpoint, i.e. half the relative velocity (m: the harmonic mean of the
@@ -193,18 +226,18 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             // every mode of the beam, beta = c / (2 k).
             const double pair_mass = 2.0 * reduced_mass;
             const double beta = spec.damping.bond_ratio * std::sqrt(pair_mass / k_axial);
-            p.exists[c] = 1.0f;
-            p.k_axial[c] = static_cast<float>(k_axial);
-            p.k_bend[c] = static_cast<float>(e * beam_inertia_over_l);
-            p.k_torsion[c] = static_cast<float>(g * torsion_over_l);
-            p.damp_steps[c] = static_cast<float>(beta);  // capped and divided by dt below
-            p.rest_sin[c] = static_cast<float>(0.5 * L * (d.act_sin[c] + d.act_sin[b]));
-            p.rest_cos[c] = static_cast<float>(0.5 * L * (d.act_cos[c] + d.act_cos[b]));
+            p.exists[v] = 1.0f;
+            p.k_axial[v] = static_cast<float>(k_axial);
+            p.k_bend[v] = static_cast<float>(e * beam_inertia_over_l);
+            p.k_torsion[v] = static_cast<float>(g * torsion_over_l);
+            p.damp_steps[v] = static_cast<float>(beta);  // capped and divided by dt below
+            p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
+            p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
             const double m_min = std::min(m_a, m_b);
             const double omega2 =
                 std::max(k_axial / m_min, 4.0 * e * beam_inertia_over_l / (m_min * L * L / 6.0));
-            link_omega2[axis][c] = omega2;
+            link_omega2[axis][v] = omega2;
             max_omega2 = std::max(max_omega2, omega2);
         }
     }
@@ -221,29 +254,28 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     constexpr double kStableDampingProduct = 0.8 / std::numbers::pi;
     for (int axis = 0; axis < 3; ++axis) {
         LinkParams& p = d.links[axis];
-        for (int c = 0; c < d.cells; ++c) {
-            if (p.exists[c] == 0.0f) continue;
+        for (int v = 0; v < n; ++v) {
+            if (p.exists[v] == 0.0f) continue;
             const double beta = std::min<double>(
-                p.damp_steps[c], kStableDampingProduct / (link_omega2[axis][c] * dt));
-            p.damp_steps[c] = static_cast<float>(beta / dt);
+                p.damp_steps[v], kStableDampingProduct / (link_omega2[axis][v] * dt));
+            p.damp_steps[v] = static_cast<float>(beta / dt);
         }
     }
 
-    for (std::size_t v = 0; v < d.voxel_cell.size(); ++v) {
-        const int c = d.voxel_cell[v];
-        const double m = d.mass[c];
+    for (int v = 0; v < n; ++v) {
+        const double m = d.mass[v];
         const double inertia = m * L * L / 6.0;
         const Material& mat = spec.materials[d.voxel_material[v] - 1];
         const double c_lin =
             2.0 * spec.damping.global_ratio * std::sqrt(m * mat.youngs_modulus_pa * L);
         const double c_rot = 2.0 * spec.damping.global_ratio *
                              std::sqrt(inertia * mat.youngs_modulus_pa * L * L * L / 3.0);
-        d.linear_keep[c] = 1.0 / (1.0 + dt * c_lin / m);
-        d.angular_keep[c] = 1.0 / (1.0 + dt * c_rot / inertia);
+        d.linear_keep[v] = 1.0 / (1.0 + dt * c_lin / m);
+        d.angular_keep[v] = 1.0 / (1.0 + dt * c_rot / inertia);
         if (d.voxel_fixed[v]) continue;
-        d.movable[c] = 1.0;
-        d.dt_inv_mass[c] = dt / m;
-        d.dt_inv_inertia[c] = dt / inertia;
+        d.movable[v] = 1.0;
+        d.dt_inv_mass[v] = dt / m;
+        d.dt_inv_inertia[v] = dt / inertia;
     }
     return std::make_shared<const Model>(std::move(data));
 }

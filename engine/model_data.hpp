@@ -1,11 +1,25 @@
 #pragma once
 // Private to the engine: the immutable, precomputed data of a Model (structure of arrays).
 //
-// Layout. Voxels live on their lattice grid: every per-cell array has one slot per lattice cell
-// (empty cells hold an inert dummy) plus `pad` trailing slots, so the link between cell c and its
-// +axis neighbour is always (c, c + stride[axis]): links are index pairs with an implicit, constant
-// offset, which makes both passes of a step contiguous and vectorisable (no gathers, no atomics).
-// Link slot c of axis a exists when both cells are occupied (link_exists[a][c] == 1).
+// Layout: the cost of a step follows the body, not its workspace.
+// - Voxels are compacted into dense arrays in lattice order of the occupied cells (x fastest): the
+//   public voxel index v is the array index. The arrays are padded to a multiple of kLanes with
+//   inert dummy voxels (no mass, never moved, no links) so every loop runs whole SIMD vectors, and
+//   one more dummy sits past them (the +x neighbour the last slot reads).
+// - Links are owned by their - end: link slot v of axis a joins voxel v to its +a neighbour
+//   plus[a][v] (slot present when link_exists[a][v] is 1). Because voxels are in lattice order,
+//   the +x neighbour of v is always v + 1 when it exists, so the x link pass is fully contiguous;
+//   the +y and +z neighbours are gathered through plus[1] / plus[2]. Absent slots are computed
+//   like real ones with zero stiffness and a straight chord, so their outputs are exactly zero.
+// - The voxel pass gathers, per voxel and axis, the link it owns (slot v, contiguous) and the link
+//   whose + end it is: slot v - 1 for x (contiguous; zero when that slot holds no link to v) and
+//   minus[a][v] for y, z (kNoLink, a slot that is always zero, when there is none). The summation
+//   order is fixed (per axis: the - link, then the + link), so results are deterministic, no
+//   atomics are needed, and a step allocates nothing.
+// - Positions are stored relative to the body's origin (the low corner of the occupied cells'
+//   bounding box, `origin_m`), and the floor is at -origin_z: a body gives the same trajectory
+//   bit for bit wherever it sits in its workspace (shifted by whole voxels); the World adds the
+//   origin back where it reports positions.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -15,9 +29,16 @@
 
 namespace bhm::engine {
 
+//! Voxel arrays are padded to a multiple of this (16 floats = one AVX-512 vector).
+inline constexpr int kLanes = 16;
+//! Link scratch arrays hold this many always-zero slots before slot 0 (the x gather of voxel 0
+//! reads slot -1; absent y/z links point at kNoLink).
+inline constexpr int kLinkLead = kLanes;
+inline constexpr int kNoLink = -1;
+
 //! Per link slot constants of one lattice axis (float: they feed the float link kernel).
 struct LinkParams {
-    std::vector<float> exists;      //!< 1 = a real link, 0 = no link at this slot
+    std::vector<float> exists;      //!< (slots) 1 = a real link, 0 = no link at this slot
     std::vector<float> k_axial;     //!< E A / L (N/m)
     std::vector<float> k_bend;      //!< E I / L (N m/rad); moments use 4x and 2x this
     std::vector<float> k_torsion;   //!< G J / L (N m/rad)
@@ -35,22 +56,28 @@ struct Model::Data {
     double total_mass_kg = 0.0;
     int link_count = 0;
 
-    // Grid geometry.
-    int cells = 0;                       //!< nx * ny * nz
-    int pad = 0;                         //!< nx * ny: trailing padding of per-cell arrays
-    std::array<int, 3> stride{1, 1, 1};  //!< cell offset of the +x, +y, +z neighbour
+    int voxels = 0;  //!< n, real voxels
+    int slots = 0;   //!< n rounded up to kLanes: the length every pass loops over
+    int stored = 0;  //!< slots + 1: the length of per-voxel arrays (slot `slots` is the +x dummy)
+    std::array<int, 3> origin_cell{0, 0, 0};  //!< low corner of the voxels' bounding box
+    std::array<double, 3> origin_m{0, 0, 0};  //!< origin_cell * L: added to reported positions
 
-    // Compact voxel list (lattice order) and the map back.
+    // Voxel list (lattice order) and the map back.
     std::vector<int> voxel_cell;               //!< (n) lattice cell of voxel v
     std::vector<std::uint8_t> voxel_material;  //!< (n) 1-based material index
     std::vector<std::uint8_t> voxel_fixed;     //!< (n) 1 = all six DOF held
     std::vector<int> cell_voxel;               //!< (cells) voxel index or -1
+    std::vector<std::array<double, 3>> rest_position;  //!< (stored) relative to origin_m
 
-    // Per cell constants (cells + pad), double: they feed the double voxel pass.
-    std::vector<double> occupied;        //!< 1 = a voxel, 0 = empty dummy
-    std::vector<double> movable;         //!< 1 = integrated (occupied and not fixed)
-    std::vector<double> mass;            //!< kg (0 for empty cells)
-    std::vector<double> dt_inv_mass;     //!< dt / m (0 for empty or fixed)
+    // Neighbour tables (stored). plus[a][v]: the +a neighbour of v (v itself when none; only
+    // read for y and z). minus[a][v]: the link slot whose + end is v, or kNoLink (y and z).
+    std::array<std::vector<std::int32_t>, 3> plus;
+    std::array<std::vector<std::int32_t>, 3> minus;
+
+    // Per voxel constants (stored), double: they feed the double voxel pass.
+    std::vector<double> movable;         //!< 1 = integrated (a voxel and not fixed)
+    std::vector<double> mass;            //!< kg (0 for dummies)
+    std::vector<double> dt_inv_mass;     //!< dt / m (0 for dummies or fixed)
     std::vector<double> dt_inv_inertia;  //!< dt / I, I = m L^2 / 6
     std::vector<double> linear_keep;     //!< 1 / (1 + dt c_g / m): implicit global damping
     std::vector<double> angular_keep;    //!< 1 / (1 + dt c_g,rot / I)
@@ -63,7 +90,7 @@ struct Model::Data {
     std::vector<double> act_cos;
     bool any_active = false;
 
-    std::array<LinkParams, 3> links;  //!< per axis, slots [0, cells)
+    std::array<LinkParams, 3> links;  //!< per axis, one slot per voxel slot
 };
 
 }  // namespace bhm::engine

@@ -20,18 +20,17 @@ namespace {
 
 // Raw views of every array the pass touches, taken once per pass.
 struct Arrays {
-    const double *occupied, *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep,
+    const double *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep,
         *angular_keep, *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos;
     double *pos[3], *quat[4], *vel[3], *omega[3], *stuck;
     const double* ext[3];
     const float *force[3][3], *moment_neg[3][3], *moment_pos[3][3];  // [link axis][component]
-    int stride[3];
+    const int *minus_y, *minus_z;  // slot of the link whose + end is the voxel (x: voxel - 1)
     double dt, voxel_size;
 };
 
 Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScratch, 3>& links) {
     Arrays a{};
-    a.occupied = d.occupied.data();
     a.movable = d.movable.data();
     a.mass = d.mass.data();
     a.dt_inv_mass = d.dt_inv_mass.data();
@@ -49,7 +48,6 @@ Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScrat
         a.vel[i] = s.vel[i].data();
         a.omega[i] = s.omega[i].data();
         a.ext[i] = s.ext_force[i].data();
-        a.stride[i] = d.stride[i];
         for (int k = 0; k < 3; ++k) {
             a.force[i][k] = links[i].force[k];
             a.moment_neg[i][k] = links[i].moment_neg[k];
@@ -59,6 +57,8 @@ Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScrat
     for (int i = 0; i < 4; ++i)
         a.quat[i] = s.quat[i].data();
     a.stuck = s.stuck.data();
+    a.minus_y = d.minus[1].data();
+    a.minus_z = d.minus[2].data();
     a.dt = d.dt_s;
     a.voxel_size = d.voxel_size_m;
     return a;
@@ -74,15 +74,18 @@ struct Update {
     bool ok;
 };
 
-// The new state of cell c: a pure function of the old state and the link scratch.
+// The new state of voxel slot c: a pure function of the old state and the link scratch.
 __attribute__((always_inline)) inline Update integrate(const Arrays& a, const VoxelPassInput& in,
                                                        int c) {
     double f[3], m[3];
+    // The link slots whose + end is c: x in lattice order is the slot before (zero when that
+    // slot's link goes elsewhere or is absent), y and z come from the model's table.
+    const int below_of[3] = {c - 1, a.minus_y[c], a.minus_z[c]};
     for (int i = 0; i < 3; ++i) {
         // Fixed summation order: per axis, the link from the - neighbour, then the link to the +.
         double fi = a.ext[i][c], mi = 0.0;
         for (int ax = 0; ax < 3; ++ax) {
-            const int below = c - a.stride[ax];
+            const int below = below_of[ax];
             fi += static_cast<double>(a.force[ax][i][below]) - a.force[ax][i][c];
             mi += static_cast<double>(a.moment_pos[ax][i][below]) + a.moment_neg[ax][i][c];
         }
@@ -161,8 +164,8 @@ BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
                                  const VoxelPassInput& in) {
     const Arrays a = arrays_of(d, s, links);
     double* __restrict refused = s.refused.data();
-    const int n = d.cells;
-    // Each iteration reads and writes its own cell only (link scratch is read-only here).
+    const int n = d.slots;
+    // Each iteration reads and writes its own voxel slot only (link scratch is read-only here).
 #pragma GCC ivdep
     for (int c = 0; c < n; ++c) {
         const Update u = integrate(a, in, c);
@@ -184,8 +187,8 @@ BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
     return count;
 }
 
-int first_refused_cell(const Model::Data& d, const VoxelState& s) {
-    for (int c = 0; c < d.cells; ++c)
+int first_refused_voxel(const Model::Data& d, const VoxelState& s) {
+    for (int c = 0; c < d.voxels; ++c)
         if (s.refused[c] != 0.0) return c;
     return -1;
 }

@@ -19,7 +19,7 @@ struct VoxelPassInput {
 int voxel_pass(const Model::Data& model, VoxelState& voxels,
                const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
 
-//! The first cell the last voxel_pass marked as refused, or -1.
-int first_refused_cell(const Model::Data& model, const VoxelState& voxels);
+//! The first voxel the last voxel_pass marked as refused, or -1.
+int first_refused_voxel(const Model::Data& model, const VoxelState& voxels);
 
 }  // namespace bhm::engine

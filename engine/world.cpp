@@ -14,9 +14,7 @@ namespace bhm::engine {
 namespace {
 
 void init_voxels(const Model::Data& d, VoxelState& s) {
-    const int n = d.cells + d.pad;
-    const int nx = d.spec.nx, ny = d.spec.ny;
-    const double L = d.voxel_size_m;
+    const int n = d.stored;
     for (int i = 0; i < 3; ++i) {
         s.pos[i].assign(n, 0.0);
         s.vel[i].assign(n, 0.0);
@@ -27,19 +25,17 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
         s.quat[i].assign(n, i == 0 ? 1.0 : 0.0);
     s.stuck.assign(n, 0.0);
     s.refused.assign(n, 0.0);
-    // Every slot, dummies and padding included, sits on its lattice point.
-    for (int c = 0; c < n; ++c) {
-        s.pos[0][c] = (c % nx + 0.5) * L;
-        s.pos[1][c] = ((c / nx) % ny + 0.5) * L;
-        s.pos[2][c] = (c / (nx * ny) + 0.5) * L;
-    }
+    // Every slot, dummies included, sits on its rest point (relative to the body's origin).
+    for (int v = 0; v < n; ++v)
+        for (int i = 0; i < 3; ++i)
+            s.pos[i][v] = d.rest_position[v][i];
 }
 
 void init_links(const Model::Data& d, LinkScratch& l) {
-    // 19 arrays; force and moments are read at c - stride, so each has pad slots in front.
-    const std::size_t span = static_cast<std::size_t>(d.pad) + d.cells;
+    // 19 arrays; the voxel pass reads slot -1 and kNoLink, so each has kLinkLead zero slots first.
+    const std::size_t span = static_cast<std::size_t>(kLinkLead) + d.stored;
     l.storage.assign(19 * span, 0.0f);
-    float* base = l.storage.data() + d.pad;
+    float* base = l.storage.data() + kLinkLead;
     auto next = [&]() {
         float* p = base;
         base += span;
@@ -87,7 +83,7 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
         LinkScratch& l = state_->links[axis];
         init_links(d, l);
         const LinkParams& p = d.links[axis];
-        for (int c = 0; c < d.cells; ++c) {
+        for (int c = 0; c < d.stored; ++c) {
             const float rest = p.rest_base[c] + static_cast<float>(phase.sin_t) * p.rest_sin[c] +
                                static_cast<float>(phase.cos_t) * p.rest_cos[c];
             l.prev_extension[c] = static_cast<float>(d.voxel_size_m) - rest;
@@ -120,8 +116,9 @@ void World::step() {
         for (int axis = 0; axis < 3; ++axis) {
             const int c = first_bad_link(d, s.voxels, axis, sin_t, cos_t);
             if (c < 0) continue;
-            why << " (" << kAxisNames[axis] << " link from voxel " << d.cell_voxel[c]
-                << " to voxel " << d.cell_voxel[c + d.stride[axis]] << ")";
+            const int b = axis == 0 ? c + 1 : d.plus[axis][c];
+            why << " (" << kAxisNames[axis] << " link from voxel " << c << " to voxel " << b
+                << ")";
             break;
         }
         why << " at t = " << t << " s, step " << s.steps;
@@ -134,13 +131,14 @@ void World::step() {
     in.sin_t = phase.sin_t;
     in.cos_t = phase.cos_t;
     in.gravity_m_s2 = d.spec.environment.gravity_m_s2;
-    in.floor_z = d.spec.environment.floor ? 0.0 : -1e300;
+    // The floor is z = 0 in the world, -origin_z in the body's frame (model_data.hpp).
+    in.floor_z = d.spec.environment.floor ? -d.origin_m[2] : -1e300;
     const int bad_voxels = voxel_pass(d, s.voxels, s.links, in);
     if (bad_voxels != 0) {
         std::ostringstream why;
         why << "voxel state non-finite or moving more than one voxel (or one radian) per step";
-        const int c = first_refused_cell(d, s.voxels);
-        if (c >= 0) why << " (voxel " << d.cell_voxel[c] << ")";
+        const int v = first_refused_voxel(d, s.voxels);
+        if (v >= 0) why << " (voxel " << v << ")";
         why << " at t = " << t << " s, step " << s.steps;
         s.diverged = true;
         s.divergence_reason = why.str();
@@ -174,46 +172,47 @@ std::array<double, 3> World::center_of_mass_m() const {
     const Model::Data& d = *state_->data;
     const VoxelState& s = state_->voxels;
     std::array<double, 3> sum{0.0, 0.0, 0.0};
-    for (int c : d.voxel_cell)
+    for (int v = 0; v < d.voxels; ++v)
         for (int i = 0; i < 3; ++i)
-            sum[i] += d.mass[c] * s.pos[i][c];
-    for (double& x : sum)
-        x /= d.total_mass_kg;
+            sum[i] += d.mass[v] * s.pos[i][v];
+    for (int i = 0; i < 3; ++i)
+        sum[i] = sum[i] / d.total_mass_kg + d.origin_m[i];
     return sum;
 }
 
 std::array<double, 3> World::voxel_position_m(int v) const {
-    const int c = state_->data->voxel_cell.at(v);
+    const Model::Data& d = *state_->data;
+    if (v < 0 || v >= d.voxels) throw std::out_of_range("World::voxel_position_m: no such voxel");
     const VoxelState& s = state_->voxels;
-    return {s.pos[0][c], s.pos[1][c], s.pos[2][c]};
+    return {s.pos[0][v] + d.origin_m[0], s.pos[1][v] + d.origin_m[1], s.pos[2][v] + d.origin_m[2]};
 }
 
 void World::read_poses(VoxelPoses& out) const {
     const Model::Data& d = *state_->data;
     const VoxelState& s = state_->voxels;
-    const int n = static_cast<int>(d.voxel_cell.size());
+    const int n = d.voxels;
     out.time_s = time_s();
     out.position_m.resize(3 * static_cast<std::size_t>(n));
     out.orientation.resize(4 * static_cast<std::size_t>(n));
     out.size_m.resize(3 * static_cast<std::size_t>(n));
     const Phase phase = actuation_phase(d, out.time_s);
     for (int v = 0; v < n; ++v) {
-        const int c = d.voxel_cell[v];
         for (int i = 0; i < 3; ++i)
-            out.position_m[3 * v + i] = static_cast<float>(s.pos[i][c]);
+            out.position_m[3 * v + i] = static_cast<float>(s.pos[i][v] + d.origin_m[i]);
         for (int i = 0; i < 4; ++i)
-            out.orientation[4 * v + i] = static_cast<float>(s.quat[i][c]);
+            out.orientation[4 * v + i] = static_cast<float>(s.quat[i][v]);
         const double size =
-            d.voxel_size_m * (1.0 + d.act_sin[c] * phase.sin_t + d.act_cos[c] * phase.cos_t);
+            d.voxel_size_m * (1.0 + d.act_sin[v] * phase.sin_t + d.act_cos[v] * phase.cos_t);
         for (int i = 0; i < 3; ++i)
             out.size_m[3 * v + i] = static_cast<float>(size);
     }
 }
 
 void World::set_external_force(int v, std::array<double, 3> force_n) {
-    const int c = state_->data->voxel_cell.at(v);
+    if (v < 0 || v >= state_->data->voxels)
+        throw std::out_of_range("World::set_external_force: no such voxel");
     for (int i = 0; i < 3; ++i)
-        state_->voxels.ext_force[i][c] = force_n[i];
+        state_->voxels.ext_force[i][v] = force_n[i];
 }
 
 double World::kinetic_energy_j() const {
@@ -221,7 +220,7 @@ double World::kinetic_energy_j() const {
     const VoxelState& s = state_->voxels;
     const double L = d.voxel_size_m;
     double e = 0.0;
-    for (int c : d.voxel_cell) {
+    for (int c = 0; c < d.voxels; ++c) {
         const double m = d.mass[c], inertia = m * L * L / 6.0;
         for (int i = 0; i < 3; ++i)
             e += 0.5 * (m * s.vel[i][c] * s.vel[i][c] + inertia * s.omega[i][c] * s.omega[i][c]);
@@ -233,7 +232,7 @@ std::array<double, 3> World::linear_momentum() const {
     const Model::Data& d = *state_->data;
     const VoxelState& s = state_->voxels;
     std::array<double, 3> p{0.0, 0.0, 0.0};
-    for (int c : d.voxel_cell)
+    for (int c = 0; c < d.voxels; ++c)
         for (int i = 0; i < 3; ++i)
             p[i] += d.mass[c] * s.vel[i][c];
     return p;
@@ -244,9 +243,10 @@ std::array<double, 3> World::angular_momentum() const {
     const VoxelState& s = state_->voxels;
     const double L = d.voxel_size_m;
     std::array<double, 3> h{0.0, 0.0, 0.0};
-    for (int c : d.voxel_cell) {
+    for (int c = 0; c < d.voxels; ++c) {
         const double m = d.mass[c], inertia = m * L * L / 6.0;
-        const double r[3] = {s.pos[0][c], s.pos[1][c], s.pos[2][c]};
+        const double r[3] = {s.pos[0][c] + d.origin_m[0], s.pos[1][c] + d.origin_m[1],
+                             s.pos[2][c] + d.origin_m[2]};
         const double v[3] = {s.vel[0][c], s.vel[1][c], s.vel[2][c]};
         h[0] += m * (r[1] * v[2] - r[2] * v[1]) + inertia * s.omega[0][c];
         h[1] += m * (r[2] * v[0] - r[0] * v[2]) + inertia * s.omega[1][c];
@@ -264,21 +264,23 @@ double World::potential_energy_j() const {
         e += link_elastic_energy(d, s, axis, static_cast<float>(phase.sin_t),
                                  static_cast<float>(phase.cos_t));
     const double g = d.spec.environment.gravity_m_s2;
-    for (int c : d.voxel_cell) {
-        e -= d.mass[c] * g * s.pos[2][c];
+    for (int c = 0; c < d.voxels; ++c) {
+        const double z = s.pos[2][c] + d.origin_m[2];
+        e -= d.mass[c] * g * z;
         if (!d.spec.environment.floor) continue;
         const double half =
             0.5 * d.voxel_size_m * (1.0 + d.act_sin[c] * phase.sin_t + d.act_cos[c] * phase.cos_t);
-        const double penetration = half - s.pos[2][c];
+        const double penetration = half - z;
         if (penetration > 0.0) e += 0.5 * d.floor_k[c] * penetration * penetration;
     }
     return e;
 }
 
 std::array<double, 4> World::voxel_orientation(int v) const {
-    const int c = state_->data->voxel_cell.at(v);
+    if (v < 0 || v >= state_->data->voxels)
+        throw std::out_of_range("World::voxel_orientation: no such voxel");
     const VoxelState& s = state_->voxels;
-    return {s.quat[0][c], s.quat[1][c], s.quat[2][c], s.quat[3][c]};
+    return {s.quat[0][v], s.quat[1][v], s.quat[2][v], s.quat[3][v]};
 }
 
 void run(World& world, double total_s, double sample_hz,

@@ -1,6 +1,6 @@
 #pragma once
-// Private to the engine: the changing state of one World, structure of arrays on the lattice grid
-// (see model_data.hpp for the layout). Double for pose and velocity (small per-step increments
+// Private to the engine: the changing state of one World, structure of arrays over the body's
+// voxel slots (see model_data.hpp for the layout; positions relative to Model::Data::origin_m). Double for pose and velocity (small per-step increments
 // must not be rounded away), float for the per-link scratch that the link kernel writes.
 #include <array>
 #include <cstdint>
@@ -14,7 +14,7 @@
 
 namespace bhm::engine {
 
-//! Per voxel (per cell): 13 doubles of pose/velocity, the static-friction flag and the external
+//! Per voxel slot: 13 doubles of pose/velocity, the static-friction flag and the external
 //! force: 136 bytes per voxel.
 struct VoxelState {
     std::array<std::vector<double>, 3> pos;    //!< centre (m)
@@ -26,11 +26,11 @@ struct VoxelState {
     std::vector<double> refused;  //!< scratch of the voxel pass: 1 = insane new state
 };
 
-//! Per link slot of one axis: the forces the link pass writes for the voxel pass to gather
+//! Per link slot of one axis (slot v = the link of voxel v to its + neighbour): the forces the link pass writes for the voxel pass to gather
 //! (world frame; the +end receives +force, the -end -force), and the link's deformation at the
 //! previous step (its backward difference is the deformation rate used by bond damping).
 struct LinkScratch {
-    std::vector<float> storage;     //!< all arrays below, each of (pad + cells + pad) floats
+    std::vector<float> storage;     //!< all arrays below, each of (kLinkLead + stored) floats
     std::array<float*, 3> force{};  //!< on the + end; the - end gets the opposite
     std::array<float*, 3> moment_neg{};
     std::array<float*, 3> moment_pos{};
