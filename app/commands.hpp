@@ -13,5 +13,6 @@ int cmd_simulate(const Args& args);
 int cmd_evolve(const Args& args);
 int cmd_render(const Args& args);
 int cmd_export(const Args& args);
+int cmd_import(const Args& args);
 
 }  // namespace bhm::app

@@ -21,7 +21,9 @@ constexpr Subcommand kSubcommands[] = {
     {"simulate", bhm::app::cmd_simulate, "simulate one body under an experiment"},
     {"evolve", bhm::app::cmd_evolve, "evolve morphologies headless (AFPO over CPPNs)"},
     {"render", bhm::app::cmd_render, "render a body or a replay to PNG without a display"},
-    {"export", bhm::app::cmd_export, "export a body or a run's champion (VXA, body JSON)"},
+    {"export", bhm::app::cmd_export,
+     "export a body or a run's champion (VXA, body JSON, STL/OBJ mesh, VTK series)"},
+    {"import", bhm::app::cmd_import, "read a VoxCAD/evosoro VXA file as experiment + body"},
 };
 
 void print_usage(std::ostream& out) {

@@ -161,7 +161,15 @@ std::string vxa_document(const Experiment& e, const Body& body) {
         }
         o << "<Layer><![CDATA[" << layer << "]]></Layer>\n";
     }
-    o << "</Data>\n</Structure>\n</VXC>\n</VXA>\n";
+    o << "</Data>\n</Structure>\n</VXC>\n";
+    // The whole experiment for BHM's own import (VoxCAD skips elements it does not know); "]]>"
+    // inside the JSON is split across two CDATA sections.
+    std::string json = experiment_to_json(e).dump();
+    const std::string split = "]]]]><![CDATA[>";
+    for (std::size_t at = json.find("]]>"); at != std::string::npos;
+         at = json.find("]]>", at + split.size()))
+        json.replace(at, 3, split);
+    o << "<BHM_Experiment><![CDATA[" << json << "]]></BHM_Experiment>\n</VXA>\n";
     return o.str();
 }
 

@@ -4,7 +4,9 @@
 // experiment's material order and the lattice as ASCII_READABLE layers (x fastest, then y, one
 // <Layer> per z, cell character '0' + material index, so at most 44 materials). Numbers use the C
 // locale (std::to_chars). VXA 1.0 cannot express the settle delay before actuation or per-voxel
-// fixed overrides; an XML comment in the file mentions the settle delay.
+// fixed overrides; an XML comment in the file mentions the settle delay, and a <BHM_Experiment>
+// element (ignored by VoxCAD) holds the whole experiment as JSON so that evo/vxa_import.hpp
+// reads our own files back exactly.
 #include <string>
 
 #include "evo/experiment.hpp"
