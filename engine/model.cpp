@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/limits.hpp"
 #include "engine/model_data.hpp"
 
 namespace bhm::engine {
@@ -17,75 +18,10 @@ namespace {
     throw std::invalid_argument("body spec: " + what);
 }
 
-bool finite(double x) {
-    return std::isfinite(x);
-}
-
+// The envelope lives in limits.cpp (shared with evo/'s validation): the first problem is the reason.
 void validate(const BodySpec& spec) {
-    if (spec.nx <= 0 || spec.ny <= 0 || spec.nz <= 0)
-        reject("nx, ny, nz must be positive (got " + std::to_string(spec.nx) + " x " +
-               std::to_string(spec.ny) + " x " + std::to_string(spec.nz) + ")");
-    const long long cells = 1LL * spec.nx * spec.ny * spec.nz;
-    if (cells > (1LL << 26)) reject("lattice of " + std::to_string(cells) + " cells is too large");
-    // Bounds keep every intermediate of a step finite, so even a diverging step never yields NaN.
-    if (!finite(spec.voxel_size_m) || spec.voxel_size_m < 1e-6 || spec.voxel_size_m > 10.0)
-        reject("voxel_size_m must be in [1e-6, 10] m");
-    if (static_cast<long long>(spec.material.size()) != cells)
-        reject("material has " + std::to_string(spec.material.size()) + " entries, expected " +
-               std::to_string(cells));
-    if (!spec.fixed.empty() && static_cast<long long>(spec.fixed.size()) != cells)
-        reject("fixed has " + std::to_string(spec.fixed.size()) + " entries, expected 0 or " +
-               std::to_string(cells));
-    if (!spec.phase_rad.empty() && static_cast<long long>(spec.phase_rad.size()) != cells)
-        reject("phase_rad has " + std::to_string(spec.phase_rad.size()) +
-               " entries, expected 0 or " + std::to_string(cells));
-    for (std::size_t k = 0; k < spec.materials.size(); ++k) {
-        const Material& m = spec.materials[k];
-        const std::string name = "materials[" + std::to_string(k) + "].";
-        if (!finite(m.youngs_modulus_pa) || m.youngs_modulus_pa <= 0.0 ||
-            m.youngs_modulus_pa > 1e13)
-            reject(name + "youngs_modulus_pa must be in (0, 1e13] Pa");
-        if (!finite(m.density_kg_m3) || m.density_kg_m3 <= 0.0 || m.density_kg_m3 > 1e6)
-            reject(name + "density_kg_m3 must be in (0, 1e6] kg/m^3");
-        if (!finite(m.poisson_ratio) || m.poisson_ratio <= -1.0 || m.poisson_ratio >= 0.5)
-            reject(name + "poisson_ratio must be in (-1, 0.5)");
-        if (!finite(m.cte_per_c) ||
-            std::fabs(m.cte_per_c * spec.actuation.temperature_amplitude_c) >= 0.5)
-            reject(name +
-                   "cte_per_c times the temperature amplitude must stay below 0.5 "
-                   "(a voxel would shrink to nothing)");
-        if (!finite(m.static_friction) || m.static_friction < 0.0)
-            reject(name + "static_friction must be >= 0");
-        if (!finite(m.dynamic_friction) || m.dynamic_friction < 0.0)
-            reject(name + "dynamic_friction must be >= 0");
-    }
-    bool any_voxel = false;
-    for (long long c = 0; c < cells; ++c) {
-        const int k = spec.material[c];
-        if (k == 0) continue;
-        any_voxel = true;
-        if (k > static_cast<int>(spec.materials.size()))
-            reject("material[" + std::to_string(c) + "] = " + std::to_string(k) + " but only " +
-                   std::to_string(spec.materials.size()) + " materials are defined");
-    }
-    if (!any_voxel) reject("the body has no voxels");
-    for (float p : spec.phase_rad)
-        if (!std::isfinite(p)) reject("phase_rad has a non-finite entry");
-    const Damping& d = spec.damping;
-    if (!finite(d.bond_ratio) || d.bond_ratio < 0.0) reject("damping.bond_ratio must be >= 0");
-    if (!finite(d.global_ratio) || d.global_ratio < 0.0)
-        reject("damping.global_ratio must be >= 0");
-    if (!finite(d.collision_ratio) || d.collision_ratio < 0.0)
-        reject("damping.collision_ratio must be >= 0");
-    const Actuation& a = spec.actuation;
-    if (!finite(a.frequency_hz) || a.frequency_hz < 0.0)
-        reject("actuation.frequency_hz must be >= 0");
-    if (!finite(a.temperature_amplitude_c))
-        reject("actuation.temperature_amplitude_c must be finite");
-    if (!finite(a.start_s)) reject("actuation.start_s must be finite");
-    if (!finite(spec.environment.gravity_m_s2)) reject("environment.gravity_m_s2 must be finite");
-    if (!finite(spec.dt_fraction) || spec.dt_fraction <= 0.0)
-        reject("dt_fraction must be positive");
+    const std::vector<limits::Problem> problems = limits::body_spec_problems(spec);
+    if (!problems.empty()) reject(problems.front().field + " " + problems.front().message);
 }
 
 // Two materials joined by a link act as springs in series: 2 a b / (a + b).
@@ -184,9 +120,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         const int c = d.voxel_cell[v];
         const Material& mat = spec.materials[d.voxel_material[v] - 1];
         const double m = mat.density_kg_m3 * volume;
-        const double inertia = m * L * L / 6.0;
-        const double k_axial = mat.youngs_modulus_pa * L;              // E A / L
-        const double k_rot = mat.youngs_modulus_pa * L * L * L / 3.0;  // 4 E I / L
+        const double k_axial = mat.youngs_modulus_pa * L;  // E A / L
         d.mass[v] = m;
         d.total_mass_kg += m;
         d.floor_k[v] = k_axial;
@@ -199,7 +133,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.act_sin[v] = amplitude * std::cos(phase);
         d.act_cos[v] = amplitude * std::sin(phase);
         if (amplitude != 0.0) d.any_active = true;
-        max_omega2 = std::max({max_omega2, k_axial / m, k_rot / inertia});
+        max_omega2 = std::max(max_omega2, limits::voxel_omega2(mat, L));
     }
 
     // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
@@ -234,16 +168,14 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
             p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
-            const double m_min = std::min(m_a, m_b);
-            const double omega2 =
-                std::max(k_axial / m_min, 4.0 * e * beam_inertia_over_l / (m_min * L * L / 6.0));
+            const double omega2 = limits::link_omega2(ma, mb, L);
             link_omega2[axis][v] = omega2;
             max_omega2 = std::max(max_omega2, omega2);
         }
     }
 
     // Voxelyze's recommended step: 1 / (2 pi sqrt(k_max / m_min)), rotational modes included.
-    d.stable_dt_s = 1.0 / (2.0 * std::numbers::pi * std::sqrt(max_omega2));
+    d.stable_dt_s = limits::stable_step_for(max_omega2);
     d.dt_s = spec.dt_fraction * d.stable_dt_s;
     const double dt = d.dt_s;
     // Explicit (velocity-lagged) Rayleigh damping is stable only while pi beta omega^2 dt stays

@@ -5,7 +5,9 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
+#include "engine/limits.hpp"
 #include "engine/link_pass.hpp"
 #include "engine/voxel_pass.hpp"
 #include "engine/world_state.hpp"
@@ -292,6 +294,12 @@ void run(World& world, double total_s, double sample_hz,
     // Sample k is due at k / sample_hz; the last one at total_s. A world handed over part way
     // (time_s() > 0) is observed once now, then from the next due sample on.
     if (world.diverged()) return;
+    // A simulation never silently runs zero steps: a step longer than twice the whole duration
+    // is a spec out of the envelope (limits::step_budget_problem refuses it up front).
+    if (world.steps() == 0 && total_s > 0.0 && limits::steps_for(total_s, world.model().dt_s()) == 0)
+        throw std::invalid_argument("run: a step of " + std::to_string(world.model().dt_s()) +
+                                    " s is longer than twice the " + std::to_string(total_s) +
+                                    " s to simulate: zero steps would run");
     if (observe) observe(world);
     if (world.time_s() >= total_s - half_step) return;
     for (auto k = static_cast<std::int64_t>(std::floor(world.time_s() / period)) + 1;; ++k) {

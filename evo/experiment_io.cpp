@@ -12,7 +12,9 @@
 #include <sstream>
 #include <system_error>
 
+#include "engine/limits.hpp"
 #include "evo/json_reader.hpp"
+#include "evo/scene.hpp"
 
 namespace bhm::evo {
 
@@ -32,6 +34,12 @@ std::string problems_summary(const std::vector<Problem>& problems) {
         s += problems[i].to_string();
     }
     return s;
+}
+
+std::string short_number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", x);
+    return buf;
 }
 
 std::vector<std::string> face_names() {
@@ -341,8 +349,11 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("workspace.size", "workspace of " + std::to_string(cells) +
                                   " voxels is too large to simulate in memory (at most " +
                                   std::to_string(kMaxCells) + ")");
-    if (!finite(e.voxel_size_m) || e.voxel_size_m < 1e-6 || e.voxel_size_m > 10)
-        bad("workspace.voxel_size_m", "must be in [1e-06, 10] metres");
+    // The physics envelope is the engine's (engine/limits.hpp): the same functions refuse a
+    // BodySpec in Model::build, so what validates here always runs.
+    const engine::BodySpec settings = make_settings_spec(e);
+    for (const auto& p : engine::limits::settings_problems(settings))
+        bad(experiment_field_of(p.field), p.message);
 
     if (e.materials.empty()) bad("materials", "needs at least one material");
     if (e.materials.size() > static_cast<size_t>(kMaxMaterials))
@@ -353,21 +364,19 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         const auto& m = e.materials[i].physics;
         const std::string p = "materials[" + std::to_string(i) + "]";
         if (e.materials[i].name.empty()) bad(p + ".name", "is required");
-        if (!finite(m.youngs_modulus_pa) || m.youngs_modulus_pa <= 0)
-            bad(p + ".youngs_modulus_pa", "must be a positive finite number of pascals");
-        else if (m.youngs_modulus_pa > 1e12)
-            bad(p + ".youngs_modulus_pa", "is beyond any real material (> 1e12 Pa)");
-        if (!finite(m.density_kg_m3) || m.density_kg_m3 <= 0)
-            bad(p + ".density_kg_m3", "must be a positive finite number");
-        if (!finite(m.poisson_ratio) || m.poisson_ratio <= -1 || m.poisson_ratio >= 0.5)
-            bad(p + ".poisson_ratio", "must be in (-1, 0.5)");
+        for (const auto& problem :
+             engine::limits::material_problems(m, e.actuation.temperature_amplitude_c)) {
+            if (problem.field == "cte_per_c" && finite(m.cte_per_c) && m.cte_per_c >= 0 &&
+                m.cte_per_c <= 1)
+                bad("actuation.temperature_amplitude_c",
+                    "with " + p + ".cte_per_c " + problem.message);
+            else if (problem.field != "cte_per_c")
+                bad(p + "." + problem.field, problem.message);
+        }
         if (!finite(m.cte_per_c) || m.cte_per_c < 0 || m.cte_per_c > 1)
             bad(p + ".cte_per_c", "must be in [0, 1] (> 0 makes the material active)");
-        if (!finite(m.static_friction) || m.static_friction < 0)
-            bad(p + ".static_friction", "must be >= 0");
-        if (!finite(m.dynamic_friction) || m.dynamic_friction < 0)
-            bad(p + ".dynamic_friction", "must be >= 0");
-        else if (finite(m.static_friction) && m.dynamic_friction > m.static_friction)
+        if (finite(m.static_friction) && finite(m.dynamic_friction) && m.dynamic_friction >= 0 &&
+            m.dynamic_friction > m.static_friction)
             bad(p + ".dynamic_friction", "must not exceed static_friction");
         (m.cte_per_c > 0 ? has_active : has_passive) = true;
     }
@@ -375,24 +384,6 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("materials",
             "evolution needs a passive material (cte_per_c = 0) and an active one "
             "(cte_per_c > 0)");
-
-    if (!finite(e.actuation.frequency_hz) || e.actuation.frequency_hz < 0 ||
-        e.actuation.frequency_hz > 1000)
-        bad("actuation.frequency_hz", "must be in [0, 1000]");
-    if (!finite(e.actuation.temperature_amplitude_c) || e.actuation.temperature_amplitude_c < 0 ||
-        e.actuation.temperature_amplitude_c > 1000)
-        bad("actuation.temperature_amplitude_c", "must be in [0, 1000]");
-    for (size_t i = 0; i < e.materials.size(); ++i) {
-        double strain = e.materials[i].physics.cte_per_c * e.actuation.temperature_amplitude_c;
-        if (finite(strain) && strain >= 0.9)
-            bad("actuation.temperature_amplitude_c",
-                "with materials[" + std::to_string(i) + "].cte_per_c gives a linear strain of " +
-                    std::to_string(strain) +
-                    " (must stay below 0.9: a voxel cannot shrink to nothing)");
-    }
-
-    if (!finite(e.environment.gravity_m_s2) || std::fabs(e.environment.gravity_m_s2) > 1000)
-        bad("environment.gravity_m_s2", "must be in [-1000, 1000]");
 
     const int nmat = static_cast<int>(e.materials.size());
     const auto& b = e.boundary;
@@ -432,18 +423,21 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("simulation.settle_s", "must be in [0, 10000] seconds");
     if (!finite(s.evaluate_s) || s.evaluate_s <= 0 || s.evaluate_s > 1e5)
         bad("simulation.evaluate_s", "must be in (0, 100000] seconds");
-    if (!finite(s.dt_fraction) || s.dt_fraction <= 0 || s.dt_fraction > 1)
-        bad("simulation.dt_fraction", "must be in (0, 1] (a fraction of the largest stable step)");
-    if (!finite(s.bond_damping_ratio) || s.bond_damping_ratio < 0 || s.bond_damping_ratio > 10)
-        bad("simulation.bond_damping_ratio", "must be in [0, 10]");
-    if (!finite(s.global_damping_ratio) || s.global_damping_ratio < 0 ||
-        s.global_damping_ratio > 10)
-        bad("simulation.global_damping_ratio", "must be in [0, 10]");
-    if (!finite(s.collision_damping_ratio) || s.collision_damping_ratio < 0 ||
-        s.collision_damping_ratio > 10)
-        bad("simulation.collision_damping_ratio", "must be in [0, 10]");
     if (!finite(s.record_fps) || s.record_fps <= 0 || s.record_fps > 1000)
         bad("simulation.record_fps", "must be in (0, 1000]");
+    // The step budget, only once every input it depends on is valid (else it would mislead).
+    if (problems.empty() && size_ok) {
+        std::vector<engine::Material> physics;
+        for (const auto& m : e.materials)
+            physics.push_back(m.physics);
+        const auto range = engine::limits::step_range(physics, e.voxel_size_m, s.dt_fraction);
+        const std::string why = engine::limits::step_budget_problem(
+            range, evaluation_seconds(e), e.actuation.frequency_hz,
+            has_active && e.actuation.temperature_amplitude_c > 0, cells);
+        if (!why.empty())
+            bad("simulation", "settle_s + evaluate_s = " + short_number(evaluation_seconds(e)) +
+                                  " s " + why);
+    }
 
     const auto& c = e.fitness.constraints;
     if (c.attached_to_fixed_face && !b.any_fixed_face())
@@ -666,8 +660,11 @@ void save_body(const std::string& path, const Body& body) {
     write_file_atomically(path, body_to_json(body).dump(2) + "\n");
 }
 
-std::vector<Problem> validate_body_against(const Body& body, const Experiment& e,
-                                           const std::string& file) {
+namespace {
+
+// Size and material indices of a body against the experiment.
+std::vector<Problem> body_shape_problems(const Body& body, const Experiment& e,
+                                         const std::string& file) {
     std::vector<Problem> problems;
     for (int i = 0; i < 3; ++i)
         if (body.size[i] > e.workspace_size[i]) {
@@ -689,6 +686,24 @@ std::vector<Problem> validate_body_against(const Body& body, const Experiment& e
             break;
         }
     }
+    return problems;
+}
+
+}  // namespace
+
+std::vector<Problem> validate_body_against(const Body& body, const Experiment& e,
+                                           const std::string& file) {
+    std::vector<Problem> problems = body_shape_problems(body, e, file);
+    if (!problems.empty()) return problems;
+    // What the engine would be given: an empty result cannot be simulated.
+    const Body framed = apply_frame_and_overrides(e, body);
+    bool any_voxel = false;
+    for (auto cell : framed.cells)
+        any_voxel = any_voxel || cell != 0;
+    if (!any_voxel)
+        problems.push_back({file, "layers",
+                            "the body has no voxels (with the experiment's frame and overrides): "
+                            "nothing to simulate"});
     return problems;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 namespace bhm::evo {
 
@@ -57,14 +58,41 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
     return out;
 }
 
+engine::BodySpec make_settings_spec(const Experiment& e) {
+    engine::BodySpec spec;
+    spec.voxel_size_m = e.voxel_size_m;
+    spec.environment = e.environment;
+    spec.damping.bond_ratio = e.simulation.bond_damping_ratio;
+    spec.damping.global_ratio = e.simulation.global_damping_ratio;
+    spec.damping.collision_ratio = e.simulation.collision_damping_ratio;
+    spec.actuation.frequency_hz = e.actuation.frequency_hz;
+    spec.actuation.temperature_amplitude_c = e.actuation.temperature_amplitude_c;
+    spec.actuation.start_s = e.simulation.settle_s;
+    spec.dt_fraction = e.simulation.dt_fraction;
+    return spec;
+}
+
+std::string experiment_field_of(const std::string& field) {
+    static const std::pair<const char*, const char*> kNames[] = {
+        {"voxel_size_m", "workspace.voxel_size_m"},
+        {"damping.bond_ratio", "simulation.bond_damping_ratio"},
+        {"damping.global_ratio", "simulation.global_damping_ratio"},
+        {"damping.collision_ratio", "simulation.collision_damping_ratio"},
+        {"dt_fraction", "simulation.dt_fraction"},
+        {"actuation.start_s", "simulation.settle_s"},
+    };
+    for (const auto& [spec_name, file_name] : kNames)
+        if (field == spec_name) return file_name;
+    return field;
+}
+
 engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::uint64_t phase_seed) {
     if (framed.cells.size() != static_cast<size_t>(framed.cell_count()))
         throw std::invalid_argument("body cells do not match its size");
-    engine::BodySpec spec;
+    engine::BodySpec spec = make_settings_spec(e);
     spec.nx = framed.size[0];
     spec.ny = framed.size[1];
     spec.nz = framed.size[2];
-    spec.voxel_size_m = e.voxel_size_m;
     spec.material = framed.cells;
     spec.fixed.assign(framed.cells.size(), 0);
     spec.phase_rad.assign(framed.cells.size(), 0.0f);
@@ -100,15 +128,6 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
     for (const auto& o : e.boundary.voxel_overrides)
         if (o.kind == OverrideKind::Fixed)
             spec.fixed[spec.cell_index(o.voxel[0], o.voxel[1], o.voxel[2])] = 1;
-
-    spec.environment = e.environment;
-    spec.damping.bond_ratio = e.simulation.bond_damping_ratio;
-    spec.damping.global_ratio = e.simulation.global_damping_ratio;
-    spec.damping.collision_ratio = e.simulation.collision_damping_ratio;
-    spec.actuation.frequency_hz = e.actuation.frequency_hz;
-    spec.actuation.temperature_amplitude_c = e.actuation.temperature_amplitude_c;
-    spec.actuation.start_s = e.simulation.settle_s;
-    spec.dt_fraction = e.simulation.dt_fraction;
     return spec;
 }
 

@@ -2,6 +2,7 @@
 // From an experiment and a body to the engine's input: the one place that maps the experiment's
 // boundary conditions, enclosure, overrides, materials, actuation and timing onto a BodySpec.
 #include <cstdint>
+#include <string>
 
 #include "engine/body_spec.hpp"
 #include "evo/experiment.hpp"
@@ -18,6 +19,14 @@ Body apply_frame_and_overrides(const Experiment& experiment, const Body& body);
 //! phase is 0 (uniform) or drawn from phase_seed (random). Throws std::invalid_argument.
 engine::BodySpec make_body_spec(const Experiment& experiment, const Body& framed_body,
                                 std::uint64_t phase_seed = 0);
+
+//! The engine settings of an experiment without a body (voxel size, damping, actuation with its
+//! start at settle_s, environment, dt_fraction): make_body_spec fills the rest.
+engine::BodySpec make_settings_spec(const Experiment& experiment);
+
+//! The experiment file's field for a BodySpec field named by engine::limits ("dt_fraction" ->
+//! "simulation.dt_fraction"); materials[k].x and unknown names are returned unchanged.
+std::string experiment_field_of(const std::string& body_spec_field);
 
 //! Total simulated time of one evaluation: settle_s + evaluate_s.
 inline double evaluation_seconds(const Experiment& e) {

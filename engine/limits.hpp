@@ -1,0 +1,77 @@
+#pragma once
+// The engine's physics envelope: the one place that says which inputs the engine can simulate and
+// how many steps a simulation needs. Model::build refuses exactly what these functions refuse, and
+// evo/ (experiment validation, hence `bhm validate`, `simulate` and `evolve`) calls the same
+// functions, so a document that validates always runs. docs/physics.md explains each bound.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/body_spec.hpp"
+
+namespace bhm::engine::limits {
+
+inline constexpr double kMinVoxelSizeM = 1e-6;
+inline constexpr double kMaxVoxelSizeM = 10.0;
+inline constexpr double kMaxYoungsModulusPa = 1e12;  //!< beyond diamond
+inline constexpr double kMaxDensityKgM3 = 1e6;       //!< 40x osmium
+inline constexpr double kMinPoissonRatio = -0.9;     //!< inclusive; -1 makes G infinite
+inline constexpr double kMaxPoissonRatio = 0.49;     //!< inclusive; 0.5 is incompressible
+//! Largest |cte x temperature amplitude| (linear actuation strain) the engine runs stably on the
+//! paper's scenes at the default damping and dt_fraction (tests/engine/test_engine_envelope.cpp).
+inline constexpr double kMaxActuationStrain = 0.6;
+inline constexpr double kMaxDtFraction = 1.0;
+inline constexpr double kMaxDampingRatio = 10.0;
+//! A simulation needing more steps than this is refused (hours of wall time per simulation).
+inline constexpr double kMaxStepsPerSimulation = 1e8;
+//! Fewest steps a simulation may take, and fewest per actuation period (a sine sampled coarser
+//! than this is no longer the prescribed actuation).
+inline constexpr double kMinStepsPerSimulation = 100.0;
+inline constexpr double kMinStepsPerActuationPeriod = 20.0;
+//! Nominal single-thread engine throughput, only for the "about N h" of a refusal message
+//! (README benchmarks: 43-49 M voxel-steps/s on the 2-core CI machine class).
+inline constexpr double kNominalVoxelStepsPerS = 4e7;
+
+//! One input the engine cannot run: the field (relative to the object checked, as in BodySpec,
+//! e.g. "youngs_modulus_pa") and a one-line reason.
+struct Problem {
+    std::string field;
+    std::string message;
+};
+
+//! Problems of one material; temperature_amplitude_c bounds the actuation strain cte x A.
+std::vector<Problem> material_problems(const Material& m, double temperature_amplitude_c);
+//! Problems of the voxel size, damping ratios, dt_fraction, actuation and gravity (fields named
+//! as in BodySpec: "voxel_size_m", "damping.bond_ratio", "dt_fraction", ...).
+std::vector<Problem> settings_problems(const BodySpec& spec);
+//! Every problem of a whole BodySpec: sizes, materials, settings, an empty body.
+std::vector<Problem> body_spec_problems(const BodySpec& spec);
+
+//! Squared angular frequency of the stiffest mode of a lone voxel of material m (rad^2/s^2).
+double voxel_omega2(const Material& m, double voxel_size_m);
+//! Squared angular frequency of the stiffest mode of the link between materials a and b, on the
+//! lighter end: axial, bending, torsion and the Poisson (volumetric) coupling.
+double link_omega2(const Material& a, const Material& b, double voxel_size_m);
+//! Voxelyze's recommended step 1 / (2 pi sqrt(omega2)).
+double stable_step_for(double omega2);
+
+//! The range of time steps a body of these materials can have: shortest (the stiffest pair of
+//! materials linked) and longest (the softest lone material), both times dt_fraction.
+struct StepRange {
+    double shortest_s = 0.0;
+    double longest_s = 0.0;
+};
+StepRange step_range(const std::vector<Material>& materials, double voxel_size_m,
+                     double dt_fraction);
+
+//! The number of steps run(world, total_s, ...) takes at step dt_s.
+std::int64_t steps_for(double total_s, double dt_s);
+
+//! A one-line reason when a simulation of total_s seconds at steps in `range` is out of budget
+//! (more than kMaxStepsPerSimulation, estimated for `voxels` voxels) or too coarse (fewer than
+//! kMinStepsPerSimulation steps, or fewer than kMinStepsPerActuationPeriod per period when
+//! actuated at frequency_hz > 0); empty when it can run.
+std::string step_budget_problem(const StepRange& range, double total_s, double frequency_hz,
+                                bool actuated, long long voxels);
+
+}  // namespace bhm::engine::limits
