@@ -3,6 +3,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -150,15 +151,23 @@ int evolve(ArgParser& args) {
             std::cerr << "bhm evolve: wall-time budget reached ("
                       << clock_text(run->wall_budget_s()) << ")\n";
             break;
-        case evo::StopReason::StopRequested:
+        case evo::StopReason::StopRequested: {
+            // Say only what is on disk: the checkpoint of the last complete generation, if any.
+            std::error_code ec;
+            const std::string& checkpoint = run->checkpoint_path();
+            const bool saved =
+                !checkpoint.empty() && std::filesystem::is_regular_file(checkpoint, ec);
+            const bool abandoned = run->progress().generation > state.generation;
             std::cerr << "bhm evolve: stopped; "
-                      << (state.generation >= 0
-                              ? "last complete generation " + std::to_string(state.generation) +
-                                    ", checkpoint " + run->checkpoint_path() +
-                                    " (continue with --resume)"
-                              : std::string("no generation completed, nothing to resume"))
+                      << (abandoned ? "generation " + std::to_string(state.generation + 1) +
+                                          " abandoned (it runs again on resume); "
+                                    : std::string())
+                      << (saved ? "last complete generation " + std::to_string(state.generation) +
+                                      " is in " + checkpoint + " (continue with --resume)"
+                                : std::string("no generation completed, nothing to resume"))
                       << "\n";
             break;
+        }
     }
     if (state.champion)
         std::cout << "champion: id " << state.champion->individual.id << ", fitness "

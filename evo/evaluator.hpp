@@ -23,6 +23,9 @@ struct EvaluationBatch {
     std::vector<const Body*> bodies;    //!< framed, workspace-sized bodies
     //! Raised to abandon the batch: evaluate() then throws EvaluationCancelled.
     const std::atomic<bool>* cancel = nullptr;
+    //! Raised to hold the simulations in flight where they are until it is lowered (or cancel
+    //! is raised); an evaluator that cannot pause may ignore it.
+    const std::atomic<bool>* pause = nullptr;
     //! Called once per body as its result lands (from any thread, concurrently): progress only.
     std::function<void(std::size_t index)> on_result;
 };

@@ -121,7 +121,6 @@ EvolutionRun::EvolutionRun(Start start, RunOptions options)
     if (evolution.population < 1) throw std::invalid_argument("evolution.population must be >= 1");
     if (!options_.out_dir.empty()) {
         output_.emplace(options_.out_dir);
-        checkpoint_path_ = output_->path(kCheckpointFile);
         if (!start.resumed || !fs::exists(output_->path("run.json")))
             output_->write_run_info(original_experiment_, state_);
     }
@@ -132,9 +131,60 @@ EvolutionRun::~EvolutionRun() = default;
 void EvolutionRun::set_paused(bool paused) {
     {
         std::lock_guard lock(control_mutex_);
+        const auto now = std::chrono::steady_clock::now();
+        if (paused && !paused_.load()) pause_began_ = now;
+        if (!paused && paused_.load())
+            paused_s_ += std::chrono::duration<double>(now - pause_began_).count();
         paused_.store(paused);
     }
     control_changed_.notify_all();
+}
+
+double EvolutionRun::paused_seconds() const {
+    std::lock_guard lock(control_mutex_);
+    double s = paused_s_;
+    if (paused_.load()) s += seconds_since(pause_began_);
+    return s;
+}
+
+GenerationProgress EvolutionRun::progress() const {
+    GenerationProgress p;
+    double paused_at_start = 0.0;
+    std::chrono::steady_clock::time_point start;
+    {
+        std::lock_guard lock(progress_mutex_);
+        p = progress_;
+        paused_at_start = progress_paused_at_start_s_;
+        start = progress_start_;
+    }
+    if (p.running)
+        p.elapsed_s = std::max(0.0, seconds_since(start) - (paused_seconds() - paused_at_start));
+    return p;
+}
+
+void EvolutionRun::progress_begin(int generation) {
+    const double paused = paused_seconds();
+    std::lock_guard lock(progress_mutex_);
+    progress_ = GenerationProgress{true, generation, 0, 0, 0.0};
+    progress_start_ = std::chrono::steady_clock::now();
+    progress_paused_at_start_s_ = paused;
+}
+
+void EvolutionRun::progress_set_total(int simulations) {
+    std::lock_guard lock(progress_mutex_);
+    progress_.simulations_total = simulations;
+}
+
+void EvolutionRun::progress_count_one() {
+    std::lock_guard lock(progress_mutex_);
+    ++progress_.simulations_done;
+}
+
+void EvolutionRun::progress_end() {
+    const GenerationProgress last = progress();
+    std::lock_guard lock(progress_mutex_);
+    progress_.running = false;
+    progress_.elapsed_s = last.elapsed_s;
 }
 
 void EvolutionRun::request_fitness_change(const Fitness& fitness) {
@@ -195,6 +245,11 @@ bool EvolutionRun::run_generation() {
     const auto start = std::chrono::steady_clock::now();
     if (session_generations_ == 0) session_start_ = start;
     const int g = state_.generation + 1;
+    progress_begin(g);
+    struct ProgressEnd {  // on every way out, exceptions included
+        EvolutionRun& run;
+        ~ProgressEnd() { run.progress_end(); }
+    } progress_end_guard{*this};
 
     // Everything below works on copies; state_ changes only once the generation is complete, so
     // an abandoned generation leaves the last checkpoint's state intact.
@@ -306,8 +361,11 @@ bool EvolutionRun::run_generation() {
     EvaluationBatch batch;
     batch.rules = &rules;
     batch.cancel = &stop_;
+    batch.pause = &paused_;
+    batch.on_result = [this](std::size_t) { progress_count_one(); };
     for (const std::size_t i : jobs)
         batch.bodies.push_back(&fresh[i].phenotype.body);
+    progress_set_total(static_cast<int>(jobs.size()));
     try {
         evaluator_->evaluate(batch, results);
     } catch (const EvaluationCancelled&) {
@@ -346,7 +404,7 @@ bool EvolutionRun::run_generation() {
         champion = ChampionRecord{best, g};
         new_champion = true;
     }
-    const double generation_wall_s = seconds_since(start);
+    const double generation_wall_s = progress().elapsed_s;  // paused time excluded
 
     HistoryRow row;
     row.generation = g;
@@ -385,6 +443,7 @@ bool EvolutionRun::run_generation() {
         output_->write_fitness_csv(state_.history);
         if (new_champion) output_->write_champion(rules, *state_.champion);
         output_->write_checkpoint(state_);
+        checkpoint_path_ = output_->path(kCheckpointFile);
     }
 
     auto report = std::make_shared<GenerationReport>();

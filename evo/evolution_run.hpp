@@ -13,13 +13,17 @@
 // whatever the thread count or evaluator, and a resumed run continues exactly as an uninterrupted
 // one.
 //
-// Control (thread-safe, for a UI thread or a signal handler): request_stop() abandons the current
-// generation at the next simulation sample and returns from run() with the last completed
-// generation's checkpoint on disk; set_paused() holds the loop between generations;
-// request_fitness_change() swaps the fitness rules before the next generation and re-scores the
-// population under them (all measures are kept, so no new simulation is needed; members that now
-// break a constraint get kInvalidFitness). Reports are immutable snapshots handed to a callback
-// and kept as latest_report().
+// Control (thread-safe, for a UI thread or a signal handler): request_stop() aborts the simulations
+// in flight within milliseconds (evo::kControlCheckSteps), abandons the current generation and
+// returns from run() with the last completed generation's checkpoint on disk (checkpoint_path();
+// empty when no generation has completed); an abandoned generation is simply computed again on
+// resume, so stop + resume == an uninterrupted run. set_paused(true) freezes the simulations in
+// flight where they are and holds the loop between generations; paused time does not count
+// against the wall-time budget. request_fitness_change() swaps the fitness rules before the next
+// generation and re-scores the population under them (all measures are kept, so no new
+// simulation is needed; members that now break a constraint get kInvalidFitness). Reports are
+// immutable snapshots handed to a callback and kept as latest_report(); progress() says how far
+// the generation in progress is.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -83,6 +87,16 @@ struct GenerationReport {
     double eta_s = -1.0;             //!< to the generation or wall budget; -1 unknown
 };
 
+//! How far the generation in progress is: a consistent snapshot, cheap enough to poll every frame.
+struct GenerationProgress {
+    bool running = false;       //!< inside run_generation()
+    int generation = -1;        //!< the generation in progress, else the last one started
+    int simulations_done = 0;   //!< finished simulations of that generation
+    int simulations_total = 0;  //!< its simulations (0 until its individuals exist; cache hits
+                                //!< and clones need none)
+    double elapsed_s = 0.0;     //!< wall time in that generation so far, paused time excluded
+};
+
 using ReportCallback = std::function<void(std::shared_ptr<const GenerationReport>)>;
 
 enum class StopReason { GenerationBudget, WallBudget, StopRequested };
@@ -120,11 +134,15 @@ class EvolutionRun {
     void request_fitness_change(const Fitness& fitness);
 
     std::shared_ptr<const GenerationReport> latest_report() const;
+    //! Thread-safe: from any thread at any time, also while run() executes.
+    GenerationProgress progress() const;
     //! The state after the last completed generation. Only while run() is not executing.
     const RunState& state() const { return state_; }
     const Experiment& experiment() const { return state_.experiment; }
     const Developer& developer() const { return developer_; }
     const std::vector<std::string>& resume_warnings() const { return resume_warnings_; }
+    //! The checkpoint file that holds state(): the one loaded on resume or the last one written;
+    //! empty while no generation is complete. Only while run() is not executing.
     const std::string& checkpoint_path() const { return checkpoint_path_; }
     int generation_budget() const { return generation_budget_; }
     double wall_budget_s() const { return wall_budget_s_; }
@@ -143,6 +161,12 @@ class EvolutionRun {
     bool draw_random_individual(Individual& out, Rng& rng, std::int64_t id, int generation,
                                 const Constraints& constraints) const;
     void publish(std::shared_ptr<const GenerationReport> report);
+    //! Seconds spent paused since the run was made (the current pause included).
+    double paused_seconds() const;
+    void progress_begin(int generation);
+    void progress_set_total(int simulations);
+    void progress_count_one();
+    void progress_end();
 
     RunOptions options_;
     Experiment original_experiment_;
@@ -158,14 +182,21 @@ class EvolutionRun {
 
     std::atomic<bool> stop_{false};
     std::atomic<bool> paused_{false};
-    std::mutex control_mutex_;
+    mutable std::mutex control_mutex_;
     std::condition_variable control_changed_;
+    std::chrono::steady_clock::time_point pause_began_;  //!< under control_mutex_
+    double paused_s_ = 0.0;                              //!< completed pauses, under control_mutex_
     std::optional<Fitness> pending_fitness_;
     std::uint64_t pending_serial_ = 0;
 
     mutable std::mutex report_mutex_;
     std::shared_ptr<const GenerationReport> latest_;
     ReportCallback callback_;
+
+    mutable std::mutex progress_mutex_;
+    GenerationProgress progress_;  //!< elapsed_s unused: computed from the two below
+    std::chrono::steady_clock::time_point progress_start_;
+    double progress_paused_at_start_s_ = 0.0;
 
     std::chrono::steady_clock::time_point session_start_;
     int session_generations_ = 0;

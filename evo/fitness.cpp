@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <thread>
 
 #include "engine/world.hpp"
 #include "evo/scene.hpp"
@@ -113,8 +114,54 @@ void MeasureTracker::observe(const engine::World& world) {
     }
 }
 
+namespace {
+
+//! Holds while paused, throws once cancelled.
+void honour(const EvaluationControl& control) {
+    auto cancelled = [&] {
+        return control.cancel && control.cancel->load(std::memory_order_relaxed);
+    };
+    while (!cancelled() && control.pause && control.pause->load(std::memory_order_relaxed))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (cancelled()) throw EvaluationCancelled();
+}
+
+//! engine::run's schedule (observe at t = 0, every 1 / sample_hz and at total_s; stop on
+//! divergence), advanced in slices of kControlCheckSteps steps so the controls are seen often.
+//! Slicing changes nothing: dt is fixed and advance_to stops at the first step at or past its
+//! target, so the same steps are taken (tests/evo/test_fitness.cpp checks against engine::run).
+void run_controlled(engine::World& world, double total_s, double sample_hz,
+                    const EvaluationControl& control, MeasureTracker& tracker) {
+    const double period = 1.0 / sample_hz;
+    const double dt = world.model().dt_s();
+    const double half_step = 0.5 * dt;
+    if (world.diverged()) return;
+    honour(control);
+    tracker.observe(world);
+    if (world.time_s() >= total_s - half_step) return;
+    for (std::int64_t k = 1;; ++k) {
+        double due = static_cast<double>(k) * period;
+        const bool last = due >= total_s - half_step;
+        if (last) due = total_s;
+        while (world.time_s() < due) {
+            const double slice_end = static_cast<double>(world.steps() + kControlCheckSteps) * dt;
+            if (!world.advance_to(std::min(due, slice_end))) return;  // diverged
+            honour(control);
+        }
+        tracker.observe(world);
+        if (last) return;
+    }
+}
+
+}  // namespace
+
 FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
                             const std::atomic<bool>* cancel) {
+    return evaluate_body(experiment, framed_body, EvaluationControl{cancel, nullptr});
+}
+
+FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
+                            const EvaluationControl& control) {
     const auto start = std::chrono::steady_clock::now();
     // Random phases come from the run's seed (docs/experiment-format.md), which the experiment
     // holds.
@@ -123,10 +170,7 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     MeasureTracker tracker(experiment, world);
     const double sample_hz =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    engine::run(world, evaluation_seconds(experiment), sample_hz, [&](const engine::World& w) {
-        if (cancel && cancel->load(std::memory_order_relaxed)) throw EvaluationCancelled();
-        tracker.observe(w);
-    });
+    run_controlled(world, evaluation_seconds(experiment), sample_hz, control, tracker);
 
     FitnessReport report;
     report.measures = tracker.measures();

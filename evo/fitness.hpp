@@ -49,9 +49,23 @@ struct EvaluationCancelled : std::runtime_error {
     EvaluationCancelled() : std::runtime_error("evaluation cancelled") {}
 };
 
+//! Steps between two looks at an EvaluationControl: a few milliseconds even for large bodies, and
+//! independent of record_fps (a sample can span the whole simulation).
+inline constexpr int kControlCheckSteps = 64;
+
+//! Controls of a running evaluation from other threads (or a signal handler); both optional.
+//! Neither changes the result: the world is stepped exactly as without them.
+struct EvaluationControl {
+    const std::atomic<bool>* cancel = nullptr;  //!< raised: throw EvaluationCancelled
+    const std::atomic<bool>* pause = nullptr;   //!< raised: sleep until lowered (or cancelled)
+};
+
 //! Simulates the framed body (apply_frame_and_overrides output) under the experiment. Random
 //! actuation phases are seeded from experiment.evolution.seed, so the result is a pure function
-//! of (experiment, body). Checks `cancel` at every sample and throws EvaluationCancelled when set.
+//! of (experiment, body). Looks at the controls every kControlCheckSteps steps and at every
+//! sample: a raised cancel flag throws EvaluationCancelled within milliseconds.
+FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
+                            const EvaluationControl& control);
 FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
                             const std::atomic<bool>* cancel = nullptr);
 

@@ -3,10 +3,12 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "evo/checkpoint.hpp"
 #include "evo/constraints.hpp"
@@ -200,6 +202,69 @@ TEST_CASE("a stop during a generation abandons it and leaves the state untouched
     CHECK(run.state().generation == 0);
     CHECK(run.state().history == before);
     CHECK(run.state().rng == rng);
+}
+
+TEST_CASE("pause and stop reach into the simulations of a generation; resume re-runs it") {
+    // Simulations long enough (0.6 s simulated) that the controls land while they run.
+    auto e = test::tiny_experiment();
+    e.evolution.population = 4;
+    e.simulation.evaluate_s = 0.6;
+    e.simulation.record_fps = 0.5;  // one sample in the window: only the in-between checks remain
+    const fs::path whole = fresh_dir("cancel-whole"), parts = fresh_dir("cancel-parts");
+
+    EvolutionRun run(e, options(3, 2, parts.string()));
+    CHECK(run.checkpoint_path().empty());  // nothing on disk yet
+    CHECK_FALSE(run.progress().running);
+    StopReason reason = StopReason::GenerationBudget;
+    std::thread runner([&] { reason = run.run(); });
+    // Wait until generation 1 has finished some but not all of its simulations.
+    GenerationProgress p;
+    for (;;) {
+        p = run.progress();
+        if (p.running && p.generation == 1 && p.simulations_done >= 1) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    run.set_paused(true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const GenerationProgress frozen = run.progress();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const GenerationProgress later = run.progress();
+    REQUIRE(frozen.running);
+    REQUIRE(frozen.generation == 1);
+    CHECK(frozen.simulations_total >= frozen.simulations_done);
+    CHECK(later.simulations_done == frozen.simulations_done);                   // paused in flight
+    CHECK(later.elapsed_s == doctest::Approx(frozen.elapsed_s).epsilon(0.05));  // paused clock
+
+    const auto asked = std::chrono::steady_clock::now();
+    run.request_stop();
+    runner.join();
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
+    CHECK(reason == StopReason::StopRequested);
+    CHECK(waited < 1.0);  // each simulation alone takes longer than this under the sanitizers
+    CHECK(run.state().generation == 0);     // generation 1 abandoned
+    CHECK(run.progress().generation == 1);  // ... which progress still names
+    CHECK_FALSE(run.progress().running);
+    CHECK(run.checkpoint_path() == (parts / kCheckpointFile).string());
+    CHECK(fs::exists(run.checkpoint_path()));
+    CHECK(run.state().history.size() == 1);
+
+    auto resumed = EvolutionRun::resume(options(3, 2, parts.string()));
+    CHECK(resumed->checkpoint_path() == (parts / kCheckpointFile).string());
+    CHECK(resumed->run() == StopReason::GenerationBudget);
+    EvolutionRun uninterrupted(e, options(3, 2, whole.string()));
+    uninterrupted.run();
+    CHECK(csv_without_wall(read_file(parts / "fitness.csv")) ==
+          csv_without_wall(read_file(whole / "fitness.csv")));
+    CHECK(resumed->state().rng == uninterrupted.state().rng);
+    CHECK(resumed->state().champion->individual.genome ==
+          uninterrupted.state().champion->individual.genome);
+    const GenerationProgress done = uninterrupted.progress();
+    CHECK(done.generation == 2);
+    CHECK(done.simulations_done == done.simulations_total);
+    CHECK(done.simulations_total == uninterrupted.state().history.back().simulations);
+    fs::remove_all(whole);
+    fs::remove_all(parts);
 }
 
 TEST_CASE("a corrupt checkpoint falls back to the previous one; both corrupt is a clear error") {

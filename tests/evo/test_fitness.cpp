@@ -2,9 +2,13 @@
 // thermal bimorph against a passive twin for the bend angle.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
+#include "engine/world.hpp"
 #include "evo/fitness.hpp"
+#include "evo/scene.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;
@@ -85,4 +89,76 @@ TEST_CASE("a raised cancel flag stops the evaluation") {
     const auto e = test::tiny_experiment({2, 1, 1});
     std::atomic<bool> cancel{true};
     CHECK_THROWS_AS(evaluate_body(e, box({2, 1, 1}, 1), &cancel), EvaluationCancelled);
+}
+
+TEST_CASE("evaluate_body steps and samples exactly as engine::run does") {
+    // Its sliced loop (for the controls) must not change the simulation: same steps, same samples,
+    // so the same measures to the last bit, here with a sample period that is not a whole number
+    // of slices or steps.
+    auto e = test::tiny_experiment({4, 2, 2});
+    e.simulation.record_fps = 137.0;
+    Body body = box({4, 2, 2}, 1);
+    body.cells[body.index(3, 0, 0)] = 2;
+    body.cells[body.index(3, 1, 1)] = 2;
+    const auto report = evaluate_body(e, body, nullptr);
+
+    bhm::engine::World world(bhm::engine::Model::build(make_body_spec(e, body, e.evolution.seed)));
+    MeasureTracker tracker(e, world);
+    bhm::engine::run(world, evaluation_seconds(e), e.simulation.record_fps,
+                     [&](const bhm::engine::World& w) { tracker.observe(w); });
+    REQUIRE_FALSE(report.diverged);
+    CHECK(report.steps == world.steps());
+    for (int k = 0; k < kMeasureCount; ++k)
+        CHECK(report.measures[static_cast<std::size_t>(k)] ==
+              tracker.measures()[static_cast<std::size_t>(k)]);
+}
+
+TEST_CASE("a cancel raised between two samples stops the evaluation within a few steps") {
+    // One sample per 1000 s: without the in-between checks this would simulate 1000 s (minutes
+    // of wall time) before seeing the flag.
+    auto e = test::tiny_experiment({2, 1, 1});
+    e.simulation.settle_s = 0.0;
+    e.simulation.evaluate_s = 1000.0;
+    e.simulation.record_fps = 0.001;
+    std::atomic<bool> cancel{false};
+    const auto start = std::chrono::steady_clock::now();
+    std::thread raiser([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        cancel.store(true);
+    });
+    CHECK_THROWS_AS(evaluate_body(e, box({2, 1, 1}, 1), &cancel), EvaluationCancelled);
+    raiser.join();
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    CHECK(waited < 10.0);  // generous for sanitizer builds; the full run takes minutes
+}
+
+TEST_CASE("a raised pause flag holds the evaluation until it is lowered, then it completes") {
+    auto e = test::tiny_experiment({2, 1, 1});
+    std::atomic<bool> pause{true}, cancel{false}, finished{false};
+    FitnessReport paused_report;
+    std::thread worker([&] {
+        paused_report = evaluate_body(e, box({2, 1, 1}, 1), EvaluationControl{&cancel, &pause});
+        finished.store(true);
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    CHECK_FALSE(finished.load());  // the whole evaluation takes a few milliseconds unpaused
+    pause.store(false);
+    worker.join();
+    CHECK(finished.load());
+    const auto plain = evaluate_body(e, box({2, 1, 1}, 1), nullptr);
+    CHECK(paused_report.steps == plain.steps);
+    CHECK(paused_report.fitness == plain.fitness);
+}
+
+TEST_CASE("a cancel ends a paused evaluation") {
+    auto e = test::tiny_experiment({2, 1, 1});
+    std::atomic<bool> pause{true}, cancel{false};
+    std::thread raiser([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        cancel.store(true);
+    });
+    CHECK_THROWS_AS(evaluate_body(e, box({2, 1, 1}, 1), EvaluationControl{&cancel, &pause}),
+                    EvaluationCancelled);
+    raiser.join();
 }
