@@ -74,11 +74,11 @@ BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest) 
     return (std::fabs(extension) < rest) & (f.axis_cos > 0.0f);
 }
 
-// One axis's loop over every link slot. kContiguous: the + end of slot c is voxel c + 1 (x links
-// in lattice order), so nothing is gathered; otherwise it is plus[c].
-template <bool kContiguous>
+// One axis's loop over the link slots of one run. kGather: the + end of slot c is plus[c];
+// otherwise it is voxel c + delta, and nothing is gathered.
+template <bool kGather>
 BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, LinkScratch& out,
-                                int axis, float sin_t, float cos_t) {
+                                int axis, float sin_t, float cos_t, const LinkRun& run) {
     const LinkParams& lp = model.links[axis];
     const float* __restrict exists = lp.exists.data();
     const float* __restrict k_axial = lp.k_axial.data();
@@ -116,12 +116,11 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     const double* __restrict q2 = v.q[3];
 
     int bad = 0;  // an integer sum: a float one would be an in-order (unvectorisable) reduction
-    // A whole number of vectors: the dummy slots past the last voxel hold no link.
-    const int n = model.slots;
+    const int delta = run.delta;
     // Every array is distinct (restrict on locals is not enough for GCC's dependence analysis).
 #pragma GCC ivdep
-    for (int c = 0; c < n; ++c) {
-        const int b = kContiguous ? c + 1 : plus[c];
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
         const LinkFrame f = frame_of(p0, p1, p2, qw, q0, q1, q2, c, b, exists[c], rest_base[c]);
         const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
         const float extension = f.length - rest;
@@ -179,8 +178,11 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
 BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxels,
                                 LinkScratch& out, int axis, float sin_t, float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
-    return axis == 0 ? link_loop<true>(model, v, out, axis, sin_t, cos_t)
-                     : link_loop<false>(model, v, out, axis, sin_t, cos_t);
+    int bad = 0;
+    for (const LinkRun& run : model.link_runs[axis])
+        bad += run.delta == 0 ? link_loop<true>(model, v, out, axis, sin_t, cos_t, run)
+                              : link_loop<false>(model, v, out, axis, sin_t, cos_t, run);
+    return bad;
 }
 
 int first_bad_link(const Model::Data& model, const VoxelState& voxels, int axis, float sin_t,

@@ -50,6 +50,79 @@ void resize_links(LinkParams& p, int n, float voxel_size) {
     p.rest_base.assign(n, voxel_size);  // keeps absent slots well formed
 }
 
+// The common offset of a whole vector of slots, or 0 when they differ (the chunk is gathered).
+// `offset(v)` gives slot v's required offset, or 0 when any offset would do.
+template <class Offset>
+int chunk_offset(int begin, Offset offset) {
+    int common = 0;
+    for (int v = begin; v < begin + kLanes; ++v) {
+        const int o = offset(v);
+        if (o == 0) continue;
+        if (common != 0 && o != common) return -1;
+        common = o;
+    }
+    return common;
+}
+
+// Cuts [0, slots) into uniform and gathered runs (model_data.hpp) and sizes the zero lead of the
+// link scratch and the tail of dummy voxels so every offset read stays in bounds.
+void build_runs(Model::Data& d) {
+    auto has_link = [&](int a, int v) { return v < d.voxels && d.plus[a][v] != v; };
+    int max_delta = 1, max_below = 1;
+    for (int a = 0; a < 3; ++a) {
+        auto& runs = d.link_runs[a];
+        runs.clear();
+        for (int begin = 0; begin < d.slots; begin += kLanes) {
+            bool any = false;
+            for (int v = begin; v < begin + kLanes; ++v)
+                any = any || has_link(a, v);
+            // A vector of slots without a link is skipped: its scratch stays zero.
+            if (!any) continue;
+            int delta = a == 0 ? 1 : chunk_offset(begin, [&](int v) {
+                return has_link(a, v) ? d.plus[a][v] - v : 0;
+            });
+            if (delta < 0) delta = 0;  // gathered
+            const bool follows = !runs.empty() && runs.back().end == begin;
+            if (follows && runs.back().delta == delta)
+                runs.back().end = begin + kLanes;
+            else
+                runs.push_back({begin, begin + kLanes, delta});
+            max_delta = std::max(max_delta, delta);
+        }
+    }
+    // Voxel v may read slot v - below for axis a when that slot's link (if any) ends at v.
+    auto below_ok = [&](int a, int v, int below) {
+        const int w = v - below;
+        if (d.minus[a][v] != kNoLink) return d.minus[a][v] == w;
+        return w < 0 || !has_link(a, w) || d.plus[a][w] == v;
+    };
+    auto below_of = [&](int a, int begin, int previous) {
+        int below = chunk_offset(begin, [&](int v) {
+            return v < d.voxels && d.minus[a][v] != kNoLink ? v - d.minus[a][v] : 0;
+        });
+        if (below < 0) return 0;
+        if (below == 0) below = previous;
+        if (below <= 0) return 0;
+        for (int v = begin; v < begin + kLanes; ++v)
+            if (!below_ok(a, v, below)) return 0;
+        return below;
+    };
+    d.voxel_runs.clear();
+    for (int begin = 0; begin < d.slots; begin += kLanes) {
+        const VoxelRun* last = d.voxel_runs.empty() ? nullptr : &d.voxel_runs.back();
+        int by = below_of(1, begin, last ? last->below_y : 0);
+        int bz = below_of(2, begin, last ? last->below_z : 0);
+        if (by == 0 || bz == 0) by = bz = 0;  // one gathered axis: gather both
+        if (last && last->below_y == by && last->below_z == bz)
+            d.voxel_runs.back().end = begin + kLanes;
+        else
+            d.voxel_runs.push_back({begin, begin + kLanes, by, bz});
+        max_below = std::max({max_below, by, bz});
+    }
+    d.stored = d.slots + max_delta;
+    d.link_lead = (std::max(max_below, kLinkLead) + kLanes - 1) / kLanes * kLanes;
+}
+
 // The compact voxel list in lattice order, its bounding-box origin and the neighbour tables.
 void build_layout(Model::Data& d) {
     const BodySpec& spec = d.spec;
@@ -69,27 +142,23 @@ void build_layout(Model::Data& d) {
     }
     d.voxels = static_cast<int>(d.voxel_cell.size());
     d.slots = (d.voxels + kLanes - 1) / kLanes * kLanes;
-    d.stored = d.slots + 1;
     const double L = spec.voxel_size_m;
     for (int i = 0; i < 3; ++i)
         d.origin_m[i] = d.origin_cell[i] * L;
 
-    // Dummies rest at the relative origin's cell centre; real voxels on their lattice points.
-    d.rest_position.assign(d.stored, {0.5 * L, 0.5 * L, 0.5 * L});
+    // Neighbours, on the slots only (the tail of dummies is sized once the runs are known).
     const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
     const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
     for (int a = 0; a < 3; ++a) {
-        d.plus[a].resize(d.stored);
-        d.minus[a].assign(d.stored, kNoLink);
-        for (int v = 0; v < d.stored; ++v)
+        d.plus[a].resize(d.slots + 1);
+        d.minus[a].assign(d.slots + 1, kNoLink);
+        for (int v = 0; v <= d.slots; ++v)
             d.plus[a][v] = v;
     }
     for (int v = 0; v < d.voxels; ++v) {
         const int c = d.voxel_cell[v];
         const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
                                      c / (spec.nx * spec.ny)};
-        for (int i = 0; i < 3; ++i)
-            d.rest_position[v][i] = (xyz[i] - d.origin_cell[i] + 0.5) * L;
         for (int a = 0; a < 3; ++a) {
             if (xyz[a] + 1 >= limit[a]) continue;
             const int b = d.cell_voxel[c + stride[a]];
@@ -97,6 +166,23 @@ void build_layout(Model::Data& d) {
             d.plus[a][v] = b;
             d.minus[a][b] = v;
         }
+    }
+    build_runs(d);
+
+    // Dummies rest at the relative origin's cell centre; real voxels on their lattice points.
+    d.rest_position.assign(d.stored, {0.5 * L, 0.5 * L, 0.5 * L});
+    for (int v = 0; v < d.voxels; ++v) {
+        const int c = d.voxel_cell[v];
+        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
+                                     c / (spec.nx * spec.ny)};
+        for (int i = 0; i < 3; ++i)
+            d.rest_position[v][i] = (xyz[i] - d.origin_cell[i] + 0.5) * L;
+    }
+    for (int a = 0; a < 3; ++a) {
+        d.plus[a].resize(d.stored, 0);
+        d.minus[a].resize(d.stored, kNoLink);
+        for (int v = d.slots + 1; v < d.stored; ++v)
+            d.plus[a][v] = v;
     }
 }
 

@@ -16,6 +16,12 @@
 //   minus[a][v] for y, z (kNoLink, a slot that is always zero, when there is none). The summation
 //   order is fixed (per axis: the - link, then the + link), so results are deterministic, no
 //   atomics are needed, and a step allocates nothing.
+// - Solid regions need no gathers: the slots are cut into runs of whole vectors. In a "uniform"
+//   run every link's + end is the slot plus one constant (y: the voxels of a row, z: of a layer)
+//   and every voxel's - link is its slot minus one constant, so the passes read both ends
+//   contiguously; the other runs go through the tables. Absent links may point anywhere (their
+//   chord is replaced), so they never break a run; zero slots before slot 0 (link_lead) and dummy
+//   voxels after the last slot (up to `stored`) keep every offset read in bounds.
 // - Positions are stored relative to the body's origin (the low corner of the occupied cells'
 //   bounding box, `origin_m`), and the floor is at -origin_z: a body gives the same trajectory
 //   bit for bit wherever it sits in its workspace (shifted by whole voxels); the World adds the
@@ -29,12 +35,25 @@
 
 namespace bhm::engine {
 
-//! Voxel arrays are padded to a multiple of this (16 floats = one AVX-512 vector).
-inline constexpr int kLanes = 16;
-//! Link scratch arrays hold this many always-zero slots before slot 0 (the x gather of voxel 0
-//! reads slot -1; absent y/z links point at kNoLink).
+//! Voxel arrays are padded to a multiple of this (8 doubles = one AVX-512 vector; the float link
+//! pass runs 16 lanes and an 8-lane tail).
+inline constexpr int kLanes = 8;
+//! Link scratch arrays hold at least this many always-zero slots before slot 0 (the x gather of
+//! voxel 0 reads slot -1; absent y/z links point at kNoLink).
 inline constexpr int kLinkLead = kLanes;
 inline constexpr int kNoLink = -1;
+
+//! Link slots [begin, end) of one axis; delta > 0: the + end of slot c is voxel c + delta,
+//! delta == 0: it is plus[axis][c].
+struct LinkRun {
+    int begin = 0, end = 0, delta = 0;
+};
+
+//! Voxel slots [begin, end); below_y > 0: the y link whose + end is voxel c sits in slot
+//! c - below_y (a zero slot when there is none), and the same for z; 0: through minus[].
+struct VoxelRun {
+    int begin = 0, end = 0, below_y = 0, below_z = 0;
+};
 
 //! Per link slot constants of one lattice axis (float: they feed the float link kernel).
 struct LinkParams {
@@ -58,7 +77,8 @@ struct Model::Data {
 
     int voxels = 0;  //!< n, real voxels
     int slots = 0;   //!< n rounded up to kLanes: the length every pass loops over
-    int stored = 0;  //!< slots + 1: the length of per-voxel arrays (slot `slots` is the +x dummy)
+    int stored = 0;  //!< length of per-voxel arrays: slots + the largest uniform link offset
+    int link_lead = kLinkLead;  //!< zero slots before slot 0 in link scratch arrays
     std::array<int, 3> origin_cell{0, 0, 0};  //!< low corner of the voxels' bounding box
     std::array<double, 3> origin_m{0, 0, 0};  //!< origin_cell * L: added to reported positions
 
@@ -73,6 +93,9 @@ struct Model::Data {
     // read for y and z). minus[a][v]: the link slot whose + end is v, or kNoLink (y and z).
     std::array<std::vector<std::int32_t>, 3> plus;
     std::array<std::vector<std::int32_t>, 3> minus;
+    std::array<std::vector<LinkRun>, 3> link_runs;  //!< in order, per axis; slots of vectors
+                                                    //!< without a link are in none
+    std::vector<VoxelRun> voxel_runs;               //!< cover [0, slots) in order
 
     // Per voxel constants (stored), double: they feed the double voxel pass.
     std::vector<double> movable;         //!< 1 = integrated (a voxel and not fixed)

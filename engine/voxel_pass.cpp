@@ -75,12 +75,12 @@ struct Update {
 };
 
 // The new state of voxel slot c: a pure function of the old state and the link scratch.
+// below_y, below_z: the slots of the y and z links whose + end is c (x in lattice order is the
+// slot before, zero when that slot's link goes elsewhere or is absent).
 __attribute__((always_inline)) inline Update integrate(const Arrays& a, const VoxelPassInput& in,
-                                                       int c) {
+                                                       int c, int below_y, int below_z) {
     double f[3], m[3];
-    // The link slots whose + end is c: x in lattice order is the slot before (zero when that
-    // slot's link goes elsewhere or is absent), y and z come from the model's table.
-    const int below_of[3] = {c - 1, a.minus_y[c], a.minus_z[c]};
+    const int below_of[3] = {c - 1, below_y, below_z};
     for (int i = 0; i < 3; ++i) {
         // Fixed summation order: per axis, the link from the - neighbour, then the link to the +.
         double fi = a.ext[i][c], mi = 0.0;
@@ -157,18 +157,18 @@ __attribute__((always_inline)) inline Update integrate(const Arrays& a, const Vo
     return u;
 }
 
-}  // namespace
-
-BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
-                                 const std::array<LinkScratch, 3>& links,
-                                 const VoxelPassInput& in) {
-    const Arrays a = arrays_of(d, s, links);
-    double* __restrict refused = s.refused.data();
-    const int n = d.slots;
+// The voxels of one run. kGather: the y and z links of which voxel c is the + end come from the
+// model's minus tables; otherwise from slots c - below_y and c - below_z.
+template <bool kGather>
+__attribute__((always_inline)) inline int voxel_loop(const Arrays& a, double* __restrict refused,
+                                                     const VoxelPassInput& in,
+                                                     const VoxelRun& run) {
+    const int below_y = run.below_y, below_z = run.below_z;
     // Each iteration reads and writes its own voxel slot only (link scratch is read-only here).
 #pragma GCC ivdep
-    for (int c = 0; c < n; ++c) {
-        const Update u = integrate(a, in, c);
+    for (int c = run.begin; c < run.end; ++c) {
+        const Update u = kGather ? integrate(a, in, c, a.minus_y[c], a.minus_z[c])
+                                 : integrate(a, in, c, c - below_y, c - below_z);
         // Written unconditionally (a conditional store would stop the vectorisation). A refused
         // step is still finite: it starts from a checked state and parameters are bounded.
         for (int i = 0; i < 3; ++i) {
@@ -182,8 +182,21 @@ BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
         refused[c] = u.ok ? 0.0 : 1.0;
     }
     int count = 0;
-    for (int c = 0; c < n; ++c)
+    for (int c = run.begin; c < run.end; ++c)
         count += refused[c] != 0.0;
+    return count;
+}
+
+}  // namespace
+
+BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
+                                 const std::array<LinkScratch, 3>& links,
+                                 const VoxelPassInput& in) {
+    const Arrays a = arrays_of(d, s, links);
+    int count = 0;
+    for (const VoxelRun& run : d.voxel_runs)
+        count += run.below_y == 0 ? voxel_loop<true>(a, s.refused.data(), in, run)
+                                  : voxel_loop<false>(a, s.refused.data(), in, run);
     return count;
 }
 

@@ -34,10 +34,11 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
 }
 
 void init_links(const Model::Data& d, LinkScratch& l) {
-    // 19 arrays; the voxel pass reads slot -1 and kNoLink, so each has kLinkLead zero slots first.
-    const std::size_t span = static_cast<std::size_t>(kLinkLead) + d.stored;
+    // 19 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
+    // each has link_lead zero slots first.
+    const std::size_t span = static_cast<std::size_t>(d.link_lead) + d.stored;
     l.storage.assign(19 * span, 0.0f);
-    float* base = l.storage.data() + kLinkLead;
+    float* base = l.storage.data() + d.link_lead;
     auto next = [&]() {
         float* p = base;
         base += span;
