@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "engine/poisson.hpp"
+
 namespace bhm::engine::limits {
 namespace {
 
@@ -156,7 +158,10 @@ double link_omega2(const Material& a, const Material& b, double L) {
     const double g = series(shear_modulus(a), shear_modulus(b));
     const double m_min = std::min(a.density_kg_m3, b.density_kg_m3) * (L * L * L);
     const double inertia = m_min * L * L / 6.0;
-    const double k_axial = e * L;
+    // The Poisson coupling stiffens normal modes up to the bulk (or uniaxial-strain) modulus.
+    const double k_axial = series(a.youngs_modulus_pa * poisson_stiffness_factor(a.poisson_ratio),
+                                  b.youngs_modulus_pa * poisson_stiffness_factor(b.poisson_ratio)) *
+                           L;
     const double k_bend4 = 4.0 * e * (std::pow(L, 4) / 12.0 / L);  // 4 E I / L
     // Twisting both ends against each other: 2 G J / L on each.
     const double k_twist2 = 2.0 * g * kSquareTorsionFactor * std::pow(L, 4) / L;

@@ -88,6 +88,7 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     const float* __restrict rest_base = lp.rest_base.data();
     const float* __restrict rest_sin = lp.rest_sin.data();
     const float* __restrict rest_cos = lp.rest_cos.data();
+    const float* __restrict poisson_rest = out.poisson_rest;
     const int* __restrict plus = v.plus;
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     float* __restrict f0 = out.force[axis];
@@ -122,7 +123,8 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     for (int c = run.begin; c < run.end; ++c) {
         const int b = kGather ? plus[c] : c + delta;
         const LinkFrame f = frame_of(p0, p1, p2, qw, q0, q1, q2, c, b, exists[c], rest_base[c]);
-        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
+        const float rest =
+            rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c] + poisson_rest[c];
         const float extension = f.length - rest;
         bad += static_cast<int>((exists[c] > 0.0f) & !healthy(f, extension, rest));
 
@@ -185,14 +187,15 @@ BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxe
     return bad;
 }
 
-int first_bad_link(const Model::Data& model, const VoxelState& voxels, int axis, float sin_t,
-                   float cos_t) {
+int first_bad_link(const Model::Data& model, const VoxelState& voxels, const LinkScratch& scratch,
+                   int axis, float sin_t, float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
     const LinkParams& lp = model.links[axis];
     for (int c = 0; c < model.voxels; ++c) {
         if (lp.exists[c] == 0.0f) continue;
         const LinkFrame f = frame_of(v, axis, 1.0f, lp.rest_base[c], c);
-        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
+        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c] +
+                           scratch.poisson_rest[c];
         if (!healthy(f, f.length - rest, rest)) return c;
     }
     return -1;

@@ -8,15 +8,15 @@
 namespace bhm::engine {
 
 //! Runs the link pass of one axis; sin_t and cos_t modulate the rest lengths of actuated links
-//! (rest = base + sin_t * rest_sin + cos_t * rest_cos). Returns the number of links that are
+//! (rest = base + sin_t * rest_sin + cos_t * rest_cos + the Poisson shift in scratch). Returns the number of links that are
 //! unhealthy: strain beyond 100%, sheared past 90 degrees, or non-finite (the step must then not be
 //! committed).
 int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& scratch, int axis,
               float sin_t, float cos_t);
 
 //! Index of the first unhealthy link slot of an axis (after link_pass reported one), or -1.
-int first_bad_link(const Model::Data& model, const VoxelState& voxels, int axis, float sin_t,
-                   float cos_t);
+int first_bad_link(const Model::Data& model, const VoxelState& voxels, const LinkScratch& scratch,
+                   int axis, float sin_t, float cos_t);
 
 //! Elastic energy stored in the links of one axis (J), for diagnostics and tests.
 double link_elastic_energy(const Model::Data& model, const VoxelState& voxels, int axis,

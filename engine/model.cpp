@@ -10,6 +10,7 @@
 
 #include "engine/limits.hpp"
 #include "engine/model_data.hpp"
+#include "engine/poisson.hpp"
 
 namespace bhm::engine {
 namespace {
@@ -222,6 +223,41 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         max_omega2 = std::max(max_omega2, limits::voxel_omega2(mat, L));
     }
 
+    // Poisson coupling (poisson.hpp): each octant of a voxel has the moduli of the axes its
+    // half-links span; a link's own modulus is the mean over the four octants at each end.
+    std::array<std::vector<double>, 3> octant_modulus;  // per axis: that mean / E, per voxel
+    PoissonParams& pp = d.poisson;
+    pp.lambda2.assign(d.stored, 0.0f);
+    pp.lambda3.assign(d.stored, 0.0f);
+    for (int a = 0; a < 3; ++a) {
+        pp.has_plus[a].assign(d.stored, 0.0f);
+        pp.has_minus[a].assign(d.stored, 0.0f);
+        pp.rest_scale[a].assign(d.stored, 0.0f);
+        octant_modulus[a].assign(d.stored, 0.0);
+    }
+    for (int v = 0; v < n; ++v) {
+        for (int a = 0; a < 3; ++a) {
+            pp.has_plus[a][v] = d.plus[a][v] != v ? 1.0f : 0.0f;
+            pp.has_minus[a][v] = d.minus[a][v] != kNoLink ? 1.0f : 0.0f;
+        }
+        const Material& mat = spec.materials[d.voxel_material[v] - 1];
+        // A held voxel is the clamp plane through its centre: it adds no lateral constraint of
+        // its own (a continuum clamp's constraint fades within a fraction of a voxel; measured
+        // against CalculiX in docs/physics.md), so its octants are uncoupled (nu = 0).
+        const double e = mat.youngs_modulus_pa, nu = d.voxel_fixed[v] ? 0.0 : mat.poisson_ratio;
+        pp.lambda2[v] = static_cast<float>(poisson_moduli(e, nu, 2).lambda);
+        pp.lambda3[v] = static_cast<float>(poisson_moduli(e, nu, 3).lambda);
+        pp.active = pp.active || nu != 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            double sum = 0.0;
+            for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
+                for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]})
+                    sum += poisson_moduli(e, nu, 1 + static_cast<int>(hb) + static_cast<int>(hc)).m;
+            octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
+        }
+    }
+
     // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
     std::array<std::vector<double>, 3> link_omega2;                // per link: max(k/m, k_rot/I)
     const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
@@ -237,7 +273,13 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             const Material& mb = spec.materials[d.voxel_material[b] - 1];
             const double e = series(ma.youngs_modulus_pa, mb.youngs_modulus_pa);
             const double g = series(shear_modulus(ma), shear_modulus(mb));
-            const double k_axial = e * L;
+            // The link's own strain: the two materials' E in series, times the mean of the eight
+            // octants' modulus over E (1 when nu = 0). The plain mean keeps the energy the sum of
+            // the octants' Hooke energies, positive definite up to nu = 0.5.
+            const double m_link =
+                e * (0.5 * (octant_modulus[axis][v] + octant_modulus[axis][b]));
+            const double k_axial = m_link * L;
+            if (pp.active) pp.rest_scale[axis][v] = static_cast<float>(-L / m_link);
             const double m_a = d.mass[v], m_b = d.mass[b];
             const double reduced_mass = m_a * m_b / (m_a + m_b);
             // Bond damping as Voxelyze: c = 2 zeta sqrt(m k) on each end's velocity relative to
@@ -245,7 +287,9 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             // two masses, so the pair stays symmetric). Applied as Rayleigh damping C = beta K to
             // every mode of the beam, beta = c / (2 k).
             const double pair_mass = 2.0 * reduced_mass;
-            const double beta = spec.damping.bond_ratio * std::sqrt(pair_mass / k_axial);
+            // (Relative to the link's Young's modulus e L, as Voxelyze, so the ratio means the same
+            // with Poisson coupling; the cap below keeps the stiffer coupled modes stable.)
+            const double beta = spec.damping.bond_ratio * std::sqrt(pair_mass / (e * L));
             p.exists[v] = 1.0f;
             p.k_axial[v] = static_cast<float>(k_axial);
             p.k_bend[v] = static_cast<float>(e * beam_inertia_over_l);

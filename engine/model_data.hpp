@@ -67,6 +67,17 @@ struct LinkParams {
     std::vector<float> rest_cos;    //!< d(rest)/d cos(2 pi f tau) (m)
 };
 
+//! Poisson coupling (engine/poisson.hpp): per voxel slot and per link slot, float like the link
+//! kernel. Absent (all empty) when no voxel couples its axes (every nu = 0, or a 1-D body).
+struct PoissonParams {
+    bool active = false;
+    std::array<std::vector<float>, 3> has_plus;   //!< voxel: 1 = a link to its +a neighbour
+    std::array<std::vector<float>, 3> has_minus;  //!< voxel: 1 = a link to its -a neighbour
+    std::vector<float> lambda2;                   //!< cross modulus, octant with 2 linked axes
+    std::vector<float> lambda3;                   //!< cross modulus, octant with 3 linked axes
+    std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
+};
+
 struct Model::Data {
     BodySpec spec;
     double voxel_size_m = 0.0;
@@ -114,6 +125,7 @@ struct Model::Data {
     bool any_active = false;
 
     std::array<LinkParams, 3> links;  //!< per axis, one slot per voxel slot
+    PoissonParams poisson;
 };
 
 }  // namespace bhm::engine

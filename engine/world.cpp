@@ -9,6 +9,7 @@
 
 #include "engine/limits.hpp"
 #include "engine/link_pass.hpp"
+#include "engine/poisson.hpp"
 #include "engine/voxel_pass.hpp"
 #include "engine/world_state.hpp"
 
@@ -34,10 +35,10 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
 }
 
 void init_links(const Model::Data& d, LinkScratch& l) {
-    // 19 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
+    // 20 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
     // each has link_lead zero slots first.
     const std::size_t span = static_cast<std::size_t>(d.link_lead) + d.stored;
-    l.storage.assign(19 * span, 0.0f);
+    l.storage.assign(20 * span, 0.0f);
     float* base = l.storage.data() + d.link_lead;
     auto next = [&]() {
         float* p = base;
@@ -55,6 +56,7 @@ void init_links(const Model::Data& d, LinkScratch& l) {
         l.prev_theta_neg[i] = next();
     for (int i = 0; i < 3; ++i)
         l.prev_theta_pos[i] = next();
+    l.poisson_rest = next();
 }
 
 struct Phase {
@@ -110,6 +112,7 @@ void World::step() {
     const Phase phase = actuation_phase(d, t);
     const float sin_t = static_cast<float>(phase.sin_t), cos_t = static_cast<float>(phase.cos_t);
 
+    if (d.poisson.active) poisson_pass(d, s.voxels, s.links, s.poisson, sin_t, cos_t);
     int bad_links = 0;
     for (int axis = 0; axis < 3; ++axis)
         bad_links += link_pass(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
@@ -117,7 +120,7 @@ void World::step() {
         std::ostringstream why;
         why << "link strain beyond 100% or shear beyond 90 degrees";
         for (int axis = 0; axis < 3; ++axis) {
-            const int c = first_bad_link(d, s.voxels, axis, sin_t, cos_t);
+            const int c = first_bad_link(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
             if (c < 0) continue;
             const int b = axis == 0 ? c + 1 : d.plus[axis][c];
             why << " (" << kAxisNames[axis] << " link from voxel " << c << " to voxel " << b
@@ -266,6 +269,8 @@ double World::potential_energy_j() const {
     for (int axis = 0; axis < 3; ++axis)
         e += link_elastic_energy(d, s, axis, static_cast<float>(phase.sin_t),
                                  static_cast<float>(phase.cos_t));
+    e += poisson_cross_energy(d, s, static_cast<float>(phase.sin_t),
+                              static_cast<float>(phase.cos_t));
     const double g = d.spec.environment.gravity_m_s2;
     for (int c = 0; c < d.voxels; ++c) {
         const double z = s.pos[2][c] + d.origin_m[2];

@@ -35,8 +35,16 @@ struct LinkScratch {
     std::array<float*, 3> moment_neg{};
     std::array<float*, 3> moment_pos{};
     float* prev_extension = nullptr;
+    float* poisson_rest = nullptr;  //!< rest-length shift of the Poisson coupling (poisson.hpp)
     std::array<float*, 3> prev_theta_neg{};
     std::array<float*, 3> prev_theta_pos{};
+};
+
+//! Per step scratch of the Poisson pass.
+struct PoissonScratch {
+    std::array<std::vector<float>, 3> strain_storage;  //!< kLinkLead zero slots + stored
+    std::array<float*, 3> strain{};                    //!< link slot: (length - rest) / L
+    std::array<std::vector<float>, 3> term;            //!< voxel: lambda x cross strains of axis a
 };
 
 struct World::State {
@@ -44,6 +52,7 @@ struct World::State {
     const Model::Data* data = nullptr;
     VoxelState voxels;
     std::array<LinkScratch, 3> links;
+    PoissonScratch poisson;
     std::int64_t steps = 0;
     bool diverged = false;
     std::string divergence_reason;
