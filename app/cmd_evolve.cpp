@@ -10,6 +10,7 @@
 
 #include "app/arg_parser.hpp"
 #include "app/commands.hpp"
+#include "app/evolve_cluster.hpp"
 #include "evo/evolution_run.hpp"
 #include "evo/experiment_io.hpp"
 
@@ -32,10 +33,17 @@ const char* const kSummary =
     "or cleanly on Ctrl-C / SIGTERM: the generation in progress is abandoned and the last\n"
     "checkpoint kept; --resume continues exactly where it stopped. The same seed gives the same\n"
     "run whatever --threads is.\n"
-    "exit status: 0 done or stopped, 1 invalid input or failure, 2 usage error.";
+    "Under mpirun/srun, rank 0 evolves and every rank simulates with --threads threads; the run\n"
+    "is the same whatever the number of ranks (docs/cluster.md).\n"
+    "exit status: 0 done or stopped, 1 invalid input or failure, 2 usage error, 3 an MPI rank\n"
+    "died or hung (the last complete generation is checkpointed: --resume it with any ranks).";
+
+constexpr int kExitRankLost = 3;
 
 // The one piece of global state: where the signal handler raises the stop request.
 std::atomic<bool>* g_stop_flag = nullptr;
+// The ranks this process belongs to (just itself without mpirun), for evolve() below.
+EvolveCluster* g_cluster = nullptr;
 
 extern "C" void handle_stop_signal(int) {
     if (g_stop_flag) g_stop_flag->store(true);
@@ -101,6 +109,11 @@ int evolve(ArgParser& args) {
         if (t < 0 || t > 1024) throw UsageError("--threads must be in [0, 1024] (0 = all cores)");
         options.threads = static_cast<int>(t);
     }
+    ClusterSettings cluster;
+    if (args.has("--rank-timeout")) {
+        cluster.rank_timeout_s = args.get_double("--rank-timeout", 0.0);
+        if (!(cluster.rank_timeout_s > 0.0)) throw UsageError("--rank-timeout must be positive");
+    }
 
     evo::Experiment experiment;
     try {
@@ -128,6 +141,19 @@ int evolve(ArgParser& args) {
                   << run->state().seed << ", population " << experiment.evolution.population << ", "
                   << run->threads() << " threads)\n";
     }
+    cluster.local_threads = run->threads();
+    cluster.requested_threads = options.threads.value_or(run->experiment().evolution.threads);
+    std::shared_ptr<evo::Evaluator> evaluator;
+    try {
+        evaluator = g_cluster->connect(cluster);
+    } catch (const evo::EvaluatorLost& e) {
+        std::cerr << "bhm evolve: " << e.what() << "\n";
+        return kExitRankLost;
+    }
+    if (evaluator) {
+        run->set_evaluator(std::move(evaluator));
+        std::cerr << "bhm evolve: " << g_cluster->describe() << "\n";
+    }
     run->set_report_callback(
         [](std::shared_ptr<const evo::GenerationReport> r) { print_progress(*r); });
 
@@ -135,6 +161,17 @@ int evolve(ArgParser& args) {
     evo::StopReason reason;
     try {
         reason = run->run();
+    } catch (const evo::EvaluatorLost& e) {
+        restore_default_handlers();
+        const int g = run->state().generation;
+        std::cerr << "bhm evolve: " << e.what() << "; generation " << g + 1 << " abandoned; "
+                  << (g >= 0 ? "the checkpoint of generation " + std::to_string(g) + " (" +
+                                   run->checkpoint_path() +
+                                   ") is complete: continue with --resume, on any number of "
+                                   "ranks"
+                             : std::string("no generation completed, nothing to resume"))
+                  << "\n";
+        return kExitRankLost;
     } catch (...) {
         restore_default_handlers();
         throw;
@@ -188,9 +225,33 @@ int cmd_evolve(const Args& args) {
                 "total generations including generation 0 (default: experiment's)")
         .option("--hours", "H", "wall-time budget in hours, across resumes (default: experiment's)")
         .option("--seed", "S", "random seed (default: experiment's evolution.seed)")
-        .option("--threads", "T", "simulation threads, 0 = all cores (default: experiment's)")
+        .option("--threads", "T",
+                "simulation threads (per MPI rank), 0 = all cores (default: experiment's)")
+        .option("--rank-timeout", "S",
+                "under MPI: seconds a rank holding bodies may stay silent before it is declared "
+                "lost (default 60)")
         .flag("--resume", "continue the run in DIR from its checkpoint");
-    return run_command(parser, args, evolve);
+    std::unique_ptr<EvolveCluster> cluster;
+    try {
+        cluster = EvolveCluster::join();
+    } catch (const std::exception& e) {
+        std::cerr << "bhm evolve: " << e.what() << "\n";
+        return 1;
+    }
+    if (cluster->rank() > 0) {
+        try {
+            return cluster->serve();
+        } catch (const std::exception& e) {
+            std::cerr << "bhm evolve (rank " << cluster->rank() << "): " << e.what() << "\n";
+            return 1;
+        }
+    }
+    g_cluster = cluster.get();
+    const int status = run_command(parser, args, evolve);
+    g_cluster = nullptr;
+    // A hung rank would never finish: end them all (the checkpoint is already on disk).
+    if (status == kExitRankLost) cluster->abort(status);
+    return status;
 }
 
 }  // namespace bhm::app
