@@ -58,7 +58,8 @@ class LocalWorkers {
             const std::size_t i = next_.fetch_add(1);
             if (i >= n) return;
             try {
-                results_[i] = evo::evaluate_body(*batch_.rules, *batch_.bodies[i], &abandon_);
+                results_[i] = evo::evaluate_body(*batch_.rules, *batch_.bodies[i],
+                                                 evo::EvaluationControl{&abandon_, batch_.pause});
             } catch (const evo::EvaluationCancelled&) {
                 return;
             } catch (...) {
@@ -124,6 +125,13 @@ MpiEvaluator::MpiEvaluator(int world_size, int local_threads, int requested_thre
     }
 }
 
+void MpiEvaluator::send_pause(bool paused) {
+    if (paused == ranks_paused_) return;
+    for (const auto& r : ranks_)
+        sends_.start(r.rank, Tag::Pause, paused ? "1" : "0");
+    ranks_paused_ = paused;
+}
+
 int MpiEvaluator::concurrency() const {
     int total = local_threads_;
     for (const auto& r : ranks_)
@@ -149,6 +157,7 @@ void MpiEvaluator::evaluate(const evo::EvaluationBatch& batch,
             sends_.start(r.rank, Tag::Rules, bytes);
         sent_rules_ = *batch.rules;
     }
+    send_pause(batch.pause && batch.pause->load());
     // Rank 0's own pauses (selection, checkpoints) are not a rank's silence.
     const auto batch_start = Clock::now();
     for (auto& r : ranks_) {
@@ -225,6 +234,7 @@ void MpiEvaluator::dispatch(const evo::EvaluationBatch& batch, std::uint64_t bat
                 throw evo::EvaluatorLost(text.str());
             }
         }
+        send_pause(batch.pause && batch.pause->load());
         sends_.progress();
         if (!heard) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }

@@ -9,6 +9,7 @@
 // timeout is declared lost (evo::EvaluatorLost); a rank that reports an error fails the batch with
 // that error; a raised cancel flag sends Cancel to every rank and throws evo::EvaluationCancelled.
 // Results of an abandoned batch that arrive later are recognised by their batch id and ignored.
+// A raised pause flag holds the simulations in flight on every rank until it is lowered.
 #include <atomic>
 #include <chrono>
 #include <optional>
@@ -46,6 +47,9 @@ class MpiEvaluator final : public evo::Evaluator {
 
   private:
     RemoteRank& rank_of(int source);
+    //! Tells every rank to hold or resume its simulations when that changes (EvolutionRun's
+    //! pause; heartbeats go on, so a paused rank is never declared lost).
+    void send_pause(bool paused);
     //! Sends bodies to free threads and collects results until the batch is complete.
     void dispatch(const evo::EvaluationBatch& batch, std::uint64_t batch_id,
                   std::vector<evo::FitnessReport>& results, std::atomic<std::size_t>& next,
@@ -58,6 +62,7 @@ class MpiEvaluator final : public evo::Evaluator {
     std::uint64_t batch_id_ = 0;
     std::uint64_t rules_id_ = 0;
     std::optional<evo::Experiment> sent_rules_;
+    bool ranks_paused_ = false;
 };
 
 }  // namespace bhm::app::mpi

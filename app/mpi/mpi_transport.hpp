@@ -21,6 +21,7 @@ enum class Tag : int {
     Stop = 7,       //!< 0 -> r: the run is over; finish and leave
     Heartbeat = 8,  //!< r -> 0: empty, every second: the rank is alive
     Failure = 9,    //!< r -> 0: text of an error the rank cannot recover from
+    Pause = 10,     //!< 0 -> r: "1" holds the running simulations where they are, "0" resumes
 };
 
 struct Message {

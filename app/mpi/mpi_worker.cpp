@@ -60,7 +60,7 @@ struct Reply {
 //! The simulation threads and the two queues they share with the main thread.
 class Simulators {
   public:
-    explicit Simulators(int threads) {
+    explicit Simulators(int threads, const std::atomic<bool>& paused) : paused_(paused) {
         for (int t = 0; t < threads; ++t)
             threads_.emplace_back([this] { work(); });
     }
@@ -115,7 +115,8 @@ class Simulators {
                 result.batch_id = job.message.batch_id;
                 result.index = job.message.index;
                 result.report =
-                    evo::evaluate_body(job.rules->rules, job.message.body, job.cancelled.get());
+                    evo::evaluate_body(job.rules->rules, job.message.body,
+                                       evo::EvaluationControl{job.cancelled.get(), &paused_});
                 reply.bytes = evo::encode_result(result);
             } catch (const evo::EvaluationCancelled&) {
                 continue;
@@ -128,6 +129,7 @@ class Simulators {
         }
     }
 
+    const std::atomic<bool>& paused_;
     std::mutex mutex_;
     std::condition_variable wake_;
     bool stopping_ = false;
@@ -146,6 +148,7 @@ class Simulators {
 
 int serve_evaluations(int rank, const std::string& host) {
     const Fault fault = fault_for(rank);
+    std::atomic<bool> paused{false};  // declared before the threads that read it
     std::unique_ptr<Simulators> simulators;
     std::shared_ptr<const evo::RulesMessage> rules;
     std::map<std::uint64_t, std::shared_ptr<std::atomic<bool>>> batch_flags;
@@ -163,7 +166,7 @@ int serve_evaluations(int rank, const std::string& host) {
                 switch (m->tag) {
                     case Tag::Setup: {
                         const int threads = evo::resolve_thread_count(std::atoi(m->bytes.c_str()));
-                        simulators = std::make_unique<Simulators>(threads);
+                        simulators = std::make_unique<Simulators>(threads, paused);
                         send_message(0, Tag::Hello, std::to_string(threads) + " " + host);
                         break;
                     }
@@ -193,6 +196,9 @@ int serve_evaluations(int rank, const std::string& host) {
                         if (simulators) simulators->drop_cancelled();
                         break;
                     }
+                    case Tag::Pause:
+                        paused.store(m->bytes == "1");
+                        break;
                     case Tag::Stop:
                         return 0;  // ~Simulators cancels and joins the threads
                     default:

@@ -2,7 +2,7 @@
 // Ranks > 0 of `mpirun bhm evolve`: simulate the bodies rank 0 sends until it says stop. The main
 // thread does all the MPI (receives, result sends, a heartbeat every second); `--threads` worker
 // threads simulate. A Cancel for a batch stops its running simulations at their next sample and
-// drops its queued bodies.
+// drops its queued bodies; Pause holds the running ones where they are until rank 0 resumes.
 //
 // For the failure tests only: BHM_MPI_TEST_FAULT="RANK:BATCH:hang" makes rank RANK stop answering
 // (no results, no heartbeats) instead of sending its first result of batch BATCH (batch 1 is the

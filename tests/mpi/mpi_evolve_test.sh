@@ -6,6 +6,8 @@
 #             generation checkpointed; --resume on another number of ranks finishes the same run
 #   dead-rank a rank that exits: the job ends, the checkpoint is complete, a single-process
 #             --resume finishes the same run
+#   stop      SIGTERM to rank 0 while the ranks simulate: the generation is abandoned everywhere,
+#             every rank exits 0, and --resume on 3 ranks finishes the same run
 # "The same run" = fitness.csv, champion.json and checkpoint.json equal once the wall-clock fields
 # (wall_s, elapsed_s, sim_wall_s: the only machine-dependent ones) are removed.
 set -euo pipefail
@@ -23,6 +25,17 @@ export OMPI_MCA_btl=self,vader OMPI_MCA_btl_vader_single_copy_mechanism=none
 rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
+if [ "$case_name" = stop ]; then
+    # Simulations of ~0.1 s instead of milliseconds, so the signal lands inside a generation.
+    python3 - "$experiment" slow.json <<'PY'
+import json, sys
+e = json.load(open(sys.argv[1]))
+e["simulation"]["evaluate_s"] = 1.0
+json.dump(e, open(sys.argv[2], "w"))
+PY
+    experiment=$work/slow.json
+    generations=3
+fi
 
 fail() {
     echo "FAIL: $*" >&2
@@ -115,6 +128,26 @@ dead-rank)
     evolve_alone dead --threads 1 --resume 2>resume.log || { cat resume.log; fail "resume"; }
     same_run reference dead
     echo "dead rank ended the job; resumed on one process: same run"
+    ;;
+stop)
+    timeout 120 "$mpiexec" -n 2 bash -c 'echo $$ >"rank$OMPI_COMM_WORLD_RANK.pid"; exec "$@"' \
+        rank "$bhm" evolve "$experiment" --out stopped --generations $generations --threads 1 \
+        2>stopped.log &
+    launcher=$!
+    # Once generation 0 is on disk, generation 1 is being simulated.
+    for _ in $(seq 600); do
+        [ -f stopped/fitness.csv ] && [ "$(wc -l <stopped/fitness.csv)" -ge 2 ] && break
+        sleep 0.05
+    done
+    kill -TERM "$(cat rank0.pid)"
+    status=0
+    wait "$launcher" || status=$?
+    cat stopped.log
+    [ "$status" -eq 0 ] || fail "exit status $status after a stop, expected 0"
+    grep -q "stopped; .*continue with --resume" stopped.log || fail "no stop message"
+    evolve_mpi 3 stopped --threads 1 --resume 2>resume.log || { cat resume.log; fail "resume"; }
+    same_run reference stopped
+    echo "stop on 2 ranks, resumed on 3: same run"
     ;;
 *)
     fail "unknown case $case_name"
