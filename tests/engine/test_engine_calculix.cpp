@@ -1,0 +1,247 @@
+// Verification against CalculiX, an independent 3-D continuum FEM (C3D20R bricks): a bar in
+// tension (axial and lateral strain), a clamped block under its own weight and an active/passive
+// bilayer heated by 1 degC (tip deflection), each compared with our engine on the same scene.
+// Every case solves in about a second; the suite skips (loudly) only where ccx is not installed
+// (scripts/setup.sh installs calculix-ccx, so CI always runs it).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "calculix.hpp"
+#include "engine_test_bodies.hpp"
+
+using namespace bhm::engine;
+using namespace bhm::engine::test;
+
+namespace {
+
+constexpr double kL = 0.01;  // voxel size of every scene (m)
+constexpr double kE = 5e6;
+
+bool skip_without_ccx() {
+    if (ccx::available()) return false;
+    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
+    WARN(false);  // shows in every report that the comparison did not run
+    return true;
+}
+
+// Runs a world to static equilibrium (1e-4 relative change of `probe` over 0.05 s slices).
+double settle(World& w, const std::function<double(const World&)>& probe) {
+    double last = 0.0;
+    for (int slice = 1; slice <= 80; ++slice) {
+        REQUIRE(w.advance_to(0.05 * slice));
+        const double now = probe(w);
+        if (slice > 2 && std::fabs(now - last) <= 1e-4 * std::fabs(now)) return now;
+        last = now;
+    }
+    FAIL("did not reach static equilibrium");
+    return last;
+}
+
+double relative_error(double ours, double truth) {
+    return std::fabs(ours / truth - 1.0);
+}
+
+// ---- bar in tension -------------------------------------------------------------------------
+
+struct BarStrains {
+    double axial = 0.0, lateral = 0.0;
+};
+
+// CalculiX: an eighth of a free bar (symmetry planes x = y = z = 0) under `stress` on its x end.
+BarStrains calculix_bar(double nu, double stress) {
+    ccx::Mesh m{{0.08, 0.01, 0.01}, {4, 1, 1}};
+    std::ostringstream inp;
+    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}}, [](int, int, int) { return 0; });
+    auto at = [](double target) {
+        return [target](double v) { return std::fabs(v - target) < 1e-9; };
+    };
+    ccx::write_set(inp, "NSET", "SX",
+                   ccx::nodes_where(m, [&](double x, double, double) { return at(0.0)(x); }));
+    ccx::write_set(inp, "NSET", "SY",
+                   ccx::nodes_where(m, [&](double, double y, double) { return at(0.0)(y); }));
+    ccx::write_set(inp, "NSET", "SZ",
+                   ccx::nodes_where(m, [&](double, double, double z) { return at(0.0)(z); }));
+    const auto end = ccx::nodes_where(m, [&](double x, double, double) { return at(0.08)(x); });
+    const auto side = ccx::nodes_where(m, [&](double, double y, double) { return at(0.01)(y); });
+    std::vector<int> probe = end;
+    probe.insert(probe.end(), side.begin(), side.end());
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    ccx::write_set(inp, "ELSET", "EEND", {4});
+    inp << "*BOUNDARY\nSX, 1, 1\nSY, 2, 2\nSZ, 3, 3\n*STEP\n*STATIC\n*DSLOAD\nEEND, P4, " << -stress
+        << "\n*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    const auto u = ccx::solve("bar", inp.str());
+    return {ccx::mean(u, end, 0) / 0.08, ccx::mean(u, side, 1) / 0.01};
+}
+
+// Ours: a free 16 x n x n bar pulled apart by `stress` on its end layers; strains measured in its
+// middle (axial between layers 4 and 12, lateral between the outer rows of layer 8).
+BarStrains engine_bar(int n, double nu, double stress) {
+    Material mat;
+    mat.poisson_ratio = nu;
+    BodySpec s = solid_box(16, n, n, mat);
+    s.damping.global_ratio = 0.05;
+    auto model = Model::build(s);
+    World w(model);
+    for (int v = 0; v < model->voxel_count(); ++v) {
+        const int x = model->voxel_coords(v)[0];
+        const double f = stress * kL * kL;
+        if (x == 0) w.set_external_force(v, {-f, 0, 0});
+        if (x == 15) w.set_external_force(v, {f, 0, 0});
+    }
+    auto mean = [&](const World& world, int axis, int select_axis, int value) {
+        double sum = 0.0;
+        int count = 0;
+        for (int v = 0; v < model->voxel_count(); ++v) {
+            const auto c = model->voxel_coords(v);
+            if (c[select_axis] != value || (select_axis != 0 && c[0] != 8)) continue;
+            sum += world.voxel_position_m(v)[axis];
+            ++count;
+        }
+        return sum / count;
+    };
+    auto lateral = [&](const World& world) {
+        return (mean(world, 1, 1, n - 1) - mean(world, 1, 1, 0)) / ((n - 1) * kL) - 1.0;
+    };
+    BarStrains out;
+    out.lateral = settle(w, lateral);
+    out.axial = (mean(w, 0, 0, 12) - mean(w, 0, 0, 4)) / (8 * kL) - 1.0;
+    return out;
+}
+
+// ---- clamped block under gravity ------------------------------------------------------------
+
+// CalculiX: the continuum of an nx x ny x nz voxel cantilever, clamped at the fixed voxels'
+// centre plane (x = 0 here) and loaded by its own weight; mean vertical displacement of the
+// section through the last voxels' centres (x = (nx - 1) L).
+double calculix_cantilever(int nx, int ny, int nz, double nu) {
+    const double length = (nx - 0.5) * kL;
+    ccx::Mesh m{{length, ny * kL, nz * kL}, {2 * nx - 1, (ny + 1) / 2, (nz + 1) / 2}};
+    std::ostringstream inp;
+    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}}, [](int, int, int) { return 0; });
+    ccx::write_set(inp, "NSET", "CLAMP",
+                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
+    const double probe_x = (nx - 1) * kL;
+    const auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
+           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    return -ccx::mean(ccx::solve("cantilever", inp.str()), probe, 2);
+}
+
+double engine_cantilever(int nx, int ny, int nz, double nu) {
+    Material mat;
+    mat.poisson_ratio = nu;
+    BodySpec s = solid_box(nx, ny, nz, mat);
+    fix_x_min_layer(s);
+    s.environment.gravity_m_s2 = -9.81;
+    s.damping.bond_ratio = 0.1;
+    s.damping.global_ratio = 0.02;
+    World w(Model::build(s));
+    return settle(w, [&](const World& world) { return -layer_displacement(world, nx - 1, 2); });
+}
+
+// ---- bilayer heated by 1 degC ---------------------------------------------------------------
+
+// A 20 x 2 x 2 cantilever whose bottom layer is active (cte 0.01 /degC) and top layer passive,
+// clamped at x = 0, heated uniformly by 1 degC: it curls up.
+double calculix_bilayer(double nu) {
+    ccx::Mesh m{{19.5 * kL, 2 * kL, 2 * kL}, {39, 2, 2}};
+    std::ostringstream inp;
+    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.01}, {kE, nu, 1000.0, 0.0}},
+                    [](int, int, int ez) { return ez == 0 ? 0 : 1; });
+    ccx::write_set(inp, "NSET", "CLAMP",
+                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
+    const auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - 19.0 * kL) < 1e-9; });
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    inp << "*BOUNDARY\nCLAMP, 1, 3\n*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n"
+           "*STEP\n*STATIC\n*TEMPERATURE\nNALL, 1.\n*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    return ccx::mean(ccx::solve("bilayer", inp.str()), probe, 2);
+}
+
+double engine_bilayer(double nu) {
+    Material passive;
+    passive.poisson_ratio = nu;
+    Material active = passive;
+    active.cte_per_c = 0.01;
+    BodySpec s = solid_box(20, 2, 2, passive);
+    s.materials.push_back(active);
+    for (int x = 0; x < 20; ++x)
+        for (int y = 0; y < 2; ++y)
+            s.material[s.cell_index(x, y, 0)] = 2;
+    fix_x_min_layer(s);
+    // A constant +1 degC: frequency 0 and phase pi / 2 make dT = A sin(pi / 2) = A for all t.
+    s.actuation.frequency_hz = 0.0;
+    s.actuation.temperature_amplitude_c = 1.0;
+    s.actuation.start_s = 0.0;
+    s.phase_rad.assign(s.material.size(), static_cast<float>(std::numbers::pi / 2));
+    s.damping.global_ratio = 0.02;
+    World w(Model::build(s));
+    return settle(w, [&](const World& world) { return layer_displacement(world, 19, 2); });
+}
+
+}  // namespace
+
+TEST_CASE("calculix: a bar in tension, axial strain within 2% and lateral within 10%") {
+    if (skip_without_ccx()) return;
+    const double stress = 5e4;  // 1% strain
+    for (double nu : {0.0, 0.35, 0.49}) {
+        const BarStrains fem = calculix_bar(nu, stress);
+        for (int n : {2, 4}) {
+            const BarStrains ours = engine_bar(n, nu, stress);
+            MESSAGE("nu " << nu << ", " << n << "x" << n << " section: axial " << ours.axial
+                          << " (CalculiX " << fem.axial << "), lateral " << ours.lateral
+                          << " (CalculiX " << fem.lateral << ")");
+            CHECK(relative_error(ours.axial, fem.axial) < 0.02);
+            if (nu == 0.0)
+                CHECK(std::fabs(ours.lateral) < 1e-6);
+            else
+                CHECK(relative_error(ours.lateral, fem.lateral) < 0.10);
+        }
+        // The FEM itself reproduces the uniform-stress solution (a check of the driver).
+        CHECK(relative_error(fem.axial, stress / kE) < 1e-3);
+        CHECK(std::fabs(fem.lateral + nu * stress / kE) < 1e-3 * stress / kE);
+    }
+}
+
+static void check_block_cantilever(double nu) {
+    const double fem = calculix_cantilever(20, 8, 7, nu);
+    const double ours = engine_cantilever(20, 8, 7, nu);
+    MESSAGE("nu " << nu << ": tip " << ours << " m, CalculiX " << fem << " m, error "
+                  << 100.0 * (ours / fem - 1.0) << " %");
+    CHECK(relative_error(ours, fem) < 0.05);
+}
+
+TEST_CASE("calculix: the 20x8x7 block cantilever under gravity within 5%, nu 0 and 0.35") {
+    if (skip_without_ccx()) return;
+    for (double nu : {0.0, 0.35})
+        check_block_cantilever(nu);
+}
+
+// KNOWN LIMIT (docs/physics.md): near incompressibility the block is 17% too stiff (locking
+// where the lattice's one link through a layer cannot follow the continuum's linearly varying
+// lateral strain). Kept as an expected failure so that a fix shows up as this test failing.
+TEST_CASE("calculix: the 20x8x7 block cantilever under gravity within 5%, nu 0.49" *
+          doctest::should_fail()) {
+    if (skip_without_ccx()) {
+        FAIL("ccx missing");
+        return;
+    }
+    check_block_cantilever(0.49);
+}
+
+TEST_CASE("calculix: an active/passive bilayer heated 1 degC, tip deflection within 10%") {
+    if (skip_without_ccx()) return;
+    for (double nu : {0.0, 0.35}) {
+        const double fem = calculix_bilayer(nu);
+        const double ours = engine_bilayer(nu);
+        MESSAGE("nu " << nu << ": tip rise " << ours << " m, CalculiX " << fem << " m, error "
+                      << 100.0 * (ours / fem - 1.0) << " %");
+        CHECK(fem > 0.0);
+        CHECK(relative_error(ours, fem) < 0.10);
+    }
+}
