@@ -86,6 +86,8 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
     snap->message = message;
     snap->run_dir = sh.run_dir;
     if (!sh.run) return snap;
+    snap->loaded = true;
+    snap->initial_measure = sh.initial_fitness.measure;
     const evo::EvolutionRun& run = *sh.run;
     const evo::RunState& state = run.state();
     snap->experiment = state.experiment;
@@ -103,7 +105,8 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         const evo::Fitness& before =
             i == 0 ? sh.initial_fitness : state.rule_changes[i - 1].fitness;
         sh.changes.push_back({state.rule_changes[i].generation,
-                              describe_fitness_change(before, state.rule_changes[i].fitness)});
+                              describe_fitness_change(before, state.rule_changes[i].fitness),
+                              state.rule_changes[i].fitness.measure});
     }
     snap->history = sh.history;
     snap->rule_changes = sh.changes;
@@ -171,28 +174,38 @@ void EvolutionSession::start(const evo::Experiment& experiment, const std::strin
     evo::RunOptions options;
     options.out_dir = run_dir;
     // Built here so a bad folder (one holding a checkpoint, unwritable) is reported at once; the
-    // constructor only creates the folder and writes run.json.
-    auto run = std::make_shared<std::unique_ptr<evo::EvolutionRun>>(
-        std::make_unique<evo::EvolutionRun>(experiment, options));
-    launch([run] { return std::move(*run); }, run_dir, "generation 0: creating the population");
+    // constructor only creates the folder and writes run.json. Handing the built run to the
+    // thread also makes the very first snapshot complete (rules, budget), so the Run panel is
+    // right from the frame after Start.
+    launch(std::make_unique<evo::EvolutionRun>(experiment, options), {}, run_dir,
+           "generation 0: creating the population");
 }
 
 void EvolutionSession::resume_from(const std::string& run_dir) {
     join_finished();
-    // Loading a checkpoint parses megabytes of JSON: done on the run thread, not the UI's.
+    // Loading a checkpoint parses megabytes of JSON: done on the run thread, not the UI's; the
+    // snapshot says so (loaded = false) until it is in.
     launch(
+        nullptr,
         [run_dir] {
             evo::RunOptions options;
             options.out_dir = run_dir;
             return evo::EvolutionRun::resume(options);
         },
-        run_dir, "resuming from the checkpoint");
+        run_dir, "resuming: loading the checkpoint");
 }
 
-void EvolutionSession::launch(std::function<std::unique_ptr<evo::EvolutionRun>()> make,
+void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
+                              std::function<std::unique_ptr<evo::EvolutionRun>()> make,
                               const std::string& run_dir, const std::string& first_message) {
     auto shared = std::make_shared<Shared>();
     shared->run_dir = run_dir;
+    if (ready) {
+        const auto& state = ready->state();
+        shared->initial_fitness = state.rule_changes.empty() ? state.experiment.fitness
+                                                             : state.rule_changes.front().fitness;
+        shared->run = std::move(ready);
+    }
     shared_ = shared;
     phase_ = RunPhase::Running;
     slot_.publish(snapshot_of(*shared, RunPhase::Running, first_message));
@@ -202,18 +215,26 @@ void EvolutionSession::launch(std::function<std::unique_ptr<evo::EvolutionRun>()
             slot_.publish(snapshot_of(*shared, phase, message));
         };
         try {
-            auto made = make();
-            {
+            if (!shared->run) {
+                auto made = make();
                 std::lock_guard lock(shared->mutex);
                 const auto& state = made->state();
                 shared->initial_fitness = state.rule_changes.empty()
                                               ? state.experiment.fitness
                                               : state.rule_changes.front().fitness;
                 shared->run = std::move(made);
+                // A stop or pause asked for while the checkpoint loaded reaches the run now.
+                if (shared->stop || shared->paused) shared->run->request_stop();
             }
             evo::EvolutionRun& run = *shared->run;
-            if (!run.resume_warnings().empty())
-                publish(RunPhase::Running, run.resume_warnings().front());
+            // Shown at once (the history, the rules, the budget): nothing waits for a generation.
+            publish(RunPhase::Running,
+                    run.resume_warnings().empty()
+                        ? (run.state().generation >= 0
+                               ? "resumed from the checkpoint of generation " +
+                                     std::to_string(run.state().generation)
+                               : std::string("generation 0: creating the population"))
+                        : run.resume_warnings().front());
             run.set_report_callback([&](std::shared_ptr<const evo::GenerationReport> report) {
                 char text[160];
                 std::snprintf(text, sizeof text,
@@ -228,14 +249,22 @@ void EvolutionSession::launch(std::function<std::unique_ptr<evo::EvolutionRun>()
                 slot_.publish(snapshot_of(*shared, now, text));
             });
             // Our own loop over run_generation (rather than run()) so the UI knows exactly when
-            // the run is paused between generations.
+            // the run is paused. Pause abandons the generation in progress (the run's stop flag
+            // cancels its simulations within one simulation sample); the state is unchanged by
+            // an abandoned generation, so it is re-run from the same random state on resume and
+            // the run stays identical to an uninterrupted one.
+            bool interrupted = false;
             for (;;) {
                 {
                     std::unique_lock lock(shared->mutex);
                     if (shared->paused && !shared->stop) {
                         phase_ = RunPhase::Paused;
+                        const int next = run.state().generation + 1;
                         slot_.publish(
-                            snapshot_of(*shared, RunPhase::Paused, "paused between generations"));
+                            snapshot_of(*shared, RunPhase::Paused,
+                                        interrupted ? "paused: generation " + std::to_string(next) +
+                                                          " was interrupted and is re-run on resume"
+                                                    : std::string("paused between generations")));
                         shared->wake.wait(lock, [&] { return !shared->paused || shared->stop; });
                         if (!shared->stop) {
                             phase_ = RunPhase::Running;
@@ -243,7 +272,9 @@ void EvolutionSession::launch(std::function<std::unique_ptr<evo::EvolutionRun>()
                         }
                     }
                     if (shared->stop) break;
+                    run.clear_stop();  // a pause already honoured (or asked after the generation)
                 }
+                interrupted = false;
                 const auto& state = run.state();
                 if (state.generation + 1 >= run.generation_budget()) {
                     publish(RunPhase::Finished, "finished: generation budget reached");
@@ -253,21 +284,26 @@ void EvolutionSession::launch(std::function<std::unique_ptr<evo::EvolutionRun>()
                     publish(RunPhase::Finished, "finished: wall-time budget reached");
                     return;
                 }
-                if (!run.run_generation()) break;  // a stop abandoned the generation
+                if (!run.run_generation()) interrupted = true;  // a pause or a stop
             }
+            const int done = run.state().generation;
             publish(RunPhase::Stopped,
-                    "stopped at a checkpoint; resume it from " + shared->run_dir);
+                    done >= 0 ? "stopped: the checkpoint of generation " + std::to_string(done) +
+                                    " is kept; resume it from " + shared->run_dir
+                              : std::string("stopped during generation 0: no generation was "
+                                            "completed, so there is no checkpoint to resume"));
         } catch (const std::exception& e) {
             publish(RunPhase::Failed, std::string("run failed: ") + e.what());
         }
     });
 }
 
-void EvolutionSession::pause() {
+void EvolutionSession::pause(bool abandon_generation) {
     if (!shared_) return;
     std::lock_guard lock(shared_->mutex);
     shared_->paused = true;
     if (phase_ == RunPhase::Running) phase_ = RunPhase::Pausing;
+    if (abandon_generation && shared_->run) shared_->run->request_stop();
 }
 
 void EvolutionSession::resume() {

@@ -1,9 +1,10 @@
 #pragma once
 // The evolution behind the Run panel: one run on its own thread (which fans simulations out to
 // evo's worker pool), controlled with atomics and a small command queue, reporting through a
-// LatestSlot<EvolutionSnapshot> after every generation. The UI never waits for it: pause, stop
-// and rule changes take effect between generations, and stop() only joins in the destructor or
-// when a new run starts.
+// LatestSlot<EvolutionSnapshot> after every generation. The UI never waits for it: pause and stop
+// abandon the generation in progress (its simulations are cancelled; a paused one is re-run on
+// resume), rule changes take effect before the next generation, and the thread is only joined in
+// the destructor or when a new run starts.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -26,7 +27,7 @@ namespace bhm::app::gui {
 class EvolutionSession {
   public:
     EvolutionSession();
-    ~EvolutionSession();  //!< stops the run (at the next generation boundary) and joins
+    ~EvolutionSession();  //!< stops the run (abandoning the generation in progress) and joins
     EvolutionSession(const EvolutionSession&) = delete;
     EvolutionSession& operator=(const EvolutionSession&) = delete;
 
@@ -36,7 +37,9 @@ class EvolutionSession {
     //! Continues the run saved in run_dir from its last checkpoint (loaded on the run thread;
     //! a failure shows in the snapshot).
     void resume_from(const std::string& run_dir);
-    void pause();
+    //! Holds the run. abandon_generation (the default) cancels the generation in progress within
+    //! a simulation sample (it is re-run on resume); false lets it finish and be saved first.
+    void pause(bool abandon_generation = true);
     void resume();
     void stop();
     //! New fitness rules (measure, constraints, objectives) for the next generation: the run
@@ -52,7 +55,9 @@ class EvolutionSession {
 
   private:
     void join_finished();
-    void launch(std::function<std::unique_ptr<evo::EvolutionRun>()> make,
+    //! Runs `ready` (a new run) or what `make` returns on the run thread (a resumed one).
+    void launch(std::unique_ptr<evo::EvolutionRun> ready,
+                std::function<std::unique_ptr<evo::EvolutionRun>()> make,
                 const std::string& run_dir, const std::string& first_message);
     LatestSlot<EvolutionSnapshot> slot_;
     std::atomic<RunPhase> phase_{RunPhase::Idle};

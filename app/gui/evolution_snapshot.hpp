@@ -31,6 +31,7 @@ struct GenerationRecord {
 struct RuleChange {
     int generation = 0;
     std::string description;
+    evo::FitnessMeasure measure = evo::FitnessMeasure::ComFinal3d;  //!< from `generation` on
 };
 
 struct PopulationMember {
@@ -49,6 +50,9 @@ struct EvolutionSnapshot {
     RunPhase phase = RunPhase::Idle;
     std::string message;  //!< last event or error, one line
     std::string run_dir;
+    //! The run is built (a resumed one has loaded its checkpoint): the fields below are its own.
+    //! False only while a checkpoint loads; the panels then say so instead of showing defaults.
+    bool loaded = false;
     evo::Experiment experiment;  //!< the rules in force
     int generation = 0;          //!< generations completed
     int generation_budget = 0;
@@ -59,10 +63,21 @@ struct EvolutionSnapshot {
     std::int64_t evaluations = 0;
     std::vector<GenerationRecord> history;
     std::vector<RuleChange> rule_changes;
+    evo::FitnessMeasure initial_measure = evo::FitnessMeasure::ComFinal3d;  //!< before any change
     std::vector<PopulationMember> population;  //!< sorted by fitness, best first
     bool has_champion = false;
     PopulationMember champion;  //!< best so far under the current rules
     int champion_generation = 0;
 };
+
+//! The measure generation g was scored under: the last rule change at or before g, else the
+//! run's first measure. Fitness values of different measures have different units (voxels,
+//! degrees), so plots keep them apart.
+inline evo::FitnessMeasure measure_at(const EvolutionSnapshot& run, int generation) {
+    evo::FitnessMeasure measure = run.initial_measure;
+    for (const auto& change : run.rule_changes)
+        if (change.generation <= generation) measure = change.measure;
+    return measure;
+}
 
 }  // namespace bhm::app::gui

@@ -1,5 +1,6 @@
 #include "app/gui/experiment_document.hpp"
 
+#include <atomic>
 #include <limits>
 
 #include "app/gui/studio_defaults.hpp"
@@ -56,6 +57,9 @@ void ExperimentDocument::reset(const evo::Experiment& experiment, const std::str
     position_ = saved_position_ = 0;
     path_ = path;
     ++revision_;
+    // Unique within the process, so two documents (New twice) never share an identity.
+    static std::atomic<std::uint64_t> next_identity{1};
+    identity_ = next_identity.fetch_add(1);
 }
 
 void ExperimentDocument::mark_saved(const std::string& path) {

@@ -5,6 +5,7 @@
 // one, so the document is always a valid experiment and undo/redo only ever restore valid ones.
 // Experiments are small (a few kB), so the history keeps whole copies: simple and exact.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ class ExperimentDocument {
     bool dirty() const { return position_ != saved_position_; }
     //! Increases on every change, undo and redo included: caches keyed on it know when to rebuild.
     std::size_t revision() const { return revision_; }
+    //! Changes only when a new or another file's experiment replaces this one (reset): a live run
+    //! remembers the identity of the document it was started from, so edits to another document
+    //! never reach it.
+    std::uint64_t identity() const { return identity_; }
 
     //! Replaces the experiment with `next` when it is valid and records `label` for undo. Returns
     //! the validator's problems (nothing changes then); an unchanged experiment records nothing.
@@ -52,6 +57,7 @@ class ExperimentDocument {
     std::size_t position_ = 0;
     std::size_t saved_position_ = 0;
     std::size_t revision_ = 0;
+    std::uint64_t identity_ = 0;
     std::string path_;
 };
 

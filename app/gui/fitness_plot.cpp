@@ -1,6 +1,7 @@
 #include "app/gui/fitness_plot.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -14,6 +15,9 @@ constexpr ImU32 kMarkerColor = IM_COL32(46, 160, 80, 220);
 constexpr ImU32 kGridColor = IM_COL32(0, 0, 0, 28);
 constexpr ImU32 kAxisColor = IM_COL32(60, 60, 60, 255);
 constexpr ImU32 kTextColor = IM_COL32(40, 40, 40, 255);
+constexpr std::array<ImU32, 5> kOverlayColors = {
+    IM_COL32(120, 120, 120, 200), IM_COL32(150, 110, 60, 200), IM_COL32(90, 140, 120, 200),
+    IM_COL32(140, 100, 160, 200), IM_COL32(100, 130, 170, 200)};
 
 }  // namespace
 
@@ -30,8 +34,24 @@ int nearest_record(const std::vector<GenerationRecord>& history, double generati
         history.begin());
 }
 
+std::vector<MeasureSeries> split_by_measure(const EvolutionSnapshot& run) {
+    std::vector<MeasureSeries> out;
+    for (const auto& r : run.history) {
+        const auto measure = measure_at(run, r.generation);
+        auto it = std::find_if(out.begin(), out.end(),
+                               [&](const MeasureSeries& m) { return m.measure == measure; });
+        if (it == out.end()) {
+            out.push_back({measure, {}});
+            it = out.end() - 1;
+        }
+        it->records.push_back(r);
+    }
+    return out;
+}
+
 void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
-                       const std::vector<RuleChange>& changes, ImVec2 size, const char* y_unit) {
+                       const std::vector<RuleChange>& changes, ImVec2 size, const char* y_unit,
+                       const std::vector<OverlayCurve>& overlays) {
     hovered_generation.reset();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -49,9 +69,14 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
         ys.push_back(r.median_fitness);
         xs.push_back(r.generation);
     }
+    for (const auto& o : overlays)
+        for (const auto& r : o.records) {
+            ys.push_back(r.best_fitness);
+            xs.push_back(r.generation);
+        }
     const AxisRange yr = fit_range(ys, 0.06);
-    AxisRange xr = history.empty() ? AxisRange{0.0, 10.0} : fit_range(xs, 0.0);
-    if (history.size() < 2) xr = {0.0, std::max(1.0, xr.max + 1.0)};
+    AxisRange xr = xs.empty() ? AxisRange{0.0, 10.0} : fit_range(xs, 0.0);
+    if (xs.size() < 2) xr = {0.0, std::max(1.0, xr.max + 1.0)};
     auto px = [&](double g) { return lo.x + float((g - xr.min) / xr.span()) * (hi.x - lo.x); };
     auto py = [&](double v) { return hi.y - float((v - yr.min) / yr.span()) * (hi.y - lo.y); };
 
@@ -89,8 +114,18 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
         dl->AddTriangleFilled({x - 5.0f, lo.y}, {x + 5.0f, lo.y}, {x, lo.y + 7.0f}, kMarkerColor);
     }
 
-    // Curves: median first, best on top.
+    // Curves: other runs thin and pale, then the median, the current best bold on top.
     dl->PushClipRect(lo, hi, true);
+    for (std::size_t k = 0; k < overlays.size(); ++k) {
+        std::vector<ImVec2> points;
+        for (const auto& r : overlays[k].records)
+            points.push_back({px(r.generation), py(r.best_fitness)});
+        const ImU32 color = kOverlayColors[k % kOverlayColors.size()];
+        if (points.size() == 1)
+            dl->AddCircleFilled(points[0], 2.0f, color);
+        else if (!points.empty())
+            dl->AddPolyline(points.data(), static_cast<int>(points.size()), color, 0, 1.0f);
+    }
     for (int pass = 0; pass < 2; ++pass) {
         std::vector<ImVec2> points;
         for (const auto& r : history)
@@ -99,7 +134,8 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
         if (points.size() == 1)
             dl->AddCircleFilled(points[0], 3.0f, color);
         else if (!points.empty())
-            dl->AddPolyline(points.data(), static_cast<int>(points.size()), color, 0, 2.0f);
+            dl->AddPolyline(points.data(), static_cast<int>(points.size()), color, 0,
+                            pass == 0 ? 2.0f : 3.0f);
     }
     dl->PopClipRect();
 
@@ -116,6 +152,13 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
         const float third = second + 22.0f + ImGui::CalcTextSize("median").x + 14.0f;
         dl->AddLine({third + 9.0f, legend.y}, {third + 9.0f, legend.y + font}, kMarkerColor, 2.0f);
         dl->AddText({third + 22.0f, legend.y}, kTextColor, "rules changed");
+    }
+
+    if (!overlays.empty()) {
+        const std::string text = "thin: " + std::to_string(overlays.size()) +
+                                 (overlays.size() == 1 ? " other run" : " other runs");
+        const ImVec2 ts = ImGui::CalcTextSize(text.c_str());
+        dl->AddText({hi.x - ts.x - 6.0f, hi.y - ts.y - 4.0f}, kTextColor, text.c_str());
     }
 
     // Hover: the nearest generation's values.

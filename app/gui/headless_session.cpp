@@ -24,7 +24,11 @@ struct HeadlessStudio::Gl {
 };
 
 HeadlessStudio::HeadlessStudio(Studio& studio, int width, int height)
-    : studio_(studio), width_(width), height_(height) {
+    : studio_(studio),
+      width_(width),
+      height_(height),
+      target_width_(width),
+      target_height_(height) {
     keep_freed_memory_for_rendering();
     gl_ = std::make_unique<Gl>(width, height);
     gl_->target.bind();
@@ -55,6 +59,13 @@ HeadlessStudio::~HeadlessStudio() {
     if (gl_->imgui) ImGui::DestroyContext(gl_->imgui);
 }
 
+bool HeadlessStudio::set_display_size(int width, int height) {
+    if (width < 1 || height < 1 || width > target_width_ || height > target_height_) return false;
+    width_ = width;
+    height_ = height;
+    return true;
+}
+
 std::string HeadlessStudio::gl_renderer() const {
     return gl_->target.gl_renderer();
 }
@@ -66,8 +77,11 @@ void HeadlessStudio::frame(double dt_s) {
     io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
     io.DeltaTime = static_cast<float>(dt_s > 0.0 ? dt_s : 1.0 / 60.0);
     io.MousePos = ImVec2(input_.mouse.x, input_.mouse.y);
-    for (int b = 0; b < 3; ++b)
-        io.MouseDown[b] = input_.buttons[static_cast<std::size_t>(b)];
+    for (int b = 0; b < 3; ++b) {
+        const auto i = static_cast<std::size_t>(b);
+        io.MouseDown[b] = input_.buttons[i] || input_.pressed_in_batch[i];
+        input_.pressed_in_batch[i] = false;
+    }
     io.MouseWheel = input_.wheel;
     input_.wheel = 0.0f;
     io.KeyCtrl = input_.ctrl;

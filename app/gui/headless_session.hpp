@@ -24,6 +24,10 @@ void keep_freed_memory_for_rendering();
 struct SyntheticInput {
     glm::vec2 mouse{-1.0f, -1.0f};
     std::array<bool, 3> buttons{};
+    //! A press (and maybe its release) that came in the same event batch as this frame: the
+    //! button reads as down for this one frame, as the GLFW backend latches a press it saw
+    //! released before the frame began. Cleared by the frame.
+    std::array<bool, 3> pressed_in_batch{};
     float wheel = 0.0f;  //!< consumed by the next frame
     bool ctrl = false, shift = false;
     int key = 0;  //!< GLFW key code held down (0 = none)
@@ -44,6 +48,9 @@ class HeadlessStudio {
     render::Image capture();
 
     SyntheticInput& input() { return input_; }
+    //! The window's logical size (as a resize would make it); at most the size it was created
+    //! with (the off-screen target keeps that size). False when out of range.
+    bool set_display_size(int width, int height);
     Studio& studio() { return studio_; }
     StudioApp& app() { return *app_; }
     int width() const { return width_; }
@@ -55,6 +62,7 @@ class HeadlessStudio {
     struct Gl;
     Studio& studio_;
     int width_, height_;
+    int target_width_, target_height_;
     std::unique_ptr<Gl> gl_;
     std::unique_ptr<StudioApp> app_;
     SyntheticInput input_;

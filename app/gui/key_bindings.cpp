@@ -8,6 +8,7 @@
 #include <cctype>
 
 #include "app/gui/studio_actions.hpp"
+#include "app/gui/unsaved_guard.hpp"
 
 namespace bhm::app::gui {
 
@@ -37,7 +38,7 @@ const std::vector<KeyBinding>& key_bindings() {
         {GLFW_KEY_F12, false, false, Action::Screenshot, "F12",
          "screenshot of the 3D view (Export panel size and path)"},
         {GLFW_KEY_F1, false, false, Action::ToggleHelp, "F1", "show / hide this help"},
-        {GLFW_KEY_Q, true, false, Action::Quit, "Ctrl+Q", "quit (settings are saved)"},
+        {GLFW_KEY_Q, true, false, Action::Quit, "Ctrl+Q", "quit (asks first about unsaved edits and a running evolution)"},
     };
     return table;
 }
@@ -113,7 +114,7 @@ void run_action(Studio& studio, Action action) {
             redo(studio);
             break;
         case Action::NewExperiment:
-            new_experiment(studio);
+            request_new_experiment(studio);
             break;
         case Action::SaveExperiment:
             save_experiment(studio);
@@ -173,7 +174,7 @@ void run_action(Studio& studio, Action action) {
             studio.show_help = !studio.show_help;
             break;
         case Action::Quit:
-            studio.quit_requested = true;
+            request_quit(studio);
             break;
     }
 }

@@ -7,6 +7,7 @@
 #include "app/gui/panels.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/ui_widgets.hpp"
+#include "app/gui/unsaved_guard.hpp"
 
 namespace bhm::app::gui {
 
@@ -19,9 +20,9 @@ void file_section(Studio& s) {
     if (ImGui::InputTextWithHint("##path", "experiment file path (.json)", buffer, sizeof buffer))
         s.path_field = buffer;
     record_widget(s, "path");
-    if (tracked_button(s, "New")) new_experiment(s);
+    if (tracked_button(s, "New")) request_new_experiment(s);
     ImGui::SameLine();
-    if (tracked_button(s, "Open")) open_experiment(s, s.path_field);
+    if (tracked_button(s, "Open")) request_open_experiment(s, s.path_field);
     ImGui::SameLine();
     if (tracked_button(s, "Save")) save_experiment(s);
     ImGui::SameLine();
@@ -33,7 +34,7 @@ void file_section(Studio& s) {
         for (const auto& path : s.settings.recent_files) {
             if (ImGui::Selectable(path.c_str())) {
                 s.path_field = path;
-                open_experiment(s, path);
+                request_open_experiment(s, std::string(path));
                 break;  // the list changed
             }
         }

@@ -8,6 +8,7 @@
 #include "app/gui/panels.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/ui_widgets.hpp"
+#include "app/gui/unsaved_guard.hpp"
 
 namespace bhm::app::gui {
 
@@ -19,13 +20,13 @@ void draw_menu_bar(Studio& s) {
         if (ImGui::BeginMenu("Open recent", !s.settings.recent_files.empty())) {
             for (const auto& path : s.settings.recent_files)
                 if (ImGui::MenuItem(path.c_str())) {
-                    open_experiment(s, std::string(path));
+                    request_open_experiment(s, std::string(path));
                     break;
                 }
             ImGui::EndMenu();
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Quit", "Ctrl+Q")) s.quit_requested = true;
+        if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_quit(s);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Edit")) {

@@ -13,16 +13,48 @@
 namespace bhm::app::gui {
 
 void draw_fitness_panel(Studio& s) {
-    // Before a run has history, label the axis with the measure the next run will use.
-    const bool has_run = s.run && !s.run->history.empty();
-    const auto measure =
-        has_run ? s.run->experiment.fitness.measure : s.document.experiment().fitness.measure;
-    const std::vector<GenerationRecord> none;
+    // One plot per measure: after a change of rules, values in voxels and in degrees never share
+    // a line or an axis. Other runs (Compare) are overlaid thin on the plot of the same measure.
+    std::vector<MeasureSeries> plots;
+    if (s.run && !s.run->history.empty()) plots = split_by_measure(*s.run);
+    std::vector<std::vector<OverlayCurve>> overlays(plots.size());
+    for (const auto& other : s.compared_runs) {
+        if (!other.snapshot) continue;
+        for (auto& series : split_by_measure(*other.snapshot)) {
+            auto it = std::find_if(plots.begin(), plots.end(), [&](const MeasureSeries& m) {
+                return m.measure == series.measure;
+            });
+            if (it == plots.end()) {
+                plots.push_back({series.measure, {}});
+                overlays.emplace_back();
+                it = plots.end() - 1;
+            }
+            overlays[static_cast<std::size_t>(it - plots.begin())].push_back(
+                {other.label, std::move(series.records)});
+        }
+    }
+    if (plots.empty()) {
+        // Before a run has history, label the axis with the measure the next run will use.
+        plots.push_back({s.run && s.run->loaded ? s.run->experiment.fitness.measure
+                                                : s.document.experiment().fitness.measure,
+                         {}});
+        overlays.emplace_back();
+    }
     const std::vector<RuleChange> no_changes;
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    s.fitness_plot.draw(s.run ? s.run->history : none, s.run ? s.run->rule_changes : no_changes,
-                        ImVec2(avail.x, std::max(60.0f, avail.y)), fitness_unit(measure));
-    record_widget(s, "fitness plot");
+    const auto& changes = s.run ? s.run->rule_changes : no_changes;
+    const float line = ImGui::GetTextLineHeightWithSpacing();
+    const float each = (ImGui::GetContentRegionAvail().y - line * plots.size()) / plots.size();
+    for (std::size_t k = 0; k < plots.size(); ++k) {
+        const auto measure = plots[k].measure;
+        const char* name = evo::kFitnessNames[static_cast<std::size_t>(measure)];
+        ImGui::PushID(static_cast<int>(measure));
+        ImGui::TextDisabled("%s (%s)", name, fitness_unit(measure));
+        const float width = ImGui::GetContentRegionAvail().x;
+        s.fitness_plot.draw(plots[k].records, changes, ImVec2(width, std::max(60.0f, each)),
+                            fitness_unit(measure), overlays[k]);
+        record_widget(s, std::string("fitness plot ") + name);
+        ImGui::PopID();
+    }
 }
 
 void draw_population_panel(Studio& s) {

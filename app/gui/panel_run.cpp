@@ -8,6 +8,7 @@
 
 #include "app/gui/panels.hpp"
 #include "app/gui/studio_actions.hpp"
+#include "app/gui/studio_paths.hpp"
 #include "app/gui/ui_widgets.hpp"
 
 namespace bhm::app::gui {
@@ -58,11 +59,21 @@ void controls(Studio& s) {
         ImGui::InputDouble("h budget", &ev.wall_budget_h, 0.0, 0.0, "%.3g");
         if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
         ImGui::PopItemWidth();
-        text_field(s, "##run dir", "run directory (empty: runs/<name>-<time>)", s.run_dir_field);
+        text_field(s, "##run dir", "run directory (empty: a new folder in the data folder)",
+                   s.run_dir_field);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("empty: %s/<name>-<time>", default_runs_root().c_str());
+    } else if (s.run && s.run->loaded && !s.showing_run_directory && !editing_run_document(s)) {
+        // The run owns its experiment: say so, so nobody expects these edits to reach it.
+        ImGui::TextDisabled(
+            "The editor shows another experiment than the run's: its edits "
+            "do not reach the run.");
     } else if (rules_differ_from_run(s)) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.45f, 0.0f, 1.0f));
-        ImGui::TextWrapped("Edited rules will apply %s.",
-                           phase == RunPhase::Paused ? "on Resume" : "after Apply (Constraints)");
+        ImGui::TextWrapped(
+            "Edited rules (measure %s) will apply %s.",
+            evo::kFitnessNames[static_cast<std::size_t>(s.document.experiment().fitness.measure)],
+            phase == RunPhase::Paused ? "on Resume" : "after Apply (Constraints)");
         ImGui::PopStyleColor();
     }
 }
@@ -73,7 +84,15 @@ void status(Studio& s) {
         ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
         return;
     }
+    if (!run->loaded) {  // a resumed run while its checkpoint loads: no defaults shown as its own
+        ImGui::TextUnformatted("state: loading the checkpoint");
+        if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
+        return;
+    }
     const auto measure = run->experiment.fitness.measure;
+    // The session's phase is read live (an atomic), not from the last snapshot: Pause or Stop
+    // shows at once.
+    const RunPhase phase = s.showing_run_directory ? run->phase : s.evolution.phase();
     if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
         auto cell = [](const char* name, const std::string& value) {
             ImGui::TableNextColumn();
@@ -82,7 +101,7 @@ void status(Studio& s) {
             ImGui::TextUnformatted(value.c_str());
         };
         char text[64];
-        cell("state", s.showing_run_directory ? "viewing" : run_phase_name(run->phase));
+        cell("state", s.showing_run_directory ? "viewing" : run_phase_name(phase));
         std::snprintf(text, sizeof text, "%d / %d", run->generation, run->generation_budget);
         cell("generation", text);
         cell("best", run->has_champion ? format_fitness(run->best_fitness, measure) : "-");

@@ -79,8 +79,14 @@ void mouse(Studio& s, glm::vec2 local, bool hovered) {
         }
     }
     if (v.dragging) {
-        const ImVec2 d = io.MouseDelta;
-        v.drag_distance_px += std::abs(d.x) + std::abs(d.y);
+        // Measured from where the button went down, not summed from frame deltas: a pointer that
+        // jumps to the spot and clicks in one event batch (a fast click, xdotool) moved before the
+        // press, and that move is no drag.
+        const bool press_frame = ImGui::IsMouseClicked(v.drag_button);
+        const ImVec2 from_press = ImGui::GetMouseDragDelta(v.drag_button, 0.0f);
+        v.drag_distance_px =
+            std::max(v.drag_distance_px, std::abs(from_press.x) + std::abs(from_press.y));
+        const ImVec2 d = press_frame ? ImVec2(0.0f, 0.0f) : io.MouseDelta;
         if (v.drag_distance_px > kClickSlopPx && (d.x != 0.0f || d.y != 0.0f)) {
             if (v.drag_button == 0)
                 render::orbit(v.camera, d.x, d.y);

@@ -9,6 +9,7 @@ class ViewRenderer;
 void draw_menu_bar(Studio& studio);
 void draw_experiment_panel(Studio& studio);
 void draw_constraints_panel(Studio& studio);
+void draw_files_panel(Studio& studio);
 void draw_export_panel(Studio& studio, ViewRenderer& renderer);
 void draw_run_panel(Studio& studio);
 void draw_fitness_panel(Studio& studio);

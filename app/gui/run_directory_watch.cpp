@@ -115,20 +115,24 @@ bool RunDirectoryWatch::refresh() {
     auto snap = std::make_shared<EvolutionSnapshot>(snapshot_ ? *snapshot_ : EvolutionSnapshot{});
     snap->phase = RunPhase::Idle;
     snap->run_dir = dir_;
+    snap->loaded = true;
     try {
         if (run_t != experiment_mtime_ || !snapshot_) {
             // run.json: the experiment as started plus every change of fitness rules.
             const json info = json::parse(read_text(dir / "run.json"));
             json experiment = info.at("experiment");
+            const std::string label = (dir / "run.json").string();
+            snap->initial_measure = evo::parse_experiment(experiment, label).fitness.measure;
             snap->rule_changes.clear();
             for (const auto& change : info.value("rule_changes", json::array())) {
                 experiment["fitness"] = change.at("fitness");
-                snap->rule_changes.push_back({change.at("generation").get<int>(),
-                                              std::string("fitness rules changed (") +
-                                                  change.at("fitness").value("measure", "?") +
-                                                  ")"});
+                snap->rule_changes.push_back(
+                    {change.at("generation").get<int>(),
+                     std::string("fitness rules changed (") +
+                         change.at("fitness").value("measure", "?") + ")",
+                     evo::parse_experiment(experiment, label).fitness.measure});
             }
-            snap->experiment = evo::parse_experiment(experiment, (dir / "run.json").string());
+            snap->experiment = evo::parse_experiment(experiment, label);
             snap->generation_budget = snap->experiment.evolution.generations;
         }
         if (fitness_t != fitness_mtime_ && fitness_t != fs::file_time_type{}) {

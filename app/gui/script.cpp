@@ -56,7 +56,7 @@ double timeout_of(const json& step, double fallback) {
     return step.contains("timeout_s") ? step.at("timeout_s").get<double>() : fallback;
 }
 
-void click_face(HeadlessStudio& session, const std::string& name) {
+void click_face(HeadlessStudio& session, const std::string& name, bool fast) {
     const auto face = parse_face(name);
     if (!face) throw ScriptError("unknown face '" + name + "' (x-, x+, y-, y+, z-, z+)");
     Studio& s = session.studio();
@@ -71,7 +71,7 @@ void click_face(HeadlessStudio& session, const std::string& name) {
     if (!hit || hit->face != *face)
         throw ScriptError("face " + name +
                           " is not visible from the current view (orbit or pick another view)");
-    click_at(session, s.view.origin_px + *pixel);
+    click_at(session, s.view.origin_px + *pixel, false, fast);
 }
 
 void click_cell(HeadlessStudio& session, const json& step) {
@@ -111,7 +111,8 @@ void click_cell(HeadlessStudio& session, const json& step) {
                            c[0] + e.workspace_size[0] * (c[1] + e.workspace_size[1] * c[2]))] != 0;
             });
         if (hit && hit->cell == cell) {
-            click_at(session, s.view.origin_px + *pixel, step.value("shift", false));
+            click_at(session, s.view.origin_px + *pixel, step.value("shift", false),
+                     step.value("fast", false));
             return;
         }
     }
@@ -137,10 +138,18 @@ json load_script(const std::string& path) {
     return steps;
 }
 
-void click_at(HeadlessStudio& session, glm::vec2 position, bool shift) {
+void click_at(HeadlessStudio& session, glm::vec2 position, bool shift, bool fast) {
     auto& in = session.input();
     in.mouse = position;
     in.shift = shift;
+    if (fast) {  // move, press and release all before the next frame
+        in.pressed_in_batch[0] = true;
+        session.frame();
+        session.frame();
+        in.shift = false;
+        session.frame();
+        return;
+    }
     session.frame();  // hover first, as a real pointer arrives before it clicks
     in.buttons[0] = true;
     session.frame();
@@ -148,6 +157,23 @@ void click_at(HeadlessStudio& session, glm::vec2 position, bool shift) {
     session.frame();  // the release acts after this frame's 3D view was drawn
     in.shift = false;
     session.frame();  // so draw once more: a screenshot next shows the result
+}
+
+void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by) {
+    auto& in = session.input();
+    const glm::vec2 start = widget_center(session, name);
+    in.mouse = start;
+    session.frame();
+    in.buttons[0] = true;
+    session.frame();
+    constexpr int kSteps = 6;
+    for (int k = 1; k <= kSteps; ++k) {
+        in.mouse = start + by * (static_cast<float>(k) / kSteps);
+        session.frame();
+    }
+    in.buttons[0] = false;
+    session.frame();
+    session.frame();
 }
 
 void press_key(HeadlessStudio& session, const std::string& chord_text) {
@@ -209,9 +235,18 @@ void run_step(HeadlessStudio& session, const json& step) {
     } else if (step.contains("set")) {
         set_experiment_field(s, step.at("set").get<std::string>(), step.at("value"));
     } else if (step.contains("click")) {
-        click_at(session, widget_center(session, step.at("click").get<std::string>()));
+        click_at(session, widget_center(session, step.at("click").get<std::string>()), false,
+                 step.value("fast", false));
     } else if (step.contains("click_face")) {
-        click_face(session, step.at("click_face").get<std::string>());
+        click_face(session, step.at("click_face").get<std::string>(), step.value("fast", false));
+    } else if (step.contains("drag")) {
+        const auto by = step.at("by").get<std::array<float, 2>>();
+        drag_widget(session, step.at("drag").get<std::string>(), {by[0], by[1]});
+    } else if (step.contains("resize")) {
+        const auto size = step.at("resize").get<std::array<int, 2>>();
+        if (!session.set_display_size(size[0], size[1]))
+            throw ScriptError("resize: 1..the starting size in each direction");
+        session.frame();
     } else if (step.contains("click_cell")) {
         click_cell(session, step);
     } else if (step.contains("key")) {

@@ -18,6 +18,9 @@
 //   {"screenshot": "ui.png"}                  the whole window, as drawn
 //   {"export_view": "view.png", "size": [w, h]}  off-screen render of the 3D view
 //   {"save": "exp.json"}                      File > Save As
+//   {"drag": "splitter right", "by": [-100, 0]}  press on a widget, move, release
+//   {"resize": [w, h]}                        the window's size (at most the one it started with)
+//   "fast": true on click, click_face, click_cell: press and release in one event batch
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -48,7 +51,11 @@ void run_step(HeadlessStudio& session, const nlohmann::json& step);
 void set_experiment_field(Studio& studio, const std::string& path, const nlohmann::json& value);
 
 //! Mouse helpers: move, press and release over three frames at a window position.
-void click_at(HeadlessStudio& session, glm::vec2 position, bool shift = false);
+//! fast: the pointer arrives, presses and releases in one event batch (one frame), as a quick
+//! click or xdotool does; otherwise it hovers a frame first and holds the button a frame.
+void click_at(HeadlessStudio& session, glm::vec2 position, bool shift = false, bool fast = false);
+//! Presses over a widget, moves by `by` pixels over several frames, releases (splitters).
+void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by);
 void press_key(HeadlessStudio& session, const std::string& chord);
 
 }  // namespace bhm::app::gui

@@ -23,7 +23,9 @@
 #include "app/gui/picking.hpp"
 #include "app/gui/replay_player.hpp"
 #include "app/gui/run_directory_watch.hpp"
+#include "app/gui/studio_paths.hpp"
 #include "app/gui/studio_settings.hpp"
+#include "app/gui/tile_layout.hpp"
 #include "render/camera.hpp"
 
 namespace bhm::app::gui {
@@ -98,6 +100,23 @@ struct WidgetRect {
     int frame = -1;  //!< frame it was last drawn in
 };
 
+//! An action that would lose something (unsaved edits, the generation in progress) waits here
+//! for the user's answer in a modal dialog (unsaved_guard.hpp).
+struct PendingAction {
+    enum class Kind { None, NewExperiment, OpenExperiment, Quit } kind = Kind::None;
+    std::string path;                    //!< OpenExperiment: the file to open
+    bool unsaved_answered = false;       //!< the unsaved-edits question is answered
+    bool run_answered = false;           //!< Quit: the running-evolution question is answered
+    bool quit_after_generation = false;  //!< Quit: once the generation in progress is saved
+};
+
+//! Another run's history overlaid on the fitness plots (Fitness > Compare).
+struct ComparedRun {
+    std::string dir;
+    std::string label;
+    std::shared_ptr<const EvolutionSnapshot> snapshot;
+};
+
 struct Studio {
     ExperimentDocument document;
     //! The copy the Experiment panel's fields edit while a field is active; committed through
@@ -120,6 +139,19 @@ struct Studio {
     std::chrono::steady_clock::time_point last_directory_check{};
     std::string run_dir_field;   //!< where the next run is written
     std::string open_run_field;  //!< run directory to open
+    //! identity() of the document the live run belongs to (0: the editor shows none of its
+    //! experiments): only that document's rule edits may reach the run, and only explicitly.
+    std::uint64_t run_document = 0;
+    //! A resumed run's experiment goes into the editor once its checkpoint is loaded.
+    bool adopt_run_experiment = false;
+    std::vector<ComparedRun> compared_runs;
+    std::string compare_field;  //!< run directory to add to the comparison
+
+    //! Shipped presets (the Files tab's gallery): Save never overwrites them.
+    std::string presets_dir = default_presets_dir();
+    std::string browser_dir;  //!< folder the file browser shows (absolute; empty: the current)
+    std::map<std::string, FileListing> file_listings;  //!< the Files tab's folders, re-read 2/s
+    PendingAction pending;
 
     BodySimulator simulator;
     std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
@@ -134,7 +166,7 @@ struct Studio {
     bool show_help = false;
     bool screenshot_requested = false;  //!< F12: written by the app at the end of the frame
     bool show_demo_metrics = false;
-    bool quit_requested = false;
+    bool quit_requested = false;  //!< confirmed: the runner closes the window after this frame
 
     FitnessPlot fitness_plot;  //!< hover state of the plot
 
@@ -145,6 +177,7 @@ struct Studio {
     //! evolution, so this stays far below a frame (bench_studio reports it).
     double max_update_ms = 0.0;
     std::map<std::string, WidgetRect> widgets;
+    TileLayout tiles;  //!< this frame's tile sizes (fit_layout of the settings' preferences)
 };
 
 }  // namespace bhm::app::gui

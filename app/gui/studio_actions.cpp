@@ -4,6 +4,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "app/gui/studio_paths.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/scene.hpp"
 
@@ -62,7 +63,23 @@ bool save_experiment_as(Studio& studio, const std::string& path) {
         set_status(studio, "save: type a file name in the path field first", true);
         return false;
     }
+    if (is_shipped_preset(path, studio.presets_dir)) {
+        // The gallery's presets stay as shipped: propose a name of the user's own instead.
+        const auto stem = std::filesystem::path(path).stem().string();
+        studio.path_field = (std::filesystem::path(default_runs_root()).parent_path() /
+                             "experiments" / (stem + "-edited.json"))
+                                .string();
+        set_status(studio,
+                   path +
+                       " is a shipped preset and is not overwritten: Save As under a new name "
+                       "(proposed in the path field)",
+                   true);
+        return false;
+    }
     try {
+        std::error_code ec;
+        const auto parent = std::filesystem::path(path).parent_path();
+        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
         evo::save_experiment(path, studio.document.experiment());
         studio.document.mark_saved(path);
         studio.settings.remember(path);
@@ -126,7 +143,7 @@ bool paint_cell(Studio& studio, const std::array<int, 3>& cell) {
 
 namespace {
 
-std::string fresh_run_dir(const evo::Experiment& e) {
+std::string fresh_run_dir(const evo::Experiment& e, const std::string& runs_root) {
     const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
     std::tm tm{};
     localtime_r(&now, &tm);
@@ -135,7 +152,7 @@ std::string fresh_run_dir(const evo::Experiment& e) {
     std::string name = e.name.empty() ? std::string("run") : e.name;
     for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '-';
-    return "runs/" + name + "-" + stamp;
+    return (std::filesystem::path(runs_root) / (name + "-" + stamp)).string();
 }
 
 // What a live run can take between generations: the fitness rules (measure, constraints,
@@ -151,12 +168,16 @@ bool start_run(Studio& studio) {
         set_status(studio, "a run is already going: stop it first", true);
         return false;
     }
-    std::string dir = studio.run_dir_field.empty() ? fresh_run_dir(studio.document.experiment())
-                                                   : studio.run_dir_field;
+    // Absolute, so the run is found again whatever folder the studio was started from.
+    std::string dir = studio.run_dir_field.empty()
+                          ? fresh_run_dir(studio.document.experiment(), default_runs_root())
+                          : absolute_path(studio.run_dir_field);
     try {
         studio.evolution.start(studio.document.experiment(), dir);
         close_run_directory(studio);
         studio.run_dir_field.clear();
+        studio.run_document = studio.document.identity();
+        studio.adopt_run_experiment = false;
         studio.follow_champion = true;
         studio.requested_champion = -1;
         set_status(studio, "evolution started: " + dir);
@@ -170,7 +191,7 @@ bool start_run(Studio& studio) {
 bool pause_run(Studio& studio) {
     if (studio.evolution.phase() != RunPhase::Running) return false;
     studio.evolution.pause();
-    set_status(studio, "pausing at the end of this generation");
+    set_status(studio, "pausing: the generation in progress is interrupted and re-run on resume");
     return true;
 }
 
@@ -186,7 +207,12 @@ bool resume_run(Studio& studio) {
 bool stop_run(Studio& studio) {
     if (!run_is_live(studio.evolution.phase())) return false;
     studio.evolution.stop();
-    set_status(studio, "stopping at the end of this generation (the checkpoint is kept)");
+    const int done = studio.run && studio.run->loaded ? studio.run->generation : 0;
+    set_status(studio, done > 0 ? "stopping: the generation in progress is abandoned, the "
+                                  "checkpoint of generation " +
+                                      std::to_string(done - 1) + " is kept"
+                                : std::string("stopping: no generation is complete yet, so "
+                                              "there will be no checkpoint to resume"));
     return true;
 }
 
@@ -196,8 +222,12 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
         return false;
     }
     try {
-        studio.evolution.resume_from(run_dir);
+        studio.evolution.resume_from(absolute_path(run_dir));
         close_run_directory(studio);
+        // The editor takes the run's experiment once its checkpoint is loaded (when it holds
+        // no unsaved edits); until then no document of the editor belongs to the run.
+        studio.run_document = 0;
+        studio.adopt_run_experiment = true;
         studio.follow_champion = true;
         studio.requested_champion = -1;
         set_status(studio, "resumed " + run_dir);
@@ -208,9 +238,14 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
     }
 }
 
+bool editing_run_document(const Studio& studio) {
+    return studio.run_document != 0 && studio.run_document == studio.document.identity() &&
+           run_is_live(studio.evolution.phase());
+}
+
 bool rules_differ_from_run(const Studio& studio) {
     const auto snapshot = studio.evolution.snapshot();
-    if (!snapshot || !run_is_live(studio.evolution.phase())) return false;
+    if (!snapshot || !snapshot->loaded || !editing_run_document(studio)) return false;
     return !same_rules(snapshot->experiment, studio.document.experiment());
 }
 
@@ -218,6 +253,14 @@ bool apply_rules_to_run(Studio& studio) {
     const auto snapshot = studio.evolution.snapshot();
     if (!snapshot || !run_is_live(studio.evolution.phase())) {
         set_status(studio, "no run to change", true);
+        return false;
+    }
+    if (!editing_run_document(studio)) {
+        // The run owns its experiment: another document's rules never reach it.
+        set_status(studio,
+                   "the editor shows another experiment than the run's: its rules do not apply "
+                   "to the run",
+                   true);
         return false;
     }
     const auto& doc = studio.document.experiment();
@@ -232,7 +275,7 @@ bool apply_rules_to_run(Studio& studio) {
 
 bool boundary_differs_from_run(const Studio& studio) {
     const auto snapshot = studio.evolution.snapshot();
-    if (!snapshot || !run_is_live(studio.evolution.phase())) return false;
+    if (!snapshot || !snapshot->loaded || !editing_run_document(studio)) return false;
     return !(snapshot->experiment.boundary == studio.document.experiment().boundary);
 }
 
@@ -360,6 +403,17 @@ void update_studio(Studio& studio) {
         }
     } else {
         studio.run = studio.evolution.snapshot();
+    }
+    // A resumed run's experiment, once loaded, becomes the editor's document (the run's own),
+    // unless the editor holds unsaved edits of another one.
+    if (studio.adopt_run_experiment && studio.run && studio.run->loaded &&
+        !studio.showing_run_directory) {
+        studio.adopt_run_experiment = false;
+        if (!studio.document.dirty()) {
+            studio.document.reset(studio.run->experiment, "");
+            studio.run_document = studio.document.identity();
+            studio.view.camera_needs_framing = true;
+        }
     }
 
     // A new champion: simulate it for the live view.

@@ -30,7 +30,7 @@ bool paint_cell(Studio& studio, const std::array<int, 3>& cell);  //!< with the 
 
 // --- Evolution -----------------------------------------------------------------------------
 //! Starts a run of the document's experiment into studio.run_dir_field (a fresh folder under
-//! runs/ when empty), the same files and checkpoints as `bhm evolve`.
+//! default_runs_root() when empty), the same files and checkpoints as `bhm evolve`.
 bool start_run(Studio& studio);
 bool pause_run(Studio& studio);
 bool resume_run(Studio& studio);
@@ -39,7 +39,10 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir);
 //! Sends the document's fitness rules (measure, constraints, objectives) to the paused or running
 //! session; the population is re-scored before the next generation and the change is marked.
 bool apply_rules_to_run(Studio& studio);
-//! The document's fitness rules differ from those of the live run.
+//! The editor shows the live run's own document (the one it was started from, or the resumed
+//! run's experiment): only then can its rule edits be sent to the run.
+bool editing_run_document(const Studio& studio);
+//! The run's document is in the editor and its fitness rules differ from the live run's.
 bool rules_differ_from_run(const Studio& studio);
 //! The document's boundary (faces, frame, overrides) differs from the live run's: it applies to
 //! the next run only.

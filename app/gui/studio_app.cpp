@@ -12,7 +12,9 @@
 #include "app/gui/key_bindings.hpp"
 #include "app/gui/panels.hpp"
 #include "app/gui/studio_actions.hpp"
+#include "app/gui/tile_layout.hpp"
 #include "app/gui/ui_widgets.hpp"
+#include "app/gui/unsaved_guard.hpp"
 
 namespace bhm::app::gui {
 
@@ -34,6 +36,37 @@ ImVec2 begin_tile(const char* name, ImVec2 pos, ImVec2 size, ImGuiWindowFlags ex
     ImGui::SetNextWindowSize(size, ImGuiCond_Always);
     ImGui::Begin(name, nullptr, kTileFlags | extra);
     return ImGui::GetWindowSize();
+}
+
+// A thin strip over an inner edge: dragging it moves the edge (the settings remember it).
+void splitter(Studio& s, const char* name, ImVec2 pos, ImVec2 size, Splitter which, float width,
+              float height) {
+    const bool vertical = which == Splitter::Left || which == Splitter::Right;
+    ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
+    ImGui::SetNextWindowSize(size, ImGuiCond_Always);
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1.0f, 1.0f));
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
+    ImGui::Begin(name, nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoBackground |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+    ImGui::InvisibleButton("##edge", size);
+    record_widget(s, name);
+    if (ImGui::IsItemHovered() || ImGui::IsItemActive()) {
+        ImGui::SetMouseCursor(vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
+        ImGui::GetWindowDrawList()->AddRectFilled(
+            ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
+            ImGui::GetColorU32(ImGui::IsItemActive() ? ImGuiCol_SeparatorActive
+                                                     : ImGuiCol_SeparatorHovered));
+    }
+    if (ImGui::IsItemActive()) {
+        const ImVec2 d = ImGui::GetIO().MouseDelta;
+        const float delta = vertical ? d.x : d.y;
+        if (delta != 0.0f) drag_splitter(s.settings.layout, s.tiles, which, delta, width, height);
+    }
+    ImGui::End();
+    ImGui::PopStyleVar(3);
 }
 
 }  // namespace
@@ -102,8 +135,10 @@ void StudioApp::build_frame(double wall_dt_s) {
         1000.0 *
         std::chrono::duration<double>(std::chrono::steady_clock::now() - update_start).count();
     s.max_update_ms = std::max(s.max_update_ms, update_ms);
+    update_pending_action(s);
     dispatch_key_bindings(s);
     layout_and_panels();
+    draw_confirm_dialogs(s);
     if (s.screenshot_requested) {
         s.screenshot_requested = false;
         export_screenshot(s, renderer_, s.exports.screenshot_path, s.exports.screenshot_width,
@@ -114,26 +149,19 @@ void StudioApp::build_frame(double wall_dt_s) {
 
 void StudioApp::layout_and_panels() {
     Studio& s = studio_;
-    auto& layout = s.settings.layout;
     draw_menu_bar(s);
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     const float top = ImGui::GetFrameHeight();
     const float status_h = ImGui::GetFrameHeight() + 2.0f;
+    const float width = std::max(64.0f, display.x);
     const float height = std::max(100.0f, display.y - top - status_h);
-    const float min_centre = 200.0f;
-    layout.left_px = std::clamp(layout.left_px, 150.0f,
-                                std::max(150.0f, display.x - layout.right_px - min_centre));
-    layout.right_px = std::clamp(layout.right_px, 150.0f,
-                                 std::max(150.0f, display.x - layout.left_px - min_centre));
-    const float centre_x = layout.left_px,
-                centre_w = std::max(16.0f, display.x - layout.left_px - layout.right_px);
-    layout.bottom_px = std::clamp(layout.bottom_px, 60.0f, std::max(60.0f, height - 120.0f));
-    layout.run_px = std::clamp(layout.run_px, 80.0f, std::max(80.0f, height - 200.0f));
-    layout.plot_px =
-        std::clamp(layout.plot_px, 80.0f, std::max(80.0f, height - layout.run_px - 100.0f));
+    // The settings hold what the user chose; a small window only squeezes this frame's tiles.
+    const TileLayout t = fit_layout(s.settings.layout, width, height);
+    s.tiles = t;
+    const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoResize;
 
     // Left column: the design problem.
-    layout.left_px = begin_tile("Design", {0, top}, {layout.left_px, height}).x;
+    begin_tile("Design", {0, top}, {t.left, height}, fixed);
     if (ImGui::BeginTabBar("design tabs")) {
         const bool experiment_open = ImGui::BeginTabItem("Experiment");
         record_widget(s, "tab Experiment");
@@ -147,6 +175,12 @@ void StudioApp::layout_and_panels() {
             draw_constraints_panel(s);
             ImGui::EndTabItem();
         }
+        const bool files_open = ImGui::BeginTabItem("Files");
+        record_widget(s, "tab Files");
+        if (files_open) {
+            draw_files_panel(s);
+            ImGui::EndTabItem();
+        }
         const bool export_open = ImGui::BeginTabItem("Export");
         record_widget(s, "tab Export");
         if (export_open) {
@@ -158,37 +192,43 @@ void StudioApp::layout_and_panels() {
     ImGui::End();
 
     // Centre: the 3D view over the replay timeline.
-    const float view_h = height - layout.bottom_px;
+    const float centre_x = t.left, centre_w = std::max(16.0f, width - t.left - t.right);
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(4.0f, 4.0f));
-    begin_tile("3D view", {centre_x, top}, {centre_w, view_h},
-               ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoScrollbar |
-                   ImGuiWindowFlags_NoScrollWithMouse);
+    begin_tile("3D view", {centre_x, top}, {centre_w, t.view},
+               fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ImGui::PopStyleVar();
     draw_viewport_panel(s, renderer_);
     ImGui::End();
-    const ImVec2 replay = begin_tile("Replay", {centre_x, top + view_h},
-                                     {centre_w, layout.bottom_px}, ImGuiWindowFlags_NoScrollbar);
-    layout.bottom_px = replay.y;
+    begin_tile("Replay", {centre_x, top + t.view}, {centre_w, t.bottom},
+               fixed | ImGuiWindowFlags_NoScrollbar);
     draw_replay_panel(s);
     ImGui::End();
 
     // Right column: evolution.
-    const float right_x = display.x - layout.right_px;
-    const ImVec2 run = begin_tile("Run", {right_x, top}, {layout.right_px, layout.run_px});
-    layout.right_px = run.x;
-    layout.run_px = run.y;
+    const float right_x = width - t.right;
+    begin_tile("Run", {right_x, top}, {t.right, t.run}, fixed);
     draw_run_panel(s);
     ImGui::End();
-    layout.plot_px = begin_tile("Fitness", {right_x, top + layout.run_px},
-                                {layout.right_px, layout.plot_px}, ImGuiWindowFlags_NoScrollbar)
-                         .y;
+    begin_tile("Fitness", {right_x, top + t.run}, {t.right, t.plot},
+               fixed | ImGuiWindowFlags_NoScrollbar);
     draw_fitness_panel(s);
     ImGui::End();
-    const float population_y = top + layout.run_px + layout.plot_px;
-    begin_tile("Population", {right_x, population_y},
-               {layout.right_px, top + height - population_y}, ImGuiWindowFlags_NoResize);
+    begin_tile("Population", {right_x, top + t.run + t.plot}, {t.right, t.population}, fixed);
     draw_population_panel(s);
     ImGui::End();
+
+    // The inner edges: drawn over the tiles, dragged to resize (bounded, remembered).
+    constexpr float grip = 6.0f;
+    splitter(s, "splitter left", {t.left - grip * 0.5f, top}, {grip, height}, Splitter::Left, width,
+             height);
+    splitter(s, "splitter right", {right_x - grip * 0.5f, top}, {grip, height}, Splitter::Right,
+             width, height);
+    splitter(s, "splitter replay", {centre_x, top + t.view - grip * 0.5f}, {centre_w, grip},
+             Splitter::Replay, width, height);
+    splitter(s, "splitter run", {right_x, top + t.run - grip * 0.5f}, {t.right, grip},
+             Splitter::RunPlot, width, height);
+    splitter(s, "splitter plot", {right_x, top + t.run + t.plot - grip * 0.5f}, {t.right, grip},
+             Splitter::PlotPopulation, width, height);
 
     // Status bar.
     ImGui::SetNextWindowPos({0, display.y - status_h}, ImGuiCond_Always);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/gui/studio_paths.hpp"
 #include "evo/experiment_io.hpp"
 
 namespace bhm::app::gui {
@@ -21,8 +22,10 @@ void read_number(const nlohmann::json& j, const char* key, T& out, T lo, T hi) {
 
 }  // namespace
 
-void StudioSettings::remember(const std::string& path) {
-    if (path.empty()) return;
+void StudioSettings::remember(const std::string& relative_or_absolute) {
+    if (relative_or_absolute.empty()) return;
+    // Absolute: the list must mean the same files whatever folder the studio starts from.
+    const std::string path = absolute_path(relative_or_absolute);
     std::erase(recent_files, path);
     recent_files.insert(recent_files.begin(), path);
     if (recent_files.size() > kMaxRecent) recent_files.resize(kMaxRecent);
@@ -80,7 +83,9 @@ StudioSettings settings_from_json(const nlohmann::json& j) {
     }
     if (auto r = j.find("recent_files"); r != j.end() && r->is_array()) {
         for (const auto& entry : *r)
-            if (entry.is_string() && s.recent_files.size() < StudioSettings::kMaxRecent)
+            // Relative entries (older files) name no file reliably: dropped.
+            if (entry.is_string() && s.recent_files.size() < StudioSettings::kMaxRecent &&
+                std::filesystem::path(entry.get<std::string>()).is_absolute())
                 s.recent_files.push_back(entry.get<std::string>());
     }
     return s;

@@ -37,7 +37,7 @@ struct StudioSettings {
     bool operator==(const StudioSettings&) const = default;
 
     static constexpr std::size_t kMaxRecent = 10;
-    //! Moves path to the front of recent_files (no duplicates, capped).
+    //! Moves path, made absolute, to the front of recent_files (no duplicates, capped).
     void remember(const std::string& path);
 };
 

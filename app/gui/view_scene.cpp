@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "app/gui/constraint_edits.hpp"
-#include "app/render_scene.hpp"
 #include "app/gui/replay_player.hpp"
+#include "app/render_scene.hpp"
 #include "evo/scene.hpp"
 
 namespace bhm::app::gui {
@@ -13,6 +13,7 @@ namespace {
 
 constexpr glm::vec4 kForbiddenColor{0.25f, 0.25f, 0.28f, 0.45f};
 constexpr glm::vec4 kFixedMarkerColor{0.18f, 0.72f, 0.30f, 0.55f};
+constexpr glm::vec4 kFixedFaceHatch{0.10f, 0.58f, 0.22f, 1.0f};
 
 std::array<render::FaceMarking, 6> face_markings(const evo::Boundary& boundary) {
     std::array<render::FaceMarking, 6> faces{};
@@ -174,6 +175,10 @@ render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const
     scene.workspace = e.workspace_size;
     scene.material_colors = material_colors(e);
     scene.faces = face_markings(e.boundary);
+    // No translucent face quads over a moving body: they tint it, and where the body touches a
+    // face they z-fight with its voxels. Fixed faces are hatched just outside the workspace
+    // instead (add_fixed_face_hatch); free faces are the workspace box's edges.
+    scene.options.show_boundary_faces = false;
     scene.options.show_edges = view.show_edges;
     scene.options.show_legend = false;
     if (view.show_trail && !simulated.com_m.empty()) {
@@ -204,6 +209,39 @@ void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, 
     for (const auto& edge : edges) {
         list.lines.push_back({c[edge[0]], color, 3.0f});
         list.lines.push_back({c[edge[1]], color, 3.0f});
+    }
+}
+
+void add_fixed_face_hatch(render::DrawList& list, const std::array<int, 3>& workspace,
+                          double voxel_size_m, evo::Face face) {
+    const float s = static_cast<float>(voxel_size_m);
+    const glm::vec3 hi{workspace[0] * s, workspace[1] * s, workspace[2] * s};
+    const int axis = static_cast<int>(face) / 2;
+    // Outside the workspace by a tenth of a voxel: held voxels sit exactly on the face plane.
+    const float level = static_cast<int>(face) % 2 ? hi[axis] + 0.1f * s : -0.1f * s;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    auto at = [&](float a, float b) {
+        glm::vec3 p;
+        p[axis] = level;
+        p[u] = a;
+        p[v] = b;
+        return p;
+    };
+    const glm::vec4 color = kFixedFaceHatch;
+    auto line = [&](glm::vec3 a, glm::vec3 b) {
+        list.lines.push_back({a, color, 2.0f});
+        list.lines.push_back({b, color, 2.0f});
+    };
+    line(at(0, 0), at(hi[u], 0));
+    line(at(hi[u], 0), at(hi[u], hi[v]));
+    line(at(hi[u], hi[v]), at(0, hi[v]));
+    line(at(0, hi[v]), at(0, 0));
+    // Diagonal hatching, one line per voxel pitch along u + v (a "wall" sign, as in drawings).
+    const int n = workspace[static_cast<std::size_t>(u)] + workspace[static_cast<std::size_t>(v)];
+    for (int k = 1; k < n; ++k) {
+        const float d = static_cast<float>(k) * s;  // the line a + b = d
+        const float a0 = std::max(0.0f, d - hi[v]), a1 = std::min(hi[u], d);
+        if (a1 > a0) line(at(a0, d - a0), at(a1, d - a1));
     }
 }
 

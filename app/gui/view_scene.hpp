@@ -46,5 +46,9 @@ void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, 
                         glm::vec4 color);
 void add_face_highlight(render::DrawList& list, const std::array<int, 3>& workspace,
                         double voxel_size_m, evo::Face face, glm::vec4 color);
+//! Simulation mode: a fixed face as an opaque green outline with diagonal hatching, a tenth of a
+//! voxel outside the workspace (no tint over the body, no z-fighting with the voxels on it).
+void add_fixed_face_hatch(render::DrawList& list, const std::array<int, 3>& workspace,
+                          double voxel_size_m, evo::Face face);
 
 }  // namespace bhm::app::gui

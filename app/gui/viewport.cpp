@@ -28,7 +28,14 @@ const evo::Body* painter_context_body(const Studio& s) {
 render::DrawList build_view_draw_list(const Studio& s) {
     const auto& e = s.document.experiment();
     if (s.view.mode == ViewMode::Simulation && s.shown) {
-        return render::build_draw_list(simulation_scene(*s.shown, s.clock.time_s, s.view));
+        const auto& se = s.shown->experiment;
+        render::DrawList list =
+            render::build_draw_list(simulation_scene(*s.shown, s.clock.time_s, s.view));
+        for (int f = 0; f < 6; ++f)
+            if (se.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
+                add_fixed_face_hatch(list, se.workspace_size, se.voxel_size_m,
+                                     static_cast<evo::Face>(f));
+        return list;
     }
     render::Scene scene = workspace_scene(e, s.painter, painter_context_body(s));
     scene.options.show_edges = s.view.show_edges;

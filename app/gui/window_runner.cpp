@@ -13,6 +13,7 @@
 #include "app/gui/headless_session.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_app.hpp"
+#include "app/gui/unsaved_guard.hpp"
 #include "imgui_impl_glfw.h"
 #include "imgui_impl_opengl3.h"
 #include "render/window.hpp"
@@ -60,8 +61,13 @@ int run_window(Studio& studio, const WindowOptions& options) {
         double fps_accumulator = 0.0;
         int fps_frames = 0;
         std::string shown_title;
-        for (int frame = 0; !window.should_close() && !studio.quit_requested; ++frame) {
+        for (int frame = 0; !studio.quit_requested; ++frame) {
             if (options.max_frames > 0 && frame >= options.max_frames) break;
+            if (window.should_close()) {
+                // The window's close button asks like Ctrl+Q (unsaved edits, a running run).
+                glfwSetWindowShouldClose(window.handle(), GLFW_FALSE);
+                request_quit(studio);
+            }
             if (animating(studio) || frame < 3)
                 window.poll_events();
             else

@@ -192,6 +192,16 @@ TEST_CASE("studio session: pause, change the fitness measure, resume; stop and r
     CHECK(run->rule_changes[0].description.find("com_final_3d") != std::string::npos);
     const int stopped_at = run->generation;
     CHECK(stopped_at > paused_at);
+    // One plot per measure: degrees and voxels never share a line or an axis.
+    const auto series = split_by_measure(*run);
+    REQUIRE(series.size() == 2);
+    CHECK(series[0].measure == evo::FitnessMeasure::BendAngleDeg);
+    CHECK(series[1].measure == evo::FitnessMeasure::ComFinal3d);
+    CHECK(series[0].records.back().generation < series[1].records.front().generation);
+    CHECK(series[0].records.size() + series[1].records.size() == run->history.size());
+    session.frame();
+    for (const char* plot : {"fitness plot bend_angle_deg", "fitness plot com_final_3d"})
+        CHECK_MESSAGE(studio.widgets.at(plot).frame >= studio.frame - 1, plot);
 
     // Resume the folder from its checkpoint: it finishes the budget of 8 generations, keeping
     // the history and the rule change.

@@ -45,24 +45,30 @@ TEST_CASE("studio settings: missing, damaged and out-of-range files fall back sa
     CHECK(warning.find(damaged) == 0);
     const auto wild = settings_from_json(nlohmann::json::parse(
         R"({"ui_scale": 40, "window": {"width": -5, "height": "tall"}, "camera": {"pitch_rad": 9},
-            "recent_files": ["x.json", 7, "y.json"]})"));
+            "recent_files": ["/d/x.json", 7, "relative.json", "/d/y.json"]})"));
     CHECK(wild.ui_scale == 3.0f);
     CHECK(wild.window_width == 320);
     CHECK(wild.window_height == StudioSettings{}.window_height);
     CHECK(wild.camera.pitch_rad == doctest::Approx(1.55f));
-    CHECK(wild.recent_files == std::vector<std::string>{"x.json", "y.json"});
+    // Relative entries name no file reliably (they depended on the folder the studio ran in).
+    CHECK(wild.recent_files == std::vector<std::string>{"/d/x.json", "/d/y.json"});
 }
 
-TEST_CASE("studio settings: recent files are newest first, unique and capped") {
+TEST_CASE("studio settings: recent files are absolute, newest first, unique and capped") {
     StudioSettings s;
     for (int i = 0; i < 15; ++i)
         s.remember("f" + std::to_string(i) + ".json");
-    s.remember("f12.json");
+    s.remember((std::filesystem::current_path() / "sub" / ".." / "f12.json").string());
+    const auto abs = [](const char* name) {
+        return (std::filesystem::current_path() / name).string();
+    };
     REQUIRE(s.recent_files.size() == StudioSettings::kMaxRecent);
-    CHECK(s.recent_files[0] == "f12.json");
-    CHECK(s.recent_files[1] == "f14.json");
-    CHECK(s.recent_files[2] == "f13.json");
-    CHECK(s.recent_files.back() == "f5.json");
+    CHECK(s.recent_files[0] == abs("f12.json"));
+    CHECK(s.recent_files[1] == abs("f14.json"));
+    CHECK(s.recent_files[2] == abs("f13.json"));
+    CHECK(s.recent_files.back() == abs("f5.json"));
+    for (const auto& path : s.recent_files)
+        CHECK(std::filesystem::path(path).is_absolute());
 }
 
 TEST_CASE("studio settings: the file lives under XDG_CONFIG_HOME, else ~/.config") {

@@ -1,0 +1,40 @@
+#pragma once
+// Where the studio reads and writes, independent of the folder it was started from: recent files
+// and run folders are absolute paths; new runs go under the user's data folder; the shipped
+// presets are found next to the executable or in the source tree and are never overwritten.
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bhm::app::gui {
+
+//! `path` made absolute against the current folder and normalised ("" stays "").
+std::string absolute_path(const std::string& path);
+
+//! Folder new runs go to when the Run panel's field is empty:
+//! $XDG_DATA_HOME/bhm-studio/runs, else $HOME/.local/share/bhm-studio/runs, else an absolute
+//! runs/ in the current folder (the last resort only when neither variable is set).
+std::string default_runs_root();
+
+//! The shipped presets: $BHM_PRESETS_DIR when set, else <exe>/../share/bhm/experiments when it
+//! exists, else the source tree's assets/experiments. Absolute; may not exist.
+std::string default_presets_dir();
+
+//! `path` is a file inside presets_dir (a shipped preset: Save asks for a new name instead).
+bool is_shipped_preset(const std::string& path, const std::string& presets_dir);
+
+//! The *.json experiments of a folder, sorted by name (absolute paths; empty if unreadable).
+std::vector<std::string> list_experiment_files(const std::string& dir);
+
+//! What the file browser shows of one folder.
+struct FileListing {
+    std::vector<std::pair<std::string, bool>> folders;  //!< absolute path, is a run directory
+    std::vector<std::string> experiments;               //!< *.json (absolute), by name
+    std::string error;                                  //!< the folder cannot be read
+    std::chrono::steady_clock::time_point read_at{};
+    bool valid = false;
+};
+FileListing read_file_listing(const std::string& dir);
+
+}  // namespace bhm::app::gui

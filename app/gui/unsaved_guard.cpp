@@ -1,0 +1,172 @@
+#include "app/gui/unsaved_guard.hpp"
+
+#include <algorithm>
+
+#include <imgui.h>
+
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+constexpr const char* kUnsavedTitle = "Unsaved changes";
+constexpr const char* kQuitRunTitle = "Evolution is running";
+
+bool waiting_for_generation(const Studio& s) {
+    return s.pending.kind == PendingAction::Kind::Quit && s.pending.quit_after_generation;
+}
+
+// Does the pending action when nothing is left to ask.
+void proceed(Studio& s) {
+    PendingAction& p = s.pending;
+    if (p.kind == PendingAction::Kind::None) return;
+    if (s.document.dirty() && !p.unsaved_answered) return;  // the dialog asks
+    switch (p.kind) {
+        case PendingAction::Kind::NewExperiment:
+            p = {};
+            new_experiment(s);
+            return;
+        case PendingAction::Kind::OpenExperiment: {
+            const std::string path = p.path;
+            p = {};
+            open_experiment(s, path);
+            return;
+        }
+        case PendingAction::Kind::Quit:
+            if (run_is_live(s.evolution.phase()) && !p.run_answered) return;  // the dialog asks
+            if (p.quit_after_generation && run_is_live(s.evolution.phase()) &&
+                s.evolution.phase() != RunPhase::Paused)
+                return;  // update_pending_action quits once the generation is done
+            p = {};
+            s.quit_requested = true;
+            return;
+        case PendingAction::Kind::None:
+            return;
+    }
+}
+
+}  // namespace
+
+void request_new_experiment(Studio& s) {
+    s.pending = {};
+    s.pending.kind = PendingAction::Kind::NewExperiment;
+    proceed(s);
+}
+
+void request_open_experiment(Studio& s, const std::string& path) {
+    s.pending = {};
+    s.pending.kind = PendingAction::Kind::OpenExperiment;
+    s.pending.path = path;
+    proceed(s);
+}
+
+void request_quit(Studio& s) {
+    if (s.pending.kind == PendingAction::Kind::Quit) return;  // already asking
+    s.pending = {};
+    s.pending.kind = PendingAction::Kind::Quit;
+    proceed(s);
+}
+
+bool asking_unsaved(const Studio& s) {
+    return s.pending.kind != PendingAction::Kind::None && s.document.dirty() &&
+           !s.pending.unsaved_answered;
+}
+
+bool asking_quit_run(const Studio& s) {
+    return s.pending.kind == PendingAction::Kind::Quit && !asking_unsaved(s) &&
+           !s.pending.run_answered && run_is_live(s.evolution.phase());
+}
+
+void answer_unsaved(Studio& s, UnsavedAnswer answer) {
+    switch (answer) {
+        case UnsavedAnswer::Save:
+            if (!save_experiment(s)) return;  // the status says why; the question stays
+            s.pending.unsaved_answered = true;
+            break;
+        case UnsavedAnswer::Discard:
+            s.pending.unsaved_answered = true;
+            break;
+        case UnsavedAnswer::Cancel:
+            s.pending = {};
+            set_status(s, "cancelled: the experiment and its undo history are kept");
+            return;
+    }
+    proceed(s);
+}
+
+void answer_quit_run(Studio& s, QuitRunAnswer answer) {
+    switch (answer) {
+        case QuitRunAnswer::FinishGeneration:
+            s.pending.run_answered = true;
+            s.pending.quit_after_generation = true;
+            s.evolution.pause(/*abandon_generation=*/false);
+            set_status(s, "quitting once the generation in progress is done and saved");
+            break;
+        case QuitRunAnswer::QuitNow:
+            s.pending.run_answered = true;
+            break;
+        case QuitRunAnswer::Cancel:
+            s.pending = {};
+            set_status(s, "quit cancelled: the run goes on");
+            return;
+    }
+    proceed(s);
+}
+
+void update_pending_action(Studio& s) {
+    if (waiting_for_generation(s)) proceed(s);
+}
+
+void draw_confirm_dialogs(Studio& s) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const ImVec2 centre(display.x * 0.5f, display.y * 0.5f);
+    const float width = std::min(display.x - 20.0f, ImGui::GetFontSize() * 30.0f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove;
+
+    if (asking_unsaved(s) && !ImGui::IsPopupOpen(kUnsavedTitle)) ImGui::OpenPopup(kUnsavedTitle);
+    ImGui::SetNextWindowPos(centre, ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    if (ImGui::BeginPopupModal(kUnsavedTitle, nullptr, flags)) {
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+        const char* what = s.pending.kind == PendingAction::Kind::Quit            ? "Quit"
+                           : s.pending.kind == PendingAction::Kind::NewExperiment ? "New experiment"
+                                                                                  : "Open";
+        ImGui::TextWrapped("%s has unsaved edits. %s would discard them and their undo history.",
+                           document_label(s.document).c_str(), what);
+        if (s.pending.kind == PendingAction::Kind::OpenExperiment)
+            ImGui::TextDisabled("open: %s", s.pending.path.c_str());
+        if (s.status_is_error)
+            ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", s.status.c_str());
+        ImGui::PopTextWrapPos();
+        if (tracked_button(s, "Save changes")) answer_unsaved(s, UnsavedAnswer::Save);
+        ImGui::SameLine();
+        if (tracked_button(s, "Discard changes")) answer_unsaved(s, UnsavedAnswer::Discard);
+        ImGui::SameLine();
+        if (tracked_button(s, "Cancel##unsaved")) answer_unsaved(s, UnsavedAnswer::Cancel);
+        if (!asking_unsaved(s)) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+
+    if (asking_quit_run(s) && !ImGui::IsPopupOpen(kQuitRunTitle)) ImGui::OpenPopup(kQuitRunTitle);
+    ImGui::SetNextWindowPos(centre, ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    if (ImGui::BeginPopupModal(kQuitRunTitle, nullptr, flags)) {
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+        const int done = s.run ? s.run->generation : 0;
+        ImGui::TextWrapped(
+            "Quitting now abandons the generation in progress; the checkpoint of the %d "
+            "completed generation%s is kept and the run can be resumed.",
+            done, done == 1 ? "" : "s");
+        ImGui::PopTextWrapPos();
+        if (tracked_button(s, "Finish generation, then quit"))
+            answer_quit_run(s, QuitRunAnswer::FinishGeneration);
+        ImGui::SameLine();
+        if (tracked_button(s, "Quit now")) answer_quit_run(s, QuitRunAnswer::QuitNow);
+        ImGui::SameLine();
+        if (tracked_button(s, "Cancel##quit")) answer_quit_run(s, QuitRunAnswer::Cancel);
+        if (!asking_quit_run(s)) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+}
+
+}  // namespace bhm::app::gui

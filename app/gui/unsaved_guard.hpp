@@ -1,0 +1,34 @@
+#pragma once
+// Nothing is lost without asking: New, Open (the path field, Recent, the file browser), Ctrl+Q and
+// closing the window first ask what to do with unsaved edits (Save, Discard, Cancel: Cancel keeps
+// the document and its undo history as they were), and quitting while a run is going asks whether
+// to wait for the generation in progress or abandon it (the last checkpoint is kept either way).
+// The action waits in studio.pending until answered; draw_confirm_dialogs shows the questions.
+#include <string>
+
+#include "app/gui/studio.hpp"
+
+namespace bhm::app::gui {
+
+void request_new_experiment(Studio& studio);
+void request_open_experiment(Studio& studio, const std::string& path);
+void request_quit(Studio& studio);
+
+enum class UnsavedAnswer { Save, Discard, Cancel };
+void answer_unsaved(Studio& studio, UnsavedAnswer answer);
+
+enum class QuitRunAnswer { FinishGeneration, QuitNow, Cancel };
+void answer_quit_run(Studio& studio, QuitRunAnswer answer);
+
+//! The unsaved-edits question is showing.
+bool asking_unsaved(const Studio& studio);
+//! The quit-while-running question is showing.
+bool asking_quit_run(const Studio& studio);
+
+//! Per frame: a quit waiting for the generation in progress goes on once the run has paused.
+void update_pending_action(Studio& studio);
+//! The modal dialogs of the questions above (buttons recorded for scripts: "Save changes",
+//! "Discard changes", "Cancel", "Finish generation, then quit", "Quit now").
+void draw_confirm_dialogs(Studio& studio);
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,332 @@
+// Run integrity of the studio, each through a scripted headless session (docs/studio.md steps):
+// unsaved edits are never discarded without asking, the live run owns its experiment, plots keep
+// measures apart, stop and start report what is true, the layout survives a tiny window, paths
+// are absolute and presets are not overwritten, fast clicks land, simulation mode draws no tint.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "app/gui/headless_session.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/viewport.hpp"
+#include "evo/evolution_run.hpp"
+#include "evo/experiment_io.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool on_screen(const Studio& s, const std::string& widget) {
+    const auto it = s.widgets.find(widget);
+    return it != s.widgets.end() && it->second.frame >= s.frame - 1;
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Restores an environment variable when the test ends.
+struct ScopedEnv {
+    std::string name, old;
+    bool had = false;
+    ScopedEnv(const char* n, const std::string& value) : name(n) {
+        if (const char* v = std::getenv(n)) {
+            had = true;
+            old = v;
+        }
+        setenv(n, value.c_str(), 1);
+    }
+    ~ScopedEnv() {
+        if (had)
+            setenv(name.c_str(), old.c_str(), 1);
+        else
+            unsetenv(name.c_str());
+    }
+};
+
+}  // namespace
+
+TEST_CASE("studio integrity: New, Open, recent files and Ctrl+Q ask before unsaved edits go") {
+    const auto dir = testing::fresh_dir("unsaved");
+    auto other = testing::tiny_experiment({4, 2, 2});
+    other.name = "other";
+    const auto other_path = (dir / "other.json").string();
+    evo::save_experiment(other_path, other);
+
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"set": "simulation.evaluate_s", "value": 0.25}])"));
+    REQUIRE(studio.document.dirty());
+    const auto edited = studio.document.experiment();
+
+    // New asks; Cancel keeps the document and its undo history.
+    run_script(session, json::parse(R"([{"click": "New"}, {"frames": 2}])"));
+    CHECK(asking_unsaved(studio));
+    CHECK(on_screen(studio, "Discard changes"));
+    CHECK(studio.document.experiment() == edited);
+    run_script(session, json::parse(R"([{"click": "Cancel"}])"));
+    CHECK_FALSE(asking_unsaved(studio));
+    CHECK(studio.document.experiment() == edited);
+    CHECK(studio.document.undo_label() == "set simulation.evaluate_s");
+
+    // Open (the path field) asks; Discard opens the file.
+    studio.path_field = other_path;
+    run_script(session, json::parse(R"([{"click": "Open"}, {"frames": 2}])"));
+    CHECK(asking_unsaved(studio));
+    CHECK(studio.document.experiment() == edited);
+    run_script(session, json::parse(R"([{"click": "Discard changes"}])"));
+    CHECK(studio.document.experiment().name == "other");
+    CHECK(fs::path(studio.settings.recent_files.front()).is_absolute());
+
+    // A recent file (the Files tab) asks too; Save changes saves, then opens.
+    run_script(session, json::parse(R"([{"set": "simulation.evaluate_s", "value": 0.2},
+                                        {"click": "tab Files"}, {"frames": 2},
+                                        {"click": "recent other.json"}, {"frames": 2}])"));
+    CHECK(asking_unsaved(studio));
+    run_script(session, json::parse(R"([{"click": "Save changes"}])"));
+    CHECK_FALSE(asking_unsaved(studio));
+    CHECK(evo::load_experiment(other_path).simulation.evaluate_s == 0.2);
+    CHECK_FALSE(studio.document.dirty());
+
+    // Ctrl+Q asks; the window's close button goes the same way (request_quit).
+    run_script(session, json::parse(R"([{"set": "simulation.evaluate_s", "value": 0.3},
+                                        {"key": "ctrl+q"}, {"frames": 2}])"));
+    CHECK_FALSE(studio.quit_requested);
+    CHECK(asking_unsaved(studio));
+    run_script(session, json::parse(R"([{"click": "Cancel"}, {"key": "ctrl+q"},
+                                        {"click": "Discard changes"}])"));
+    CHECK(studio.quit_requested);
+}
+
+TEST_CASE("studio integrity: quitting mid-run asks; the live run owns its experiment") {
+    const auto dir = testing::fresh_dir("owns");
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 40;
+    Studio studio;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_generations": 1, "timeout_s": 240},
+                                        {"click": "Pause"},
+                                        {"wait_run": "paused", "timeout_s": 60}])"));
+    // Another experiment, with another measure, opened while the run is paused.
+    auto other = testing::tiny_experiment();
+    other.fitness.measure = evo::FitnessMeasure::ComFinal3d;
+    const auto other_path = (dir / "other.json").string();
+    evo::save_experiment(other_path, other);
+    json load = json::array({{{"load", other_path}}, {{"frames", 2}}});
+    run_script(session, load);
+    CHECK_FALSE(editing_run_document(studio));
+    CHECK_FALSE(rules_differ_from_run(studio));
+    CHECK_FALSE(apply_rules_to_run(studio));
+    const int paused_at = studio.evolution.snapshot()->generation;
+    run_script(session, json::array({{{"click", "Resume"}},
+                                     {{"wait_generations", paused_at + 1}, {"timeout_s", 240}}}));
+    auto run = studio.evolution.snapshot();
+    CHECK(run->experiment.fitness.measure == evo::FitnessMeasure::BendAngleDeg);
+    CHECK(run->rule_changes.empty());
+    CHECK(read_text(dir / "run" / "run.json").find("com_final_3d") == std::string::npos);
+
+    // Ctrl+Q while it runs asks; Cancel goes on, "Finish generation, then quit" pauses after
+    // the generation in progress is saved, then quits.
+    run_script(session, json::parse(R"([{"key": "ctrl+q"}, {"frames": 2}])"));
+    CHECK(asking_quit_run(studio));
+    CHECK_FALSE(studio.quit_requested);
+    run_script(session, json::parse(R"([{"click": "Cancel"}])"));
+    CHECK(run_is_live(studio.evolution.phase()));
+    CHECK(studio.evolution.phase() != RunPhase::Paused);
+    const int before_quit = studio.evolution.snapshot()->generation;
+    run_script(session, json::parse(R"([{"key": "ctrl+q"},
+                                        {"click": "Finish generation, then quit"},
+                                        {"wait_run": "paused", "timeout_s": 120},
+                                        {"frames": 2}])"));
+    CHECK(studio.quit_requested);
+    CHECK(studio.evolution.snapshot()->generation >= before_quit + 1);
+}
+
+TEST_CASE(
+    "studio integrity: Stop in generation 0 says there is no checkpoint; Start shows the "
+    "run at once") {
+    const auto dir = testing::fresh_dir("stop0");
+    auto e = testing::tiny_experiment({5, 3, 3});
+    e.simulation.evaluate_s = 30.0;  // a generation 0 long enough to stop inside it
+    e.evolution.population = 6;
+    e.evolution.generations = 7;
+    Studio studio;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"}])"));
+    // The frame after Start: the run's own rules, budget and folder, no stale warning.
+    REQUIRE(studio.run);
+    CHECK(studio.run->loaded);
+    CHECK(studio.run->experiment == e);
+    CHECK(studio.run->generation_budget == 7);
+    CHECK(studio.run->run_dir == fs::absolute(dir / "run").lexically_normal().string());
+    CHECK(editing_run_document(studio));
+    CHECK_FALSE(rules_differ_from_run(studio));
+    run_script(session, json::parse(R"([{"click": "Stop"},
+                                        {"wait_run": "stopped", "timeout_s": 60}])"));
+    const auto run = studio.evolution.snapshot();
+    CHECK(run->generation == 0);
+    CHECK(run->message.find("no checkpoint") != std::string::npos);
+    CHECK(run->message.find("stopped at a checkpoint") == std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "run" / "checkpoint.json"));
+}
+
+TEST_CASE(
+    "studio integrity: Pause interrupts the generation, which is re-run on Resume: the run "
+    "equals an uninterrupted twin; a resumed folder shows its history at once") {
+    const auto dir = testing::fresh_dir("pause-twin");
+    auto e = testing::tiny_experiment();
+    e.simulation.evaluate_s = 3.0;
+    e.evolution.generations = 3;
+    Studio studio;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_generations": 1, "timeout_s": 240},
+                                        {"click": "Pause"},
+                                        {"wait_run": "paused", "timeout_s": 60}])"));
+    const auto paused = studio.evolution.snapshot();
+    MESSAGE("paused: " << paused->message);
+    run_script(session, json::parse(R"([{"click": "Resume"},
+                                        {"wait_run": "finished", "timeout_s": 300}])"));
+    const auto run = studio.evolution.snapshot();
+
+    evo::RunOptions options;  // the twin: in memory, never paused
+    evo::EvolutionRun twin(e, options);
+    twin.run();
+    const auto& history = twin.state().history;
+    REQUIRE(run->history.size() == history.size());
+    for (std::size_t g = 0; g < history.size(); ++g)
+        CHECK(run->history[g].best_fitness == history[g].best_fitness);
+    REQUIRE(twin.state().champion);
+    CHECK(run->champion.id == twin.state().champion->individual.id);
+
+    // The folder resumed: its history, rules and experiment are shown before anything runs.
+    studio.document.reset(testing::tiny_experiment({4, 4, 2}), "");
+    REQUIRE(resume_run_directory(studio, (dir / "run").string()));
+    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 60}])"));
+    REQUIRE(studio.run);
+    CHECK(studio.run->loaded);
+    CHECK(studio.run->history.size() == 3);
+    CHECK(studio.document.experiment() == e);  // the editor took the run's own experiment
+}
+
+TEST_CASE("studio integrity: a tiny resize does not squeeze the layout for good; edges drag") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"frames": 2}])"));
+    const TileLayout before = studio.tiles;
+    const PanelLayout preferred = studio.settings.layout;
+    run_script(session, json::parse(R"([{"resize": [300, 200]}, {"frames": 3}])"));
+    CHECK(studio.tiles.right < before.right);
+    run_script(session, json::parse(R"([{"resize": [1280, 800]}, {"frames": 2}])"));
+    CHECK(studio.tiles == before);
+    CHECK(studio.settings.layout == preferred);
+
+    // The right column widens from its edge; the replay panel grows from its top edge, bounded.
+    run_script(session, json::parse(R"([{"drag": "splitter right", "by": [-100, 0]}])"));
+    CHECK(studio.tiles.right == doctest::Approx(before.right + 100.0f).epsilon(0.01));
+    run_script(session, json::parse(R"([{"drag": "splitter replay", "by": [0, -3000]},
+                                        {"frames": 5}])"));
+    const float area = studio.tiles.view + studio.tiles.bottom;
+    CHECK(studio.tiles.view >= kMinView - 0.5f);
+    CHECK(studio.tiles.bottom <= area - kMinView + 0.5f);
+    const TileLayout settled = studio.tiles;
+    run_script(session, json::parse(R"([{"frames": 5}])"));
+    CHECK(studio.tiles == settled);  // it stays where it was released
+}
+
+TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, presets are kept") {
+    const auto dir = testing::fresh_dir("paths");
+    ScopedEnv data("XDG_DATA_HOME", (dir / "data").string());
+    const auto presets = dir / "presets";
+    fs::create_directories(presets);
+    fs::copy_file(fs::path(BHM_SOURCE_DIR) / "assets" / "experiments" / "quick-demo.json",
+                  presets / "quick-demo.json");
+    const std::string shipped = read_text(presets / "quick-demo.json");
+
+    Studio studio;
+    studio.presets_dir = presets.string();
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 1;
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_run": "finished", "timeout_s": 240}])"));
+    const auto run_dir = studio.evolution.snapshot()->run_dir;
+    CHECK(fs::path(run_dir).is_absolute());
+    CHECK(run_dir.rfind((dir / "data" / "bhm-studio" / "runs").string(), 0) == 0);
+    CHECK(fs::exists(fs::path(run_dir) / "fitness.csv"));
+
+    // The presets gallery opens a preset; Ctrl+S over it asks for a new name instead.
+    run_script(session, json::parse(R"([{"click": "tab Files"}, {"frames": 2},
+                                        {"click": "preset quick-demo"}, {"frames": 2}])"));
+    CHECK(studio.document.experiment().name ==
+          evo::load_experiment((presets / "quick-demo.json").string()).name);
+    run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.3},
+                                        {"key": "ctrl+s"}])"));
+    CHECK(read_text(presets / "quick-demo.json") == shipped);
+    CHECK(studio.status_is_error);
+    CHECK(studio.status.find("shipped preset") != std::string::npos);
+    CHECK(studio.path_field.find("quick-demo-edited.json") != std::string::npos);
+    CHECK(studio.document.dirty());
+    run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2},
+                                        {"click": "Save As"}])"));
+    CHECK_FALSE(studio.document.dirty());
+    CHECK(evo::load_experiment(studio.path_field).simulation.settle_s == 0.3);
+    CHECK(read_text(presets / "quick-demo.json") == shipped);
+}
+
+TEST_CASE("studio integrity: a fast click (press and release in one batch) paints a face") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment({5, 4, 3}), "");
+    HeadlessStudio session(studio, 1280, 800);
+    const auto x_max = static_cast<std::size_t>(evo::Face::XMax);
+    run_script(session, json::parse(R"([{"click_face": "x+", "fast": true}])"));
+    CHECK(studio.document.experiment().boundary.faces[x_max] == evo::BoundaryKind::Fixed);
+    run_script(session, json::parse(R"([{"click": "tab Constraints"}, {"frames": 2},
+                                        {"click": "Undo", "fast": true}])"));
+    CHECK(studio.document.experiment().boundary.faces[x_max] == evo::BoundaryKind::Free);
+}
+
+TEST_CASE("studio integrity: simulation mode draws no tinted faces and hatches fixed ones") {
+    auto e = testing::tiny_experiment({2, 2, 1});
+    Studio studio;
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    SimulationRequest request;
+    request.id = 1;
+    request.label = "body";
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"mode": "simulation"}, {"frames": 2}])"));
+    const auto list = build_view_draw_list(studio);
+    CHECK(list.translucent_triangles.empty());  // nothing tints the body or z-fights with it
+    // The fixed x- face: green lines a tenth of a voxel outside the workspace (x < 0).
+    const float L = static_cast<float>(e.voxel_size_m);
+    int hatch = 0;
+    for (const auto& v : list.lines)
+        if (std::abs(v.position.x + 0.1f * L) < 1e-6f && v.color.g > 0.5f && v.color.r < 0.2f)
+            ++hatch;
+    CHECK(hatch >= 8);  // the outline's four segments and at least one hatch line
+}
