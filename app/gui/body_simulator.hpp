@@ -17,6 +17,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "app/gui/body_analysis.hpp"
 #include "app/gui/latest_slot.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment.hpp"
@@ -46,6 +47,8 @@ struct SimulatedBody {
     bool diverged = false;
     std::string divergence_reason;
     double wall_s = 0.0;
+    BodyTimeSeries series;               //!< per frame: COM, tip, bend angle (Analysis plots)
+    std::vector<float> voxel_phase_rad;  //!< actuation phase per replay voxel (colour mode)
     double bend_angle_deg() const {
         return measures[static_cast<int>(evo::FitnessMeasure::BendAngleDeg)];
     }

@@ -61,11 +61,14 @@ std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitne
 // thread-safe controls (request_stop, request_fitness_change) and our own flags below.
 struct EvolutionSession::Shared {
     std::unique_ptr<evo::EvolutionRun> run;
+    //! The run for progress(): set once the run exists, read by the UI thread.
+    std::atomic<evo::EvolutionRun*> live{nullptr};
     std::string resume_dir;  //!< set: the thread resumes this directory first
     std::string run_dir;
     std::mutex mutex;
     std::condition_variable wake;
     bool paused = false;
+    bool freeze = false;  //!< the pause froze the simulations in flight (set_paused)
     bool stop = false;
     // Built on the run thread only.
     std::vector<GenerationRecord> history;
@@ -205,6 +208,7 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
         shared->initial_fitness = state.rule_changes.empty() ? state.experiment.fitness
                                                              : state.rule_changes.front().fitness;
         shared->run = std::move(ready);
+        shared->live = shared->run.get();
     }
     shared_ = shared;
     phase_ = RunPhase::Running;
@@ -223,8 +227,10 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                                               ? state.experiment.fitness
                                               : state.rule_changes.front().fitness;
                 shared->run = std::move(made);
+                shared->live = shared->run.get();
                 // A stop or pause asked for while the checkpoint loaded reaches the run now.
-                if (shared->stop || shared->paused) shared->run->request_stop();
+                if (shared->stop) shared->run->request_stop();
+                if (shared->paused && shared->freeze) shared->run->set_paused(true);
             }
             evo::EvolutionRun& run = *shared->run;
             // Shown at once (the history, the rules, the budget): nothing waits for a generation.
@@ -242,17 +248,19 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                               report->generation, report->simulations, report->cache_hits,
                               report->new_champion ? ", new champion" : "");
                 std::lock_guard lock(shared->mutex);
-                const RunPhase now = shared->stop     ? RunPhase::Stopping
-                                     : shared->paused ? RunPhase::Pausing
-                                                      : RunPhase::Running;
+                const RunPhase now = shared->stop ? RunPhase::Stopping
+                                     : shared->paused
+                                         ? (shared->freeze ? RunPhase::Paused : RunPhase::Pausing)
+                                         : RunPhase::Running;
                 phase_ = now;
                 slot_.publish(snapshot_of(*shared, now, text));
             });
             // Our own loop over run_generation (rather than run()) so the UI knows exactly when
-            // the run is paused. Pause abandons the generation in progress (the run's stop flag
-            // cancels its simulations within one simulation sample); the state is unchanged by
-            // an abandoned generation, so it is re-run from the same random state on resume and
-            // the run stays identical to an uninterrupted one.
+            // the run is paused. Pause freezes the simulations in flight (set_paused) and the
+            // loop waits here when the pause comes between generations. A generation abandoned
+            // by a change of rules (or a stop) leaves the run's state untouched, so it is
+            // computed again from the same random state and the run stays identical to an
+            // uninterrupted one.
             bool interrupted = false;
             for (;;) {
                 {
@@ -263,7 +271,7 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                         slot_.publish(
                             snapshot_of(*shared, RunPhase::Paused,
                                         interrupted ? "paused: generation " + std::to_string(next) +
-                                                          " was interrupted and is re-run on resume"
+                                                          " is computed again on resume"
                                                     : std::string("paused between generations")));
                         shared->wake.wait(lock, [&] { return !shared->paused || shared->stop; });
                         if (!shared->stop) {
@@ -284,7 +292,7 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                     publish(RunPhase::Finished, "finished: wall-time budget reached");
                     return;
                 }
-                if (!run.run_generation()) interrupted = true;  // a pause or a stop
+                if (!run.run_generation()) interrupted = true;  // new rules or a stop
             }
             const int done = run.state().generation;
             publish(RunPhase::Stopped,
@@ -298,20 +306,74 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
     });
 }
 
-void EvolutionSession::pause(bool abandon_generation) {
+void EvolutionSession::pause(bool between_generations) {
     if (!shared_) return;
     std::lock_guard lock(shared_->mutex);
+    if (between_generations) {
+        // Unfreeze (a pause of the other kind may hold the simulations) and stop after this one.
+        shared_->paused = true;
+        shared_->freeze = false;
+        if (shared_->run) shared_->run->set_paused(false);
+        if (phase_ == RunPhase::Running || phase_ == RunPhase::Paused) phase_ = RunPhase::Pausing;
+        return;
+    }
     shared_->paused = true;
-    if (phase_ == RunPhase::Running) phase_ = RunPhase::Pausing;
-    if (abandon_generation && shared_->run) shared_->run->request_stop();
+    shared_->freeze = true;
+    // The simulations in flight stop stepping within milliseconds: the run is paused now.
+    if (shared_->run) shared_->run->set_paused(true);
+    if (phase_ == RunPhase::Running || phase_ == RunPhase::Pausing) phase_ = RunPhase::Paused;
+}
+
+LiveProgress EvolutionSession::progress() const {
+    LiveProgress out;
+    if (!shared_) return out;
+    const evo::EvolutionRun* run = shared_->live.load();
+    if (!run) return out;
+    const auto p = run->progress();
+    out.running = p.running;
+    out.generation = p.generation;
+    out.simulations_done = p.simulations_done;
+    out.simulations_total = p.simulations_total;
+    out.generation_s = p.elapsed_s;
+    return out;
+}
+
+LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& p) {
+    LiveFigures f;
+    f.elapsed_s = run.elapsed_s;
+    f.simulations = run.evaluations;
+    f.simulations_per_s = run.simulations_per_s;
+    f.eta_s = run.eta_s;
+    if (!p.running || p.generation < run.generation) return f;
+    f.elapsed_s += p.generation_s;
+    f.simulations += p.simulations_done;
+    if (p.simulations_done > 0 && p.generation_s > 0.0)
+        f.simulations_per_s = p.simulations_done / p.generation_s;
+    // Remaining: the rest of this generation at its own rate, then the remaining generations at
+    // the mean time of the completed ones (or this one's projected time when none is complete).
+    const double rate = f.simulations_per_s;
+    const double this_left =
+        rate > 0.0 ? std::max(0, p.simulations_total - p.simulations_done) / rate : -1.0;
+    const double mean_generation_s = run.generation > 0
+                                         ? run.elapsed_s / run.generation
+                                         : (this_left >= 0.0 ? p.generation_s + this_left : -1.0);
+    const int after = run.generation_budget - p.generation - 1;
+    if (this_left >= 0.0 && mean_generation_s >= 0.0)
+        f.eta_s = this_left + std::max(0, after) * mean_generation_s;
+    return f;
 }
 
 void EvolutionSession::resume() {
     if (!shared_) return;
     {
         std::lock_guard lock(shared_->mutex);
+        const bool frozen = shared_->freeze;
         shared_->paused = false;
-        if (phase_ == RunPhase::Pausing) phase_ = RunPhase::Running;
+        shared_->freeze = false;
+        if (shared_->run) shared_->run->set_paused(false);
+        // Frozen inside a generation: it goes on at once (the loop is not waiting).
+        if (phase_ == RunPhase::Pausing || (frozen && phase_ == RunPhase::Paused))
+            phase_ = RunPhase::Running;
     }
     shared_->wake.notify_all();
 }
@@ -322,7 +384,10 @@ void EvolutionSession::stop() {
         std::lock_guard lock(shared_->mutex);
         shared_->stop = true;
         phase_ = RunPhase::Stopping;
-        if (shared_->run) shared_->run->request_stop();  // thread-safe: an atomic flag
+        if (shared_->run) {
+            shared_->run->request_stop();  // thread-safe: aborts the simulations in flight
+            shared_->run->set_paused(false);
+        }
     }
     shared_->wake.notify_all();
 }
@@ -330,7 +395,12 @@ void EvolutionSession::stop() {
 void EvolutionSession::change_rules(const evo::Experiment& experiment) {
     if (!shared_ || !run_is_live(phase_.load())) return;
     std::lock_guard lock(shared_->mutex);
-    if (shared_->run) shared_->run->request_fitness_change(experiment.fitness);  // thread-safe
+    if (!shared_->run) return;
+    shared_->run->request_fitness_change(experiment.fitness);  // thread-safe
+    // A generation in progress (or frozen by a pause) would finish under the old rules: abandon
+    // it, and the loop computes it again under the new ones (the run's state is untouched by an
+    // abandoned generation, so nothing else changes).
+    if (shared_->run->progress().running && !shared_->stop) shared_->run->request_stop();
 }
 
 }  // namespace bhm::app::gui

@@ -37,9 +37,10 @@ class EvolutionSession {
     //! Continues the run saved in run_dir from its last checkpoint (loaded on the run thread;
     //! a failure shows in the snapshot).
     void resume_from(const std::string& run_dir);
-    //! Holds the run. abandon_generation (the default) cancels the generation in progress within
-    //! a simulation sample (it is re-run on resume); false lets it finish and be saved first.
-    void pause(bool abandon_generation = true);
+    //! Holds the run. By default the simulations in flight freeze where they are (within
+    //! milliseconds, evo::EvolutionRun::set_paused) and go on at resume; between_generations
+    //! lets the generation in progress finish and be saved first (then the loop waits).
+    void pause(bool between_generations = false);
     void resume();
     void stop();
     //! New fitness rules (measure, constraints, objectives) for the next generation: the run
@@ -48,6 +49,8 @@ class EvolutionSession {
     void change_rules(const evo::Experiment& experiment);
 
     std::shared_ptr<const EvolutionSnapshot> snapshot() const { return slot_.take(); }
+    //! The generation in progress, now (lock-free for the UI but for the run's own short lock).
+    LiveProgress progress() const;
     std::uint64_t version() const { return slot_.version(); }
     RunPhase phase() const { return phase_.load(); }
 

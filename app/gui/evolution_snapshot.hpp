@@ -70,6 +70,26 @@ struct EvolutionSnapshot {
     int champion_generation = 0;
 };
 
+//! How far the generation in progress is, read live every frame (evo::EvolutionRun::progress,
+//! thread-safe): the Run panel's per-simulation progress, elapsed time, simulations/s and ETA
+//! move inside a generation instead of waiting for its end.
+struct LiveProgress {
+    bool running = false;       //!< a generation is being evaluated
+    int generation = -1;        //!< the one in progress
+    int simulations_done = 0;   //!< finished simulations of it
+    int simulations_total = 0;  //!< its simulations (0 until its individuals exist)
+    double generation_s = 0.0;  //!< wall time in it so far, paused time excluded
+};
+
+//! Live figures from the last completed generation's snapshot and the progress of the next.
+struct LiveFigures {
+    double elapsed_s = 0.0;          //!< completed generations + the one in progress
+    double simulations_per_s = 0.0;  //!< in the generation in progress once it has results
+    double eta_s = -1.0;             //!< to the generation budget; -1 unknown
+    std::int64_t simulations = 0;    //!< completed + finished in the generation in progress
+};
+LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progress);
+
 //! The measure generation g was scored under: the last rule change at or before g, else the
 //! run's first measure. Fitness values of different measures have different units (voxels,
 //! degrees), so plots keep them apart.

@@ -44,6 +44,9 @@ void draw_fitness_panel(Studio& s) {
     const auto& changes = s.run ? s.run->rule_changes : no_changes;
     const float line = ImGui::GetTextLineHeightWithSpacing();
     const float each = (ImGui::GetContentRegionAvail().y - line * plots.size()) / plots.size();
+    s.fitness_plot_overlays = 0;
+    for (const auto& o : overlays)
+        s.fitness_plot_overlays += static_cast<int>(o.size());
     for (std::size_t k = 0; k < plots.size(); ++k) {
         const auto measure = plots[k].measure;
         const char* name = evo::kFitnessNames[static_cast<std::size_t>(measure)];

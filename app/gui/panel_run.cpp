@@ -93,6 +93,7 @@ void status(Studio& s) {
     // The session's phase is read live (an atomic), not from the last snapshot: Pause or Stop
     // shows at once.
     const RunPhase phase = s.showing_run_directory ? run->phase : s.evolution.phase();
+    const LiveProgress progress = s.evolution.progress();
     if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
         auto cell = [](const char* name, const std::string& value) {
             ImGui::TableNextColumn();
@@ -101,21 +102,55 @@ void status(Studio& s) {
             ImGui::TextUnformatted(value.c_str());
         };
         char text[64];
+        // Live: the generation in progress counts (elapsed, simulations, rate, ETA move inside a
+        // generation); a watched directory has only its files.
+        const LiveFigures live =
+            s.showing_run_directory ? live_figures(*run, {}) : live_figures(*run, progress);
         cell("state", s.showing_run_directory ? "viewing" : run_phase_name(phase));
         std::snprintf(text, sizeof text, "%d / %d", run->generation, run->generation_budget);
         cell("generation", text);
         cell("best", run->has_champion ? format_fitness(run->best_fitness, measure) : "-");
-        std::snprintf(text, sizeof text, "%.2f", run->simulations_per_s);
+        std::snprintf(text, sizeof text, "%.2f", live.simulations_per_s);
         cell("sims/s", text);
-        cell("elapsed", format_duration(run->elapsed_s));
-        cell("ETA", run->eta_s >= 0.0 ? format_duration(run->eta_s) : "-");
-        std::snprintf(text, sizeof text, "%lld", static_cast<long long>(run->evaluations));
+        cell("elapsed", format_duration(live.elapsed_s));
+        cell("ETA",
+             live.eta_s >= 0.0 && phase != RunPhase::Paused ? format_duration(live.eta_s) : "-");
+        std::snprintf(text, sizeof text, "%lld", static_cast<long long>(live.simulations));
         cell("simulations", text);
         cell("measure", evo::kFitnessNames[static_cast<std::size_t>(measure)]);
         ImGui::EndTable();
     }
+    if (!s.showing_run_directory && progress.running && run_is_live(phase) &&
+        progress.generation >= run->generation) {
+        // Per-simulation progress of the generation in progress.
+        char text[96];
+        const int total = progress.simulations_total;
+        if (total > 0)
+            std::snprintf(text, sizeof text, "generation %d: simulation %d of %d%s",
+                          progress.generation, std::min(total, progress.simulations_done + 1),
+                          total, phase == RunPhase::Paused ? " (frozen)" : "");
+        else
+            std::snprintf(text, sizeof text, "generation %d: making its individuals",
+                          progress.generation);
+        ImGui::ProgressBar(total > 0 ? float(progress.simulations_done) / float(total) : 0.0f,
+                           ImVec2(-1.0f, 0.0f), text);
+        record_widget(s, "generation progress");
+    }
     if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
-    if (!run->message.empty()) ImGui::TextWrapped("%s", run->message.c_str());
+    // The message says what the run is doing now: the session's phase moves at once (Pause,
+    // Stop), the snapshot's message only when the run thread publishes.
+    std::string message = run->message;
+    if (!s.showing_run_directory && phase != run->phase) {
+        if (phase == RunPhase::Paused)
+            message = "paused: the simulations in flight are frozen and go on at Resume";
+        else if (phase == RunPhase::Pausing)
+            message = "pausing after this generation is saved";
+        else if (phase == RunPhase::Stopping)
+            message = "stopping: the simulations in flight are aborted";
+        else if (phase == RunPhase::Running && run->phase == RunPhase::Paused)
+            message = "resumed";
+    }
+    if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
 }
 
 void run_directory(Studio& s) {
@@ -127,6 +162,21 @@ void run_directory(Studio& s) {
     ImGui::SameLine();
     if (tracked_button(s, "Resume run")) resume_run_directory(s, s.open_run_field);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("continue it from its last checkpoint");
+    ImGui::SameLine();
+    if (tracked_button(s, "Compare")) add_compared_run(s, s.open_run_field);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("overlay its fitness history, thin, on the plots of the same measure");
+    for (std::size_t k = 0; k < s.compared_runs.size(); ++k) {
+        ImGui::PushID(static_cast<int>(k));
+        if (ImGui::SmallButton("x")) {
+            remove_compared_run(s, k);
+            ImGui::PopID();
+            break;
+        }
+        ImGui::SameLine();
+        ImGui::TextDisabled("compared: %s", s.compared_runs[k].dir.c_str());
+        ImGui::PopID();
+    }
     if (s.showing_run_directory) {
         ImGui::SameLine();
         if (tracked_button(s, "Close")) close_run_directory(s);

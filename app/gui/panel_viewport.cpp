@@ -11,6 +11,7 @@
 #include "app/gui/ui_widgets.hpp"
 #include "app/gui/view_renderer.hpp"
 #include "app/gui/viewport.hpp"
+#include "render/colormap.hpp"
 
 namespace bhm::app::gui {
 
@@ -59,6 +60,17 @@ void toolbar(Studio& s) {
         if (ImGui::Checkbox("start beside", &s.view.show_start_beside))
             s.view.camera_needs_framing = true;
         record_widget(s, "start beside");
+        next_item(ImGui::GetFontSize() * 9.0f);
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.5f);
+        int by = static_cast<int>(s.view.color_by);
+        if (ImGui::Combo("colour", &by, kColorByNames.data(),
+                         static_cast<int>(kColorByNames.size())))
+            s.view.color_by = static_cast<ColorBy>(by);
+        record_widget(s, "colour");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "colour the body by material, displacement from t = 0, volumetric "
+                "strain, or the actuation signal of its muscle voxels");
     }
 }
 
@@ -102,6 +114,34 @@ void mouse(Studio& s, glm::vec2 local, bool hovered) {
     }
 }
 
+// The colour map of the scalar field with its range, at the right edge of the view.
+void color_bar(const Studio& s, const SimulatedBody& b, ImVec2 origin, ImVec2 size) {
+    const auto field =
+        voxel_scalars(s.view.color_by, b.experiment, b.replay,
+                      frame_index_at(b.replay, s.clock.time_s), b.series, b.voxel_phase_rad);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float w = 14.0f, h = std::min(220.0f, size.y * 0.5f);
+    const ImVec2 lo{origin.x + size.x - w - 70.0f, origin.y + 40.0f};
+    constexpr int kSteps = 32;
+    for (int k = 0; k < kSteps; ++k) {
+        const float t0 = float(k) / kSteps, t1 = float(k + 1) / kSteps;
+        const glm::vec4 c = render::sample_color_map(field.map, 0.5f * (t0 + t1));
+        dl->AddRectFilled({lo.x, lo.y + h * (1.0f - t1)}, {lo.x + w, lo.y + h * (1.0f - t0)},
+                          ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+    }
+    dl->AddRect(lo, {lo.x + w, lo.y + h}, IM_COL32(60, 60, 60, 255));
+    char text[48];
+    const ImU32 dark = IM_COL32(30, 34, 40, 255);
+    std::snprintf(text, sizeof text, "%.3g", field.range.max);
+    dl->AddText({lo.x + w + 4.0f, lo.y - 6.0f}, dark, text);
+    std::snprintf(text, sizeof text, "%.3g", field.range.min);
+    dl->AddText({lo.x + w + 4.0f, lo.y + h - 8.0f}, dark, text);
+    dl->AddText({lo.x - 10.0f, lo.y + h + 4.0f}, dark,
+                kColorByNames[static_cast<std::size_t>(s.view.color_by)]);
+    dl->AddText({lo.x - 10.0f, lo.y + h + 4.0f + ImGui::GetFontSize()}, IM_COL32(90, 96, 106, 255),
+                field.unit);
+}
+
 void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float line = ImGui::GetTextLineHeightWithSpacing();
@@ -122,6 +162,12 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
                       b.bend_angle_deg());
         text(dark, buf);
         if (b.diverged) text(IM_COL32(200, 40, 30, 255), "diverged: " + b.divergence_reason);
+        if (s.compared)
+            text(dim,
+                 "beside (+y): " + s.compared->label + ", fitness " +
+                     format_fitness(s.compared->fitness, s.compared->experiment.fitness.measure));
+        if (s.view.color_by != ColorBy::Material && !b.replay.frames.empty())
+            color_bar(s, b, origin, size);
         std::snprintf(buf, sizeof buf, "%d voxels, simulated in %.2f s",
                       b.replay.frames.empty() ? 0 : b.replay.frames.front().voxel_count(),
                       b.wall_s);

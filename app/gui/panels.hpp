@@ -14,6 +14,7 @@ void draw_export_panel(Studio& studio, ViewRenderer& renderer);
 void draw_run_panel(Studio& studio);
 void draw_fitness_panel(Studio& studio);
 void draw_population_panel(Studio& studio);
+void draw_analysis_panel(Studio& studio);
 void draw_replay_panel(Studio& studio);
 void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
 void draw_help_window(Studio& studio);

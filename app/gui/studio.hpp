@@ -15,6 +15,7 @@
 #include <glm/vec2.hpp>
 
 #include "app/gui/body_simulator.hpp"
+#include "app/gui/champion_history.hpp"
 #include "app/gui/constraint_edits.hpp"
 #include "app/gui/evolution_session.hpp"
 #include "app/gui/evolution_snapshot.hpp"
@@ -71,8 +72,9 @@ struct ViewState {
     float drag_distance_px = 0.0f;
     bool show_edges = true;
     bool show_trail = true;
-    bool show_start_beside = false;  //!< the t = 0 state as a ghost beside the current one
-    int samples = 4;                 //!< MSAA samples of the 3D view
+    bool show_start_beside = false;        //!< the t = 0 state as a ghost beside the current one
+    ColorBy color_by = ColorBy::Material;  //!< simulation mode: material or a scalar field
+    int samples = 4;                       //!< MSAA samples of the 3D view
 };
 
 struct ExportState {
@@ -156,7 +158,13 @@ struct Studio {
     BodySimulator simulator;
     std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
     std::uint64_t shown_version = 0;
-    bool follow_champion = true;  //!< replace the shown body when a new champion appears
+    //! A second body replayed beside the shown one (Analysis > Champions > beside).
+    BodySimulator compare_simulator;
+    std::shared_ptr<const SimulatedBody> compared;
+    std::uint64_t compared_version = 0;
+    ChampionHistory champion_history;  //!< the shown run's champions/ folder
+    int fitness_plot_overlays = 0;     //!< other runs' curves drawn in the last frame
+    bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected
 

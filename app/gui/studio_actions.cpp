@@ -355,6 +355,66 @@ bool select_individual(Studio& studio, std::int64_t id) {
     return true;
 }
 
+bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
+    if (!studio.run) return false;
+    try {
+        SimulationRequest request;
+        request.id = entry.id;
+        request.label = "champion #" + std::to_string(entry.id) + " of generation " +
+                        std::to_string(entry.generation);
+        request.experiment = studio.run->experiment;
+        request.experiment.fitness.measure = entry.measure;
+        request.framed_body = load_champion_body(entry.path);
+        if (beside) {
+            studio.compare_simulator.request(std::move(request));
+            set_status(studio, "simulating the champion of generation " +
+                                   std::to_string(entry.generation) + " to show beside");
+        } else {
+            studio.follow_champion = false;
+            studio.selected_id = entry.id;
+            studio.simulator.request(std::move(request));
+            set_status(studio,
+                       "simulating the champion of generation " + std::to_string(entry.generation));
+        }
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+void clear_compared_body(Studio& studio) {
+    studio.compared.reset();
+    studio.compared_version = studio.compare_simulator.version();
+}
+
+bool add_compared_run(Studio& studio, const std::string& run_dir) {
+    const std::string dir = absolute_path(run_dir);
+    for (const auto& c : studio.compared_runs)
+        if (c.dir == dir) return true;
+    try {
+        RunDirectoryWatch watch;
+        watch.open(dir);
+        watch.refresh();
+        if (!watch.snapshot()) throw std::runtime_error(dir + ": " + watch.error());
+        ComparedRun run;
+        run.dir = dir;
+        run.label = std::filesystem::path(dir).filename().string();
+        run.snapshot = watch.snapshot();
+        studio.compared_runs.push_back(std::move(run));
+        set_status(studio, "comparing with " + dir);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+void remove_compared_run(Studio& studio, std::size_t index) {
+    if (index < studio.compared_runs.size())
+        studio.compared_runs.erase(studio.compared_runs.begin() + static_cast<long>(index));
+}
+
 void follow_champion(Studio& studio) {
     studio.follow_champion = true;
     studio.requested_champion = -1;  // update_studio requests it again
@@ -436,6 +496,11 @@ void update_studio(Studio& studio) {
             }
         }
         studio.shown = next;
+    }
+    if (studio.compare_simulator.version() != studio.compared_version) {
+        studio.compared_version = studio.compare_simulator.version();
+        studio.compared = studio.compare_simulator.latest();
+        studio.view.camera_needs_framing = true;  // two bodies: frame both
     }
     if (studio.shown) {
         const auto& frames = studio.shown->replay.frames;

@@ -55,6 +55,13 @@ void close_run_directory(Studio& studio);
 // --- Bodies and replay ---------------------------------------------------------------------
 //! Simulates population member `id` of the shown run for the 3D view (follow_champion off).
 bool select_individual(Studio& studio, std::int64_t id);
+//! Replays a champion of the run's history (champions/gen-N.json) in the 3D view, or beside the
+//! body shown (compare). The run's rules with the measure the champion was found under.
+bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside);
+void clear_compared_body(Studio& studio);
+//! Overlays another run directory's fitness history on the plots (thin); false when unreadable.
+bool add_compared_run(Studio& studio, const std::string& run_dir);
+void remove_compared_run(Studio& studio, std::size_t index);
 //! Back to following the champion: its simulation is shown as soon as it is ready.
 void follow_champion(Studio& studio);
 void set_view_mode(Studio& studio, ViewMode mode);

@@ -213,8 +213,8 @@ void StudioApp::layout_and_panels() {
                fixed | ImGuiWindowFlags_NoScrollbar);
     draw_fitness_panel(s);
     ImGui::End();
-    begin_tile("Population", {right_x, top + t.run + t.plot}, {t.right, t.population}, fixed);
-    draw_population_panel(s);
+    begin_tile("Analysis", {right_x, top + t.run + t.plot}, {t.right, t.population}, fixed);
+    draw_analysis_panel(s);
     ImGui::End();
 
     // The inner edges: drawn over the tiles, dragged to resize (bounded, remembered).

@@ -17,6 +17,34 @@ LatticeBox workspace_box(const evo::Experiment& e) {
     return {e.workspace_size, e.voxel_size_m};
 }
 
+// Appends `from` moved by `offset` (a second body beside the first).
+void append_offset(render::DrawList& into, const render::DrawList& from, glm::vec3 offset) {
+    for (auto box : from.boxes) {
+        box.center += offset;
+        into.boxes.push_back(box);
+    }
+    for (auto box : from.translucent_boxes) {
+        box.center += offset;
+        into.translucent_boxes.push_back(box);
+    }
+    auto move = [&](const auto& src, auto& dst) {
+        for (auto v : src) {
+            v.position += offset;
+            dst.push_back(v);
+        }
+    };
+    move(from.lines, into.lines);
+    move(from.lines_on_top, into.lines_on_top);
+    move(from.floor, into.floor);
+    move(from.floor_lines, into.floor_lines);
+    move(from.translucent_triangles, into.translucent_triangles);
+    move(from.markers, into.markers);
+    if (from.bounds.valid) {
+        into.bounds.add(from.bounds.min + offset);
+        into.bounds.add(from.bounds.max + offset);
+    }
+}
+
 }  // namespace
 
 const evo::Body* painter_context_body(const Studio& s) {
@@ -35,6 +63,18 @@ render::DrawList build_view_draw_list(const Studio& s) {
             if (se.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
                 add_fixed_face_hatch(list, se.workspace_size, se.voxel_size_m,
                                      static_cast<evo::Face>(f));
+        if (s.compared) {
+            // Side by side: the compared body on the same clock, one workspace further along +y.
+            const auto& ce = s.compared->experiment;
+            render::DrawList other =
+                render::build_draw_list(simulation_scene(*s.compared, s.clock.time_s, s.view));
+            for (int f = 0; f < 6; ++f)
+                if (ce.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
+                    add_fixed_face_hatch(other, ce.workspace_size, ce.voxel_size_m,
+                                         static_cast<evo::Face>(f));
+            const float gap = static_cast<float>((se.workspace_size[1] + 2) * se.voxel_size_m);
+            append_offset(list, other, {0.0f, gap, 0.0f});
+        }
         return list;
     }
     render::Scene scene = workspace_scene(e, s.painter, painter_context_body(s));
@@ -57,7 +97,8 @@ render::DrawList build_view_draw_list(const Studio& s) {
 void frame_view_camera(Studio& s, const render::DrawList& list, float aspect) {
     if (!s.view.camera_needs_framing) return;
     render::Bounds bounds = list.workspace_bounds.valid ? list.workspace_bounds : list.bounds;
-    if (s.view.mode == ViewMode::Simulation && s.view.show_start_beside) bounds.add(list.bounds);
+    if (s.view.mode == ViewMode::Simulation && (s.view.show_start_beside || s.compared))
+        bounds.add(list.bounds);
     render::frame_bounds(s.view.camera, bounds, aspect);
     s.view.camera.distance_m /= std::max(0.05f, s.view.zoom);
     s.view.camera_needs_framing = false;

@@ -4,6 +4,7 @@
 // are absolute and presets are not overwritten, fast clicks land, simulation mode draws no tint.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 
@@ -185,22 +186,42 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "studio integrity: Pause interrupts the generation, which is re-run on Resume: the run "
+    "studio integrity: Pause freezes the simulations in flight at once, Resume goes on: the run "
     "equals an uninterrupted twin; a resumed folder shows its history at once") {
     const auto dir = testing::fresh_dir("pause-twin");
     auto e = testing::tiny_experiment();
-    e.simulation.evaluate_s = 3.0;
+    e.simulation.evaluate_s = 6.0;  // generations long enough to pause inside one
     e.evolution.generations = 3;
     Studio studio;
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240},
-                                        {"click": "Pause"},
-                                        {"wait_run": "paused", "timeout_s": 60}])"));
-    const auto paused = studio.evolution.snapshot();
-    MESSAGE("paused: " << paused->message);
+                                        {"wait_generations": 1, "timeout_s": 240}])"));
+    // Pause inside generation 1, once some of its simulations are done. Until then the Run
+    // panel's figures move inside the generation: elapsed grows, the progress bar is shown.
+    const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress());
+    for (int k = 0; k < 20000 && studio.evolution.progress().simulations_done < 1; ++k)
+        session.frame();
+    session.frame();
+    const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress());
+    CHECK(studio.evolution.snapshot()->generation == 1);
+    CHECK(later.elapsed_s > first.elapsed_s);
+    CHECK(later.simulations > first.simulations);
+    CHECK(later.eta_s > 0.0);
+    CHECK(on_screen(studio, "generation progress"));
+    run_script(session, json::parse(R"([{"click": "Pause"}])"));
+    CHECK(studio.evolution.phase() == RunPhase::Paused);  // the frame after the click
+    const auto frozen = studio.evolution.progress();
+    MESSAGE("paused in generation " << frozen.generation << " after " << frozen.simulations_done
+                                    << " / " << frozen.simulations_total << " simulations");
+    const auto paused_at = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - paused_at < std::chrono::milliseconds(1500))
+        session.frame();
+    const auto still = studio.evolution.progress();
+    CHECK(still.simulations_done == frozen.simulations_done);  // nothing moved while paused
+    CHECK(still.generation_s == doctest::Approx(frozen.generation_s).epsilon(0.05));
+    CHECK(studio.evolution.snapshot()->generation == 1);
     run_script(session, json::parse(R"([{"click": "Resume"},
                                         {"wait_run": "finished", "timeout_s": 300}])"));
     const auto run = studio.evolution.snapshot();

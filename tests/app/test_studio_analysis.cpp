@@ -1,0 +1,170 @@
+// The researcher's analysis tools: time series and colour fields of a simulated body against
+// hand-built replays (exact geometry), and scripted headless sessions of the champion history,
+// side-by-side replay, the age-vs-fitness scatter, the replay-synchronised time plots and
+// overlaid runs.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "app/gui/body_analysis.hpp"
+#include "app/gui/headless_session.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/viewport.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A rod of `n` voxels along x on a n x 1 x 1 lattice, at rest, with frames at 0, settle, ...
+engine::Replay rod_replay(int n, double L, double settle_s) {
+    engine::Replay r;
+    r.nx = n, r.ny = 1, r.nz = 1;
+    r.voxel_size_m = L;
+    r.settle_s = settle_s;
+    for (int v = 0; v < n; ++v) {
+        r.voxel_cell.push_back(v);
+        r.voxel_material.push_back(v % 2 ? 2 : 1);  // alternating passive / active
+        r.voxel_fixed.push_back(v == 0);
+    }
+    return r;
+}
+
+engine::VoxelPoses rod_frame(int n, double L, double t, double angle_rad, float scale = 1.0f) {
+    engine::VoxelPoses f;
+    f.time_s = t;
+    for (int v = 0; v < n; ++v) {
+        // Rotated about the y axis through the first voxel's centre (a bent cantilever).
+        const double r = v * L;
+        f.position_m.insert(
+            f.position_m.end(),
+            {static_cast<float>(0.5 * L + r * std::cos(angle_rad)), static_cast<float>(0.5 * L),
+             static_cast<float>(0.5 * L + r * std::sin(angle_rad))});
+        f.orientation.insert(f.orientation.end(), {1.0f, 0.0f, 0.0f, 0.0f});
+        const float s = static_cast<float>(L) * scale;
+        f.size_m.insert(f.size_m.end(), {s, s, s});
+    }
+    return f;
+}
+
+}  // namespace
+
+TEST_CASE("studio analysis: bend angle, tip and centre of mass of a rotated rod") {
+    const int n = 5;
+    const double L = 0.01, settle = 0.1;
+    auto e = testing::tiny_experiment({n, 1, 1});
+    auto r = rod_replay(n, L, settle);
+    const double angle = 0.3;  // rad
+    r.frames = {rod_frame(n, L, 0.0, 0.0), rod_frame(n, L, settle, 0.0),
+                rod_frame(n, L, 0.2, angle, 1.1f)};
+    std::vector<glm::vec3> com;
+    for (const auto& f : r.frames) {
+        glm::vec3 c(0.0f);
+        for (int v = 0; v < n; ++v)
+            c += glm::vec3(f.position_m[3 * v], f.position_m[3 * v + 1], f.position_m[3 * v + 2]);
+        com.push_back(c / float(n));
+    }
+    const auto s = body_time_series(e, r, com);
+    REQUIRE(s.t_s.size() == 3);
+    CHECK(s.bend_deg[0] == 0.0);
+    CHECK(s.bend_deg[1] == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(s.bend_deg[2] == doctest::Approx(angle * 180.0 / std::numbers::pi).epsilon(1e-4));
+    // The tip (x = n-1 layer) moved along a circle of radius (n-1) L by `angle`: chord length.
+    CHECK(s.tip_vox[2] == doctest::Approx(2.0 * (n - 1) * std::sin(angle / 2.0)).epsilon(1e-4));
+    // The centre of mass (mean radius 2 L) moved by the same rotation.
+    const double rx = 2.0 * (std::cos(angle) - 1.0), rz = 2.0 * std::sin(angle);
+    CHECK(s.com_vox[0][2] == doctest::Approx(rx).epsilon(1e-4));
+    CHECK(s.com_vox[2][2] == doctest::Approx(rz).epsilon(1e-4));
+    CHECK(s.com_vox[1][2] == doctest::Approx(0.0).epsilon(1e-6));
+
+    // Colour fields at the last frame.
+    const auto d = voxel_scalars(ColorBy::Displacement, e, r, 2, s, {});
+    CHECK(d.values[0] == doctest::Approx(0.0));
+    CHECK(d.values[4] == doctest::Approx(2.0 * 4 * std::sin(angle / 2.0)).epsilon(1e-4));
+    CHECK(d.range.max == doctest::Approx(d.values[4]).epsilon(1e-4));
+    const auto strain = voxel_scalars(ColorBy::Strain, e, r, 2, s, {});
+    CHECK(strain.values[3] == doctest::Approx(1.1 * 1.1 * 1.1 - 1.0).epsilon(1e-4));
+    CHECK(strain.range.min == doctest::Approx(-strain.range.max));
+    // Actuation: sin(2 pi f (t - settle)) on the active material (2), 0 on the passive one.
+    const auto act = voxel_scalars(ColorBy::Actuation, e, r, 2, s, {});
+    const double signal = std::sin(2.0 * std::numbers::pi * e.actuation.frequency_hz * 0.1);
+    CHECK(act.values[1] == doctest::Approx(signal).epsilon(1e-5));
+    CHECK(act.values[2] == 0.0f);
+    const auto settling = voxel_scalars(ColorBy::Actuation, e, r, 0, s, {});
+    CHECK(settling.values[1] == 0.0f);
+}
+
+TEST_CASE("studio analysis: champion history, side by side, scatter, time plots, overlaid runs") {
+    const auto dir = testing::fresh_dir("analysis");
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 3;
+    Studio studio;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "first").string();
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_run": "finished", "timeout_s": 240},
+                                        {"click": "tab Champions"}, {"frames": 40}])"));
+    // Every champion file is listed; a click replays that champion with the fitness it had.
+    std::size_t files = 0;
+    for (const auto& f : fs::directory_iterator(dir / "first" / "champions"))
+        files += f.path().extension() == ".json";
+    const auto& entries = studio.champion_history.entries();
+    REQUIRE(entries.size() == files);
+    const auto first = entries.front();
+    run_script(session,
+               json::array({{{"click", "champion gen " + std::to_string(first.generation)}},
+                            {{"wait_simulation", true}, {"timeout_s", 120}}}));
+    REQUIRE(studio.shown);
+    CHECK(studio.shown->id == first.id);
+    CHECK(studio.shown->fitness == doctest::Approx(first.fitness).epsilon(1e-9));
+    // Beside it: the newest champion, drawn next to the first one.
+    const auto last = entries.back();
+    run_script(session, json::array({{{"click", "beside gen " + std::to_string(last.generation)}},
+                                     {{"frames", 2}}}));
+    for (int k = 0; k < 6000 && !studio.compared; ++k)  // simulated on its own worker
+        session.frame();
+    REQUIRE(studio.compared);
+    CHECK(studio.compared->id == last.id);
+    run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
+    const auto both = build_view_draw_list(studio);
+    studio.compared.reset();
+    const auto one = build_view_draw_list(studio);
+    CHECK(both.voxel_instance_count() > one.voxel_instance_count());
+    CHECK(both.bounds.max.y > one.bounds.max.y);  // beside it along +y
+
+    // Time plots: dragging in the centre-of-mass plot moves the replay clock.
+    run_script(session, json::parse(R"([{"replay": {"time_s": 0.0, "playing": false}},
+                                        {"click": "tab Time plots"}, {"frames": 2},
+                                        {"click": "time plot com"}])"));
+    CHECK(studio.clock.time_s > 0.05);
+    CHECK_FALSE(studio.clock.playing);
+    REQUIRE(studio.shown);
+    CHECK(studio.shown->series.t_s.size() == studio.shown->replay.frames.size());
+
+    // The AFPO scatter shows the population.
+    run_script(session, json::parse(R"([{"click": "tab Age vs fitness"}, {"frames": 2}])"));
+    const auto it = studio.widgets.find("scatter plot");
+    REQUIRE(it != studio.widgets.end());
+    CHECK(it->second.frame >= studio.frame - 1);
+
+    // Another run overlaid on the fitness plot of the same measure.
+    auto e2 = e;
+    e2.evolution.seed = 11;
+    studio.document.reset(e2, "");
+    studio.run_dir_field = (dir / "second").string();
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_run": "finished", "timeout_s": 240}])"));
+    REQUIRE(add_compared_run(studio, (dir / "first").string()));
+    CHECK_FALSE(add_compared_run(studio, (dir / "nowhere").string()));
+    REQUIRE(studio.compared_runs.size() == 1);
+    REQUIRE(studio.compared_runs[0].snapshot);
+    CHECK(studio.compared_runs[0].snapshot->history.size() == 3);
+    session.frame();
+    CHECK(studio.fitness_plot_overlays == 1);
+}
