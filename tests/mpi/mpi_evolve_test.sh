@@ -130,6 +130,7 @@ dead-rank)
     echo "dead rank ended the job; resumed on one process: same run"
     ;;
 stop)
+    # shellcheck disable=SC2016  # $$ and $OMPI_COMM_WORLD_RANK belong to the rank shell
     timeout 120 "$mpiexec" -n 2 bash -c 'echo $$ >"rank$OMPI_COMM_WORLD_RANK.pid"; exec "$@"' \
         rank "$bhm" evolve "$experiment" --out stopped --generations $generations --threads 1 \
         2>stopped.log &
