@@ -25,7 +25,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Fault {
-    enum class Kind { None, Hang, Exit } kind = Kind::None;
+    enum class Kind { None, Hang, Exit, Fail } kind = Kind::None;
     std::uint64_t from_batch = 0;  //!< acts out instead of sending a result of this batch or later
 };
 
@@ -39,9 +39,11 @@ Fault fault_for(int rank) {
     if (std::sscanf(spec, "%d:%llu:%7s", &fault_rank, &batch, kind) != 3 || fault_rank != rank)
         return f;
     f.from_batch = batch;
-    f.kind = std::string(kind) == "hang"   ? Fault::Kind::Hang
-             : std::string(kind) == "exit" ? Fault::Kind::Exit
-                                           : Fault::Kind::None;
+    const std::string k = kind;
+    f.kind = k == "hang"   ? Fault::Kind::Hang
+             : k == "exit" ? Fault::Kind::Exit
+             : k == "fail" ? Fault::Kind::Fail
+                           : Fault::Kind::None;
     return f;
 }
 
@@ -210,6 +212,10 @@ int serve_evaluations(int rank, const std::string& host) {
         }
         if (simulators) {
             for (const auto& reply : simulators->take_outbox()) {
+                if (fault.kind == Fault::Kind::Fail && reply.batch_id >= fault.from_batch) {
+                    fail("injected failure (BHM_MPI_TEST_FAULT)");  // then carry on serving
+                    continue;
+                }
                 if (fault.kind != Fault::Kind::None && reply.batch_id >= fault.from_batch)
                     act_out(fault);
                 send_message(0, reply.tag, reply.bytes);

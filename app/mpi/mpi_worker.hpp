@@ -6,7 +6,8 @@
 //
 // For the failure tests only: BHM_MPI_TEST_FAULT="RANK:BATCH:hang" makes rank RANK stop answering
 // (no results, no heartbeats) instead of sending its first result of batch BATCH (batch 1 is the
-// session's first generation that simulates anything); ":exit" makes it exit(1) there instead.
+// session's first generation that simulates anything); ":exit" makes it exit(1) there instead,
+// ":fail" makes it report an error there instead of that result (and go on serving).
 #include <string>
 
 namespace bhm::app::mpi {

@@ -6,6 +6,8 @@
 #             generation checkpointed; --resume on another number of ranks finishes the same run
 #   dead-rank a rank that exits: the job ends, the checkpoint is complete, a single-process
 #             --resume finishes the same run
+#   failing-rank a rank that reports an error: rank 0 stops with that rank's message (exit 1),
+#             every other rank leaves cleanly, and --resume on 2 ranks finishes the same run
 #   stop      SIGTERM to rank 0 while the ranks simulate: the generation is abandoned everywhere,
 #             every rank exits 0, and --resume on 3 ranks finishes the same run
 # "The same run" = fitness.csv, champion.json and checkpoint.json equal once the wall-clock fields
@@ -128,6 +130,19 @@ dead-rank)
     evolve_alone dead --threads 1 --resume 2>resume.log || { cat resume.log; fail "resume"; }
     same_run reference dead
     echo "dead rank ended the job; resumed on one process: same run"
+    ;;
+failing-rank)
+    # Rank 1 reports an error instead of its first result of batch 2 (generation 1).
+    status=0
+    BHM_MPI_TEST_FAULT=1:2:fail evolve_mpi 3 failing --threads 1 2>failing.log || status=$?
+    cat failing.log
+    [ "$status" -eq 1 ] || fail "exit status $status, expected 1"
+    grep -q "bhm evolve: rank 1 on .*: injected failure" failing.log ||
+        fail "no message naming rank 1"
+    [ "$(checkpoint_generation failing)" -eq 0 ] || fail "checkpoint is not generation 0"
+    evolve_mpi 2 failing --threads 1 --resume 2>resume.log || { cat resume.log; fail "resume"; }
+    same_run reference failing
+    echo "failing rank stopped the run; resumed on 2 ranks: same run"
     ;;
 stop)
     # shellcheck disable=SC2016  # $$ and $OMPI_COMM_WORLD_RANK belong to the rank shell
