@@ -105,9 +105,16 @@ void browser(Studio& s) {
 
 void draw_files_panel(Studio& s) {
     ImGui::BeginChild("files", ImVec2(0, 0));
+    // One ID scope per section: the same file may be a preset, a recent file and in the browser.
+    ImGui::PushID("presets");
     presets(s);
+    ImGui::PopID();
+    ImGui::PushID("recent");
     recent(s);
+    ImGui::PopID();
+    ImGui::PushID("browser");
     browser(s);
+    ImGui::PopID();
     ImGui::EndChild();
 }
 

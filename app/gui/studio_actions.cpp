@@ -452,6 +452,14 @@ void set_named_view(Studio& studio, render::NamedView view) {
 
 // --- Per frame -----------------------------------------------------------------------------
 
+namespace {
+
+bool simulating_status(const Studio& studio) {
+    return !studio.status_is_error && studio.status.starts_with("simulating");
+}
+
+}  // namespace
+
 void update_studio(Studio& studio) {
     // The snapshot to show: a watched run directory, else the live (or last) session.
     if (studio.showing_run_directory) {
@@ -496,12 +504,19 @@ void update_studio(Studio& studio) {
             }
         }
         studio.shown = next;
+        // The "simulating ..." line would go stale now: say what is shown.
+        if (next && simulating_status(studio)) set_status(studio, "showing " + next->label);
     }
     if (studio.compare_simulator.version() != studio.compared_version) {
         studio.compared_version = studio.compare_simulator.version();
         studio.compared = studio.compare_simulator.latest();
         studio.view.camera_needs_framing = true;  // two bodies: frame both
+        if (studio.compared && simulating_status(studio))
+            set_status(studio, "beside it (+y): " + studio.compared->label);
     }
+    for (const BodySimulator* sim : {&studio.simulator, &studio.compare_simulator})
+        if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))
+            set_status(studio, "simulation failed: " + sim->last_error(), true);
     if (studio.shown) {
         const auto& frames = studio.shown->replay.frames;
         studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);

@@ -9,9 +9,11 @@
 
 #include "app/gui/body_analysis.hpp"
 #include "app/gui/headless_session.hpp"
+#include "app/gui/replay_player.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/viewport.hpp"
+#include "render/colormap.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -131,12 +133,42 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
         session.frame();
     REQUIRE(studio.compared);
     CHECK(studio.compared->id == last.id);
+    session.frame();
+    CHECK(studio.status.find("beside it") == 0);  // no stale "simulating ..." line
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
     const auto both = build_view_draw_list(studio);
     studio.compared.reset();
     const auto one = build_view_draw_list(studio);
     CHECK(both.voxel_instance_count() > one.voxel_instance_count());
     CHECK(both.bounds.max.y > one.bounds.max.y);  // beside it along +y
+
+    // Colour by displacement: the drawn voxels take the sequential map's colours of their
+    // displacement from t = 0 (the material colours at t = 0, where nothing has moved).
+    run_script(session, json::parse(R"([{"replay": {"time_s": 0.35, "playing": false}}])"));
+    const auto by_material = build_view_draw_list(studio);
+    studio.view.color_by = ColorBy::Displacement;
+    const auto by_displacement = build_view_draw_list(studio);
+    REQUIRE(by_displacement.boxes.size() == by_material.boxes.size());
+    const auto& shown = *studio.shown;
+    const auto field = voxel_scalars(ColorBy::Displacement, shown.experiment, shown.replay,
+                                     frame_index_at(shown.replay, 0.35), shown.series, {});
+    int matched = 0, body_boxes = 0;
+    for (const auto& box : by_displacement.boxes) {
+        if (box.voxel < 0) continue;
+        ++body_boxes;
+        // The view draws the surface voxels only: box.voxel indexes that subset.
+        const auto k = static_cast<std::size_t>(box.voxel);
+        const auto v =
+            shown.surface_voxels.empty() ? k : static_cast<std::size_t>(shown.surface_voxels.at(k));
+        const glm::vec4 expected =
+            render::sample_color_map(field.map, field.range.normalize(field.values.at(v)));
+        matched += std::abs(box.color.r - expected.r) < 0.02f &&
+                   std::abs(box.color.g - expected.g) < 0.02f &&
+                   std::abs(box.color.b - expected.b) < 0.02f;
+    }
+    CHECK(body_boxes > 0);
+    CHECK(matched == body_boxes);
+    studio.view.color_by = ColorBy::Material;
 
     // Time plots: dragging in the centre-of-mass plot moves the replay clock.
     run_script(session, json::parse(R"([{"replay": {"time_s": 0.0, "playing": false}},

@@ -311,6 +311,20 @@ TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, pre
     CHECK_FALSE(studio.document.dirty());
     CHECK(evo::load_experiment(studio.path_field).simulation.settle_s == 0.3);
     CHECK(read_text(presets / "quick-demo.json") == shipped);
+
+    // The file browser walks folders and opens experiment files (asking first when modified).
+    studio.browser_dir = dir.string();
+    run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.25},
+                                        {"click": "tab Files"}, {"frames": 3},
+                                        {"click": "folder presets"}, {"frames": 3}])"));
+    CHECK(studio.browser_dir == presets.string());
+    run_script(session, json::parse(R"([{"click": "file quick-demo.json"}, {"frames": 2}])"));
+    INFO("status: " << studio.status << ", dirty " << studio.document.dirty() << ", path "
+                    << studio.document.path());
+    CHECK(asking_unsaved(studio));
+    run_script(session, json::parse(R"([{"click": "Discard changes"}])"));
+    CHECK(studio.document.path() == (presets / "quick-demo.json").string());
+    CHECK_FALSE(studio.document.dirty());
 }
 
 TEST_CASE("studio integrity: a fast click (press and release in one batch) paints a face") {
