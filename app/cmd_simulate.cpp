@@ -18,6 +18,7 @@
 #include "engine/replay.hpp"
 #include "engine/world.hpp"
 #include "evo/experiment_io.hpp"
+#include "evo/exploit_flags.hpp"
 #include "evo/scene.hpp"
 
 namespace bhm::app {
@@ -33,7 +34,10 @@ const char* const kSummary =
     "                  diverged, divergence_reason, com_start_m (centre of mass at the end of\n"
     "                  settling), com_end_m, displacement_3d_voxels, displacement_yz_voxels,\n"
     "                  max_displacement_3d_voxels, max_displacement_yz_voxels (over the samples\n"
-    "                  after settling), tip_position_m (centroid of the highest-x voxel layer)\n"
+    "                  after settling), tip_position_m (centroid of the highest-x voxel layer),\n"
+    "                  exploits {escaped, unanchored_fraction, held_voxels, detached_motion,\n"
+    "                  base_motion_ratio, motion_voxels, tentacle, thin_share, thin_voxels}\n"
+    "                  (docs/evolution.md, \"Exploit flags\")\n"
     "  trajectory.csv  t_s,com_x_m,com_y_m,com_z_m,tip_x_m,tip_y_m,tip_z_m at record_fps\n"
     "  replay.bin      every voxel's pose at record_fps (docs/replay-format.md)\n"
     "\n"
@@ -101,10 +105,12 @@ int simulate(ArgParser& args) {
 
     engine::World world(model);
     SimulationRecorder recorder(*model, settle_s);
+    evo::ExploitTracker exploits(experiment, world);
     ProgressLine progress(stderr, total_s, model->voxel_count(), ::isatty(STDERR_FILENO) != 0);
     const auto start = std::chrono::steady_clock::now();
     engine::run(world, total_s, record_fps, [&](const engine::World& w) {
         recorder.observe(w);
+        exploits.observe(w);
         progress.update(w.time_s(), w.steps());
     });
     const double wall_s =
@@ -131,6 +137,9 @@ int simulate(ArgParser& args) {
     summary["record_fps"] = record_fps;
     summary["samples"] = recorder.samples().size();
     summary["voxel_size_m"] = model->voxel_size_m();
+    // Through text: exploits_to_json builds the unordered json type.
+    summary["exploits"] =
+        nlohmann::ordered_json::parse(evo::exploits_to_json(exploits.report(stats.diverged)).dump());
 
     const std::filesystem::path dir(out_dir);
     engine::write_replay((dir / "replay.bin").string(), recorder.replay());

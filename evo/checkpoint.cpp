@@ -108,6 +108,13 @@ FitnessReport report_from_json(const json& j, const std::string& path) {
     r.simulated_s = f.number("simulated_s");
     r.steps = f.integer("steps");
     r.sim_wall_s = f.number("sim_wall_s");
+    if (j.contains("exploits")) {  // absent in checkpoints written before exploit detection
+        try {
+            r.exploits = exploits_from_json(j.at("exploits"));
+        } catch (const std::invalid_argument& e) {
+            throw FieldError(path + "." + e.what());
+        }
+    }
     return r;
 }
 
@@ -146,7 +153,9 @@ json history_row_to_json(const HistoryRow& h) {
             {"best_id", h.best_id},
             {"diverged", h.diverged},
             {"wall_s", h.wall_s},
-            {"rules_version", h.rules_version}};
+            {"rules_version", h.rules_version},
+            {"best_exploits", exploits_to_json(h.best_exploits)},
+            {"flagged_members", h.flagged_members}};
 }
 
 HistoryRow history_row_from_json(const json& j, const std::string& path) {
@@ -162,6 +171,16 @@ HistoryRow history_row_from_json(const json& j, const std::string& path) {
     h.diverged = static_cast<int>(f.integer("diverged"));
     h.wall_s = f.number("wall_s");
     h.rules_version = static_cast<int>(f.integer("rules_version"));
+    // Both absent in checkpoints written before exploit detection.
+    if (j.contains("best_exploits")) {
+        try {
+            h.best_exploits = exploits_from_json(j.at("best_exploits"));
+        } catch (const std::invalid_argument& e) {
+            throw FieldError(path + "." + e.what());
+        }
+    }
+    if (j.contains("flagged_members"))
+        h.flagged_members = static_cast<int>(f.integer("flagged_members"));
     return h;
 }
 
@@ -194,7 +213,7 @@ json report_to_json(const FitnessReport& r) {
     return {{"fitness", r.fitness},         {"measures", measures},
             {"diverged", r.diverged},       {"divergence_reason", r.divergence_reason},
             {"simulated_s", r.simulated_s}, {"steps", r.steps},
-            {"sim_wall_s", r.sim_wall_s}};
+            {"sim_wall_s", r.sim_wall_s}, {"exploits", exploits_to_json(r.exploits)}};
 }
 
 json individual_to_json(const Individual& ind) {
@@ -229,8 +248,8 @@ json run_state_to_json(const RunState& s) {
         json measures = json::array();
         for (double m : r->measures)
             measures.push_back(m);
-        cache.push_back(
-            {hex(hash), r->diverged, r->steps, r->simulated_s, measures, r->divergence_reason});
+        cache.push_back({hex(hash), r->diverged, r->steps, r->simulated_s, measures,
+                         r->divergence_reason, exploits_to_json(r->exploits)});
     }
     json rng = json::array();
     for (auto word : s.rng)
@@ -331,11 +350,13 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         for (std::size_t i = 0; i < cache.size(); ++i) {
             const auto& e = cache[i];
             const std::string where = item("cache", i);
-            if (!e.is_array() || e.size() != 6 || !e[0].is_string() || !e[1].is_boolean() ||
+            // A 7th entry (exploit flags) since exploit detection; older checkpoints have 6.
+            if (!e.is_array() || (e.size() != 6 && e.size() != 7) || !e[0].is_string() || !e[1].is_boolean() ||
                 !e[2].is_number_integer() || !e[3].is_number() || !e[4].is_array() ||
                 e[4].size() != static_cast<std::size_t>(kMeasureCount) || !e[5].is_string())
                 throw FieldError(
-                    where + ": expected [hash, diverged, steps, simulated_s, measures, reason]");
+                    where +
+                    ": expected [hash, diverged, steps, simulated_s, measures, reason, exploits]");
             FitnessReport r;
             r.diverged = e[1].get<bool>();
             r.steps = e[2].get<std::int64_t>();
@@ -345,7 +366,14 @@ RunState run_state_from_json(const json& j, const std::string& label) {
                 r.measures[k] = e[4][k].get<double>();
             }
             r.divergence_reason = e[5].get<std::string>();
-            r.fitness = fitness_under(r, s.experiment.fitness.measure);
+            if (e.size() == 7) {
+                try {
+                    r.exploits = exploits_from_json(e[6]);
+                } catch (const std::invalid_argument& ex) {
+                    throw FieldError(where + "." + ex.what());
+                }
+            }
+            r.fitness = fitness_under(r, s.experiment.fitness);
             s.cache.insert(Fields::parse_hex(e[0].get<std::string>(), where), r);
         }
         return s;

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "evo/exploit_flags.hpp"
+
 namespace bhm::evo {
 
 bool touches_design_layer(const Phenotype& phenotype, const DesignSpace& space, Face face) {
@@ -41,6 +43,12 @@ std::string constraint_violation(const Constraints& constraints, const Boundary&
     if (phenotype.active_voxels < constraints.min_active_voxels)
         return std::to_string(phenotype.active_voxels) + " active voxels, fewer than " +
                std::to_string(constraints.min_active_voxels);
+    if (constraints.reject_escaped) {
+        const BodyAnatomy anatomy = body_anatomy(boundary, phenotype.body);
+        if (anatomy.holds_anything && anatomy.unanchored > 0)
+            return "escaped: " + std::to_string(anatomy.unanchored) + " of " +
+                   std::to_string(anatomy.voxels) + " voxels are not held by a fixed face";
+    }
     return {};
 }
 

@@ -6,7 +6,9 @@
 //    holds a filled cell (without a frame that layer is the workspace face itself; with a frame it
 //    is the layer touching the frame next to the fixed face). No fixed face: nothing to check;
 //  - min_fill_fraction: filled design-space cells / design-space cells;
-//  - min_active_voxels: active cells of the whole framed phenotype.
+//  - min_active_voxels: active cells of the whole framed phenotype;
+//  - reject_escaped: every voxel of the framed phenotype is held or face-connected to a held one
+//    (the escaped flag of evo/exploit_flags.hpp, known without simulating).
 #include <string>
 
 #include "evo/experiment.hpp"

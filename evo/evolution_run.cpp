@@ -273,8 +273,8 @@ bool EvolutionRun::run_generation() {
             m.valid = constraint_violation(rules.fitness.constraints, rules.boundary,
                                            developer_.space(), m.phenotype)
                           .empty();
-            m.report.fitness =
-                m.valid ? fitness_under(m.report, rules.fitness.measure) : kInvalidFitness;
+            m.report.fitness = m.valid ? fitness_under(m.report, rules.fitness) : kInvalidFitness;
+            m.valid = m.valid && !rejected_by_exploit(m.report.exploits, rules.fitness.constraints);
         }
         champion.reset();  // re-established from the re-scored population below
     }
@@ -342,7 +342,8 @@ bool EvolutionRun::run_generation() {
         }
         if (const FitnessReport* hit = state_.cache.find(ind.phenotype.hash)) {
             ind.report = *hit;
-            ind.report.fitness = fitness_under(*hit, rules.fitness.measure);
+            ind.report.fitness = fitness_under(*hit, rules.fitness);
+            ind.valid = !rejected_by_exploit(hit->exploits, constraints);
             ind.evaluated = true;
             ++cache_hits;
             continue;
@@ -378,6 +379,7 @@ bool EvolutionRun::run_generation() {
         if (job_of[i] < 0) continue;
         fresh[i].report = results[static_cast<std::size_t>(job_of[i])];
         fresh[i].evaluated = true;
+        fresh[i].valid = !rejected_by_exploit(fresh[i].report.exploits, constraints);
     }
 
     // AFPO selection over the old population (aged) plus the new individuals.
@@ -417,6 +419,9 @@ bool EvolutionRun::run_generation() {
     row.diverged = diverged;
     row.wall_s = state_.elapsed_s + generation_wall_s;
     row.rules_version = rules_version;
+    row.best_exploits = best.report.exploits;
+    for (const auto& m : next_population)
+        row.flagged_members += m.report.exploits.any() ? 1 : 0;
 
     // Commit.
     state_.experiment = rules;
@@ -463,7 +468,7 @@ bool EvolutionRun::run_generation() {
              m.phenotype.voxels > 0
                  ? static_cast<double>(m.phenotype.active_voxels) / m.phenotype.voxels
                  : 0.0,
-             state_.pareto_rank[k], m.report.diverged, m.valid});
+             state_.pareto_rank[k], m.report.diverged, m.valid, m.report.exploits});
     }
     report->evaluations = row.evaluations;
     report->simulations = row.simulations;

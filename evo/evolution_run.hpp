@@ -61,6 +61,7 @@ struct PopulationEntry {
     int pareto_rank = 0;
     bool diverged = false;
     bool valid = true;
+    ExploitReport exploits;  //!< escaped / detached_motion / tentacle and their measures
 };
 
 //! An immutable snapshot of one completed generation.
@@ -72,7 +73,7 @@ struct GenerationReport {
     bool rules_changed = false;  //!< the rules changed just before this generation
     double best_fitness = 0.0;
     double median_fitness = 0.0;
-    ChampionRecord champion;
+    ChampionRecord champion;  //!< champion.individual.report.exploits: the champion's flags
     bool new_champion = false;
     std::vector<PopulationEntry> population;  //!< in selection order
     int evaluations = 0;

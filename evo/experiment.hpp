@@ -74,6 +74,11 @@ struct Constraints {
     bool attached_to_fixed_face = false;
     double min_fill_fraction = 0.0;
     int min_active_voxels = 0;
+    //! Reject (fitness kInvalidFitness) bodies that raise an exploit flag (evo/exploit_flags.hpp).
+    //! escaped is known before simulating, so such bodies are never simulated.
+    bool reject_escaped = false;
+    bool reject_detached_motion = false;
+    bool reject_tentacle = false;
     bool operator==(const Constraints&) const = default;
 };
 

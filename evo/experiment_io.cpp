@@ -270,13 +270,18 @@ Experiment parse_experiment(const json& root, const std::string& file) {
             auto& con = e.fitness.constraints;
             const std::string cpath = "fitness.constraints";
             r.check_keys(*c, cpath,
-                         {"attached_to_fixed_face", "min_fill_fraction", "min_active_voxels"});
+                         {"attached_to_fixed_face", "min_fill_fraction", "min_active_voxels",
+                          "reject_escaped", "reject_detached_motion", "reject_tentacle"});
             con.attached_to_fixed_face =
                 r.boolean(*c, "attached_to_fixed_face", cpath, con.attached_to_fixed_face);
             con.min_fill_fraction = r.number(*c, "min_fill_fraction", cpath, con.min_fill_fraction);
             con.min_active_voxels =
                 static_cast<int>(r.integer(*c, "min_active_voxels", cpath, con.min_active_voxels,
                                            -1'000'000'000LL, 1'000'000'000LL));
+            con.reject_escaped = r.boolean(*c, "reject_escaped", cpath, con.reject_escaped);
+            con.reject_detached_motion =
+                r.boolean(*c, "reject_detached_motion", cpath, con.reject_detached_motion);
+            con.reject_tentacle = r.boolean(*c, "reject_tentacle", cpath, con.reject_tentacle);
         }
     }
 
@@ -530,7 +535,10 @@ json experiment_to_json(const Experiment& e) {
                     {"constraints",
                      {{"attached_to_fixed_face", c.attached_to_fixed_face},
                       {"min_fill_fraction", c.min_fill_fraction},
-                      {"min_active_voxels", c.min_active_voxels}}}};
+                      {"min_active_voxels", c.min_active_voxels},
+                      {"reject_escaped", c.reject_escaped},
+                      {"reject_detached_motion", c.reject_detached_motion},
+                      {"reject_tentacle", c.reject_tentacle}}}};
     const auto& ev = e.evolution;
     j["evolution"] = {{"population", ev.population},
                       {"generations", ev.generations},

@@ -37,6 +37,11 @@ double fitness_under(const FitnessReport& report, FitnessMeasure measure) {
     return report.diverged ? kDivergedFitness : report.measures[measure_index(measure)];
 }
 
+double fitness_under(const FitnessReport& report, const Fitness& rules) {
+    if (rejected_by_exploit(report.exploits, rules.constraints)) return kInvalidFitness;
+    return fitness_under(report, rules.measure);
+}
+
 MeasureTracker::MeasureTracker(const Experiment& experiment, const engine::World& world)
     : settle_s_(experiment.simulation.settle_s), voxel_size_m_(experiment.voxel_size_m) {
     const auto& model = world.model();
@@ -131,13 +136,15 @@ void honour(const EvaluationControl& control) {
 //! Slicing changes nothing: dt is fixed and advance_to stops at the first step at or past its
 //! target, so the same steps are taken (tests/evo/test_fitness.cpp checks against engine::run).
 void run_controlled(engine::World& world, double total_s, double sample_hz,
-                    const EvaluationControl& control, MeasureTracker& tracker) {
+                    const EvaluationControl& control, MeasureTracker& tracker,
+                    ExploitTracker& exploits) {
     const double period = 1.0 / sample_hz;
     const double dt = world.model().dt_s();
     const double half_step = 0.5 * dt;
     if (world.diverged()) return;
     honour(control);
     tracker.observe(world);
+    exploits.observe(world);
     if (world.time_s() >= total_s - half_step) return;
     for (std::int64_t k = 1;; ++k) {
         double due = static_cast<double>(k) * period;
@@ -149,6 +156,7 @@ void run_controlled(engine::World& world, double total_s, double sample_hz,
             honour(control);
         }
         tracker.observe(world);
+        exploits.observe(world);
         if (last) return;
     }
 }
@@ -168,9 +176,10 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     const auto spec = make_body_spec(experiment, framed_body, experiment.evolution.seed);
     engine::World world(engine::Model::build(spec));
     MeasureTracker tracker(experiment, world);
+    ExploitTracker exploits(experiment, world);
     const double sample_hz =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    run_controlled(world, evaluation_seconds(experiment), sample_hz, control, tracker);
+    run_controlled(world, evaluation_seconds(experiment), sample_hz, control, tracker, exploits);
 
     FitnessReport report;
     report.measures = tracker.measures();
@@ -186,7 +195,8 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     }
     if (report.diverged)
         report.measures.fill(0.0);  // keep files free of NaN; fitness says diverged
-    report.fitness = fitness_under(report, experiment.fitness.measure);
+    report.exploits = exploits.report(report.diverged);
+    report.fitness = fitness_under(report, experiment.fitness);
     report.sim_wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;

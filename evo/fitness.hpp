@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "evo/experiment.hpp"
+#include "evo/exploit_flags.hpp"
 
 namespace bhm::engine {
 class World;
@@ -29,6 +30,9 @@ namespace bhm::evo {
 //! Fitness given to a diverged simulation: every measure is >= 0, so -1 ranks below any real
 //! result while staying a finite number for CSV and JSON.
 inline constexpr double kDivergedFitness = -1.0;
+//! Fitness of a member that breaks a constraint (after a change of rules between generations, or a
+//! reject_* exploit constraint): below kDivergedFitness, so AFPO drops it before any real result.
+inline constexpr double kInvalidFitness = -2.0;
 inline constexpr int kMeasureCount = static_cast<int>(kFitnessNames.size());
 
 struct FitnessReport {
@@ -39,10 +43,14 @@ struct FitnessReport {
     double simulated_s = 0.0;  //!< simulated time reached
     std::int64_t steps = 0;
     double sim_wall_s = 0.0;  //!< wall-clock time of the simulation (not deterministic)
+    ExploitReport exploits;   //!< escaped / detached_motion / tentacle with their measures
 };
 
 //! The fitness of a report under a measure (kDivergedFitness when it diverged).
 double fitness_under(const FitnessReport& report, FitnessMeasure measure);
+//! The fitness under the whole rules: kInvalidFitness when a reject_* constraint catches one of
+//! the report's exploit flags, else fitness_under(report, rules.measure).
+double fitness_under(const FitnessReport& report, const Fitness& rules);
 
 //! Thrown out of evaluate_body when the cancel flag is raised mid-simulation.
 struct EvaluationCancelled : std::runtime_error {

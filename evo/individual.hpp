@@ -8,10 +8,6 @@
 
 namespace bhm::evo {
 
-//! Fitness of a member that breaks the constraints after a change of rules between generations:
-//! below kDivergedFitness, so AFPO drops it before any simulated individual.
-inline constexpr double kInvalidFitness = -2.0;
-
 struct Individual {
     std::int64_t id = 0;          //!< unique within a run, in creation order
     std::int64_t parent_id = -1;  //!< -1 for a random newcomer

@@ -23,7 +23,10 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
         out += std::to_string(h.generation) + "," + std::to_string(h.evaluations) + "," +
                std::to_string(h.simulations) + "," + format_number(h.best_fitness) + "," +
                format_number(h.median_fitness) + "," + std::to_string(h.best_age) + "," +
-               std::to_string(h.best_id) + "," + std::to_string(h.diverged) + "," + wall + "\n";
+               std::to_string(h.best_id) + "," + std::to_string(h.diverged) + "," + wall + "," +
+               (h.best_exploits.escaped ? "1," : "0,") +
+               (h.best_exploits.detached_motion ? "1," : "0,") +
+               (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) + "\n";
     }
     return out;
 }

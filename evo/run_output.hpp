@@ -17,7 +17,7 @@ namespace bhm::evo {
 
 inline constexpr const char* kFitnessCsvHeader =
     "generation,evaluations,simulations,best_fitness,median_fitness,best_age,best_id,diverged,wall_"
-    "s";
+    "s,best_escaped,best_detached_motion,best_tentacle,flagged_members";
 
 //! fitness.csv text: the header then one row per generation. Numbers in the C locale; fitness with
 //! the shortest exact form, wall_s with millisecond resolution.

@@ -24,6 +24,8 @@ struct HistoryRow {
     int diverged = 0;       //!< simulations that diverged
     double wall_s = 0.0;    //!< wall time since the run started (across resumes) at its end
     int rules_version = 0;  //!< bumped by every change of fitness rules between generations
+    ExploitReport best_exploits;  //!< the flags of the best member
+    int flagged_members = 0;      //!< population members raising any exploit flag
     bool operator==(const HistoryRow&) const = default;
 };
 

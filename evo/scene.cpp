@@ -86,6 +86,32 @@ std::string experiment_field_of(const std::string& field) {
     return field;
 }
 
+std::vector<std::uint8_t> held_cells(const Boundary& boundary, std::array<int, 3> size) {
+    std::vector<std::uint8_t> held(static_cast<std::size_t>(size[0]) * size[1] * size[2], 0);
+    auto index = [&](int x, int y, int z) {
+        return static_cast<std::size_t>(x + size[0] * (y + size[1] * z));
+    };
+    for (int z = 0; z < size[2]; ++z)
+        for (int y = 0; y < size[1]; ++y)
+            for (int x = 0; x < size[0]; ++x) {
+                const int c[3] = {x, y, z};
+                bool fixed = false;
+                for (int axis = 0; axis < 3; ++axis) {
+                    if (boundary.faces[2 * axis] == BoundaryKind::Fixed && c[axis] == 0)
+                        fixed = true;
+                    if (boundary.faces[2 * axis + 1] == BoundaryKind::Fixed &&
+                        c[axis] == size[axis] - 1)
+                        fixed = true;
+                }
+                held[index(x, y, z)] = fixed ? 1 : 0;
+            }
+    for (const auto& o : boundary.voxel_overrides)
+        if (o.kind == OverrideKind::Fixed && o.voxel[0] < size[0] && o.voxel[1] < size[1] &&
+            o.voxel[2] < size[2])
+            held[index(o.voxel[0], o.voxel[1], o.voxel[2])] = 1;
+    return held;
+}
+
 engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::uint64_t phase_seed) {
     if (framed.cells.size() != static_cast<size_t>(framed.cell_count()))
         throw std::invalid_argument("body cells do not match its size");
@@ -94,7 +120,6 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
     spec.ny = framed.size[1];
     spec.nz = framed.size[2];
     spec.material = framed.cells;
-    spec.fixed.assign(framed.cells.size(), 0);
     spec.phase_rad.assign(framed.cells.size(), 0.0f);
     for (const auto& m : e.materials)
         spec.materials.push_back(m.physics);
@@ -104,30 +129,13 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
                                         " but only " + std::to_string(spec.materials.size()) +
                                         " are defined");
 
-    const int n[3] = {spec.nx, spec.ny, spec.nz};
-    for (int z = 0; z < spec.nz; ++z)
-        for (int y = 0; y < spec.ny; ++y)
-            for (int x = 0; x < spec.nx; ++x) {
-                const int c[3] = {x, y, z};
-                bool fixed = false;
-                for (int axis = 0; axis < 3; ++axis) {
-                    if (e.boundary.faces[2 * axis] == BoundaryKind::Fixed && c[axis] == 0)
-                        fixed = true;
-                    if (e.boundary.faces[2 * axis + 1] == BoundaryKind::Fixed &&
-                        c[axis] == n[axis] - 1)
-                        fixed = true;
-                }
-                const int k = spec.cell_index(x, y, z);
-                spec.fixed[k] = fixed ? 1 : 0;
-                if (e.actuation.phase == PhaseMode::Random) {
-                    double u = static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) *
-                               0x1.0p-53;
-                    spec.phase_rad[k] = static_cast<float>(2.0 * std::numbers::pi * u);
-                }
-            }
-    for (const auto& o : e.boundary.voxel_overrides)
-        if (o.kind == OverrideKind::Fixed)
-            spec.fixed[spec.cell_index(o.voxel[0], o.voxel[1], o.voxel[2])] = 1;
+    spec.fixed = held_cells(e.boundary, framed.size);
+    if (e.actuation.phase == PhaseMode::Random)
+        for (std::size_t k = 0; k < spec.phase_rad.size(); ++k) {
+            double u =
+                static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) * 0x1.0p-53;
+            spec.phase_rad[k] = static_cast<float>(2.0 * std::numbers::pi * u);
+        }
     return spec;
 }
 

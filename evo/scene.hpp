@@ -1,8 +1,10 @@
 #pragma once
 // From an experiment and a body to the engine's input: the one place that maps the experiment's
 // boundary conditions, enclosure, overrides, materials, actuation and timing onto a BodySpec.
+#include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/body_spec.hpp"
 #include "evo/experiment.hpp"
@@ -27,6 +29,10 @@ engine::BodySpec make_settings_spec(const Experiment& experiment);
 //! The experiment file's field for a BodySpec field named by engine::limits ("dt_fraction" ->
 //! "simulation.dt_fraction"); materials[k].x and unknown names are returned unchanged.
 std::string experiment_field_of(const std::string& body_spec_field);
+
+//! (cells of a workspace-sized lattice, x fastest) 1 where the engine holds the cell: the layer of
+//! every face marked fixed and every voxel overridden as fixed; what make_body_spec uses.
+std::vector<std::uint8_t> held_cells(const Boundary& boundary, std::array<int, 3> size);
 
 //! Total simulated time of one evaluation: settle_s + evaluate_s.
 inline double evaluation_seconds(const Experiment& e) {

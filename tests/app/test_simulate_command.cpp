@@ -135,6 +135,15 @@ TEST_CASE("simulate writes summary, trajectory and replay that agree with each o
     CHECK(s["steps"].get<double>() ==
           doctest::Approx(s["sim_time_s"].get<double>() / dt).epsilon(0.01));
     CHECK(s["voxel_steps_per_s"].get<double>() > 0.0);
+    // Exploit flags (docs/evolution.md): the x = 0 layer (4 voxels) is held and holds the rest;
+    // every voxel of a 3x2x2 block has at least 3 neighbours, so none is thin.
+    const auto& x = s["exploits"];
+    CHECK(x["checked"] == true);
+    CHECK(x["held_voxels"] == 4);
+    CHECK(x["unanchored_fraction"] == 0.0);
+    CHECK(x["escaped"] == false);
+    CHECK(x["thin_voxels"] == 0);
+    CHECK(x["tentacle"] == false);
 
     // com_start is the first sample at or after settle_s = 0.05 (t = 2/30), com_end the last one.
     const auto& start_row = rows[2];

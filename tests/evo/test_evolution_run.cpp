@@ -40,8 +40,15 @@ std::string read_file(const fs::path& path) {
 std::string csv_without_wall(const std::string& csv) {
     std::stringstream in(csv), out;
     std::string line;
-    while (std::getline(in, line))
-        out << line.substr(0, line.rfind(',')) << "\n";
+    constexpr int kWallColumn = 8;  // generation,...,diverged,wall_s,...
+    while (std::getline(in, line)) {
+        std::size_t start = 0;
+        for (int c = 0; c < kWallColumn; ++c)
+            start = line.find(',', start) + 1;
+        const std::size_t end = line.find(',', start);
+        out << line.substr(0, start) << (end == std::string::npos ? "" : line.substr(end + 1))
+            << "\n";
+    }
     return out.str();
 }
 
