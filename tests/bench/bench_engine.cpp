@@ -1,19 +1,35 @@
 // Engine speed in voxel-steps per second on named scenes, one thread each, plus two simulations
-// on two threads (how well independent Worlds sharing one Model scale, as evolution runs them).
-// Writes CSV to stdout: scene,voxels,links,steps,wall_s,voxel_steps_per_s,machine,commit.
-//   bench_engine [--steps-scale X] [--commit SHA]
+// on two threads (how well independent Worlds sharing one Model scale, as evolution runs them),
+// then on the corpus of realistic bodies in tests/bench/corpus (random CPPN bodies of each paper
+// preset): per corpus the minimum, median and maximum voxel-steps/s over its bodies and the
+// simulations per second of the paper's full 1 s + 10 s evaluation (model build included).
+// Writes CSV to stdout, one row per scene and per corpus:
+//   name,bodies,voxels,links,steps,wall_s,cpu_s,voxel_steps_per_s,min_voxel_steps_per_s,
+//   median_voxel_steps_per_s,max_voxel_steps_per_s,simulations_per_s_11s,build_us,machine,commit
+//   bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] [--assets DIR] [--scenes-only]
+//                [--corpus-only] [--min-voxels N] [--max-voxels N] [--per-body]
+// Rates are per CPU second of the stepping thread (CLOCK_THREAD_CPUTIME_ID), so a machine shared
+// with other jobs distorts them less than wall time would; the "_2threads" row is the exception:
+// it measures scaling, so it uses wall time and counts both worlds (voxels and links are the sum,
+// steps are per world, the rate is the aggregate; its factor vs one thread goes to stderr).
+// A corpus row's voxels and links are the means over its bodies, steps the total; the corpus
+// figures cover bodies with min-voxels <= voxels <= max-voxels (default: all).
 // The commit comes from --commit or $BHM_COMMIT (scripts/bench.sh passes git rev-parse --short
-// HEAD). The "_2threads" row counts both worlds: voxels and links are the sum, steps are per world,
-// and voxel_steps_per_s is the aggregate; its scaling factor vs one thread goes to stderr.
+// HEAD). Run from the repository root (the corpus and presets are found by relative path).
 #include <sys/utsname.h>
+#include <time.h>
 
+#include <algorithm>
 #include <barrier>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -23,12 +39,21 @@
 #include "engine/body_spec.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
+#include "evo/experiment_io.hpp"
+#include "evo/fitness.hpp"
+#include "evo/scene.hpp"
 
 namespace {
 
 using bhm::engine::BodySpec;
 using bhm::engine::Material;
 using Clock = std::chrono::steady_clock;
+
+double thread_cpu_s() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 // Paper Table 1: E = 5 MPa, density 1000, Poisson 0.35, friction 1 / 0.5; CTE 0 passive,
 // 0.01 active.
@@ -88,8 +113,12 @@ struct Result {
     int voxels = 0, links = 0;
     std::int64_t steps = 0;
     double wall_s = 0.0;
+    double cpu_s = 0.0;
+    double build_s = 0.0;  //!< Model::build + World construction
+    bool use_wall = false;  //!< rate per wall second (the two-thread row)
     double voxel_steps_per_s() const {
-        return static_cast<double>(voxels) * static_cast<double>(steps) / wall_s;
+        return static_cast<double>(voxels) * static_cast<double>(steps) /
+               (use_wall ? wall_s : cpu_s);
     }
 };
 
@@ -102,13 +131,18 @@ void step_world(bhm::engine::World& world, std::int64_t steps, const std::string
                                  "); its timing would be meaningless");
 }
 
-Result run_single(const Scene& scene, std::int64_t steps) {
-    const auto model = bhm::engine::Model::build(scene.spec);
+Result run_single(const std::string& name, const BodySpec& spec, std::int64_t steps) {
+    const double build_start = thread_cpu_s();
+    const auto model = bhm::engine::Model::build(spec);
     bhm::engine::World world(model);
+    const double build_s = thread_cpu_s() - build_start;
     const auto start = Clock::now();
-    step_world(world, steps, scene.name);
-    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-    return {scene.name, model->voxel_count(), model->link_count(), steps, wall};
+    const double cpu_start = thread_cpu_s();
+    step_world(world, steps, name);
+    Result r{name, model->voxel_count(), model->link_count(), steps, 0.0, 0.0, build_s};
+    r.cpu_s = thread_cpu_s() - cpu_start;
+    r.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+    return r;
 }
 
 // Two Worlds of one shared Model, each stepped by its own thread, started together.
@@ -134,8 +168,58 @@ Result run_two_threads(const Scene& scene, std::int64_t steps) {
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     for (auto& e : errors)
         if (e) std::rethrow_exception(e);
-    return {scene.name + "_2threads", 2 * model->voxel_count(), 2 * model->link_count(), steps,
-            wall};
+    Result r{scene.name + "_2threads", 2 * model->voxel_count(), 2 * model->link_count(), steps,
+             wall};
+    r.use_wall = true;
+    return r;
+}
+
+// One corpus: a preset's bodies, each timed for about `voxel_steps` voxel-steps.
+struct CorpusResult {
+    std::string name;
+    std::vector<Result> bodies;
+    double full_evaluations_s = 0.0;  //!< CPU time of one 1 s + 10 s evaluation of every body
+};
+
+CorpusResult run_corpus(const std::string& path, const std::string& assets, double voxel_steps,
+                        int min_voxels, int max_voxels, bool per_body) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open the corpus file");
+    nlohmann::json corpus;
+    try {
+        corpus = nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
+    }
+    const std::string preset = corpus.at("experiment").get<std::string>();
+    const bhm::evo::Experiment experiment =
+        bhm::evo::load_experiment(assets + "/" + preset + ".json");
+    const double evaluation_s = bhm::evo::evaluation_seconds(experiment);
+    CorpusResult out{preset, {}, 0.0};
+    for (const auto& entry : corpus.at("bodies")) {
+        const std::string name = preset + "/" + entry.at("name").get<std::string>();
+        // Framed as evolution simulates it (a no-op for workspace-sized framed bodies), phases
+        // from the run's seed as evaluate_body draws them.
+        const auto body = bhm::evo::apply_frame_and_overrides(
+            experiment, bhm::evo::parse_body(entry.at("body"), path));
+        const BodySpec spec =
+            bhm::evo::make_body_spec(experiment, body, experiment.evolution.seed);
+        int voxels = 0;
+        for (auto m : spec.material)
+            voxels += m != 0;
+        if (voxels < min_voxels || voxels > max_voxels) continue;
+        const auto steps = std::max<std::int64_t>(200, static_cast<std::int64_t>(voxel_steps / voxels));
+        Result r = run_single(name, spec, steps);
+        const double dt = bhm::engine::Model::build(spec)->dt_s();
+        const double full_steps = std::ceil(evaluation_s / dt);
+        out.full_evaluations_s += r.build_s + full_steps * r.cpu_s / static_cast<double>(r.steps);
+        if (per_body)
+            std::cerr << name << ": " << r.voxels << " voxels, " << r.links << " links, "
+                      << r.voxel_steps_per_s() << " voxel-steps/s\n";
+        out.bodies.push_back(r);
+    }
+    if (out.bodies.empty()) throw std::runtime_error(path + ": no body in the voxel range");
+    return out;
 }
 
 std::string trim(std::string s) {
@@ -172,15 +256,50 @@ std::string csv_field(const std::string& s) {
 }
 
 std::string csv_row(const Result& r, const std::string& machine, const std::string& commit) {
-    char numbers[160];
-    std::snprintf(numbers, sizeof numbers, "%d,%d,%lld,%.4f,%.4g", r.voxels, r.links,
-                  static_cast<long long>(r.steps), r.wall_s, r.voxel_steps_per_s());
+    char numbers[320];
+    const double rate = r.voxel_steps_per_s();
+    std::snprintf(numbers, sizeof numbers, "1,%d,%d,%lld,%.4f,%.4f,%.4g,%.4g,%.4g,%.4g,,%.1f",
+                  r.voxels, r.links, static_cast<long long>(r.steps), r.wall_s, r.cpu_s, rate,
+                  rate, rate, rate, 1e6 * r.build_s);
     return csv_field(r.scene) + "," + numbers + "," + csv_field(machine) + "," + csv_field(commit);
+}
+
+std::string csv_row(const CorpusResult& c, const std::string& machine, const std::string& commit) {
+    std::vector<double> rates, builds;
+    double voxels = 0, links = 0, wall = 0, cpu = 0, voxel_steps = 0;
+    long long steps = 0;
+    for (const Result& r : c.bodies) {
+        rates.push_back(r.voxel_steps_per_s());
+        builds.push_back(r.build_s);
+        voxels += r.voxels;
+        links += r.links;
+        steps += r.steps;
+        wall += r.wall_s;
+        cpu += r.cpu_s;
+        voxel_steps += static_cast<double>(r.voxels) * static_cast<double>(r.steps);
+    }
+    const auto n = static_cast<double>(c.bodies.size());
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        const std::size_t m = v.size() / 2;
+        return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+    };
+    char numbers[320];
+    std::snprintf(numbers, sizeof numbers,
+                  "%zu,%.1f,%.1f,%lld,%.4f,%.4f,%.4g,%.4g,%.4g,%.4g,%.4g,%.1f", c.bodies.size(),
+                  voxels / n, links / n, steps, wall, cpu, voxel_steps / cpu,
+                  *std::min_element(rates.begin(), rates.end()), median(rates),
+                  *std::max_element(rates.begin(), rates.end()), n / c.full_evaluations_s,
+                  1e6 * median(builds));
+    return csv_field("corpus_" + c.name) + "," + numbers + "," + csv_field(machine) + "," +
+           csv_field(commit);
 }
 
 [[noreturn]] void usage_error(const std::string& message) {
     std::cerr << "bench_engine: " << message << "\n"
-              << "usage: bench_engine [--steps-scale X] [--commit SHA]\n";
+              << "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] "
+                 "[--assets DIR] [--scenes-only] [--corpus-only] [--min-voxels N] "
+                 "[--max-voxels N] [--per-body]\n";
     std::exit(2);
 }
 
@@ -190,20 +309,44 @@ int main(int argc, char** argv) {
     double steps_scale = 1.0;
     const char* env_commit = std::getenv("BHM_COMMIT");
     std::string commit = env_commit ? env_commit : "unknown";
+    std::string corpus_dir = "tests/bench/corpus", assets = "assets/experiments";
+    bool scenes_wanted = true, corpus_wanted = true, per_body = false;
+    int min_voxels = 0, max_voxels = 1 << 30;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if ((arg == "--steps-scale" || arg == "--commit") && i + 1 >= argc)
-            usage_error("option '" + arg + "' needs a value");
+        const bool takes_value = arg == "--steps-scale" || arg == "--commit" || arg == "--corpus" ||
+                                 arg == "--assets" || arg == "--min-voxels" ||
+                                 arg == "--max-voxels";
+        if (takes_value && i + 1 >= argc) usage_error("option '" + arg + "' needs a value");
         if (arg == "--steps-scale") {
             char* end = nullptr;
             steps_scale = std::strtod(argv[++i], &end);
             if (*end != '\0' || !(steps_scale > 0.0))
                 usage_error("--steps-scale needs a positive number");
+        } else if (arg == "--min-voxels" || arg == "--max-voxels") {
+            char* end = nullptr;
+            const long v = std::strtol(argv[++i], &end, 10);
+            if (*end != '\0' || v < 0) usage_error(arg + " needs a non-negative integer");
+            (arg == "--min-voxels" ? min_voxels : max_voxels) = static_cast<int>(v);
         } else if (arg == "--commit") {
             commit = argv[++i];
+        } else if (arg == "--corpus") {
+            corpus_dir = argv[++i];
+        } else if (arg == "--assets") {
+            assets = argv[++i];
+        } else if (arg == "--scenes-only") {
+            corpus_wanted = false;
+        } else if (arg == "--corpus-only") {
+            scenes_wanted = false;
+        } else if (arg == "--per-body") {
+            per_body = true;
         } else if (arg == "--help" || arg == "-h") {
-            std::cout << "usage: bench_engine [--steps-scale X] [--commit SHA]\n"
-                         "Times the engine on fixed scenes; CSV on stdout (or FILE).\n";
+            std::cout << "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] "
+                         "[--assets DIR] [--scenes-only] [--corpus-only] [--min-voxels N] "
+                         "[--max-voxels N] [--per-body]\n"
+                         "--per-body: each corpus body's rate on stderr.\n"
+                         "Times the engine on fixed scenes and on the body corpus; CSV on "
+                         "stdout.\n";
             return 0;
         } else {
             usage_error("unknown argument '" + arg + "'");
@@ -212,28 +355,50 @@ int main(int argc, char** argv) {
 
     const std::string machine = machine_description();
     std::ostringstream csv;
-    csv << "scene,voxels,links,steps,wall_s,voxel_steps_per_s,machine,commit\n";
+    csv << "name,bodies,voxels,links,steps,wall_s,cpu_s,voxel_steps_per_s,min_voxel_steps_per_s,"
+           "median_voxel_steps_per_s,max_voxel_steps_per_s,simulations_per_s_11s,build_us,"
+           "machine,commit\n";
     try {
-        double single_cantilever_rate = 0.0;
-        const auto list = scenes();
-        for (const Scene& scene : list) {
+        if (scenes_wanted) {
+            double single_cantilever_wall_rate = 0.0;
+            const auto list = scenes();
+            for (const Scene& scene : list) {
+                const auto steps = std::max<std::int64_t>(
+                    1, static_cast<std::int64_t>(static_cast<double>(scene.steps) * steps_scale));
+                const Result r = run_single(scene.name, scene.spec, steps);
+                if (scene.name == list.front().name)
+                    single_cantilever_wall_rate =
+                        static_cast<double>(r.voxels) * static_cast<double>(r.steps) / r.wall_s;
+                csv << csv_row(r, machine, commit) << "\n";
+                std::cerr << r.scene << ": " << r.voxels << " voxels, " << r.steps << " steps in "
+                          << r.cpu_s << " CPU s = " << r.voxel_steps_per_s()
+                          << " voxel-steps/s\n";
+            }
+            const Scene& cantilever = list.front();
             const auto steps = std::max<std::int64_t>(
-                1, static_cast<std::int64_t>(static_cast<double>(scene.steps) * steps_scale));
-            const Result r = run_single(scene, steps);
-            if (scene.name == list.front().name) single_cantilever_rate = r.voxel_steps_per_s();
-            csv << csv_row(r, machine, commit) << "\n";
-            std::cerr << r.scene << ": " << r.voxels << " voxels, " << r.steps << " steps in "
-                      << r.wall_s << " s = " << r.voxel_steps_per_s() << " voxel-steps/s\n";
+                1, static_cast<std::int64_t>(static_cast<double>(cantilever.steps) * steps_scale));
+            const Result two = run_two_threads(cantilever, steps);
+            csv << csv_row(two, machine, commit) << "\n";
+            std::cerr << two.scene << ": aggregate " << two.voxel_steps_per_s()
+                      << " voxel-steps/s = " << two.voxel_steps_per_s() / single_cantilever_wall_rate
+                      << "x one thread by wall time (hardware threads: "
+                      << std::thread::hardware_concurrency() << ")\n";
         }
-        const Scene& cantilever = list.front();
-        const auto steps = std::max<std::int64_t>(
-            1, static_cast<std::int64_t>(static_cast<double>(cantilever.steps) * steps_scale));
-        const Result two = run_two_threads(cantilever, steps);
-        csv << csv_row(two, machine, commit) << "\n";
-        std::cerr << two.scene << ": aggregate " << two.voxel_steps_per_s()
-                  << " voxel-steps/s = " << two.voxel_steps_per_s() / single_cantilever_rate
-                  << "x one thread (hardware threads: " << std::thread::hardware_concurrency()
-                  << ")\n";
+        if (corpus_wanted) {
+            std::vector<std::string> files;
+            for (const auto& entry : std::filesystem::directory_iterator(corpus_dir))
+                if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+            if (files.empty()) throw std::runtime_error(corpus_dir + ": no corpus file (*.json)");
+            std::sort(files.begin(), files.end());
+            for (const auto& file : files) {
+                const CorpusResult c =
+                    run_corpus(file, assets, 2e6 * steps_scale, min_voxels, max_voxels, per_body);
+                csv << csv_row(c, machine, commit) << "\n";
+                std::cerr << "corpus " << c.name << ": " << c.bodies.size() << " bodies, "
+                          << c.bodies.size() / c.full_evaluations_s
+                          << " full 11 s simulations per CPU second\n";
+            }
+        }
     } catch (const std::exception& e) {
         std::cerr << "bench_engine: " << e.what() << "\n";
         return 1;

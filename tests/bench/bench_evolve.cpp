@@ -7,8 +7,8 @@
 //   bench_evolve [--sims N] [--sim-seconds S] [--threads-list 1,2] [--assets DIR] [--commit SHA]
 //                [PRESET...]
 //
-// Defaults: 4 simulations of 0.2 s per (preset, thread count), presets paper-exp1 and paper-exp3
-// from assets/experiments (run from the repository root, as scripts/bench.sh does), threads 1 and
+// Defaults: 8 simulations of 0.2 s per (preset, thread count), presets paper-exp1, paper-exp2 and
+// paper-exp3 from assets/experiments (run from the repository root, as scripts/bench.sh does), threads 1 and
 // 2. CSV on stdout, notes on stderr; the commit comes from --commit or $BHM_COMMIT.
 #include <sys/utsname.h>
 
@@ -64,7 +64,7 @@ int run(int argc, char** argv) {
     const char* env_commit = std::getenv("BHM_COMMIT");
     std::string commit = env_commit ? env_commit : "unknown";
     std::string assets = "assets/experiments";
-    int sims = 4;
+    int sims = 8;
     double sim_seconds = 0.2;
     std::vector<int> thread_counts = {1, 2};
     std::vector<std::string> presets;
@@ -91,7 +91,7 @@ int run(int argc, char** argv) {
         } else
             presets.push_back(a);
     }
-    if (presets.empty()) presets = {"paper-exp1", "paper-exp3"};
+    if (presets.empty()) presets = {"paper-exp1", "paper-exp2", "paper-exp3"};
 
     std::cout
         << "preset,threads,population,simulations,mean_voxels,simulated_s_each,full_evaluation_s,"
