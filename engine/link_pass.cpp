@@ -30,33 +30,30 @@ namespace {
 // The voxel arrays seen from one axis: index 0 of each triple is the link axis.
 struct AxisView {
     const double* p[3];
-    const double* q[4];     // w, then the vector part in local order
-    const int* plus;        // + neighbour of each slot (y, z); x uses slot + 1
+    const float* q[4];  // w, then the vector part in local order (float copies)
+    const int* plus;    // + neighbour of each slot (y, z); x uses slot + 1
 };
 
 AxisView axis_view(const Model::Data& model, const VoxelState& s, int axis) {
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    return {
-        {s.pos[axis].data(), s.pos[a1].data(), s.pos[a2].data()},
-        {s.quat[0].data(), s.quat[1 + axis].data(), s.quat[1 + a1].data(), s.quat[1 + a2].data()},
-        model.plus[axis].data()};
+    return {{s.pos[axis].data(), s.pos[a1].data(), s.pos[a2].data()},
+            {s.quat_f[0].data(), s.quat_f[1 + axis].data(), s.quat_f[1 + a1].data(),
+             s.quat_f[1 + a2].data()},
+            model.plus[axis].data()};
 }
 
 // The chord of the link from voxel a to voxel b; an absent link sees a straight rest chord so its
 // (discarded) numbers stay finite whatever its neighbours do. Restrict pointers: nothing the link
 // pass writes aliases them.
 BHM_ENGINE_INLINE LinkFrame frame_of(const double* __restrict p0, const double* __restrict p1,
-                                     const double* __restrict p2, const double* __restrict qw,
-                                     const double* __restrict q0, const double* __restrict q1,
-                                     const double* __restrict q2, int a, int b, float exists,
+                                     const double* __restrict p2, const float* __restrict qw,
+                                     const float* __restrict q0, const float* __restrict q1,
+                                     const float* __restrict q2, int a, int b, float exists,
                                      float rest_base) {
     const float dx = static_cast<float>(p0[b] - p0[a]) * exists + (1.0f - exists) * rest_base;
     const float dy = static_cast<float>(p1[b] - p1[a]) * exists;
     const float dz = static_cast<float>(p2[b] - p2[a]) * exists;
-    return link_frame(dx, dy, dz, static_cast<float>(qw[a]), static_cast<float>(q0[a]),
-                      static_cast<float>(q1[a]), static_cast<float>(q2[a]),
-                      static_cast<float>(qw[b]), static_cast<float>(q0[b]),
-                      static_cast<float>(q1[b]), static_cast<float>(q2[b]));
+    return link_frame(dx, dy, dz, qw[a], q0[a], q1[a], q2[a], qw[b], q0[b], q1[b], q2[b]);
 }
 
 BHM_ENGINE_INLINE int plus_of(const AxisView& v, int axis, int c) {
@@ -111,10 +108,10 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     const double* __restrict p0 = v.p[0];
     const double* __restrict p1 = v.p[1];
     const double* __restrict p2 = v.p[2];
-    const double* __restrict qw = v.q[0];
-    const double* __restrict q0 = v.q[1];
-    const double* __restrict q1 = v.q[2];
-    const double* __restrict q2 = v.q[3];
+    const float* __restrict qw = v.q[0];
+    const float* __restrict q0 = v.q[1];
+    const float* __restrict q1 = v.q[2];
+    const float* __restrict q2 = v.q[3];
 
     int bad = 0;  // an integer sum: a float one would be an in-order (unvectorisable) reduction
     const int delta = run.delta;

@@ -19,7 +19,8 @@ namespace {
     throw std::invalid_argument("body spec: " + what);
 }
 
-// The envelope lives in limits.cpp (shared with evo/'s validation): the first problem is the reason.
+// The envelope lives in limits.cpp (shared with evo/'s validation): the first problem is the
+// reason.
 void validate(const BodySpec& spec) {
     const std::vector<limits::Problem> problems = limits::body_spec_problems(spec);
     if (!problems.empty()) reject(problems.front().field + " " + problems.front().message);
@@ -38,15 +39,15 @@ double shear_modulus(const Material& m) {
 constexpr double kSquareTorsionFactor = 0.1406;
 
 void resize_voxels(Model::Data& d, int n) {
-    for (auto* v : {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep,
-                    &d.angular_keep, &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic,
-                    &d.act_sin, &d.act_cos})
+    for (auto* v :
+         {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep, &d.angular_keep,
+          &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic, &d.act_sin, &d.act_cos})
         v->assign(n, 0.0);
 }
 
 void resize_links(LinkParams& p, int n, float voxel_size) {
-    for (auto* v : {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.rest_sin,
-                    &p.rest_cos})
+    for (auto* v :
+         {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.rest_sin, &p.rest_cos})
         v->assign(n, 0.0f);
     p.rest_base.assign(n, voxel_size);  // keeps absent slots well formed
 }
@@ -136,8 +137,7 @@ void build_layout(Model::Data& d) {
         d.voxel_cell.push_back(c);
         d.voxel_material.push_back(spec.material[c]);
         d.voxel_fixed.push_back(spec.fixed.empty() ? 0 : (spec.fixed[c] ? 1 : 0));
-        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
-                                     c / (spec.nx * spec.ny)};
+        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
         for (int i = 0; i < 3; ++i)
             d.origin_cell[i] = std::min(d.origin_cell[i], xyz[i]);
     }
@@ -158,8 +158,7 @@ void build_layout(Model::Data& d) {
     }
     for (int v = 0; v < d.voxels; ++v) {
         const int c = d.voxel_cell[v];
-        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
-                                     c / (spec.nx * spec.ny)};
+        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
         for (int a = 0; a < 3; ++a) {
             if (xyz[a] + 1 >= limit[a]) continue;
             const int b = d.cell_voxel[c + stride[a]];
@@ -174,8 +173,7 @@ void build_layout(Model::Data& d) {
     d.rest_position.assign(d.stored, {0.5 * L, 0.5 * L, 0.5 * L});
     for (int v = 0; v < d.voxels; ++v) {
         const int c = d.voxel_cell[v];
-        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny,
-                                     c / (spec.nx * spec.ny)};
+        const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
         for (int i = 0; i < 3; ++i)
             d.rest_position[v][i] = (xyz[i] - d.origin_cell[i] + 0.5) * L;
     }

@@ -89,15 +89,15 @@ struct Model::Data {
     int voxels = 0;  //!< n, real voxels
     int slots = 0;   //!< n rounded up to kLanes: the length every pass loops over
     int stored = 0;  //!< length of per-voxel arrays: slots + the largest uniform link offset
-    int link_lead = kLinkLead;  //!< zero slots before slot 0 in link scratch arrays
+    int link_lead = kLinkLead;                //!< zero slots before slot 0 in link scratch arrays
     std::array<int, 3> origin_cell{0, 0, 0};  //!< low corner of the voxels' bounding box
     std::array<double, 3> origin_m{0, 0, 0};  //!< origin_cell * L: added to reported positions
 
     // Voxel list (lattice order) and the map back.
-    std::vector<int> voxel_cell;               //!< (n) lattice cell of voxel v
-    std::vector<std::uint8_t> voxel_material;  //!< (n) 1-based material index
-    std::vector<std::uint8_t> voxel_fixed;     //!< (n) 1 = all six DOF held
-    std::vector<int> cell_voxel;               //!< (cells) voxel index or -1
+    std::vector<int> voxel_cell;                       //!< (n) lattice cell of voxel v
+    std::vector<std::uint8_t> voxel_material;          //!< (n) 1-based material index
+    std::vector<std::uint8_t> voxel_fixed;             //!< (n) 1 = all six DOF held
+    std::vector<int> cell_voxel;                       //!< (cells) voxel index or -1
     std::vector<std::array<double, 3>> rest_position;  //!< (stored) relative to origin_m
 
     // Neighbour tables (stored). plus[a][v]: the +a neighbour of v (v itself when none; only

@@ -20,9 +20,10 @@ namespace {
 
 // Raw views of every array the pass touches, taken once per pass.
 struct Arrays {
-    const double *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep,
-        *angular_keep, *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos;
+    const double *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep, *angular_keep,
+        *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos;
     double *pos[3], *quat[4], *vel[3], *omega[3], *stuck;
+    float* quat_f[4];
     const double* ext[3];
     const float *force[3][3], *moment_neg[3][3], *moment_pos[3][3];  // [link axis][component]
     const int *minus_y, *minus_z;  // slot of the link whose + end is the voxel (x: voxel - 1)
@@ -54,8 +55,10 @@ Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScrat
             a.moment_pos[i][k] = links[i].moment_pos[k];
         }
     }
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < 4; ++i) {
         a.quat[i] = s.quat[i].data();
+        a.quat_f[i] = s.quat_f[i].data();
+    }
     a.stuck = s.stuck.data();
     a.minus_y = d.minus[1].data();
     a.minus_z = d.minus[2].data();
@@ -176,8 +179,10 @@ __attribute__((always_inline)) inline int voxel_loop(const Arrays& a, double* __
             a.vel[i][c] = u.v[i];
             a.omega[i][c] = u.w[i];
         }
-        for (int i = 0; i < 4; ++i)
+        for (int i = 0; i < 4; ++i) {
             a.quat[i][c] = u.q[i];
+            a.quat_f[i][c] = static_cast<float>(u.q[i]);
+        }
         a.stuck[c] = u.stuck;
         refused[c] = u.ok ? 0.0 : 1.0;
     }

@@ -24,8 +24,10 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
         s.omega[i].assign(n, 0.0);
         s.ext_force[i].assign(n, 0.0);
     }
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < 4; ++i) {
         s.quat[i].assign(n, i == 0 ? 1.0 : 0.0);
+        s.quat_f[i].assign(n, i == 0 ? 1.0f : 0.0f);
+    }
     s.stuck.assign(n, 0.0);
     s.refused.assign(n, 0.0);
     // Every slot, dummies included, sits on its rest point (relative to the body's origin).
@@ -123,8 +125,7 @@ void World::step() {
             const int c = first_bad_link(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
             if (c < 0) continue;
             const int b = axis == 0 ? c + 1 : d.plus[axis][c];
-            why << " (" << kAxisNames[axis] << " link from voxel " << c << " to voxel " << b
-                << ")";
+            why << " (" << kAxisNames[axis] << " link from voxel " << c << " to voxel " << b << ")";
             break;
         }
         why << " at t = " << t << " s, step " << s.steps;
@@ -302,7 +303,8 @@ void run(World& world, double total_s, double sample_hz,
     if (world.diverged()) return;
     // A simulation never silently runs zero steps: a step longer than twice the whole duration
     // is a spec out of the envelope (limits::step_budget_problem refuses it up front).
-    if (world.steps() == 0 && total_s > 0.0 && limits::steps_for(total_s, world.model().dt_s()) == 0)
+    if (world.steps() == 0 && total_s > 0.0 &&
+        limits::steps_for(total_s, world.model().dt_s()) == 0)
         throw std::invalid_argument("run: a step of " + std::to_string(world.model().dt_s()) +
                                     " s is longer than twice the " + std::to_string(total_s) +
                                     " s to simulate: zero steps would run");

@@ -1,7 +1,8 @@
 #pragma once
 // Private to the engine: the changing state of one World, structure of arrays over the body's
-// voxel slots (see model_data.hpp for the layout; positions relative to Model::Data::origin_m). Double for pose and velocity (small per-step increments
-// must not be rounded away), float for the per-link scratch that the link kernel writes.
+// voxel slots (see model_data.hpp for the layout; positions relative to Model::Data::origin_m).
+// Double for pose and velocity (small per-step increments must not be rounded away), float for the
+// per-link scratch that the link kernel writes.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -17,8 +18,11 @@ namespace bhm::engine {
 //! Per voxel slot: 13 doubles of pose/velocity, the static-friction flag and the external
 //! force: 136 bytes per voxel.
 struct VoxelState {
-    std::array<std::vector<double>, 3> pos;    //!< centre (m)
-    std::array<std::vector<double>, 4> quat;   //!< w, x, y, z; body to world
+    std::array<std::vector<double>, 3> pos;   //!< centre (m)
+    std::array<std::vector<double>, 4> quat;  //!< w, x, y, z; body to world
+    //! quat rounded to float, written by the voxel pass: the float link pass reads only these
+    //! (half the bytes to gather, no conversions in the hottest loop; the same values).
+    std::array<std::vector<float>, 4> quat_f;
     std::array<std::vector<double>, 3> vel;    //!< m/s
     std::array<std::vector<double>, 3> omega;  //!< rad/s, world frame
     std::vector<double> stuck;                 //!< 1 = held by static friction
@@ -26,9 +30,10 @@ struct VoxelState {
     std::vector<double> refused;  //!< scratch of the voxel pass: 1 = insane new state
 };
 
-//! Per link slot of one axis (slot v = the link of voxel v to its + neighbour): the forces the link pass writes for the voxel pass to gather
-//! (world frame; the +end receives +force, the -end -force), and the link's deformation at the
-//! previous step (its backward difference is the deformation rate used by bond damping).
+//! Per link slot of one axis (slot v = the link of voxel v to its + neighbour): the forces the link
+//! pass writes for the voxel pass to gather (world frame; the +end receives +force, the -end
+//! -force), and the link's deformation at the previous step (its backward difference is the
+//! deformation rate used by bond damping).
 struct LinkScratch {
     std::vector<float> storage;     //!< all arrays below, each of (kLinkLead + stored) floats
     std::array<float*, 3> force{};  //!< on the + end; the - end gets the opposite

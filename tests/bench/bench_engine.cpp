@@ -21,8 +21,8 @@
 
 #include <algorithm>
 #include <barrier>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -114,7 +114,7 @@ struct Result {
     std::int64_t steps = 0;
     double wall_s = 0.0;
     double cpu_s = 0.0;
-    double build_s = 0.0;  //!< Model::build + World construction
+    double build_s = 0.0;   //!< Model::build + World construction
     bool use_wall = false;  //!< rate per wall second (the two-thread row)
     double voxel_steps_per_s() const {
         return static_cast<double>(voxels) * static_cast<double>(steps) /
@@ -202,13 +202,13 @@ CorpusResult run_corpus(const std::string& path, const std::string& assets, doub
         // from the run's seed as evaluate_body draws them.
         const auto body = bhm::evo::apply_frame_and_overrides(
             experiment, bhm::evo::parse_body(entry.at("body"), path));
-        const BodySpec spec =
-            bhm::evo::make_body_spec(experiment, body, experiment.evolution.seed);
+        const BodySpec spec = bhm::evo::make_body_spec(experiment, body, experiment.evolution.seed);
         int voxels = 0;
         for (auto m : spec.material)
             voxels += m != 0;
         if (voxels < min_voxels || voxels > max_voxels) continue;
-        const auto steps = std::max<std::int64_t>(200, static_cast<std::int64_t>(voxel_steps / voxels));
+        const auto steps =
+            std::max<std::int64_t>(200, static_cast<std::int64_t>(voxel_steps / voxels));
         Result r = run_single(name, spec, steps);
         const double dt = bhm::engine::Model::build(spec)->dt_s();
         const double full_steps = std::ceil(evaluation_s / dt);
@@ -259,8 +259,8 @@ std::string csv_row(const Result& r, const std::string& machine, const std::stri
     char numbers[320];
     const double rate = r.voxel_steps_per_s();
     std::snprintf(numbers, sizeof numbers, "1,%d,%d,%lld,%.4f,%.4f,%.4g,%.4g,%.4g,%.4g,,%.1f",
-                  r.voxels, r.links, static_cast<long long>(r.steps), r.wall_s, r.cpu_s, rate,
-                  rate, rate, rate, 1e6 * r.build_s);
+                  r.voxels, r.links, static_cast<long long>(r.steps), r.wall_s, r.cpu_s, rate, rate,
+                  rate, rate, 1e6 * r.build_s);
     return csv_field(r.scene) + "," + numbers + "," + csv_field(machine) + "," + csv_field(commit);
 }
 
@@ -371,8 +371,7 @@ int main(int argc, char** argv) {
                         static_cast<double>(r.voxels) * static_cast<double>(r.steps) / r.wall_s;
                 csv << csv_row(r, machine, commit) << "\n";
                 std::cerr << r.scene << ": " << r.voxels << " voxels, " << r.steps << " steps in "
-                          << r.cpu_s << " CPU s = " << r.voxel_steps_per_s()
-                          << " voxel-steps/s\n";
+                          << r.cpu_s << " CPU s = " << r.voxel_steps_per_s() << " voxel-steps/s\n";
             }
             const Scene& cantilever = list.front();
             const auto steps = std::max<std::int64_t>(
@@ -380,7 +379,8 @@ int main(int argc, char** argv) {
             const Result two = run_two_threads(cantilever, steps);
             csv << csv_row(two, machine, commit) << "\n";
             std::cerr << two.scene << ": aggregate " << two.voxel_steps_per_s()
-                      << " voxel-steps/s = " << two.voxel_steps_per_s() / single_cantilever_wall_rate
+                      << " voxel-steps/s = "
+                      << two.voxel_steps_per_s() / single_cantilever_wall_rate
                       << "x one thread by wall time (hardware threads: "
                       << std::thread::hardware_concurrency() << ")\n";
         }
