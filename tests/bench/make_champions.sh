@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Adds champions of short evolution runs to the benchmark corpus: for each paper preset, a run of
-# a shortened copy (population 10, 3 generations, 0.25 s settle + 1.25 s evaluation, seeds 1..3),
+# a shortened copy (population 10, 2 generations, 0.25 s settle + 1.25 s evaluation, seeds 1 and 2),
 # whose champion body is written to tests/bench/corpus/<preset>-champions.json in the corpus
 # format of make_bench_corpus (simulated by bench_engine with the preset's own full settings).
 #   tests/bench/make_champions.sh [BUILD_DIR]     (run from the repository root)
@@ -11,12 +11,12 @@ bhm="$build/bin/bhm"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for preset in paper-exp1 paper-exp1-attached paper-exp2 paper-exp3; do
-    for seed in 1 2 3; do
+    for seed in 1 2; do
         python3 - "assets/experiments/$preset.json" "$work/$preset.json" <<'EOF'
 import json, sys
 e = json.load(open(sys.argv[1]))
 e["evolution"]["population"] = 10
-e["evolution"]["generations"] = 3
+e["evolution"]["generations"] = 2
 e["simulation"]["settle_s"] = 0.25
 e["simulation"]["evaluate_s"] = 1.25
 json.dump(e, open(sys.argv[2], "w"), indent=2)
@@ -29,12 +29,12 @@ EOF
 import json, sys
 preset, work = sys.argv[1], sys.argv[2]
 bodies = []
-for seed in (1, 2, 3):
+for seed in (1, 2):
     body = json.load(open(f"{work}/{preset}-{seed}.body.json"))
     voxels = sum(ch != "0" for layer in body["layers"] for ch in layer)
     bodies.append({"name": f"champion-seed{seed}", "voxels": voxels, "body": body})
 out = {"experiment": preset, "seed": None, "bodies": bodies,
-       "note": "champions of 3-generation runs (population 10, 0.25 s + 1.25 s), seeds 1-3"}
+       "note": "champions of 2-generation runs (population 10, 0.25 s + 1.25 s), seeds 1-2"}
 path = f"tests/bench/corpus/{preset}-champions.json"
 with open(path + ".tmp", "w") as f:
     f.write(json.dumps(out, indent=1) + "\n")
