@@ -145,15 +145,23 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec) {
     return out;
 }
 
-double voxel_omega2(const Material& m, double L) {
+namespace {
+// Largest size scale 1 + |cte A| of a material's voxels over an actuation period.
+double largest_scale(const Material& m, double temperature_amplitude_c) {
+    return 1.0 + std::fabs(m.cte_per_c * temperature_amplitude_c);
+}
+}  // namespace
+
+double voxel_omega2(const Material& m, double L, double temperature_amplitude_c) {
     const double mass = m.density_kg_m3 * (L * L * L);
     const double inertia = mass * L * L / 6.0;
     const double k_axial = m.youngs_modulus_pa * L;              // E A / L
     const double k_rot = m.youngs_modulus_pa * L * L * L / 3.0;  // 4 E I / L
-    return std::max(k_axial / mass, k_rot / inertia);
+    const double scale = largest_scale(m, temperature_amplitude_c);
+    return std::max(scale * k_axial / mass, scale * scale * k_rot / inertia);
 }
 
-double link_omega2(const Material& a, const Material& b, double L) {
+double link_omega2(const Material& a, const Material& b, double L, double temperature_amplitude_c) {
     const double e = series(a.youngs_modulus_pa, b.youngs_modulus_pa);
     const double g = series(shear_modulus(a), shear_modulus(b));
     const double m_min = std::min(a.density_kg_m3, b.density_kg_m3) * (L * L * L);
@@ -165,21 +173,26 @@ double link_omega2(const Material& a, const Material& b, double L) {
     const double k_bend4 = 4.0 * e * (std::pow(L, 4) / 12.0 / L);  // 4 E I / L
     // Twisting both ends against each other: 2 G J / L on each.
     const double k_twist2 = 2.0 * g * kSquareTorsionFactor * std::pow(L, 4) / L;
-    return std::max({k_axial / m_min, k_bend4 / inertia, k_twist2 / inertia});
+    const double scale = std::max(largest_scale(a, temperature_amplitude_c),
+                                  largest_scale(b, temperature_amplitude_c));
+    return std::max({scale * k_axial / m_min, scale * scale * k_bend4 / inertia,
+                     scale * scale * k_twist2 / inertia});
 }
 
 double stable_step_for(double omega2) {
     return 1.0 / (2.0 * std::numbers::pi * std::sqrt(omega2));
 }
 
-StepRange step_range(const std::vector<Material>& materials, double L, double dt_fraction) {
+StepRange step_range(const std::vector<Material>& materials, double L, double dt_fraction,
+                     double temperature_amplitude_c) {
+    const double A = temperature_amplitude_c;
     double stiffest = 0.0, softest = 0.0;
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        const double alone = voxel_omega2(materials[i], L);
+        const double alone = voxel_omega2(materials[i], L, A);
         softest = i == 0 ? alone : std::min(softest, alone);
         stiffest = std::max(stiffest, alone);
         for (std::size_t j = i; j < materials.size(); ++j)
-            stiffest = std::max(stiffest, link_omega2(materials[i], materials[j], L));
+            stiffest = std::max(stiffest, link_omega2(materials[i], materials[j], L, A));
     }
     if (materials.empty()) return {};
     return {dt_fraction * stable_step_for(stiffest), dt_fraction * stable_step_for(softest)};

@@ -19,7 +19,7 @@ inline constexpr double kMinPoissonRatio = -0.9;     //!< inclusive; -1 makes G 
 inline constexpr double kMaxPoissonRatio = 0.49;     //!< inclusive; 0.5 is incompressible
 //! Largest |cte x temperature amplitude| (linear actuation strain) the engine runs stably on the
 //! paper's scenes at the default damping and dt_fraction (tests/engine/test_engine_envelope.cpp).
-inline constexpr double kMaxActuationStrain = 0.6;
+inline constexpr double kMaxActuationStrain = 0.45;
 inline constexpr double kMaxDtFraction = 1.0;
 inline constexpr double kMaxDampingRatio = 10.0;
 //! A simulation needing more steps than this is refused (hours of wall time per simulation).
@@ -47,11 +47,14 @@ std::vector<Problem> settings_problems(const BodySpec& spec);
 //! Every problem of a whole BodySpec: sizes, materials, settings, an empty body.
 std::vector<Problem> body_spec_problems(const BodySpec& spec);
 
-//! Squared angular frequency of the stiffest mode of a lone voxel of material m (rad^2/s^2).
-double voxel_omega2(const Material& m, double voxel_size_m);
+//! Squared angular frequency of the stiffest mode of a lone voxel of material m (rad^2/s^2), at
+//! its largest actuated size s = 1 + |cte A| (axial stiffness ~ s, bending and torsion ~ s^2).
+double voxel_omega2(const Material& m, double voxel_size_m, double temperature_amplitude_c);
 //! Squared angular frequency of the stiffest mode of the link between materials a and b, on the
-//! lighter end: axial, bending, torsion and the Poisson (volumetric) coupling.
-double link_omega2(const Material& a, const Material& b, double voxel_size_m);
+//! lighter end: axial, bending, torsion and the Poisson (volumetric) coupling, at the largest
+//! actuated size of either end.
+double link_omega2(const Material& a, const Material& b, double voxel_size_m,
+                   double temperature_amplitude_c);
 //! Voxelyze's recommended step 1 / (2 pi sqrt(omega2)).
 double stable_step_for(double omega2);
 
@@ -62,7 +65,7 @@ struct StepRange {
     double longest_s = 0.0;
 };
 StepRange step_range(const std::vector<Material>& materials, double voxel_size_m,
-                     double dt_fraction);
+                     double dt_fraction, double temperature_amplitude_c);
 
 //! The number of steps run(world, total_s, ...) takes at step dt_s.
 std::int64_t steps_for(double total_s, double dt_s);

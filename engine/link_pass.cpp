@@ -66,9 +66,11 @@ BHM_ENGINE_INLINE LinkFrame frame_of(const AxisView& v, int axis, float exists, 
                     exists, rest_base);
 }
 
-BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest) {
-    // Written so that NaN fails both tests.
-    return (std::fabs(extension) < rest) & (f.axis_cos > 0.0f);
+BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest_base) {
+    // Written so that NaN fails every test. Bounds on the lattice length L, not the actuated rest
+    // length: a link of a voxel contracted to 0.4 L may legitimately stretch past 0.8 L.
+    return (f.length > 0.1f * rest_base) & (extension < rest_base) &
+           (f.axis_cos > kMinOnePlusCos - 1.0f);
 }
 
 // One axis's loop over the link slots of one run. kGather: the + end of slot c is plus[c];
@@ -86,6 +88,7 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     const float* __restrict rest_sin = lp.rest_sin.data();
     const float* __restrict rest_cos = lp.rest_cos.data();
     const float* __restrict poisson_rest = out.poisson_rest;
+    const float inv_voxel_size = static_cast<float>(1.0 / model.voxel_size_m);
     const int* __restrict plus = v.plus;
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
     float* __restrict f0 = out.force[axis];
@@ -120,10 +123,17 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     for (int c = run.begin; c < run.end; ++c) {
         const int b = kGather ? plus[c] : c + delta;
         const LinkFrame f = frame_of(p0, p1, p2, qw, q0, q1, q2, c, b, exists[c], rest_base[c]);
-        const float rest =
-            rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c] + poisson_rest[c];
+        const float actuated = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
+        const float rest = actuated + poisson_rest[c];
         const float extension = f.length - rest;
-        bad += static_cast<int>((exists[c] > 0.0f) & !healthy(f, extension, rest));
+        // Stiffness follows the actuated size s: axial E A / L ~ s, and bending and torsion
+        // ~ s^2, so the transverse (shear) stiffness, moment / |d|^2, stays that of the rest
+        // size instead of growing as 1 / s^2 when the link contracts (the divergence of large
+        // contractions). The voxels' inertia is kept, so omega^2 <= s^2 omega_0^2, which the
+        // stable step bounds at the largest size (limits::link_omega2).
+        const float size = actuated * inv_voxel_size;
+        const float size2 = size * size;
+        bad += static_cast<int>((exists[c] > 0.0f) & !healthy(f, extension, rest_base[c]));
 
         // Deformation plus beta times its rate (Rayleigh damping), then the beam equations.
         const float k = damp[c];
@@ -143,10 +153,10 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
         pb2[c] = f.theta_pos[2];
 
         // Absent links have zero stiffness, so everything below is exactly zero for them.
-        const float kb = k_bend[c];
+        const float kb = k_bend[c] * size2;
         const float twist_a = ta0 * f.ex + ta1 * f.ey + ta2 * f.ez;
         const float twist_b = tb0 * f.ex + tb1 * f.ey + tb2 * f.ez;
-        const float kt_twist = k_torsion[c] * (twist_b - twist_a);
+        const float kt_twist = k_torsion[c] * size2 * (twist_b - twist_a);
         // Bending acts on the normal parts only: add back the e components, then torsion.
         const float along_a = kt_twist + kb * (4.0f * twist_a + 2.0f * twist_b);
         const float along_b = -kt_twist + kb * (2.0f * twist_a + 4.0f * twist_b);
@@ -158,7 +168,7 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
         const float mb2 = -kb * (2.0f * ta2 + 4.0f * tb2) + along_b * f.ez;
         const float s0 = ma0 + mb0, s1 = ma1 + mb1, s2 = ma2 + mb2;
         const float inv_len = 1.0f / f.length;
-        const float axial = k_axial[c] * x;
+        const float axial = k_axial[c] * size * x;
         f0[c] = -axial * f.ex + (f.ey * s2 - f.ez * s1) * inv_len;
         f1[c] = -axial * f.ey + (f.ez * s0 - f.ex * s2) * inv_len;
         f2[c] = -axial * f.ez + (f.ex * s1 - f.ey * s0) * inv_len;
@@ -193,7 +203,7 @@ int first_bad_link(const Model::Data& model, const VoxelState& voxels, const Lin
         const LinkFrame f = frame_of(v, axis, 1.0f, lp.rest_base[c], c);
         const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c] +
                            scratch.poisson_rest[c];
-        if (!healthy(f, f.length - rest, rest)) return c;
+        if (!healthy(f, f.length - rest, lp.rest_base[c])) return c;
     }
     return -1;
 }

@@ -9,8 +9,8 @@ namespace bhm::engine {
 
 //! Runs the link pass of one axis; sin_t and cos_t modulate the rest lengths of actuated links
 //! (rest = base + sin_t * rest_sin + cos_t * rest_cos + the Poisson shift in scratch). Returns the number of links that are
-//! unhealthy: strain beyond 100%, sheared past 90 degrees, or non-finite (the step must then not be
-//! committed).
+//! unhealthy: stretched past one lattice length L, shorter than L / 10, sheared past 120 degrees,
+//! or non-finite (the step must then not be committed).
 int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& scratch, int axis,
               float sin_t, float cos_t);
 

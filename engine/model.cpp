@@ -218,7 +218,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.act_sin[v] = amplitude * std::cos(phase);
         d.act_cos[v] = amplitude * std::sin(phase);
         if (amplitude != 0.0) d.any_active = true;
-        max_omega2 = std::max(max_omega2, limits::voxel_omega2(mat, L));
+        max_omega2 = std::max(max_omega2,
+                              limits::voxel_omega2(mat, L, spec.actuation.temperature_amplitude_c));
     }
 
     // Poisson coupling (poisson.hpp): each octant of a voxel has the moduli of the axes its
@@ -296,7 +297,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
             p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
-            const double omega2 = limits::link_omega2(ma, mb, L);
+            const double omega2 =
+                limits::link_omega2(ma, mb, L, spec.actuation.temperature_amplitude_c);
             link_omega2[axis][v] = omega2;
             max_omega2 = std::max(max_omega2, omega2);
         }

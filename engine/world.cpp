@@ -120,7 +120,8 @@ void World::step() {
         bad_links += link_pass(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
     if (bad_links != 0) {
         std::ostringstream why;
-        why << "link strain beyond 100% or shear beyond 90 degrees";
+        why << "link stretched by more than a voxel, squeezed below a tenth of one, or sheared "
+               "past 120 degrees";
         for (int axis = 0; axis < 3; ++axis) {
             const int c = first_bad_link(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
             if (c < 0) continue;

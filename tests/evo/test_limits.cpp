@@ -101,7 +101,7 @@ TEST_CASE("limits: what the engine refuses, validate refuses on the same field")
          "materials[0].youngs_modulus_pa"},
         {"nu", [](Experiment& e) { e.materials[1].physics.poisson_ratio = -0.95; },
          "materials[1].poisson_ratio"},
-        {"strain", [](Experiment& e) { e.actuation.temperature_amplitude_c = 61.0; },
+        {"strain", [](Experiment& e) { e.actuation.temperature_amplitude_c = 46.0; },
          "actuation.temperature_amplitude_c"},
         {"damping", [](Experiment& e) { e.simulation.bond_damping_ratio = 11.0; },
          "simulation.bond_damping_ratio"},
@@ -114,9 +114,9 @@ TEST_CASE("limits: what the engine refuses, validate refuses on the same field")
         CHECK(names(validate_experiment(e, "e"), c.field));
         CHECK_FALSE(build_reason(e, body).empty());
     }
-    // The strain bound itself runs: cte 0.01 x 60 degC = 0.6.
+    // The strain bound itself runs: cte 0.01 x 45 degC = 0.45.
     Experiment edge = base;
-    edge.actuation.temperature_amplitude_c = 60.0;
+    edge.actuation.temperature_amplitude_c = 45.0;
     CHECK(validate_experiment(edge, "e").empty());
     CHECK(build_reason(edge, body).empty());
 }
@@ -180,7 +180,8 @@ TEST_CASE("limits: the step range brackets every body's actual step") {
     std::vector<engine::Material> physics;
     for (const auto& m : e.materials)
         physics.push_back(m.physics);
-    const auto range = engine::limits::step_range(physics, e.voxel_size_m, 0.9);
+    const auto range = engine::limits::step_range(physics, e.voxel_size_m, 0.9,
+                                                  e.actuation.temperature_amplitude_c);
     for (std::uint8_t material : {1, 2}) {
         Body body = solid_workspace(e, material);
         if (material == 2) body.cells[0] = 1;  // a mixed link

@@ -1,0 +1,86 @@
+// The actuation envelope: the paper's scenes (all-active 8x8x7 block, 4-voxel active/passive
+// bands on 20x8x7, the framed paper-exp3 body) fixed at x-, on the floor under gravity, with the
+// default damping and dt_fraction, run through a whole actuation period (the contraction peak
+// included) at the largest strain the engine admits (limits::kMaxActuationStrain).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/limits.hpp"
+#include "engine/poses.hpp"
+#include "engine_test_bodies.hpp"
+
+using namespace bhm::engine;
+using namespace bhm::engine::test;
+
+namespace {
+
+enum class Scene { AllActive, Banded, Framed };
+
+BodySpec paper_scene(Scene scene, double amplitude_c) {
+    Material passive;  // paper Table 1
+    Material active = passive;
+    active.cte_per_c = 0.01;
+    const int nx = scene == Scene::AllActive ? 8 : 20;
+    BodySpec s = solid_box(nx, 8, 7, passive);
+    s.materials.push_back(active);
+    for (int z = 0; z < 7; ++z)
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < nx; ++x) {
+                const bool frame = x == 0 || x == nx - 1 || y == 0 || y == 7 || z == 0 || z == 6;
+                const bool is_active = scene == Scene::AllActive ? true
+                                       : scene == Scene::Banded  ? (x / 4) % 2 == 0
+                                                                 : !frame;
+                s.material[s.cell_index(x, y, z)] = is_active ? 2 : 1;
+            }
+    fix_x_min_layer(s);
+    s.environment.floor = true;
+    s.environment.gravity_m_s2 = -9.81;
+    s.actuation.frequency_hz = 2.0;
+    s.actuation.temperature_amplitude_c = amplitude_c;
+    s.actuation.start_s = 0.05;
+    return s;  // default damping (1.0 / 0.01 / 0.8) and dt_fraction 0.9
+}
+
+}  // namespace
+
+TEST_CASE("envelope: the paper's scenes survive the largest admitted actuation strain") {
+    const double amplitude = limits::kMaxActuationStrain / 0.01;  // degC at cte 0.01
+    for (Scene scene : {Scene::AllActive, Scene::Banded, Scene::Framed}) {
+        CAPTURE(static_cast<int>(scene));
+        auto model = Model::build(paper_scene(scene, amplitude));
+        World w(model);
+        // One whole 2 Hz period after the start: the expansion peak at 0.125 s, the contraction
+        // peak (voxels at 1 - 0.45 of their size) at 0.375 s.
+        const bool ok = w.advance_to(0.05 + 0.5);
+        if (!ok) MESSAGE(w.divergence_reason());
+        REQUIRE(ok);
+        VoxelPoses poses;
+        w.read_poses(poses);
+        float lo = 1e9f, hi = -1e9f;
+        for (float x : poses.position_m) {
+            REQUIRE(std::isfinite(x));
+            lo = std::min(lo, x);
+            hi = std::max(hi, x);
+        }
+        // Bounded: nothing left the scene's box (the floor and the fixed face hold it).
+        CHECK(lo > -0.01f);
+        CHECK(hi < 0.3f);
+    }
+}
+
+TEST_CASE("envelope: past the admitted strain, the engine refuses the spec") {
+    BodySpec s = paper_scene(Scene::AllActive, 100.0 * limits::kMaxActuationStrain + 1.0);
+    CHECK_THROWS_AS(Model::build(s), std::invalid_argument);
+}
+
+TEST_CASE("envelope: the stable step is computed at the largest actuated size") {
+    // With the size s = 1 + cte A, axial stiffness grows as s and bending as s^2. At nu = 0.35
+    // the axial mode (bulk factor 1 / (1 - 2 nu) = 3.33 x E L / m) stays the stiffest at s = 1.4
+    // (4.67 against bending's 2 s^2 = 3.92), so the step shrinks as 1 / sqrt(s).
+    const BodySpec still = paper_scene(Scene::AllActive, 0.0);
+    const BodySpec moving = paper_scene(Scene::AllActive, 40.0);
+    const double ratio = Model::build(moving)->dt_s() / Model::build(still)->dt_s();
+    CHECK(std::fabs(ratio - 1.0 / std::sqrt(1.4)) < 1e-9);
+}
