@@ -35,12 +35,16 @@ class MpiCluster final : public EvolveCluster {
     }
     ~MpiCluster() override {
         if (rank_ == 0) {
-            // Every other rank waits for this; a lost rank never gets here (abort()).
-            mpi::PendingSends stops;
-            for (int r = 1; r < size_; ++r)
-                stops.start(r, mpi::Tag::Stop, "");
-            if (evaluator_) evaluator_->flush(5.0);
-            stops.drain(5.0);
+            // Every other rank waits for this; a lost rank never gets here (abort()). A send to
+            // a rank that already died fails: nothing more to say to it, and no throwing here.
+            try {
+                mpi::PendingSends stops;
+                for (int r = 1; r < size_; ++r)
+                    stops.start(r, mpi::Tag::Stop, "");
+                if (evaluator_) evaluator_->flush(5.0);
+                stops.drain(5.0);
+            } catch (const std::exception&) {
+            }
         }
         MPI_Finalize();
     }

@@ -173,8 +173,12 @@ void MpiEvaluator::evaluate(const evo::EvaluationBatch& batch,
         // Whatever ended the batch early, nobody keeps simulating it.
         local.abandon();
         for (auto& r : ranks_) {
-            sends_.start(r.rank, Tag::Cancel, std::to_string(batch_id));
             r.in_flight = 0;
+            try {
+                sends_.start(r.rank, Tag::Cancel, std::to_string(batch_id));
+            } catch (const std::exception&) {
+                // A rank that cannot be reached has nothing to cancel; keep the first error.
+            }
         }
         throw;
     }
