@@ -151,7 +151,7 @@ stop)
         2>stopped.log &
     launcher=$!
     # Once generation 0 is on disk, generation 1 is being simulated.
-    for _ in $(seq 600); do
+    for _ in $(seq 2400); do  # up to 2 minutes on a loaded machine
         [ -f stopped/fitness.csv ] && [ "$(wc -l <stopped/fitness.csv)" -ge 2 ] && break
         sleep 0.05
     done
