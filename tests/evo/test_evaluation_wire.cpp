@@ -56,7 +56,15 @@ TEST_CASE("results keep every double bit for bit") {
     m.report.simulated_s = 0.75;
     m.report.steps = 123456789012LL;
     m.report.sim_wall_s = 1.25;
+    m.report.exploits.checked = true;  // issue 13's flags travel with the result too
+    m.report.exploits.escaped = true;
+    m.report.exploits.unanchored_fraction = 1.0 / 7.0;
+    m.report.exploits.held_voxels = 12;
+    m.report.exploits.tentacle = true;
+    m.report.exploits.thin_share = 0.1 + 0.7;
+    m.report.exploits.thin_voxels = 5;
     const auto back = decode_result(encode_result(m));
+    CHECK(back.report.exploits == m.report.exploits);
     CHECK(back.batch_id == 3);
     CHECK(back.index == 9);
     CHECK(back.report.fitness == m.report.fitness);
