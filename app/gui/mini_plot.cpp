@@ -24,7 +24,8 @@ struct Frame {
 
 // Background, grid, ticks and labels; returns the data frame.
 Frame draw_axes(ImDrawList* dl, ImVec2 origin, ImVec2 size, const AxisRange& xr,
-                const AxisRange& yr, const char* x_label, const char* y_label) {
+                const AxisRange& yr, const char* x_label, const char* y_label,
+                bool integer_x = false) {
     const float font = ImGui::GetFontSize();
     Frame f{{origin.x + font * 3.2f, origin.y + font * 0.4f},
             {origin.x + size.x - font * 0.4f, origin.y + size.y - font * 1.3f},
@@ -41,7 +42,9 @@ Frame draw_axes(ImDrawList* dl, ImVec2 origin, ImVec2 size, const AxisRange& xr,
         const ImVec2 ts = ImGui::CalcTextSize(label.c_str());
         dl->AddText({f.lo.x - ts.x - 3.0f, y - ts.y * 0.5f}, kText, label.c_str());
     }
-    const auto xt = nice_ticks(xr, std::max(2, static_cast<int>((f.hi.x - f.lo.x) / 70.0f)));
+    auto xt = nice_ticks(xr, std::max(2, static_cast<int>((f.hi.x - f.lo.x) / 70.0f)));
+    if (integer_x)  // counts (ages): no tick between two whole numbers
+        std::erase_if(xt, [](double t) { return std::abs(t - std::round(t)) > 1e-9; });
     const double xs = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
     for (double t : xt) {
         const float x = f.px(t);
@@ -109,7 +112,7 @@ std::optional<double> draw_time_plot(const char* id, const std::vector<double>& 
 
 std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPoint>& points,
                                      const char* x_label, const char* y_label, ImVec2 size,
-                                     int* hovered) {
+                                     int* hovered, bool integer_x) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     ImGui::InvisibleButton(id, size);
@@ -122,7 +125,8 @@ std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPo
     }
     AxisRange xr = fit_range(xs, 0.08);
     if (xr.span() < 1.0) xr = {xr.min - 0.5, xr.max + 0.5};
-    const Frame f = draw_axes(dl, origin, size, xr, fit_range(ys, 0.08), x_label, y_label);
+    const Frame f =
+        draw_axes(dl, origin, size, xr, fit_range(ys, 0.08), x_label, y_label, integer_x);
     if (hovered) *hovered = -1;
     if (f.hi.x - f.lo.x < 10.0f || f.hi.y - f.lo.y < 10.0f) return std::nullopt;
     const ImVec2 mouse = ImGui::GetIO().MousePos;

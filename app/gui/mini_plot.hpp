@@ -29,10 +29,10 @@ struct ScatterPoint {
     bool ring = false;  //!< drawn with a ring around it (the champion)
 };
 
-//! A scatter plot; returns the index of the point clicked (nearest within 8 px), if any, and sets
-//! *hovered to the one under the mouse.
+//! A scatter plot (integer_x: ticks on whole numbers only); returns the index of the point clicked
+//! (nearest within 8 px), if any, and sets *hovered to the one under the mouse.
 std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPoint>& points,
                                      const char* x_label, const char* y_label, ImVec2 size,
-                                     int* hovered);
+                                     int* hovered, bool integer_x = false);
 
 }  // namespace bhm::app::gui

@@ -86,9 +86,9 @@ void scatter_tab(Studio& s) {
     }
     ImGui::TextDisabled("AFPO: age (x) vs fitness (y); red = Pareto front, ring = champion");
     int hovered = -1;
-    const auto clicked = draw_scatter_plot("age fitness", points, "age (generations)",
-                                           fitness_unit(run.experiment.fitness.measure),
-                                           ImGui::GetContentRegionAvail(), &hovered);
+    const auto clicked = draw_scatter_plot(
+        "age fitness", points, "age (generations)", fitness_unit(run.experiment.fitness.measure),
+        ImGui::GetContentRegionAvail(), &hovered, /*integer_x=*/true);
     record_widget(s, "scatter plot");
     if (hovered >= 0) {
         const auto& p = points[static_cast<std::size_t>(hovered)];

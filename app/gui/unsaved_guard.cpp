@@ -69,6 +69,11 @@ void request_quit(Studio& s) {
     proceed(s);
 }
 
+bool window_close_requested(Studio& s) {
+    request_quit(s);
+    return s.quit_requested;
+}
+
 bool asking_unsaved(const Studio& s) {
     return s.pending.kind != PendingAction::Kind::None && s.document.dirty() &&
            !s.pending.unsaved_answered;

@@ -13,6 +13,8 @@ namespace bhm::app::gui {
 void request_new_experiment(Studio& studio);
 void request_open_experiment(Studio& studio, const std::string& path);
 void request_quit(Studio& studio);
+//! The window's close button: asks like request_quit; true when the window may close now.
+bool window_close_requested(Studio& studio);
 
 enum class UnsavedAnswer { Save, Discard, Cancel };
 void answer_unsaved(Studio& studio, UnsavedAnswer answer);

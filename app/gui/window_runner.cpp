@@ -63,11 +63,10 @@ int run_window(Studio& studio, const WindowOptions& options) {
         std::string shown_title;
         for (int frame = 0; !studio.quit_requested; ++frame) {
             if (options.max_frames > 0 && frame >= options.max_frames) break;
-            if (window.should_close()) {
-                // The window's close button asks like Ctrl+Q (unsaved edits, a running run).
+            // The window's close button asks like Ctrl+Q (unsaved edits, a running run); the
+            // window stays open while the question is shown.
+            if (window.should_close() && !window_close_requested(studio))
                 glfwSetWindowShouldClose(window.handle(), GLFW_FALSE);
-                request_quit(studio);
-            }
             if (animating(studio) || frame < 3)
                 window.poll_events();
             else
