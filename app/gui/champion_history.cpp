@@ -64,6 +64,8 @@ bool ChampionHistory::refresh(const std::string& run_dir) {
             e.measure = measure_named(j.value("measure", std::string()));
             e.voxels = j.value("voxels", 0);
             e.active_voxels = j.value("active_voxels", 0);
+            if (j.contains("report") && j.at("report").contains("exploits"))
+                e.exploits = evo::exploits_from_json(j.at("report").at("exploits"));
             e.path = key;
             std::erase_if(entries_, [&](const ChampionEntry& old) { return old.path == key; });
             entries_.push_back(e);

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "evo/experiment.hpp"
+#include "evo/exploit_flags.hpp"
 
 namespace bhm::app::gui {
 
@@ -20,6 +21,7 @@ struct ChampionEntry {
     double fitness = 0.0;
     evo::FitnessMeasure measure = evo::FitnessMeasure::ComFinal3d;
     int voxels = 0, active_voxels = 0;
+    evo::ExploitReport exploits;
     std::string path;
 };
 

@@ -128,6 +128,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         p.active_voxels = m.phenotype.active_voxels;
         p.pareto_rank = k < state.pareto_rank.size() ? state.pareto_rank[k] : 0;
         p.valid = m.valid;
+        p.exploits = m.report.exploits;
         p.body = std::make_shared<const evo::Body>(m.phenotype.body);
         snap->population.push_back(std::move(p));
     }
@@ -146,6 +147,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         p.voxels = c.phenotype.voxels;
         p.active_voxels = c.phenotype.active_voxels;
         p.valid = c.valid;
+        p.exploits = c.report.exploits;
         // The population's copy when the champion is in it, so the pointer is shared.
         for (const auto& m : snap->population)
             if (m.id == c.id) p.body = m.body;
@@ -401,6 +403,38 @@ void EvolutionSession::change_rules(const evo::Experiment& experiment) {
     // it, and the loop computes it again under the new ones (the run's state is untouched by an
     // abandoned generation, so nothing else changes).
     if (shared_->run->progress().running && !shared_->stop) shared_->run->request_stop();
+}
+
+std::string exploit_summary(const evo::ExploitReport& r) {
+    if (!r.checked || !r.any()) return "";
+    std::string out;
+    char text[96];
+    auto add = [&](const char* t) { out += (out.empty() ? "" : ", ") + std::string(t); };
+    if (r.escaped) {
+        std::snprintf(text, sizeof text, "escaped (%.0f %% of the voxels unanchored)",
+                      100.0 * r.unanchored_fraction);
+        add(text);
+    }
+    if (r.detached_motion) {
+        std::snprintf(text, sizeof text, "detached motion (base motion ratio %.2f)",
+                      r.base_motion_ratio);
+        add(text);
+    }
+    if (r.tentacle) {
+        std::snprintf(text, sizeof text, "tentacle (thin voxels carry %.0f %% of the motion)",
+                      100.0 * r.thin_share);
+        add(text);
+    }
+    return out;
+}
+
+std::string exploit_letters(const evo::ExploitReport& r) {
+    if (!r.checked) return "";
+    std::string out;
+    if (r.escaped) out += "E";
+    if (r.detached_motion) out += "D";
+    if (r.tentacle) out += "T";
+    return out;
 }
 
 }  // namespace bhm::app::gui

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "evo/experiment.hpp"
+#include "evo/exploit_flags.hpp"
 
 namespace bhm::app::gui {
 
@@ -42,6 +43,7 @@ struct PopulationMember {
     int active_voxels = 0;
     int pareto_rank = 0;  //!< 0 = on the Pareto front of (fitness up, age down[, active down])
     bool valid = true;    //!< false: breaks the current constraints
+    evo::ExploitReport exploits;  //!< escaped / detached_motion / tentacle (evo/exploit_flags.hpp)
     std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)
     double active_fraction() const { return voxels > 0 ? double(active_voxels) / voxels : 0.0; }
 };
@@ -89,6 +91,12 @@ struct LiveFigures {
     std::int64_t simulations = 0;    //!< completed + finished in the generation in progress
 };
 LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progress);
+
+//! "escaped (12 % unanchored), tentacle (thin share 0.62)"; "" when nothing is flagged or the
+//! result predates exploit detection.
+std::string exploit_summary(const evo::ExploitReport& report);
+//! "E", "D", "T" letters of the flags set ("" when none), for tables.
+std::string exploit_letters(const evo::ExploitReport& report);
 
 //! The measure generation g was scored under: the last rule change at or before g, else the
 //! run's first measure. Fitness values of different measures have different units (voxels,

@@ -17,6 +17,7 @@ namespace bhm::app::gui {
 namespace {
 
 void champions_tab(Studio& s) {
+    // (the flags column: exploit_cell, panels.hpp)
     const std::string dir = s.run ? s.run->run_dir : "";
     s.champion_history.refresh(dir);
     const auto& entries = s.champion_history.entries();
@@ -32,12 +33,13 @@ void champions_tab(Studio& s) {
     ImGui::TextDisabled("%zu champions; click to replay, 'beside' to compare", entries.size());
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
-    if (!ImGui::BeginTable("champions", 5, flags, ImGui::GetContentRegionAvail())) return;
+    if (!ImGui::BeginTable("champions", 6, flags, ImGui::GetContentRegionAvail())) return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("gen");
     ImGui::TableSetupColumn("id");
     ImGui::TableSetupColumn("fitness");
     ImGui::TableSetupColumn("voxels");
+    ImGui::TableSetupColumn("flags");
     ImGui::TableSetupColumn("");
     ImGui::TableHeadersRow();
     for (auto it = entries.rbegin(); it != entries.rend(); ++it) {  // newest first
@@ -56,6 +58,8 @@ void champions_tab(Studio& s) {
         ImGui::TextUnformatted(format_fitness(e.fitness, e.measure).c_str());
         ImGui::TableNextColumn();
         ImGui::Text("%d", e.voxels);
+        ImGui::TableNextColumn();
+        exploit_cell(s, e.exploits, "champion flags gen " + std::to_string(e.generation));
         ImGui::TableNextColumn();
         ImGui::PushID(e.generation);
         if (ImGui::SmallButton("beside")) replay_champion(s, e, true);

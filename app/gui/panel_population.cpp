@@ -60,6 +60,19 @@ void draw_fitness_panel(Studio& s) {
     }
 }
 
+void exploit_cell(Studio& s, const evo::ExploitReport& report, const std::string& widget) {
+    const std::string letters = exploit_letters(report);
+    if (letters.empty()) {
+        ImGui::TextDisabled(report.checked ? "-" : "?");
+        if (!report.checked && ImGui::IsItemHovered())
+            ImGui::SetTooltip("evaluated before exploit detection");
+        return;
+    }
+    ImGui::TextColored(ImVec4(0.80f, 0.15f, 0.10f, 1.0f), "%s", letters.c_str());
+    record_widget(s, widget);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", exploit_summary(report).c_str());
+}
+
 void draw_population_panel(Studio& s) {
     if (!s.run || s.run->population.empty()) {
         ImGui::TextDisabled("The population appears after the first generation.");
@@ -78,7 +91,7 @@ void draw_population_panel(Studio& s) {
                         front);
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
-    if (!ImGui::BeginTable("population", 6, flags, ImGui::GetContentRegionAvail())) return;
+    if (!ImGui::BeginTable("population", 7, flags, ImGui::GetContentRegionAvail())) return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("id");
     ImGui::TableSetupColumn(measure == evo::FitnessMeasure::BendAngleDeg ? "fitness (deg)"
@@ -87,6 +100,7 @@ void draw_population_panel(Studio& s) {
     ImGui::TableSetupColumn("voxels");
     ImGui::TableSetupColumn("active");
     ImGui::TableSetupColumn("front");
+    ImGui::TableSetupColumn("flags");
     ImGui::TableHeadersRow();
     for (const auto& m : run.population) {
         ImGui::TableNextRow();
@@ -112,6 +126,8 @@ void draw_population_panel(Studio& s) {
         ImGui::Text("%.0f %%", 100.0 * m.active_fraction());
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
+        ImGui::TableNextColumn();
+        exploit_cell(s, m.exploits, std::string("flags ") + id);
     }
     ImGui::EndTable();
 }

@@ -162,6 +162,8 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
                       b.bend_angle_deg());
         text(dark, buf);
         if (b.diverged) text(IM_COL32(200, 40, 30, 255), "diverged: " + b.divergence_reason);
+        if (const auto* flags = shown_exploits(s); flags && flags->any())
+            text(IM_COL32(200, 40, 30, 255), "exploit flags: " + exploit_summary(*flags));
         if (s.compared)
             text(dim,
                  "beside (+y): " + s.compared->label + ", fitness " +

@@ -19,5 +19,8 @@ void draw_replay_panel(Studio& studio);
 void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
 void draw_help_window(Studio& studio);
 void draw_status_bar(Studio& studio);
+//! A table cell with the exploit flags' letters in red (E escaped, D detached motion, T
+//! tentacle), their measures on hover; recorded under `widget` for scripts.
+void exploit_cell(Studio& studio, const evo::ExploitReport& report, const std::string& widget);
 
 }  // namespace bhm::app::gui

@@ -156,6 +156,8 @@ bool RunDirectoryWatch::refresh() {
             m.voxels = c.value("voxels", 0);
             m.active_voxels = c.value("active_voxels", 0);
             m.body = std::make_shared<const evo::Body>(evo::parse_body(c.at("phenotype"), label));
+            if (c.contains("report") && c.at("report").contains("exploits"))
+                m.exploits = evo::exploits_from_json(c.at("report").at("exploits"));
             snap->has_champion = true;
             snap->champion_generation = c.value("generation_found", 0);
             snap->best_fitness = m.fitness;

@@ -383,6 +383,20 @@ bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
     }
 }
 
+const evo::ExploitReport* shown_exploits(const Studio& studio) {
+    if (!studio.shown) return nullptr;
+    const auto id = studio.shown->id;
+    if (studio.run) {
+        if (studio.run->has_champion && studio.run->champion.id == id)
+            return &studio.run->champion.exploits;
+        for (const auto& m : studio.run->population)
+            if (m.id == id) return &m.exploits;
+    }
+    for (const auto& e : studio.champion_history.entries())
+        if (e.id == id) return &e.exploits;
+    return nullptr;
+}
+
 void clear_compared_body(Studio& studio) {
     studio.compared.reset();
     studio.compared_version = studio.compare_simulator.version();

@@ -62,6 +62,9 @@ void clear_compared_body(Studio& studio);
 //! Overlays another run directory's fitness history on the plots (thin); false when unreadable.
 bool add_compared_run(Studio& studio, const std::string& run_dir);
 void remove_compared_run(Studio& studio, std::size_t index);
+//! The exploit flags of the body shown (its population member, the champion or a champion file
+//! of the history with that id); null when unknown.
+const evo::ExploitReport* shown_exploits(const Studio& studio);
 //! Back to following the champion: its simulation is shown as soon as it is ready.
 void follow_champion(Studio& studio);
 void set_view_mode(Studio& studio, ViewMode mode);

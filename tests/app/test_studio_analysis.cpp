@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
 #include "app/gui/body_analysis.hpp"
@@ -199,4 +200,46 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     CHECK(studio.compared_runs[0].snapshot->history.size() == 3);
     session.frame();
     CHECK(studio.fitness_plot_overlays == 1);
+}
+
+TEST_CASE("studio analysis: exploit flags on the champion and in the population table") {
+    const auto dir = testing::fresh_dir("exploits");
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 1;
+    Studio studio;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_run": "finished", "timeout_s": 240}])"));
+    // The live run's members carry the flags evolution computed for them.
+    const auto live = studio.evolution.snapshot();
+    REQUIRE_FALSE(live->population.empty());
+    for (const auto& m : live->population)
+        CHECK(m.exploits.checked);
+
+    // A champion file flagged "escaped" (written by hand): the run directory view shows it.
+    const auto champion_path = dir / "run" / "champion.json";
+    json champion = json::parse(std::ifstream(champion_path));
+    evo::ExploitReport flagged;
+    flagged.checked = true;
+    flagged.escaped = true;
+    flagged.unanchored_fraction = 0.25;
+    champion["report"]["exploits"] = evo::exploits_to_json(flagged);
+    std::ofstream(champion_path) << champion.dump(2);
+    REQUIRE(open_run_directory(studio, (dir / "run").string()));
+    run_script(session, json::parse(R"([{"frames": 3}])"));
+    REQUIRE(studio.run->has_champion);
+    CHECK(studio.run->champion.exploits == flagged);
+    CHECK(exploit_summary(flagged) == "escaped (25 % of the voxels unanchored)");
+    CHECK(exploit_letters(flagged) == "E");
+    const std::string cell = "flags #" + std::to_string(studio.run->champion.id);
+    REQUIRE(studio.widgets.count(cell));
+    CHECK(studio.widgets.at(cell).frame >= studio.frame - 1);
+    // Replayed, the champion's flags are the overlay's.
+    run_script(session, json::parse(R"([{"select": "champion"},
+                                        {"wait_simulation": true, "timeout_s": 120}])"));
+    const auto* shown = shown_exploits(studio);
+    REQUIRE(shown);
+    CHECK(shown->escaped);
 }
