@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -15,7 +16,9 @@
 #include "app/render_video.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment_io.hpp"
+#include "evo/replay_measures.hpp"
 #include "evo/scene.hpp"
+#include "render/caption.hpp"
 #include "render/draw_list.hpp"
 #include "render/offscreen.hpp"
 #include "render/renderer.hpp"
@@ -39,6 +42,9 @@ const char* const kSummary =
     "  --out shot.png                   one image (a replay: at --time, default its last frame)\n"
     "  --frames N --out-dir DIR         N images spread over the replay, frame-00000.png ...\n"
     "  --video out.mp4                  an H.264 video of the replay through ffmpeg (on PATH)\n"
+    "  --gif out.gif                    an animated GIF of the replay through ffmpeg\n"
+    "With --caption every image carries the time, the experiment's fitness so far and the\n"
+    "bend angle so far (both from the replay, measured from the end of settling).\n"
     "The picture follows the paper's figures: muscle red, tissue blue, enclosure translucent,\n"
     "held voxels hatched green, the fixed workspace face green and the free one opposite it\n"
     "purple, a star on the (0,0,0) voxel.\n"
@@ -114,16 +120,17 @@ int render_command(ArgParser& args) {
         throw UsageError("--ghost must be over or beside, got '" + ghost + "'");
 
     const bool has_replay = args.has("--replay");
-    const bool sequence = args.has("--frames") && !args.has("--video");
+    const bool animation = args.has("--video") || args.has("--gif");
+    const bool sequence = args.has("--frames") && !animation;
     if (!args.has("--body") && !has_replay)
         throw UsageError("missing --body BODY.json (or --replay REPLAY.bin)");
-    if ((args.has("--time") || args.has("--frames") || args.has("--video") || args.has("--ghost") ||
+    if ((args.has("--time") || args.has("--frames") || animation || args.has("--ghost") ||
          args.has("--trail")) &&
         !has_replay)
-        throw UsageError("--time, --frames, --video, --ghost and --trail need --replay REPLAY.bin");
+        throw UsageError(
+            "--time, --frames, --video, --gif, --ghost and --trail need --replay REPLAY.bin");
     if (sequence && !args.has("--out-dir")) throw UsageError("--frames N needs --out-dir DIR");
-    if (!sequence && !args.has("--video") && !args.has("--out"))
-        throw UsageError("missing --out FILE.png");
+    if (!sequence && !animation && !args.has("--out")) throw UsageError("missing --out FILE.png");
     const long long frame_count = args.get_int("--frames", 0);
     if (args.has("--frames") && (frame_count < 1 || frame_count > 100000))
         throw UsageError("--frames must be in 1..100000");
@@ -208,11 +215,34 @@ int render_command(ArgParser& args) {
     const render::Scene first_scene = scene_at(first_s);
     const render::Camera camera = output_camera(*view, render::build_draw_list(first_scene),
                                                 replay ? &*replay : nullptr, first_scene, size);
+    // Caption: the measures so far at the last recorded frame at or before t.
+    std::vector<std::array<double, evo::kMeasureCount>> measures;
+    if (args.has("--caption") && replay) measures = evo::replay_measures(experiment, *replay);
+    const auto caption_lines = [&](double t) {
+        std::vector<std::string> lines;
+        if (!replay) return std::vector<std::string>{"at rest"};
+        lines.push_back(describe_time(t));
+        std::size_t frame = 0;
+        while (frame + 1 < replay->frames.size() && replay->frames[frame + 1].time_s <= t + 1e-9)
+            ++frame;
+        const auto& m = measures[frame];
+        char text[96];
+        const auto measure = static_cast<std::size_t>(experiment.fitness.measure);
+        std::snprintf(text, sizeof text, "fitness %.3f (%s)", m[measure],
+                      evo::kFitnessNames[measure]);
+        lines.push_back(text);
+        std::snprintf(text, sizeof text, "bend %.1f deg",
+                      m[static_cast<std::size_t>(evo::FitnessMeasure::BendAngleDeg)]);
+        lines.push_back(text);
+        return lines;
+    };
     render::Image image;
     const auto draw = [&](double t) {
         target.bind();
         renderer.draw(render::build_draw_list(scene_at(t)), camera, size.width, size.height);
         target.read_image(image);
+        if (args.has("--caption"))
+            render::draw_caption(image, caption_lines(t), render::caption_scale_for(size.height));
     };
     // N times spread evenly over the replay, first and last included.
     const auto time_of = [&](long long i, long long n) {
@@ -244,7 +274,7 @@ int render_command(ArgParser& args) {
         std::cout << "wrote " << frame_count << " frames to " << dir.string() << " ("
                   << describe_time(first_s) << " to " << describe_time(last_s) << ")\n";
     }
-    if (args.has("--video")) {
+    if (animation) {
         const long long n =
             args.has("--frames") ? frame_count : static_cast<long long>(replay->frames.size());
         // Real time by default: the replay's own frame rate.
@@ -252,14 +282,28 @@ int render_command(ArgParser& args) {
             last_s > first_s ? static_cast<double>(n - 1) / (last_s - first_s) : 30.0;
         const double fps = args.get_double("--fps", recorded_fps);
         if (!(fps > 0.0) || fps > 1000.0) throw UsageError("--fps must be in (0, 1000]");
-        VideoWriter video(args.get("--video"), size.width, size.height, fps);
+        // Both outputs from one pass over the frames when both are asked for.
+        std::vector<std::unique_ptr<VideoWriter>> writers;
+        std::vector<std::string> paths;
+        if (args.has("--video")) {
+            paths.push_back(args.get("--video"));
+            writers.push_back(std::make_unique<VideoWriter>(paths.back(), size.width, size.height,
+                                                            fps, VideoFormat::Mp4));
+        }
+        if (args.has("--gif")) {
+            paths.push_back(args.get("--gif"));
+            writers.push_back(std::make_unique<VideoWriter>(paths.back(), size.width, size.height,
+                                                            fps, VideoFormat::Gif));
+        }
         for (long long i = 0; i < n; ++i) {
             draw(time_of(i, n));
-            video.write(image);
+            for (auto& w : writers)
+                w->write(image);
         }
-        video.finish();
-        std::cout << "wrote " << args.get("--video") << " (" << n << " frames at " << fps
-                  << " fps)\n";
+        for (std::size_t w = 0; w < writers.size(); ++w) {
+            writers[w]->finish();
+            std::cout << "wrote " << paths[w] << " (" << n << " frames at " << fps << " fps)\n";
+        }
     }
     return 0;
 }
@@ -278,10 +322,12 @@ int cmd_render(const Args& args) {
         .option("--time", "T", "replay time in seconds for --out (default: the last frame)")
         .flag("--nearest", "show the last recorded frame at or before T instead of blending frames")
         .option("--frames", "N",
-                "with --out-dir: N images spread over the replay; with --video: N frames")
+                "with --out-dir: N images spread over the replay; with --video/--gif: N frames")
         .option("--out-dir", "DIR", "folder for --frames (frame-00000.png, ...)")
         .option("--video", "FILE.mp4", "an H.264 video of the replay (needs ffmpeg on PATH)")
+        .option("--gif", "FILE.gif", "an animated GIF of the replay (needs ffmpeg on PATH)")
         .option("--fps", "F", "video frame rate (default: the replay's, i.e. real time)")
+        .flag("--caption", "write the time, fitness and bend angle so far into every image")
         .option("--size", "WxH", "image size in pixels (default 1280x720)")
         .option("--view", "VIEW", "iso (default), front (from +y), top or side (from +x)")
         .option("--section", "Y",

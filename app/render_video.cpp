@@ -1,5 +1,6 @@
 #include "app/render_video.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -32,51 +33,46 @@ std::optional<std::string> find_on_path(const std::string& program) {
     return std::nullopt;
 }
 
-VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps)
-    : path_(path), temp_path_(path + ".tmp.mp4"), width_(width), height_(height) {
+VideoWriter::VideoWriter(const std::string& path, int width, int height, double fps,
+                         VideoFormat format)
+    : path_(path),
+      temp_path_(path + (format == VideoFormat::Gif ? ".tmp.gif" : ".tmp.mp4")),
+      width_(width),
+      height_(height) {
     const auto ffmpeg = find_on_path("ffmpeg");
     if (!ffmpeg)
         throw std::runtime_error(
             path +
-            ": --video needs ffmpeg on PATH and none was found; install ffmpeg "
+            ": writing a video needs ffmpeg on PATH and none was found; install ffmpeg "
             "or write PNG frames with --frames N --out-dir DIR");
-    // H.264 needs even sizes: pad by one pixel when odd rather than refuse.
     char size[32], rate[32];
     std::snprintf(size, sizeof size, "%dx%d", width, height);
     std::snprintf(rate, sizeof rate, "%.6g", fps);
-    std::vector<std::string> args = {*ffmpeg,
-                                     "-hide_banner",
-                                     "-loglevel",
-                                     "error",
-                                     "-y",
-                                     "-f",
-                                     "rawvideo",
-                                     "-pix_fmt",
-                                     "rgba",
-                                     "-s",
-                                     size,
-                                     "-r",
-                                     rate,
-                                     "-i",
-                                     "-",
-                                     "-vf",
-                                     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-c:v",
-                                     "libx264",
-                                     "-pix_fmt",
-                                     "yuv420p",
-                                     "-movflags",
-                                     "+faststart",
-                                     "-f",
-                                     "mp4",
-                                     temp_path_};
+    std::vector<std::string> args = {*ffmpeg, "-hide_banner", "-loglevel", "error", "-y",
+                                     "-f",    "rawvideo",     "-pix_fmt",  "rgba",  "-s",
+                                     size,    "-r",           rate,        "-i",    "-"};
+    if (format == VideoFormat::Gif) {
+        // One palette for the whole animation, built from the frames themselves.
+        for (const char* a :
+             {"-vf", "split[a][b];[a]palettegen=stats_mode=full[p];[b][p]paletteuse", "-loop", "0",
+              "-f", "gif"})
+            args.emplace_back(a);
+    } else {
+        // H.264 needs even sizes: pad by one pixel when odd rather than refuse.
+        for (const char* a : {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt",
+                              "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
+            args.emplace_back(a);
+    }
+    args.push_back(temp_path_);
     std::vector<char*> argv;
     for (auto& a : args)
         argv.push_back(a.data());
     argv.push_back(nullptr);
 
+    // Close-on-exec: a second encoder started later (--video and --gif together) must not
+    // inherit this pipe's write end, or this ffmpeg would never see the end of its input.
     int fds[2];
-    if (::pipe(fds) != 0)
+    if (::pipe2(fds, O_CLOEXEC) != 0)
         throw std::runtime_error(path +
                                  ": cannot create a pipe to ffmpeg: " + std::strerror(errno));
     posix_spawn_file_actions_t actions;

@@ -1,6 +1,7 @@
 #pragma once
-// Video output for bhm render: raw RGBA frames piped into an ffmpeg process (H.264 MP4).
-// The file is written as PATH.tmp.mp4 and renamed when ffmpeg succeeds.
+// Video output for bhm render: raw RGBA frames piped into an ffmpeg process (H.264 MP4, or an
+// animated GIF with a palette made from the frames). The file is written as PATH.tmp.mp4 (or
+// .tmp.gif) and renamed when ffmpeg succeeds.
 #include <optional>
 #include <string>
 
@@ -11,11 +12,14 @@ namespace bhm::app {
 //! Full path of an executable found on PATH, or nothing.
 std::optional<std::string> find_on_path(const std::string& program);
 
+enum class VideoFormat { Mp4, Gif };
+
 class VideoWriter {
   public:
     //! Starts ffmpeg reading width x height RGBA frames at fps. Throws std::runtime_error when
     //! ffmpeg is not on PATH or cannot be started.
-    VideoWriter(const std::string& path, int width, int height, double fps);
+    VideoWriter(const std::string& path, int width, int height, double fps,
+                VideoFormat format = VideoFormat::Mp4);
     ~VideoWriter();  //!< abandons an unfinished video (kills ffmpeg, removes the temp file)
     VideoWriter(const VideoWriter&) = delete;
     VideoWriter& operator=(const VideoWriter&) = delete;

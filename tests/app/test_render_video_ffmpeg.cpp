@@ -1,0 +1,143 @@
+// bhm render --video / --gif with the real ffmpeg (scripts/setup.sh installs it): ffprobe reads
+// back the frame count, frame rate and duration, and the caption is in the decoded pixels.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "app/render_video.hpp"
+#include "engine/replay.hpp"
+#include "evo/experiment_io.hpp"
+#include "evo/scene.hpp"
+#include "render/image.hpp"
+#include "render/replay_view.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace bhm;
+
+const std::string kSource = BHM_SOURCE_DIR;
+const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
+const std::string kExperiment = kSource + "/assets/experiments/quick-demo.json";
+
+struct Result {
+    int status;
+    std::string output;
+};
+
+Result shell(const std::string& command) {
+    std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string out;
+    char buffer[4096];
+    std::size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+        out.append(buffer, n);
+    const int raw = pclose(pipe);
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+}
+
+// "key=value" lines of ffprobe's default writer.
+double probe(const std::string& file, const std::string& entries, const std::string& key) {
+    const auto r = shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries " +
+                         entries + " -of default=noprint_wrappers=1 " + file);
+    REQUIRE_MESSAGE(r.status == 0, r.output);
+    const auto at = r.output.find(key + "=");
+    REQUIRE_MESSAGE(at != std::string::npos, r.output);
+    return std::stod(r.output.substr(at + key.size() + 1));
+}
+
+// A 4 x 3 x 2 body whose replay bends its free end down over 1 s, 11 frames.
+struct Fixture {
+    fs::path dir = fs::temp_directory_path() / ("bhm-ffmpeg-" + std::to_string(::getpid()));
+    std::string body_path, replay_path;
+    Fixture() {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        const auto experiment = evo::load_experiment(kExperiment);
+        evo::Body body;
+        body.size = {4, 3, 2};
+        body.cells.assign(24, 1);
+        body_path = (dir / "body.json").string();
+        evo::save_body(body_path, body);
+        const auto spec =
+            evo::make_body_spec(experiment, evo::apply_frame_and_overrides(experiment, body));
+        const render::BodyView view = render::body_view_from_spec(spec);
+        engine::Replay replay;
+        replay.nx = spec.nx, replay.ny = spec.ny, replay.nz = spec.nz;
+        replay.voxel_size_m = spec.voxel_size_m;
+        replay.voxel_cell = view.voxel_cell;
+        replay.voxel_material = view.voxel_material;
+        replay.voxel_fixed = view.voxel_fixed;
+        for (int f = 0; f <= 10; ++f) {
+            engine::VoxelPoses poses = render::rest_poses(view);
+            poses.time_s = 0.1 * f;
+            for (int v = 0; v < view.voxel_count(); ++v)
+                poses.position_m[3 * static_cast<std::size_t>(v) + 2] -=
+                    static_cast<float>(0.003 * poses.time_s * view.voxel_coords(v)[0]);
+            replay.frames.push_back(poses);
+        }
+        replay_path = (dir / "replay.bin").string();
+        engine::write_replay(replay_path, replay);
+    }
+    ~Fixture() { fs::remove_all(dir); }
+    std::string out(const std::string& name) const { return (dir / name).string(); }
+};
+
+// Pixels of the top-left 100 x 30 corner (where the caption box goes) darker than 110 and
+// brighter than 170 in every channel.
+struct Corner {
+    int dark = 0, bright = 0;
+};
+Corner corner(const render::Image& image) {
+    Corner c;
+    for (int y = 0; y < 30 && y < image.height; ++y)
+        for (int x = 0; x < 100 && x < image.width; ++x) {
+            const auto* p = image.pixel(x, y);
+            c.dark += p[0] < 110 && p[1] < 110 && p[2] < 110 ? 1 : 0;
+            c.bright += p[0] > 170 && p[1] > 170 && p[2] > 170 ? 1 : 0;
+        }
+    return c;
+}
+
+}  // namespace
+
+TEST_CASE("real ffmpeg: MP4 and GIF have every frame at the asked rate, with the caption") {
+    REQUIRE_MESSAGE(app::find_on_path("ffmpeg").has_value(), "ffmpeg is not installed");
+    REQUIRE_MESSAGE(app::find_on_path("ffprobe").has_value(), "ffprobe is not installed");
+    Fixture f;
+    const auto r = shell(kBhm + " render " + kExperiment + " --replay " + f.replay_path +
+                         " --video " + f.out("v.mp4") + " --gif " + f.out("v.gif") +
+                         " --fps 10 --size 200x120 --samples 1 --caption");
+    REQUIRE_MESSAGE(r.status == 0, r.output);
+    CHECK_FALSE(fs::exists(f.out("v.mp4.tmp.mp4")));
+    for (const char* name : {"v.mp4", "v.gif"}) {
+        const std::string file = f.out(name);
+        CHECK(probe(file, "stream=nb_read_frames", "nb_read_frames") == 11);
+        CHECK(probe(file, "stream=width", "width") == 200);
+        CHECK(probe(file, "format=duration", "duration") == doctest::Approx(1.1).epsilon(0.02));
+    }
+    // The first decoded frame carries the caption; an uncaptioned one does not.
+    REQUIRE(shell("ffmpeg -v error -y -i " + f.out("v.mp4") + " -frames:v 1 " + f.out("f0.png"))
+                .status == 0);
+    REQUIRE(shell(kBhm + " render " + kExperiment + " --replay " + f.replay_path + " --out " +
+                  f.out("plain.png") + " --time 0 --size 200x120 --samples 1")
+                .status == 0);
+    const Corner captioned = corner(render::read_png(f.out("f0.png")));
+    const Corner plain = corner(render::read_png(f.out("plain.png")));
+    // The light background turns dark under the box, and white text dots sit on it.
+    CHECK(plain.dark < 100);
+    CHECK(captioned.dark > 1500);
+    CHECK(captioned.bright > 30);
+
+    // Default rate is the replay's own (10 frames per second here), and --frames resamples.
+    const auto g = shell(kBhm + " render " + kExperiment + " --replay " + f.replay_path +
+                         " --gif " + f.out("w.gif") + " --frames 6 --size 64x48 --samples 1");
+    REQUIRE_MESSAGE(g.status == 0, g.output);
+    CHECK(probe(f.out("w.gif"), "stream=nb_read_frames", "nb_read_frames") == 6);
+}
