@@ -1,6 +1,7 @@
 #include "evo/vxa_import.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +14,10 @@
 #include "evo/experiment_io.hpp"
 #include "evo/vxa.hpp"
 #include "evo/xml_tree.hpp"
+
+#if BHM_WITH_ZLIB
+#include <zlib.h>
+#endif
 
 namespace bhm::evo {
 
@@ -308,16 +313,72 @@ std::map<int, int> read_palette(VxaReader& r, const XmlNode* palette, Experiment
     return index_of_id;
 }
 
+std::string decode_base64(const VxaReader& r, const std::string& text, const std::string& field) {
+    std::string out;
+    unsigned bits = 0;
+    int count = 0;
+    for (char c : text) {
+        int v;
+        if (c >= 'A' && c <= 'Z')
+            v = c - 'A';
+        else if (c >= 'a' && c <= 'z')
+            v = c - 'a' + 26;
+        else if (c >= '0' && c <= '9')
+            v = c - '0' + 52;
+        else if (c == '+')
+            v = 62;
+        else if (c == '/')
+            v = 63;
+        else if (c == '=' || std::isspace(static_cast<unsigned char>(c)))
+            continue;
+        else
+            r.fail(field, "not base64 (ZLIB layer)");
+        bits = (bits << 6) | static_cast<unsigned>(v);
+        count += 6;
+        if (count >= 8) {
+            count -= 8;
+            out += static_cast<char>((bits >> count) & 0xffu);
+        }
+    }
+    return out;
+}
+
+std::string inflate_layer([[maybe_unused]] const VxaReader& r,
+                          [[maybe_unused]] const std::string& text,
+                          [[maybe_unused]] std::size_t cells,
+                          [[maybe_unused]] const std::string& field) {
+#if BHM_WITH_ZLIB
+    const std::string packed = decode_base64(r, text, field);
+    std::string out(cells + 1, '\0');  // one spare byte: a longer layer is reported, not cut
+    uLongf size = static_cast<uLongf>(out.size());
+    const int status = ::uncompress(reinterpret_cast<Bytef*>(out.data()), &size,
+                                    reinterpret_cast<const Bytef*>(packed.data()),
+                                    static_cast<uLong>(packed.size()));
+    if (status != Z_OK && status != Z_BUF_ERROR) r.fail(field, "the ZLIB data does not decompress");
+    out.resize(status == Z_BUF_ERROR ? cells + 1 : size);
+    return out;
+#else
+    return {};
+#endif
+}
+
 Body read_structure(VxaReader& r, const XmlNode* structure, const std::map<int, int>& index_of_id) {
     if (!structure) r.fail("VXC/Structure", "missing");
     const std::string compression = structure->attributes.count("Compression")
                                         ? structure->attributes.at("Compression")
                                         : "ASCII_READABLE";
-    if (compression != "ASCII_READABLE")
+    const bool zlib = compression == "ZLIB";
+#if !BHM_WITH_ZLIB
+    if (zlib)
+        r.fail("VXC/Structure@Compression",
+               "ZLIB needs a build with zlib; save the file from VoxCAD with ASCII_READABLE "
+               "compression");
+#endif
+    if (compression != "ASCII_READABLE" && !zlib)
         r.fail("VXC/Structure@Compression",
                "'" + compression +
-                   "' is not supported; save the file from VoxCAD with ASCII_READABLE "
-                   "compression");
+                   "' is not supported (ASCII_READABLE or ZLIB); save the file from VoxCAD "
+                   "with ASCII_READABLE compression");
     Body body;
     const char* axes[3] = {"X_Voxels", "Y_Voxels", "Z_Voxels"};
     for (int a = 0; a < 3; ++a) {
@@ -335,20 +396,23 @@ Body read_structure(VxaReader& r, const XmlNode* structure, const std::map<int, 
                                          " layers for Z_Voxels = " + std::to_string(body.size[2]));
     const std::size_t per_layer = static_cast<std::size_t>(body.size[0]) * body.size[1];
     for (std::size_t z = 0; z < layers.size(); ++z) {
-        const std::string text = trim(layers[z]->text);
         const std::string field = "VXC/Structure/Data/Layer[" + std::to_string(z) + "]";
+        // ASCII_READABLE: one character '0' + ID per cell. ZLIB (VoxCAD's default): base64 of
+        // the zlib-compressed layer, one byte (the ID itself) per cell.
+        const std::string text = zlib ? inflate_layer(r, trim(layers[z]->text), per_layer, field)
+                                      : trim(layers[z]->text);
         if (text.size() != per_layer)
             r.fail(field, std::to_string(text.size()) +
                               " cells for X_Voxels x Y_Voxels = " + std::to_string(per_layer));
         for (char c : text) {
-            const int id = static_cast<unsigned char>(c) - '0';
+            const int id = static_cast<unsigned char>(c) - (zlib ? 0 : '0');
             if (id == 0) {
                 body.cells.push_back(0);
                 continue;
             }
             const auto found = index_of_id.find(id);
             if (id < 0 || found == index_of_id.end())
-                r.fail(field, std::string("cell '") + c + "' names no palette material");
+                r.fail(field, "cell " + std::to_string(id) + " names no palette material");
             body.cells.push_back(static_cast<std::uint8_t>(found->second));
         }
     }

@@ -123,6 +123,27 @@ TEST_CASE("a hand-written VoxCAD file: palette, layers, physics, fixed face, wha
     CHECK(validate_body_against(in.body, e, "hand.vxa").empty());
 }
 
+TEST_CASE("VoxCAD's default ZLIB structure: base64 of the compressed ID bytes per layer") {
+    std::string text = kVoxcadFile;
+    const auto begin = text.find("<Structure");
+    const auto end = text.find("</Structure>");
+    // The same 4x2x2 layers as kVoxcadFile, compressed by Python's zlib and base64-encoded.
+    text.replace(begin, end - begin,
+                 "<Structure Compression=\"ZLIB\"><X_Voxels>4</X_Voxels><Y_Voxels>2</Y_Voxels>"
+                 "<Z_Voxels>2</Z_Voxels><Data><Layer><![CDATA[eJxjZGJmYARiAABAAA0=]]></Layer>"
+                 "<Layer><![CDATA[eJxjZGRgYGJiYAAAACUABw==]]></Layer></Data>");
+#if BHM_WITH_ZLIB
+    const VxaImport in = parse_vxa(text, "zlib.vxa");
+    CHECK(in.body.cells == parse_vxa(kVoxcadFile, "hand.vxa").body.cells);
+    const auto broken = text.replace(text.find("eJxjZGJm"), 8, "AAAAAAAA");
+    CHECK_THROWS_WITH_AS(parse_vxa(broken, "zlib.vxa"), doctest::Contains("Layer[0]"),
+                         std::runtime_error);
+#else
+    CHECK_THROWS_WITH_AS(parse_vxa(text, "zlib.vxa"), doctest::Contains("ASCII_READABLE"),
+                         std::runtime_error);
+#endif
+}
+
 TEST_CASE("an evosoro-style file: TempAmp, Fixed_Regions, GA settings reported") {
     const std::string text = R"(<?xml version="1.0" encoding="ISO-8859-1"?>
 <VXA Version="1.0"><Simulator><Integration><Integrator>0</Integrator><DtFrac>0.9</DtFrac></Integration>
@@ -243,7 +264,7 @@ TEST_CASE("broken VXA files fail with the file and the field") {
     const std::string palette =
         "<Palette><Material ID=\"1\"><Mechanical><CTE>0</CTE></Mechanical></Material></Palette>";
     fails_with("<VXC>" + palette +
-                   "<Structure Compression=\"ZLIB\"><X_Voxels>1</X_Voxels></Structure></VXC>",
+                   "<Structure Compression=\"LZMA\"><X_Voxels>1</X_Voxels></Structure></VXC>",
                "ASCII_READABLE");
     fails_with("<VXC>" + palette +
                    "<Structure><X_Voxels>2</X_Voxels><Y_Voxels>1</Y_Voxels><Z_Voxels>1</Z_Voxels>"
