@@ -15,6 +15,7 @@
 #include "app/commands.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment_io.hpp"
+#include "relative_approx.hpp"
 
 namespace fs = std::filesystem;
 
@@ -122,18 +123,18 @@ TEST_CASE("simulate writes summary, trajectory and replay that agree with each o
     for (const auto& row : rows)
         REQUIRE(row.size() == 7);
     CHECK(rows.front()[0] == 0.0);
-    CHECK(rows.back()[0] == doctest::Approx(0.1).epsilon(1e-3));
+    CHECK(rows.back()[0] == bhm::test::relative(0.1, 1e-3));
 
     std::ifstream summary_file(out / "summary.json");
     const nlohmann::json s = nlohmann::json::parse(summary_file);
     CHECK(s["voxels"] == 12);
     CHECK(s["links"].get<int>() == 20);  // 3x2x2 lattice: 2*2*2 (x) + 3*1*2 (y) + 3*2*1 (z)
     CHECK(s["diverged"] == false);
-    CHECK(s["sim_time_s"].get<double>() == doctest::Approx(0.1).epsilon(1e-3));
+    CHECK(s["sim_time_s"].get<double>() == bhm::test::relative(0.1, 1e-3));
     const double dt = s["dt_s"].get<double>();
     CHECK(dt > 0.0);
     CHECK(s["steps"].get<double>() ==
-          doctest::Approx(s["sim_time_s"].get<double>() / dt).epsilon(0.01));
+          bhm::test::relative(s["sim_time_s"].get<double>() / dt, 0.01));
     CHECK(s["voxel_steps_per_s"].get<double>() > 0.0);
     // Exploit flags (docs/evolution.md): the x = 0 layer (4 voxels) is held and holds the rest;
     // every voxel of a 3x2x2 block has at least 3 neighbours, so none is thin.
@@ -158,16 +159,16 @@ TEST_CASE("simulate writes summary, trajectory and replay that agree with each o
     const double dx = rows.back()[1] - start_row[1], dy = rows.back()[2] - start_row[2],
                  dz = rows.back()[3] - start_row[3];
     CHECK(s["displacement_3d_voxels"].get<double>() ==
-          doctest::Approx(std::sqrt(dx * dx + dy * dy + dz * dz) / L));
+          bhm::test::relative(std::sqrt(dx * dx + dy * dy + dz * dz) / L));
     CHECK(s["displacement_yz_voxels"].get<double>() ==
-          doctest::Approx(std::sqrt(dy * dy + dz * dz) / L));
+          bhm::test::relative(std::sqrt(dy * dy + dz * dz) / L));
     CHECK(s["max_displacement_3d_voxels"].get<double>() >=
           s["displacement_3d_voxels"].get<double>());
     // At t = 0 the body is at rest on its lattice: uniform density puts the centre of mass on the
     // middle x layer, one voxel behind the tip layer, and on the tip's y and z by symmetry.
-    CHECK(rows.front()[4] - rows.front()[1] == doctest::Approx(L));
-    CHECK(rows.front()[5] == doctest::Approx(rows.front()[2]));
-    CHECK(rows.front()[6] == doctest::Approx(rows.front()[3]));
+    CHECK(rows.front()[4] - rows.front()[1] == bhm::test::relative(L));
+    CHECK(rows.front()[5] == bhm::test::relative(rows.front()[2]));
+    CHECK(rows.front()[6] == bhm::test::relative(rows.front()[3]));
 
     const bhm::engine::Replay replay = bhm::engine::read_replay((out / "replay.bin").string());
     CHECK(replay.voxel_cell.size() == 12);

@@ -9,6 +9,7 @@
 
 #include "app/simulate_progress.hpp"
 #include "app/simulation_report.hpp"
+#include "relative_approx.hpp"
 
 using bhm::app::DisplacementSummary;
 using bhm::app::TrajectorySample;
@@ -36,13 +37,13 @@ TEST_CASE("displacements start at the end of settling and are measured in voxel 
     };
     const DisplacementSummary d = bhm::app::summarize_displacements(samples, 1.0, L);
     CHECK(d.settled);
-    CHECK(d.com_start_t_s == doctest::Approx(1.0));
-    CHECK(d.com_start_m[2] == doctest::Approx(3 * L));
-    CHECK(d.com_end_m[0] == doctest::Approx(4 * L));
-    CHECK(d.displacement_3d_voxels == doctest::Approx(5.0));
-    CHECK(d.displacement_yz_voxels == doctest::Approx(4.0));
-    CHECK(d.max_displacement_3d_voxels == doctest::Approx(10.0));
-    CHECK(d.max_displacement_yz_voxels == doctest::Approx(10.0));
+    CHECK(d.com_start_t_s == bhm::test::relative(1.0));
+    CHECK(d.com_start_m[2] == bhm::test::relative(3 * L));
+    CHECK(d.com_end_m[0] == bhm::test::relative(4 * L));
+    CHECK(d.displacement_3d_voxels == bhm::test::relative(5.0));
+    CHECK(d.displacement_yz_voxels == bhm::test::relative(4.0));
+    CHECK(d.max_displacement_3d_voxels == bhm::test::relative(10.0));
+    CHECK(d.max_displacement_yz_voxels == bhm::test::relative(10.0));
     CHECK(d.tip_position_m[0] == 0.2);
     CHECK(d.tip_position_m[2] == 0.4);
 }
@@ -56,9 +57,9 @@ TEST_CASE("the first sample after settle_s is the start when none lands on it") 
     };
     const DisplacementSummary d = bhm::app::summarize_displacements(samples, 1.0, L);
     CHECK(d.com_start_t_s == 1.2);
-    CHECK(d.displacement_3d_voxels == doctest::Approx(2.0));
-    CHECK(d.displacement_yz_voxels == doctest::Approx(2.0));
-    CHECK(d.max_displacement_3d_voxels == doctest::Approx(2.0));
+    CHECK(d.displacement_3d_voxels == bhm::test::relative(2.0));
+    CHECK(d.displacement_yz_voxels == bhm::test::relative(2.0));
+    CHECK(d.max_displacement_3d_voxels == bhm::test::relative(2.0));
 }
 
 TEST_CASE("a run that ends before settling reports no displacement") {
@@ -75,7 +76,7 @@ TEST_CASE("settle_s = 0 starts at the first sample") {
     const std::vector<TrajectorySample> samples = {sample(0.0, {0, 0, 0}), sample(0.1, {0, 0, -L})};
     const DisplacementSummary d = bhm::app::summarize_displacements(samples, 0.0, L);
     CHECK(d.com_start_t_s == 0.0);
-    CHECK(d.displacement_yz_voxels == doctest::Approx(1.0));
+    CHECK(d.displacement_yz_voxels == bhm::test::relative(1.0));
 }
 
 TEST_CASE("trajectory CSV has the header and round-trips every double") {

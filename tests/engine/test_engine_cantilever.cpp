@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "engine_test_bodies.hpp"
+#include "relative_approx.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
@@ -18,7 +19,7 @@ namespace {
 
 struct Beam {
     int nx, ny, nz;
-    double L = 0.01, E = 5e6, rho = 1000.0, g = 9.81;
+    double L = 0.01, E = 5e6, rho = 1000.0, g = 9.81, nu = 0.35;
     double EI() const { return E * (ny * L) * std::pow(nz * L, 3) / 12.0; }  // bending about y
     double w() const { return rho * g * (ny * L) * (nz * L); }
     double continuous_tip() const { return w() * std::pow((nx - 0.5) * L, 4) / (8.0 * EI()); }
@@ -38,6 +39,7 @@ double static_tip_deflection(const Beam& b, double global_damping) {
     Material m;
     m.youngs_modulus_pa = b.E;
     m.density_kg_m3 = b.rho;
+    m.poisson_ratio = b.nu;
     BodySpec s = solid_box(b.nx, b.ny, b.nz, m);
     s.voxel_size_m = b.L;
     fix_x_min_layer(s);
@@ -59,15 +61,30 @@ double static_tip_deflection(const Beam& b, double global_damping) {
 
 }  // namespace
 
-TEST_CASE("slender 40x2x2 cantilever: tip deflection within 5% of Euler-Bernoulli") {
+TEST_CASE("slender 40x2x2 cantilever, nu = 0: tip deflection within 5% of Euler-Bernoulli") {
     // g reduced 100x so the deflection (~1.8 mm on 0.4 m) stays in the small-deflection range.
+    const Beam b{40, 2, 2, 0.01, 5e6, 1000.0, 0.0981, 0.0};
+    const double tip = static_tip_deflection(b, 0.0015);
+    MESSAGE("40x2x2 nu 0 tip " << tip << " m; EB continuous " << b.continuous_tip()
+                               << " m; EB discrete loads " << b.discrete_tip() << " m");
+    CHECK(tip == bhm::test::relative(b.continuous_tip(), 0.05));
+    CHECK(tip == bhm::test::relative(b.discrete_tip(), 0.02));
+}
+
+// KNOWN DEFECT, kept visible: a slender beam's bending does not depend on nu (Euler-Bernoulli), but
+// the Poisson coupling (engine/poisson.hpp) makes the 2x2 section about 7 % too stiff at nu = 0.35
+// (1.645 mm against 1.761 mm), the same lateral-strain locking that leaves the 20x8x7 block 17 %
+// too stiff at nu = 0.49 (test_engine_calculix.cpp). should_fail: the day the coupling is fixed this
+// test passes, doctest reports it, and the decorator must go.
+TEST_CASE("slender 40x2x2 cantilever, nu = 0.35: tip deflection within 5% of Euler-Bernoulli" *
+          doctest::should_fail()) {
     const Beam b{40, 2, 2, 0.01, 5e6, 1000.0, 0.0981};
     // Global damping near critical for the first bending mode (omega_1 / omega_voxel ~ 0.0013).
     const double tip = static_tip_deflection(b, 0.0015);
     MESSAGE("40x2x2 tip " << tip << " m; EB continuous " << b.continuous_tip()
                           << " m; EB discrete loads " << b.discrete_tip() << " m");
-    CHECK(tip == doctest::Approx(b.continuous_tip()).epsilon(0.05));
-    CHECK(tip == doctest::Approx(b.discrete_tip()).epsilon(0.02));
+    CHECK(tip == bhm::test::relative(b.continuous_tip(), 0.05));
+    CHECK(tip == bhm::test::relative(b.discrete_tip(), 0.02));
 }
 
 TEST_CASE("20x8x7 block cantilever: tip deflection within 10% of Euler-Bernoulli") {
@@ -75,7 +92,7 @@ TEST_CASE("20x8x7 block cantilever: tip deflection within 10% of Euler-Bernoulli
     const double tip = static_tip_deflection(b, 0.02);
     MESSAGE("20x8x7 tip " << tip << " m; EB continuous " << b.continuous_tip()
                           << " m; EB discrete loads " << b.discrete_tip() << " m");
-    CHECK(tip == doctest::Approx(b.continuous_tip()).epsilon(0.10));
+    CHECK(tip == bhm::test::relative(b.continuous_tip(), 0.10));
 }
 
 TEST_CASE("cantilever deflection is linear in gravity and in 1/E") {
@@ -87,10 +104,10 @@ TEST_CASE("cantilever deflection is linear in gravity and in 1/E") {
     const double d_base = static_tip_deflection(base, 0.003);
     const double d_g = static_tip_deflection(twice_g, 0.003);
     const double d_e = static_tip_deflection(twice_e, 0.003 * std::sqrt(0.5));
-    CHECK(d_g / d_base == doctest::Approx(2.0).epsilon(0.01));
-    CHECK(d_base / d_e == doctest::Approx(2.0).epsilon(0.01));
+    CHECK(d_g / d_base == bhm::test::relative(2.0, 0.01));
+    CHECK(d_base / d_e == bhm::test::relative(2.0, 0.01));
     // A single-voxel section bends as its own beam (I = L^4 / 12).
-    CHECK(d_base == doctest::Approx(base.discrete_tip()).epsilon(0.03));
+    CHECK(d_base == bhm::test::relative(base.discrete_tip(), 0.03));
 }
 
 TEST_CASE("a tip load bends a 20x1x1 cantilever by F l^3 / (3 E I)") {
@@ -104,7 +121,7 @@ TEST_CASE("a tip load bends a 20x1x1 cantilever by F l^3 / (3 E I)") {
     REQUIRE(w.advance_to(1.5));
     const double l = 19.0 * L;  // fixed voxel's centre to the loaded voxel's centre
     const double expected = force * l * l * l / (3.0 * E * std::pow(L, 4) / 12.0);
-    CHECK(-layer_displacement(w, 19, 2) == doctest::Approx(expected).epsilon(0.02));
+    CHECK(-layer_displacement(w, 19, 2) == bhm::test::relative(expected, 0.02));
 }
 
 TEST_CASE("a soft cantilever droops past 60 degrees without stretching or diverging") {
@@ -129,7 +146,7 @@ TEST_CASE("a soft cantilever droops past 60 degrees without stretching or diverg
         const auto b = w.voxel_position_m(voxel_at(*model, x, 0, 0));
         length += std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
     }
-    CHECK(length == doctest::Approx(15.0 * L).epsilon(0.02));
+    CHECK(length == bhm::test::relative(15.0 * L, 0.02));
     // The tip voxel has turned with the beam: its x axis points well below the horizontal.
     const auto q = w.voxel_orientation(tip);
     const double x_axis_z = 2.0 * (q[1] * q[3] - q[0] * q[2]);

@@ -9,6 +9,7 @@
 
 #include "engine/poses.hpp"
 #include "engine_test_bodies.hpp"
+#include "relative_approx.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
@@ -98,7 +99,7 @@ void check_same_trajectory(const BodySpec& small, const BodySpec& big, std::arra
     CHECK(wa.kinetic_energy_j() > 0.0);
     const auto com = wa.center_of_mass_m(), com_b = wb.center_of_mass_m();
     for (int k = 0; k < 3; ++k)
-        CHECK(com_b[k] == doctest::Approx(com[k] + shift[k] * L).epsilon(1e-12));
+        CHECK(com_b[k] == bhm::test::relative(com[k] + shift[k] * L, 1e-12));
 }
 
 }  // namespace
@@ -147,6 +148,6 @@ TEST_CASE("the model holds the body's voxels and links, not its workspace's cell
         const auto c = big->voxel_coords(v);
         const auto p = w.voxel_position_m(v);
         for (int k = 0; k < 3; ++k)
-            CHECK(p[k] == doctest::Approx((c[k] + 0.5) * L).epsilon(1e-12));
+            CHECK(p[k] == bhm::test::relative((c[k] + 0.5) * L, 1e-12));
     }
 }

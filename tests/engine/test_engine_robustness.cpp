@@ -9,6 +9,7 @@
 
 #include "engine/poses.hpp"
 #include "engine_test_bodies.hpp"
+#include "relative_approx.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
@@ -99,10 +100,10 @@ TEST_CASE("the time step is dt_fraction of the rotational stable step") {
     const double m = 1000.0 * 1e-6, k = 5e6 * 0.01;
     // Bending rotation: (4 E I / L) / (m L^2 / 6) = 2 E L / m, stiffer than the axial k / m.
     const double stable = 1.0 / (2.0 * M_PI * std::sqrt(2.0 * k / m));
-    CHECK(model->dt_s() == doctest::Approx(0.5 * stable).epsilon(1e-12));
+    CHECK(model->dt_s() == bhm::test::relative(0.5 * stable, 1e-12));
     CHECK(model->link_count() == 2);
     CHECK(model->voxel_count() == 3);
-    CHECK(model->total_mass_kg() == doctest::Approx(3.0 * m));
+    CHECK(model->total_mass_kg() == bhm::test::relative(3.0 * m));
 }
 
 TEST_CASE("bad specs are rejected with a one-line reason naming the field") {
@@ -163,7 +164,7 @@ TEST_CASE("run() continues a world handed over part way without repeating sample
     REQUIRE(times.size() == 4);  // now (0.05), 0.06, 0.08, 0.1
     for (std::size_t i = 1; i < times.size(); ++i)
         CHECK(times[i] > times[i - 1]);
-    CHECK(times.back() == doctest::Approx(0.1).epsilon(1e-3));
+    CHECK(times.back() == bhm::test::relative(0.1, 1e-3));
 }
 
 TEST_CASE("read_poses reuses its storage and reports identity orientation at rest") {
@@ -176,7 +177,7 @@ TEST_CASE("read_poses reuses its storage and reports identity orientation at res
     w.read_poses(p);
     CHECK(p.position_m.data() == storage);
     CHECK(p.orientation[0] == 1.0f);
-    CHECK(p.position_m[0] == doctest::Approx(0.005));
+    CHECK(p.position_m[0] == bhm::test::relative(0.005));
 }
 
 TEST_CASE("heavy bond damping cannot destabilise the explicit integration") {

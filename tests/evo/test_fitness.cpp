@@ -10,6 +10,7 @@
 #include "evo/fitness.hpp"
 #include "evo/scene.hpp"
 #include "evo_test_support.hpp"
+#include "relative_approx.hpp"
 
 using namespace bhm::evo;
 
@@ -39,13 +40,13 @@ TEST_CASE("centre-of-mass measures of a body in free fall") {
     const double expected_voxels = (g * ts * T + 0.5 * g * T * T) / e.voxel_size_m;
     const auto& m = r.measures;
     CHECK(m[static_cast<int>(FitnessMeasure::ComFinal3d)] ==
-          doctest::Approx(expected_voxels).epsilon(0.01));
+          bhm::test::relative(expected_voxels, 0.01));
     CHECK(m[static_cast<int>(FitnessMeasure::ComFinalYz)] ==
-          doctest::Approx(expected_voxels).epsilon(0.01));
+          bhm::test::relative(expected_voxels, 0.01));
     CHECK(m[static_cast<int>(FitnessMeasure::ComMax3d)] ==
-          doctest::Approx(expected_voxels).epsilon(0.01));
+          bhm::test::relative(expected_voxels, 0.01));
     CHECK(m[static_cast<int>(FitnessMeasure::ComMaxYz)] ==
-          doctest::Approx(expected_voxels).epsilon(0.01));
+          bhm::test::relative(expected_voxels, 0.01));
     CHECK(m[static_cast<int>(FitnessMeasure::BendAngleDeg)] < 0.5);  // a rigid fall does not bend
     CHECK(r.fitness == m[static_cast<int>(e.fitness.measure)]);
     CHECK(r.simulated_s >= 0.15 - 1e-9);
