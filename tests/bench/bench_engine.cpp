@@ -195,7 +195,8 @@ CorpusResult run_corpus(const std::string& path, const std::string& assets, doub
     const bhm::evo::Experiment experiment =
         bhm::evo::load_experiment(assets + "/" + preset + ".json");
     const double evaluation_s = bhm::evo::evaluation_seconds(experiment);
-    CorpusResult out{preset, {}, 0.0};
+    // Named after the file: a preset can have several corpora (random bodies, champions).
+    CorpusResult out{std::filesystem::path(path).stem().string(), {}, 0.0};
     for (const auto& entry : corpus.at("bodies")) {
         const std::string name = preset + "/" + entry.at("name").get<std::string>();
         // Framed as evolution simulates it (a no-op for workspace-sized framed bodies), phases

@@ -3,6 +3,8 @@
 // covers the first --sim-seconds of the evaluation and the rate is scaled to full length (the
 // engine's cost is linear in simulated time: a fixed step). The coordinator's share of a
 // generation (P mutants with neutral retries, one newcomer, decoding) is timed for real.
+// generations_per_hour uses wall time; generations_per_hour_cpu projects the measured CPU time
+// per simulation onto `threads` idle cores (what a shared machine cannot show by wall time).
 //
 //   bench_evolve [--sims N] [--sim-seconds S] [--threads-list 1,2] [--assets DIR] [--commit SHA]
 //                [PRESET...]
@@ -11,6 +13,7 @@
 // paper-exp3 from assets/experiments (run from the repository root, as scripts/bench.sh does), threads 1 and
 // 2. CSV on stdout, notes on stderr; the commit comes from --commit or $BHM_COMMIT.
 #include <sys/utsname.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -38,6 +41,13 @@ namespace {
 
 using bhm::bench::machine_description;
 using bhm::bench::seconds_since;
+
+//! CPU seconds of every thread of this process.
+double process_cpu_s() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 struct Population {
     std::vector<Genome> genomes;
@@ -96,7 +106,8 @@ int run(int argc, char** argv) {
     std::cout
         << "preset,threads,population,simulations,mean_voxels,simulated_s_each,full_evaluation_s,"
            "wall_s,sim_s_per_wall_s,simulations_per_s_full,coordinator_s_per_generation,"
-           "generations_per_hour,hardware_threads,machine,commit"
+           "generations_per_hour,cpu_s_per_full_simulation,generations_per_hour_cpu,"
+           "hardware_threads,machine,commit"
         << std::endl;
     const std::string machine = machine_description();
     for (const auto& preset : presets) {
@@ -110,6 +121,7 @@ int run(int argc, char** argv) {
         // newcomer.
         Population population = random_population(full, dev, P, rng);
         const auto t_coord = std::chrono::steady_clock::now();
+        const double cpu_coord = process_cpu_s();
         for (int k = 0; k < P; ++k)
             mutate_until_new(population.genomes[static_cast<std::size_t>(k)],
                              population.phenotypes[static_cast<std::size_t>(k)], dev,
@@ -117,6 +129,7 @@ int run(int argc, char** argv) {
                              full.evolution.max_neutral_retries, rng);
         random_population(full, dev, 1, rng);
         const double coordinator_s = seconds_since(t_coord);
+        const double coordinator_cpu_s = process_cpu_s() - cpu_coord;
 
         // Simulations: the first sim_seconds of evaluations of the first `sims` random bodies.
         Experiment shortened = full;
@@ -130,11 +143,18 @@ int run(int argc, char** argv) {
         for (int threads : thread_counts) {
             std::vector<FitnessReport> reports(static_cast<std::size_t>(sims));
             const auto t_sim = std::chrono::steady_clock::now();
+            const double cpu_sim = process_cpu_s();
             parallel_for(sims, threads, [&](int k) {
                 reports[static_cast<std::size_t>(k)] = evaluate_body(
                     shortened, population.phenotypes[static_cast<std::size_t>(k % P)].body);
             });
             const double wall_s = seconds_since(t_sim);
+            // CPU time of the simulations, scaled to full length: on a machine shared with other
+            // jobs the wall-clock rate says more about the load than about the code, so the
+            // _cpu figure projects a generation onto `threads` otherwise idle cores.
+            const double cpu_per_full_sim = (process_cpu_s() - cpu_sim) / sims * full_s / sim_seconds;
+            const double generation_cpu_s =
+                coordinator_cpu_s + (P + 1) * cpu_per_full_sim / threads;
             const double sim_rate =
                 sims * sim_seconds / wall_s;             // simulated seconds per wall second
             const double full_rate = sim_rate / full_s;  // full evaluations per second
@@ -142,13 +162,16 @@ int run(int argc, char** argv) {
             const double generation_s = coordinator_s + (P + 1) / full_rate;
             char row[512];
             std::snprintf(row, sizeof row,
-                          "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.3f,%.4f,%.6f,%.3f,%.3f,%u,%s,%s",
+                          "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.3f,%.4f,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%s,%s",
                           preset.c_str(), threads, P, sims, voxels, sim_seconds, full_s, wall_s,
                           sim_rate, full_rate, coordinator_s, 3600.0 / generation_s,
+                          cpu_per_full_sim, 3600.0 / generation_cpu_s,
                           std::thread::hardware_concurrency(), machine.c_str(), commit.c_str());
             std::cout << row << std::endl;
             std::cerr << preset << ", " << threads << " thread(s): " << full_rate
-                      << " full simulations/s, " << 3600.0 / generation_s << " generations/hour\n";
+                      << " full simulations/s, " << 3600.0 / generation_s << " generations/hour; "
+                      << cpu_per_full_sim << " CPU s per full simulation, "
+                      << 3600.0 / generation_cpu_s << " generations/hour on idle cores\n";
         }
     }
     return 0;
