@@ -11,6 +11,7 @@
 #include "app/arg_parser.hpp"
 #include "app/commands.hpp"
 #include "app/evolve_cluster.hpp"
+#include "evo/batch.hpp"
 #include "evo/evolution_run.hpp"
 #include "evo/experiment_io.hpp"
 
@@ -86,6 +87,45 @@ void print_progress(const evo::GenerationReport& r) {
         clock_text(r.elapsed_s).c_str(), clock_text(r.eta_s).c_str());
 }
 
+//! --runs N: a batch of N runs in DIR/run-NN plus DIR/batch.csv (evo/batch.hpp).
+int evolve_batch(const evo::Experiment& experiment, const evo::RunOptions& options, int runs,
+                 bool resume) {
+    if (g_cluster && g_cluster->size() > 1) {
+        std::cerr << "bhm evolve: --runs runs its runs in one process; under mpirun start one "
+                     "run per job instead\n";
+        g_cluster->abort(1);
+    }
+    evo::BatchOptions batch_options;
+    batch_options.out_dir = options.out_dir;
+    batch_options.runs = runs;
+    batch_options.run = options;
+    evo::BatchRun batch(experiment, batch_options, resume);
+    for (const auto& w : batch.warnings())
+        std::cerr << "bhm evolve: warning: " << w << "\n";
+    std::cerr << "bhm evolve: " << experiment.name << " -> " << options.out_dir << ", " << runs
+              << " runs, seeds " << batch.base_seed() << ".." << batch.base_seed() + runs - 1
+              << (resume ? " (resuming)" : "") << "\n";
+    batch.set_report_callback([](int run, std::shared_ptr<const evo::GenerationReport> r) {
+        std::fprintf(stderr, "run %02d: ", run);
+        print_progress(*r);
+    });
+    install_stop_handlers(batch.stop_flag());
+    evo::StopReason reason;
+    try {
+        reason = batch.run();
+    } catch (...) {
+        restore_default_handlers();
+        throw;
+    }
+    restore_default_handlers();
+    std::cerr << "bhm evolve: "
+              << (reason == evo::StopReason::StopRequested
+                      ? "stopped; continue the batch with --resume"
+                      : "batch done")
+              << "; " << options.out_dir << "/" << evo::kBatchCsvFile << "\n";
+    return 0;
+}
+
 int evolve(ArgParser& args) {
     const std::string experiment_path = args.positionals().at(0);
     if (!args.has("--out")) throw UsageError("missing --out DIR");
@@ -124,6 +164,12 @@ int evolve(ArgParser& args) {
         for (const auto& p : e.problems)
             std::cerr << p.to_string() << "\n";
         return 1;
+    }
+
+    if (args.has("--runs")) {
+        const long long n = args.get_int("--runs", 0);
+        if (n < 1 || n > 99) throw UsageError("--runs must be in [1, 99]");
+        return evolve_batch(experiment, options, static_cast<int>(n), args.has("--resume"));
     }
 
     std::unique_ptr<evo::EvolutionRun> run;
@@ -232,7 +278,10 @@ int cmd_evolve(const Args& args) {
         .option("--rank-timeout", "S",
                 "under MPI: seconds a rank holding bodies may stay silent before it is declared "
                 "lost (default 60)")
-        .flag("--resume", "continue the run in DIR from its checkpoint");
+        .option("--runs", "N",
+                "a batch of N independent runs (seeds S..S+N-1) in DIR/run-01.. plus "
+                "DIR/batch.csv: each run's best per generation, mean and 95 % interval")
+        .flag("--resume", "continue the run (or with --runs, the batch) in DIR");
     std::unique_ptr<EvolveCluster> cluster;
     try {
         cluster = EvolveCluster::join();

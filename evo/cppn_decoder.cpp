@@ -8,6 +8,9 @@ namespace bhm::evo {
 
 CppnMaterials cppn_materials(const Experiment& experiment) {
     CppnMaterials m;
+    if (experiment.evolution.cppn.material_outputs == MaterialOutputs::PerMaterial)
+        for (std::size_t i = 0; i < experiment.materials.size() && i < 255; ++i)
+            m.palette.push_back(static_cast<std::uint8_t>(i + 1));
     for (std::size_t i = 0; i < experiment.materials.size() && i < 255; ++i) {
         const auto index = static_cast<std::uint8_t>(i + 1);
         if (experiment.materials[i].active()) {
@@ -56,6 +59,11 @@ CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials)
 
 Body CppnDecoder::decode(const Genome& genome) const {
     const std::size_t cells = inputs_[0].size();
+    if (genome.output_count != materials_.output_count())
+        throw std::invalid_argument("genome has " + std::to_string(genome.output_count) +
+                                    " outputs, the experiment's CPPN " +
+                                    std::to_string(materials_.output_count()) +
+                                    " (evolution.cppn.material_outputs)");
     const auto order = topological_order(genome);
     // Incoming edges grouped per target node, kept in genome order so sums are reproducible.
     std::vector<std::vector<const CppnEdge*>> incoming(
@@ -76,8 +84,9 @@ Body CppnDecoder::decode(const Genome& genome) const {
             for (std::size_t c = 0; c < cells; ++c)
                 out[c] += w * in[c];
         }
-        if (Genome::is_hidden(node)) {
-            const Activation f = genome.hidden[static_cast<std::size_t>(node - kFirstHidden)];
+        if (genome.is_hidden(node)) {
+            const Activation f =
+                genome.hidden[static_cast<std::size_t>(node - genome.first_hidden())];
             for (auto& v : out)
                 v = activate(f, v);
         }
@@ -86,6 +95,17 @@ Body CppnDecoder::decode(const Genome& genome) const {
     Body body;
     body.size = size_;
     body.cells.assign(cells, 0);
+    if (!materials_.palette.empty()) {
+        const auto& present = value[kInputCount];
+        for (std::size_t c = 0; c < cells; ++c) {
+            if (!(present[c] > 0.0)) continue;
+            std::size_t best = 0;
+            for (std::size_t k = 1; k < materials_.palette.size(); ++k)
+                if (value[kInputCount + 1 + k][c] > value[kInputCount + 1 + best][c]) best = k;
+            body.cells[c] = materials_.palette[best];
+        }
+        return body;
+    }
     const auto& present = value[kOutputMaterial];
     const auto& active = value[kOutputActive];
     for (std::size_t c = 0; c < cells; ++c) {

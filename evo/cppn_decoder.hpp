@@ -7,7 +7,9 @@
 // the lattice] onto [-1, 1]; bias = 1.
 // Outputs: identity of the weighted sum (the same decision as a sigmoid thresholded at 0.5):
 // material output > 0 puts material in the cell; then active output > 0 picks the active material,
-// otherwise the passive one.
+// otherwise the passive one. With per-material outputs (evolution.cppn.material_outputs =
+// "per_material"): presence output > 0 fills the cell, with the material whose output is largest
+// (the first of equal ones), any of the experiment's materials.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -22,6 +24,11 @@ namespace bhm::evo {
 struct CppnMaterials {
     std::uint8_t passive = 0;
     std::uint8_t active = 0;
+    //! Per-material outputs: output 1 + k paints palette[k]; empty = the two-output layout.
+    std::vector<std::uint8_t> palette;
+    int output_count() const {
+        return palette.empty() ? kOutputCount : 1 + static_cast<int>(palette.size());
+    }
 };
 CppnMaterials cppn_materials(const Experiment& experiment);
 
@@ -30,7 +37,8 @@ class CppnDecoder {
     CppnDecoder(std::array<int, 3> size, CppnMaterials materials);
 
     //! The raw lattice (no connectivity filter). Throws std::invalid_argument when a cell needs a
-    //! material the experiment lacks (e.g. an active cell and no material with cte > 0).
+    //! material the experiment lacks (e.g. an active cell and no material with cte > 0) or the
+    //! genome's output count is not the decoder's.
     Body decode(const Genome& genome) const;
 
     const std::array<int, 3>& size() const { return size_; }

@@ -10,6 +10,7 @@
 #include "evo/afpo.hpp"
 #include "evo/checkpoint.hpp"
 #include "evo/constraints.hpp"
+#include "evo/crossover.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/mutation.hpp"
 #include "evo/worker_pool.hpp"
@@ -211,7 +212,7 @@ bool EvolutionRun::draw_random_individual(Individual& out, Rng& rng, std::int64_
     const auto& e = state_.experiment;
     const int attempts = std::max(100, e.evolution.max_neutral_retries);
     for (int attempt = 0; attempt < attempts; ++attempt) {
-        Genome genome = random_genome(e.evolution.cppn, rng);
+        Genome genome = random_genome(e.evolution.cppn, rng, developer_.cppn_output_count());
         Phenotype phenotype = developer_.develop(genome);
         if (!constraint_violation(constraints, e.boundary, developer_.space(), phenotype).empty())
             continue;
@@ -300,14 +301,26 @@ bool EvolutionRun::run_generation() {
     } else {
         for (auto& m : population)
             ++m.age;
-        for (const auto& parent : population) {
-            auto out =
-                mutate_until_new(parent.genome, parent.phenotype, developer_, constraints,
-                                 rules.evolution.cppn, rules.evolution.max_neutral_retries, rng);
+        const double crossover_rate = rules.evolution.crossover_rate;
+        for (std::size_t p = 0; p < population.size(); ++p) {
+            const Individual& parent = population[p];
+            // Rate 0 draws nothing, so mutation-only runs keep the paper's random stream.
+            const Individual* mate = nullptr;
+            if (crossover_rate > 0.0 && population.size() > 1 && rng.uniform() < crossover_rate) {
+                auto m = static_cast<std::size_t>(rng.index(static_cast<int>(population.size()) - 1));
+                mate = &population[m >= p ? m + 1 : m];  // any member but the parent
+            }
+            auto out = mate ? cross_then_mutate(parent.genome, mate->genome, parent.phenotype,
+                                                developer_, constraints, rules.evolution.cppn,
+                                                rules.evolution.max_neutral_retries, rng)
+                            : mutate_until_new(parent.genome, parent.phenotype, developer_,
+                                               constraints, rules.evolution.cppn,
+                                               rules.evolution.max_neutral_retries, rng);
             Individual child;
             child.id = next_id++;
             child.parent_id = parent.id;
-            child.age = parent.age;
+            // AFPO: an offspring is as old as its oldest parent.
+            child.age = mate && !out.cloned ? std::max(parent.age, mate->age) : parent.age;
             child.born_generation = g;
             child.genome = std::move(out.genome);
             child.phenotype = std::move(out.phenotype);

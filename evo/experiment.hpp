@@ -89,11 +89,18 @@ struct Fitness {
     bool operator==(const Fitness&) const = default;
 };
 
+//! How the CPPN's outputs pick a material: the paper's two outputs (present; active or passive,
+//! the first material of each kind) or presence plus one output per material (argmax).
+enum class MaterialOutputs { ActivePassive, PerMaterial };
+inline constexpr std::array<const char*, 2> kMaterialOutputsNames = {"active_passive",
+                                                                       "per_material"};
+
 struct CppnSettings {
     int min_hidden_nodes = 4;  //!< paper Table 2: initial hidden nodes in [4, 10]
     int max_hidden_nodes = 10;
     double weight_range = 1.0;  //!< weights in [-range, range]
     double mutation_weight_sigma = 0.5;
+    MaterialOutputs material_outputs = MaterialOutputs::ActivePassive;
     bool operator==(const CppnSettings&) const = default;
 };
 
@@ -104,6 +111,9 @@ struct Evolution {
     int max_neutral_retries = 1500;
     std::uint64_t seed = 1;
     int threads = 0;  //!< 0 = all hardware threads
+    //! Probability that a member's child is the crossover of it and a random mate (evo/crossover.hpp)
+    //! before mutation is tried; 0 = the paper's mutation-only AFPO.
+    double crossover_rate = 0.0;
     CppnSettings cppn;
     bool operator==(const Evolution&) const = default;
 };

@@ -290,7 +290,7 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         const std::string path = "evolution";
         r.check_keys(*ev, path,
                      {"population", "generations", "wall_budget_h", "max_neutral_retries", "seed",
-                      "threads", "cppn"});
+                      "threads", "crossover_rate", "cppn"});
         constexpr long long kBig = 1'000'000'000LL;
         evo.population =
             static_cast<int>(r.integer(*ev, "population", path, evo.population, -kBig, kBig));
@@ -309,12 +309,14 @@ Experiment parse_experiment(const json& root, const std::string& file) {
                           "expected an integer, got " + JsonReader::type_name(*it));
         }
         evo.threads = static_cast<int>(r.integer(*ev, "threads", path, evo.threads, -kBig, kBig));
+        evo.crossover_rate = r.number(*ev, "crossover_rate", path, evo.crossover_rate);
         if (const json* c = r.object(*ev, "cppn", path)) {
             auto& cp = evo.cppn;
             const std::string cpath = "evolution.cppn";
             r.check_keys(
                 *c, cpath,
-                {"min_hidden_nodes", "max_hidden_nodes", "weight_range", "mutation_weight_sigma"});
+                {"min_hidden_nodes", "max_hidden_nodes", "weight_range", "mutation_weight_sigma",
+                 "material_outputs"});
             cp.min_hidden_nodes = static_cast<int>(
                 r.integer(*c, "min_hidden_nodes", cpath, cp.min_hidden_nodes, -kBig, kBig));
             cp.max_hidden_nodes = static_cast<int>(
@@ -322,6 +324,10 @@ Experiment parse_experiment(const json& root, const std::string& file) {
             cp.weight_range = r.number(*c, "weight_range", cpath, cp.weight_range);
             cp.mutation_weight_sigma =
                 r.number(*c, "mutation_weight_sigma", cpath, cp.mutation_weight_sigma);
+            cp.material_outputs = static_cast<MaterialOutputs>(
+                r.choice(*c, "material_outputs", cpath,
+                         {kMaterialOutputsNames.begin(), kMaterialOutputsNames.end()},
+                         static_cast<int>(cp.material_outputs)));
         }
     }
 
@@ -475,6 +481,11 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     if (!finite(cp.mutation_weight_sigma) || cp.mutation_weight_sigma <= 0 ||
         cp.mutation_weight_sigma > 100)
         bad("evolution.cppn.mutation_weight_sigma", "must be in (0, 100]");
+    if (!finite(ev.crossover_rate) || ev.crossover_rate < 0 || ev.crossover_rate > 1)
+        bad("evolution.crossover_rate", "must be in [0, 1] (0 = mutation only, the paper's)");
+    if (cp.material_outputs == MaterialOutputs::PerMaterial && e.materials.size() < 2)
+        bad("evolution.cppn.material_outputs",
+            "\"per_material\" needs at least two materials to choose between");
     return problems;
 }
 
@@ -547,11 +558,14 @@ json experiment_to_json(const Experiment& e) {
                       {"max_neutral_retries", ev.max_neutral_retries},
                       {"seed", ev.seed},
                       {"threads", ev.threads},
+                      {"crossover_rate", ev.crossover_rate},
                       {"cppn",
                        {{"min_hidden_nodes", ev.cppn.min_hidden_nodes},
                         {"max_hidden_nodes", ev.cppn.max_hidden_nodes},
                         {"weight_range", ev.cppn.weight_range},
-                        {"mutation_weight_sigma", ev.cppn.mutation_weight_sigma}}}};
+                        {"mutation_weight_sigma", ev.cppn.mutation_weight_sigma},
+                        {"material_outputs",
+                         kMaterialOutputsNames[static_cast<int>(ev.cppn.material_outputs)]}}}};
     return j;
 }
 

@@ -94,7 +94,7 @@ std::string genome_problem(const Genome& genome, double weight_range) {
         const std::string where = "edges[" + std::to_string(i) + "]: ";
         if (e.from < 0 || e.from >= n || e.to < 0 || e.to >= n)
             return where + "node index out of range";
-        if (Genome::is_output(e.from)) return where + "edge leaves an output node";
+        if (genome.is_output(e.from)) return where + "edge leaves an output node";
         if (Genome::is_input(e.to)) return where + "edge enters an input node";
         if (e.from == e.to) return where + "self loop";
         if (!std::isfinite(e.weight) || std::fabs(e.weight) > weight_range)
@@ -114,8 +114,10 @@ std::string genome_problem(const Genome& genome, double weight_range) {
     return {};
 }
 
-Genome random_genome(const CppnSettings& settings, Rng& rng) {
+Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count) {
     Genome genome;
+    genome.output_count = output_count;
+    const int first_hidden = genome.first_hidden();
     const int hidden = rng.uniform_int(
         settings.min_hidden_nodes, std::max(settings.min_hidden_nodes, settings.max_hidden_nodes));
     auto random_weight = [&] { return rng.uniform(-settings.weight_range, settings.weight_range); };
@@ -127,14 +129,14 @@ Genome random_genome(const CppnSettings& settings, Rng& rng) {
     // Sources available to hidden node h: the inputs and the hidden nodes created before it.
     for (int h = 0; h < hidden; ++h) {
         genome.hidden.push_back(random_function());
-        const int node = kFirstHidden + h;
+        const int node = first_hidden + h;
         const int source_count = kInputCount + h;
         for (int k = 0; k < 2; ++k) {
             const int pick = rng.index(source_count);
-            add_edge(pick < kInputCount ? pick : kFirstHidden + (pick - kInputCount), node);
+            add_edge(pick < kInputCount ? pick : first_hidden + (pick - kInputCount), node);
         }
     }
-    for (int output : {static_cast<int>(kOutputMaterial), static_cast<int>(kOutputActive)}) {
+    for (int output = kInputCount; output < first_hidden; ++output) {
         if (hidden == 0) {
             for (int i = 0; i < kInputCount; ++i)
                 add_edge(i, output);
@@ -142,14 +144,14 @@ Genome random_genome(const CppnSettings& settings, Rng& rng) {
         }
         const int count = std::min(3, hidden);
         for (int k = 0; k < count; ++k)
-            add_edge(kFirstHidden + rng.index(hidden), output);
+            add_edge(first_hidden + rng.index(hidden), output);
     }
     // A hidden node nobody reads is dead weight; give it a consumer so every node matters.
     for (int h = 0; h < hidden; ++h) {
-        const int node = kFirstHidden + h;
+        const int node = first_hidden + h;
         const bool consumed = std::any_of(genome.edges.begin(), genome.edges.end(),
                                           [&](const CppnEdge& e) { return e.from == node; });
-        if (!consumed) add_edge(node, kInputCount + rng.index(kOutputCount));
+        if (!consumed) add_edge(node, kInputCount + rng.index(output_count));
     }
     return genome;
 }
@@ -161,8 +163,14 @@ nlohmann::json genome_to_json(const Genome& genome) {
     nlohmann::json edges = nlohmann::json::array();
     for (const auto& e : genome.edges)
         edges.push_back({e.from, e.to, e.weight});
+    nlohmann::json outputs = {"material", "active"};
+    if (genome.output_count != kOutputCount) {
+        outputs = {"material"};
+        for (int k = 1; k < genome.output_count; ++k)
+            outputs.push_back("material_" + std::to_string(k));
+    }
     return {{"inputs", {"x", "y", "z", "d", "bias"}},
-            {"outputs", {"material", "active"}},
+            {"outputs", outputs},
             {"hidden", hidden},
             {"edges", edges}};
 }
@@ -173,6 +181,12 @@ Genome genome_from_json(const nlohmann::json& json, double weight_range) {
     };
     if (!json.is_object()) fail("", "expected an object");
     Genome genome;
+    if (json.contains("outputs")) {  // absent: the paper's two outputs
+        if (!json["outputs"].is_array() || json["outputs"].size() < 2 ||
+            json["outputs"].size() > 256)
+            fail("outputs", "expected an array of 2 to 256 output names");
+        genome.output_count = static_cast<int>(json["outputs"].size());
+    }
     if (!json.contains("hidden") || !json["hidden"].is_array()) fail("hidden", "expected an array");
     for (std::size_t i = 0; i < json["hidden"].size(); ++i) {
         const auto& name = json["hidden"][i];

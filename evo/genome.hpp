@@ -1,6 +1,7 @@
 #pragma once
 // The genotype: a CPPN (Stanley 2007) as paper Table 2 specifies it. Five input nodes (x, y, z,
-// d = distance from the centre, bias 1), two output nodes (material present, active or passive),
+// d = distance from the centre, bias 1), two output nodes (material present, active or passive;
+// with evolution.cppn.material_outputs = "per_material": presence then one output per material),
 // hidden nodes each applying one of seven functions, weighted edges in [-1, 1]. The graph is any
 // acyclic graph (not layered): node values are computed in topological order, each value used by
 // every consumer.
@@ -25,7 +26,9 @@ inline constexpr std::array<const char*, kActivationCount> kActivationNames = {
 double activate(Activation function, double x);
 
 //! Node layout: inputs first, then outputs, then hidden nodes. Inputs take no edges in and
-//! outputs send no edges out, so the graph's sources and sinks are fixed.
+//! outputs send no edges out, so the graph's sources and sinks are fixed. The constants below are
+//! the paper's two-output layout; a per-material genome has 1 + materials outputs (output 0 =
+//! presence at node kInputCount, output 1 + k = material k + 1) and its hidden nodes start later.
 enum InputNode : int { kInputX = 0, kInputY, kInputZ, kInputD, kInputBias };
 enum OutputNode : int { kOutputMaterial = 5, kOutputActive = 6 };
 inline constexpr int kInputCount = 5;
@@ -40,15 +43,17 @@ struct CppnEdge {
 };
 
 struct Genome {
-    //! Function of each hidden node; hidden node h is node kFirstHidden + h.
+    //! Function of each hidden node; hidden node h is node first_hidden() + h.
     std::vector<Activation> hidden;
     std::vector<CppnEdge> edges;
+    int output_count = kOutputCount;  //!< 2 (the paper's) or 1 + materials (per_material)
 
-    int node_count() const { return kFirstHidden + static_cast<int>(hidden.size()); }
+    int first_hidden() const { return kInputCount + output_count; }
+    int node_count() const { return first_hidden() + static_cast<int>(hidden.size()); }
     int hidden_count() const { return static_cast<int>(hidden.size()); }
     static bool is_input(int node) { return node < kInputCount; }
-    static bool is_output(int node) { return node >= kInputCount && node < kFirstHidden; }
-    static bool is_hidden(int node) { return node >= kFirstHidden; }
+    bool is_output(int node) const { return node >= kInputCount && node < first_hidden(); }
+    bool is_hidden(int node) const { return node >= first_hidden(); }
     bool operator==(const Genome&) const = default;
 };
 
@@ -67,8 +72,8 @@ std::vector<int> topological_order(const Genome& genome);
 //! A new random genome (paper Table 2): hidden node count uniform in [min, max]; each hidden node
 //! takes two edges from inputs or earlier hidden nodes; each output takes edges from up to three
 //! hidden nodes; every hidden node left without a consumer feeds a random output. Acyclic by
-//! construction (edges only go from earlier to later nodes).
-Genome random_genome(const CppnSettings& settings, Rng& rng);
+//! construction (edges only go from earlier to later nodes). output_count as Genome's.
+Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count = kOutputCount);
 
 nlohmann::json genome_to_json(const Genome& genome);
 //! Throws std::invalid_argument naming the field when the JSON is not a well-formed genome.

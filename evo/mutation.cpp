@@ -38,7 +38,7 @@ bool modify_node(Genome& g, Rng& rng) {
 bool remove_node(Genome& g, Rng& rng) {
     if (g.hidden.empty()) return false;
     const int h = rng.index(g.hidden_count());
-    const int node = kFirstHidden + h;
+    const int node = g.first_hidden() + h;
     g.hidden.erase(g.hidden.begin() + h);
     std::vector<CppnEdge> kept;
     kept.reserve(g.edges.size());
@@ -75,7 +75,7 @@ bool add_edge(Genome& g, const CppnSettings& s, Rng& rng) {
                 }
         }
         for (int from = 0; from < n; ++from) {
-            if (Genome::is_output(from) || reachable[static_cast<std::size_t>(from)]) continue;
+            if (g.is_output(from) || reachable[static_cast<std::size_t>(from)]) continue;
             if (has_edge(g, from, to)) continue;
             candidates.emplace_back(from, to);
         }

@@ -23,6 +23,7 @@ namespace {
 
 CppnMaterials checked_materials(const Experiment& experiment) {
     const auto m = cppn_materials(experiment);
+    if (!m.palette.empty()) return m;  // per-material outputs can paint any material
     if (m.passive == 0)
         throw std::invalid_argument(
             "experiment '" + experiment.name +
@@ -47,7 +48,8 @@ std::array<int, 3> checked_size(const DesignSpace& space, const std::string& nam
 Developer::Developer(const Experiment& experiment)
     : experiment_(experiment),
       space_(design_space(experiment)),
-      decoder_(checked_size(space_, experiment.name), checked_materials(experiment)) {}
+      decoder_(checked_size(space_, experiment.name), checked_materials(experiment)),
+      output_count_(cppn_materials(experiment).output_count()) {}
 
 Phenotype Developer::develop(const Genome& genome) const {
     const Body designed = largest_face_connected_component(decoder_.decode(genome));

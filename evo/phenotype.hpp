@@ -48,12 +48,15 @@ class Developer {
     Body decode_raw(const Genome& genome) const { return decoder_.decode(genome); }
 
     const DesignSpace& space() const { return space_; }
+    //! Outputs the experiment's CPPN has (Genome::output_count of every genome it develops).
+    int cppn_output_count() const { return output_count_; }
     const Experiment& experiment() const { return experiment_; }
 
   private:
     Experiment experiment_;
     DesignSpace space_;
     CppnDecoder decoder_;
+    int output_count_ = kOutputCount;
 };
 
 }  // namespace bhm::evo

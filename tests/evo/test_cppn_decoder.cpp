@@ -12,7 +12,7 @@
 using namespace bhm::evo;
 
 namespace {
-constexpr CppnMaterials kMaterials{1, 2};  // passive = 1, active = 2
+const CppnMaterials kMaterials{1, 2, {}};  // passive = 1, active = 2
 
 std::string layer_string(const Body& b, int z) {
     std::string s;
@@ -82,7 +82,7 @@ TEST_CASE("each node's value is computed once and shared by all its consumers") 
 TEST_CASE("a decoder without the material it needs says which") {
     Genome g;
     g.edges = {{kInputBias, kOutputMaterial, 1.0}, {kInputBias, kOutputActive, 1.0}};
-    CppnDecoder no_active({2, 1, 1}, CppnMaterials{1, 0});
+    CppnDecoder no_active({2, 1, 1}, CppnMaterials{1, 0, {}});
     CHECK_THROWS_WITH_AS(no_active.decode(g), doctest::Contains("no active material"),
                          std::invalid_argument);
     auto e = test::tiny_experiment();
