@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -40,7 +41,9 @@ TEST_CASE("bhm validate accepts every preset") {
 }
 
 TEST_CASE("bhm validate reports every problem of a file, one per line") {
-    const auto dir = std::filesystem::temp_directory_path() / "bhm-validate-cli";
+    // One folder per process: test runs of other build trees on the same machine share /tmp.
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("bhm-validate-cli-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto path = (dir / "two-problems.json").string();
     std::ofstream(path) << R"({"materials": [{"name": "p", "poisson_ratio": 0.7},
@@ -81,7 +84,8 @@ TEST_CASE("usage errors exit 2 with a one-line error and a hint") {
 }
 
 TEST_CASE("mutated presets through the real binary never crash it") {
-    const auto dir = std::filesystem::temp_directory_path() / "bhm-validate-fuzz";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("bhm-validate-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     std::ifstream in(kSource + "/assets/experiments/paper-exp3.json");
     std::stringstream s;

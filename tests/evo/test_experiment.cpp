@@ -1,6 +1,7 @@
 // Experiment and body files: presets validate, round trips are exact, every broken file in
 // tests/data/bad names the field at fault, and no mutated input crashes the loader.
 #include <doctest/doctest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -53,7 +54,8 @@ TEST_CASE("every preset validates and matches the paper's settings") {
 }
 
 TEST_CASE("experiment round trip: load, save, load is identical") {
-    const fs::path dir = fs::temp_directory_path() / "bhm-test-roundtrip";
+    const fs::path dir =
+        fs::temp_directory_path() / ("bhm-test-roundtrip-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     for (const auto& name : kPresets) {
         CAPTURE(name);
