@@ -133,7 +133,11 @@ void VideoWriter::finish() {
     }
     std::error_code ec;
     std::filesystem::rename(temp_path_, path_, ec);
-    if (ec) throw std::runtime_error(path_ + ": cannot move the video into place: " + ec.message());
+    if (ec) {
+        const std::string reason = ec.message();  // before the clean-up can change errno
+        std::remove(temp_path_.c_str());
+        throw std::runtime_error(path_ + ": cannot move the video into place: " + reason);
+    }
 }
 
 }  // namespace bhm::app

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "engine/atomic_file.hpp"
+
 namespace bhm::engine {
 
 namespace {
@@ -116,29 +118,6 @@ void check_replay_for_writing(const std::string& path, const Replay& r) {
     }
 }
 
-void write_atomically(const std::string& path, const std::string& contents) {
-    // The pid keeps two processes writing the same path from sharing a temp file.
-    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) fail(path, "cannot open temporary file " + tmp + " for writing");
-        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            fail(path, "write failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        fail(path, "cannot rename temporary file into place: " + ec.message());
-    }
-}
-
 std::string read_whole_file(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
@@ -180,7 +159,7 @@ void write_replay(const std::string& path, const Replay& replay) {
         e.f32_array(p.orientation);
         e.f32_array(p.size_m);
     }
-    write_atomically(path, e.str());
+    write_file_atomically(path, e.str());
 }
 
 Replay read_replay(const std::string& path) {

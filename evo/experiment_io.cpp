@@ -12,6 +12,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "engine/atomic_file.hpp"
 #include "engine/limits.hpp"
 #include "evo/json_reader.hpp"
 #include "evo/scene.hpp"
@@ -447,8 +448,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
             range, evaluation_seconds(e), e.actuation.frequency_hz,
             has_active && e.actuation.temperature_amplitude_c > 0, cells);
         if (!why.empty())
-            bad("simulation", "settle_s + evaluate_s = " + short_number(evaluation_seconds(e)) +
-                                  " s " + why);
+            bad("simulation",
+                "settle_s + evaluate_s = " + short_number(evaluation_seconds(e)) + " s " + why);
     }
 
     const auto& c = e.fitness.constraints;
@@ -570,27 +571,7 @@ json experiment_to_json(const Experiment& e) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
-    namespace fs = std::filesystem;
-    const std::string tmp = path + ".tmp";
-    {
-        std::FILE* f = std::fopen(tmp.c_str(), "wb");
-        if (!f) throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
-        size_t written = std::fwrite(contents.data(), 1, contents.size(), f);
-        bool flushed = std::fflush(f) == 0;
-        bool closed = std::fclose(f) == 0;
-        if (written != contents.size() || !flushed || !closed) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw std::runtime_error(path +
-                                     ": write failed (disk full?); the previous file is unchanged");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error(path + ": cannot replace the file (" + ec.message() + ")");
-    }
+    engine::write_file_atomically(path, contents);
 }
 
 void save_experiment(const std::string& path, const Experiment& e) {

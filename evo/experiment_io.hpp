@@ -54,7 +54,8 @@ struct ExperimentAndBody {
 ExperimentAndBody load_experiment_and_body(const std::string& experiment_path,
                                            const std::string& body_path);
 
-//! Writes text to path atomically: path.tmp then rename. Throws std::runtime_error on failure.
+//! engine::write_file_atomically (engine/atomic_file.hpp): every write, the fsync and the close
+//! checked, then a rename; on failure the old file is untouched. Throws std::runtime_error.
 void write_file_atomically(const std::string& path, const std::string& contents);
 
 }  // namespace bhm::evo

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "engine/atomic_file.hpp"
+
 namespace bhm::render {
 
 void write_png(const std::string& path, const Image& image) {
@@ -19,17 +21,17 @@ void write_png(const std::string& path, const Image& image) {
     for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
         for (std::size_t c = 0; c < 3; ++c)
             rgb[3 * i + c] = image.rgba[4 * i + c];
-    const std::string temp = path + ".tmp";
-    if (!stbi_write_png(temp.c_str(), image.width, image.height, 3, rgb.data(), image.width * 3)) {
-        std::remove(temp.c_str());
-        throw std::runtime_error(path + ": cannot write PNG (is the folder there and writable?)");
-    }
-    std::error_code error;
-    std::filesystem::rename(temp, path, error);
-    if (error) {
-        std::remove(temp.c_str());
-        throw std::runtime_error(path + ": cannot replace file: " + error.message());
-    }
+    // Encoded in memory, then written through the checked atomic writer: stb's own file writer
+    // ignores write and close errors (a full disk left a 0-byte PNG behind a "wrote").
+    std::string png;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<std::size_t>(size));
+    };
+    if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, rgb.data(),
+                                image.width * 3))
+        throw std::runtime_error(path + ": cannot encode the PNG");
+    engine::write_file_atomically(path, png);
 }
 
 Image read_png(const std::string& path) {
