@@ -6,8 +6,11 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "bhm_version.hpp"
+#include "engine/atomic_file.hpp"
+#include "evo/crc32.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/phenotype.hpp"
 
@@ -19,7 +22,12 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "bhm-evolution-checkpoint";
-constexpr int kFormatVersion = 1;
+// 2: the payload is wrapped with its CRC-32 (checkpoint.hpp). 1: the bare payload, still read.
+constexpr int kFormatVersion = 2;
+constexpr int kOldestReadableVersion = 1;
+constexpr std::string_view kChecksumPrefix = "{\"checksum\":\"crc32:";
+constexpr std::string_view kPayloadPrefix = "\",\"payload\":";
+constexpr std::string_view kClosing = "}\n";
 
 std::string hex(std::uint64_t v) {
     char buffer[24];
@@ -281,9 +289,12 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         const Fields f(j, "");
         if (f.string("format") != kFormat)
             f.fail("format", std::string("expected \"") + kFormat + "\"");
-        if (f.integer("format_version") != kFormatVersion)
-            f.fail("format_version",
-                   "unsupported version (expected " + std::to_string(kFormatVersion) + ")");
+        const auto version = f.integer("format_version");
+        if (version < kOldestReadableVersion || version > kFormatVersion)
+            f.fail("format_version", "unsupported version " + std::to_string(version) +
+                                         " (this build reads " +
+                                         std::to_string(kOldestReadableVersion) + " to " +
+                                         std::to_string(kFormatVersion) + ")");
         RunState s;
         try {
             s.experiment = parse_experiment(f.at("experiment"), label + ":experiment");
@@ -384,35 +395,73 @@ RunState run_state_from_json(const json& j, const std::string& label) {
     }
 }
 
+std::string checkpoint_text(const json& payload) {
+    const std::string body = payload.dump(1);
+    char crc[9];
+    std::snprintf(crc, sizeof crc, "%08" PRIx32, crc32(body));
+    return std::string(kChecksumPrefix) + crc + std::string(kPayloadPrefix) + body +
+           std::string(kClosing);
+}
+
+json parse_checkpoint_text(const std::string& text, std::vector<std::string>& notes) {
+    const std::string_view all(text);
+    if (all.substr(0, kChecksumPrefix.size()) != kChecksumPrefix) {
+        // Format 1 (no checksum) or damage to the very first bytes.
+        json j;
+        try {
+            j = json::parse(text);
+        } catch (const json::parse_error& e) {
+            throw std::runtime_error(std::string("not a checkpoint: no checksum header and not "
+                                                 "valid JSON (") +
+                                     e.what() + ")");
+        }
+        if (!j.is_object() || j.value("format_version", 0) != 1)
+            throw std::runtime_error("damaged: the checksum header is missing");
+        notes.push_back("format 1 carries no checksum: its contents are not verified");
+        return j;
+    }
+    const std::size_t hex_at = kChecksumPrefix.size();
+    const std::size_t payload_at = hex_at + 8 + kPayloadPrefix.size();
+    if (all.size() < payload_at + kClosing.size() ||
+        all.substr(hex_at + 8, kPayloadPrefix.size()) != kPayloadPrefix ||
+        all.substr(all.size() - kClosing.size()) != kClosing)
+        throw std::runtime_error("damaged: truncated or malformed checksum wrapper");
+    const std::string hex_text(all.substr(hex_at, 8));
+    if (hex_text.find_first_not_of("0123456789abcdef") != std::string::npos)
+        throw std::runtime_error("damaged: malformed checksum");
+    const auto stored = static_cast<std::uint32_t>(std::stoul(hex_text, nullptr, 16));
+    const std::string_view payload =
+        all.substr(payload_at, all.size() - payload_at - kClosing.size());
+    const std::uint32_t actual = crc32(payload);
+    if (actual != stored) {
+        char message[128];
+        std::snprintf(message, sizeof message,
+                      "damaged: CRC-32 of the contents is %08" PRIx32 ", the file says %08" PRIx32,
+                      actual, stored);
+        throw std::runtime_error(message);
+    }
+    try {
+        return json::parse(payload);
+    } catch (const json::parse_error& e) {
+        throw std::runtime_error(std::string("not valid JSON (") + e.what() + ")");
+    }
+}
+
 void save_checkpoint(const std::string& dir, const RunState& state) {
     const fs::path current = fs::path(dir) / kCheckpointFile;
     const fs::path previous = fs::path(dir) / kPreviousCheckpointFile;
-    const fs::path tmp = fs::path(dir) / (std::string(kCheckpointFile) + ".tmp");
-    const std::string text = run_state_to_json(state).dump(1) + "\n";
-    {
-        std::FILE* out = std::fopen(tmp.c_str(), "wb");
-        if (!out) throw std::runtime_error(tmp.string() + ": cannot write the checkpoint");
-        const bool ok = std::fwrite(text.data(), 1, text.size(), out) == text.size();
-        const bool flushed = std::fflush(out) == 0;
-        const bool closed = std::fclose(out) == 0;
-        if (!ok || !flushed || !closed) {
-            std::error_code ignored;
-            fs::remove(tmp, ignored);
-            throw std::runtime_error(
-                tmp.string() + ": write failed (disk full?); the previous checkpoint is kept");
-        }
-    }
-    std::error_code ec;
-    if (fs::exists(current)) {
+    engine::AtomicFile file(current.string());
+    file.write(checkpoint_text(run_state_to_json(state)));
+    // Once the new one is complete on disk: the old one becomes the previous, the new one takes
+    // its place. A crash in between leaves checkpoint.prev.json, which loading falls back to.
+    file.commit([&] {
+        std::error_code ec;
+        if (!fs::exists(current, ec)) return;
         fs::rename(current, previous, ec);
         if (ec)
             throw std::runtime_error(previous.string() + ": cannot keep the previous checkpoint (" +
                                      ec.message() + ")");
-    }
-    fs::rename(tmp, current, ec);
-    if (ec)
-        throw std::runtime_error(current.string() + ": cannot write the checkpoint (" +
-                                 ec.message() + ")");
+    });
 }
 
 LoadedCheckpoint load_checkpoint(const std::string& dir) {
@@ -421,16 +470,14 @@ LoadedCheckpoint load_checkpoint(const std::string& dir) {
     for (const char* name : {kCheckpointFile, kPreviousCheckpointFile}) {
         const std::string path = (fs::path(dir) / name).string();
         try {
-            json j;
-            try {
-                j = json::parse(read_text(path));
-            } catch (const json::parse_error& e) {
-                throw std::runtime_error(std::string("not valid JSON (") + e.what() + ")");
-            }
+            std::vector<std::string> notes;
+            const json j = parse_checkpoint_text(read_text(path), notes);
             out.state = run_state_from_json(j, path);
             out.path = path;
             for (const auto& p : problems)
                 out.warnings.push_back(p + "; using " + path);
+            for (const auto& n : notes)
+                out.warnings.push_back(path + ": " + n);
             return out;
         } catch (const std::exception& e) {
             std::string message = e.what();

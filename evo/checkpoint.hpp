@@ -1,8 +1,15 @@
 #pragma once
 // Checkpoints: the whole RunState as JSON, written after every generation. The write goes to a
-// temporary file first; the previous checkpoint is renamed checkpoint.prev.json, then the new one
-// takes its place, so a crash at any moment leaves at least one complete checkpoint. Loading
-// falls back to checkpoint.prev.json when checkpoint.json is missing or corrupt.
+// temporary file first (engine/atomic_file.hpp: every write, fsync and close checked); the
+// previous checkpoint is renamed checkpoint.prev.json, then the new one takes its place, so a
+// crash or a full disk at any moment leaves at least one complete checkpoint. Loading falls back
+// to checkpoint.prev.json when checkpoint.json is missing or damaged, with a warning naming it.
+//
+// Format 2 (docs/evolution.md) wraps the payload with its CRC-32 so that damage which still
+// parses as JSON (a flipped digit) is caught:
+//   {"checksum":"crc32:XXXXXXXX","payload":{...,"format_version":2,...}}\n
+// with the CRC over the exact bytes of the payload. Format 1 (the bare payload) is still read,
+// with a warning that it is not verified.
 //
 // Phenotypes are not stored: they are developed again from the genomes on load, and each one must
 // match its recorded hash (a check that the decoder and the experiment are unchanged).
@@ -26,6 +33,12 @@ nlohmann::json run_state_to_json(const RunState& state);
 
 //! Throws std::runtime_error "LABEL: field.path: message" on anything missing or inconsistent.
 RunState run_state_from_json(const nlohmann::json& json, const std::string& label);
+
+//! The file's text for a payload (format 2, above).
+std::string checkpoint_text(const nlohmann::json& payload);
+//! Verifies and parses a checkpoint file's text; notes get what the caller should warn about
+//! (format 1). Throws std::runtime_error saying what is damaged.
+nlohmann::json parse_checkpoint_text(const std::string& text, std::vector<std::string>& notes);
 
 //! Writes DIR/checkpoint.json, keeping the previous one as DIR/checkpoint.prev.json.
 void save_checkpoint(const std::string& dir, const RunState& state);

@@ -1,0 +1,168 @@
+// What keeps a run directory's work safe: checkpoint checksums and versions, the one-writer lock,
+// a damaged run.json repaired with a warning that names it.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "evo/checkpoint.hpp"
+#include "evo/crc32.hpp"
+#include "evo/evolution_run.hpp"
+#include "evo/run_lock.hpp"
+#include "evo_test_support.hpp"
+
+using namespace bhm::evo;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("bhm-test-rel-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    return dir;
+}
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void spit(const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+RunOptions options(int generations, const std::string& dir) {
+    RunOptions o;
+    o.generations = generations;
+    o.threads = 2;
+    o.out_dir = dir;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("CRC-32 gives the standard check value") {
+    CHECK(crc32("123456789") == 0xCBF43926u);
+    CHECK(crc32("") == 0u);
+    CHECK(crc32("a") == 0xE8B7BE43u);
+}
+
+TEST_CASE("a checkpoint whose contents changed but still parse is caught by its checksum") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = fresh_dir("crc");
+    EvolutionRun(e, options(2, dir.string())).run();
+    const fs::path current = dir / kCheckpointFile;
+    std::string text = slurp(current);
+    REQUIRE(text.rfind("{\"checksum\":\"crc32:", 0) == 0);
+    std::vector<std::string> notes;
+    const auto payload = parse_checkpoint_text(text, notes);
+    CHECK(notes.empty());
+    CHECK(payload.at("format_version") == 2);
+    CHECK(checkpoint_text(payload) == text);  // the format round-trips byte for byte
+
+    // One digit of the generation counter changed: valid JSON, wrong run. Falls back.
+    const auto at = text.find("\"generation\": 1");
+    REQUIRE(at != std::string::npos);
+    text[at + 14] = '0';
+    spit(current, text);
+    auto resumed = EvolutionRun::resume(options(3, dir.string()));
+    REQUIRE(resumed->resume_warnings().size() == 1);
+    const std::string warning = resumed->resume_warnings()[0];
+    CHECK(warning.find(current.string()) == 0);
+    CHECK(warning.find("CRC-32") != std::string::npos);
+    CHECK(warning.find(kPreviousCheckpointFile) != std::string::npos);
+    CHECK(resumed->state().generation == 0);
+    CHECK(resumed->checkpoint_path() == (dir / kPreviousCheckpointFile).string());
+    resumed.reset();
+
+    // Truncated wrapper, damaged checksum digits, a future version: each named, none used.
+    for (const std::string& bad :
+         {text.substr(0, text.size() / 2),
+          std::string("{\"checksum\":\"crc32:zzzzzzzz\"") + text.substr(28)}) {
+        std::vector<std::string> ignored;
+        CHECK_THROWS_WITH_AS(parse_checkpoint_text(bad, ignored), doctest::Contains("damaged"),
+                             std::runtime_error);
+    }
+    auto future = payload;
+    future["format_version"] = 99;
+    CHECK_THROWS_WITH_AS(run_state_from_json(future, "x"),
+                         doctest::Contains("unsupported version 99"), std::runtime_error);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a format 1 checkpoint (no checksum) is still read, with a warning that names it") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = fresh_dir("v1");
+    EvolutionRun(e, options(2, dir.string())).run();
+    std::vector<std::string> notes;
+    auto payload = parse_checkpoint_text(slurp(dir / kCheckpointFile), notes);
+    payload["format_version"] = 1;
+    spit(dir / kCheckpointFile, payload.dump(1) + "\n");
+    auto resumed = EvolutionRun::resume(options(3, dir.string()));
+    REQUIRE(resumed->resume_warnings().size() == 1);
+    CHECK(resumed->resume_warnings()[0].find((dir / kCheckpointFile).string()) == 0);
+    CHECK(resumed->resume_warnings()[0].find("not verified") != std::string::npos);
+    CHECK(resumed->state().generation == 1);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a run directory has one writer: a second is refused with the owner's name") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = fresh_dir("lock");
+    {
+        EvolutionRun first(e, options(2, dir.string()));
+        const std::string owner = run_lock_owner(dir.string());
+        CHECK(owner.find("pid " + std::to_string(::getpid()) + " on host ") == 0);
+        try {
+            EvolutionRun second(e, options(2, dir.string()));
+            FAIL("a second writer was let in");
+        } catch (const RunDirectoryBusy& busy) {
+            CHECK(std::string(busy.what()).find(owner) != std::string::npos);
+        }
+        first.run();
+        CHECK_THROWS_AS(EvolutionRun::resume(options(3, dir.string())), RunDirectoryBusy);
+    }
+    CHECK_FALSE(fs::exists(dir / kRunLockFile));  // released with the run
+    CHECK_NOTHROW(EvolutionRun::resume(options(3, dir.string())));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a lock left by a killed process is stale and taken over") {
+    const fs::path dir = fresh_dir("stale");
+    fs::create_directories(dir);
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        // Take the lock and die without any clean-up, as kill -9 would.
+        static_cast<void>(new RunDirectoryLock(dir.string(), "doomed"));
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    REQUIRE(fs::exists(dir / kRunLockFile));
+    CHECK(run_lock_owner(dir.string()).find("doomed") != std::string::npos);
+    RunDirectoryLock lock(dir.string(), "heir");
+    CHECK(run_lock_owner(dir.string()).find("heir") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a damaged run.json is named, repaired from the checkpoint, and the run goes on") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = fresh_dir("runjson");
+    EvolutionRun(e, options(2, dir.string())).run();
+    spit(dir / "run.json", "{\"bhm_version\": \"0.1\", \"seed\": 7, \"experi");
+    auto resumed = EvolutionRun::resume(options(3, dir.string()));
+    REQUIRE(resumed->resume_warnings().size() == 1);
+    CHECK(resumed->resume_warnings()[0].find((dir / "run.json").string()) == 0);
+    CHECK(resumed->resume_warnings()[0].find("rewritten") != std::string::npos);
+    const auto run_json = nlohmann::json::parse(slurp(dir / "run.json"));  // really rewritten
+    CHECK(run_json.at("experiment").at("name") == "tiny");
+    CHECK(resumed->run() == StopReason::GenerationBudget);
+    fs::remove_all(dir);
+}
