@@ -13,6 +13,7 @@
 #include "evo/crossover.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/mutation.hpp"
+#include "evo/run_lock.hpp"
 #include "evo/worker_pool.hpp"
 
 namespace bhm::evo {
@@ -54,8 +55,26 @@ Experiment read_original_experiment(const std::string& dir) {
     if (!in) throw std::runtime_error(path + ": missing");
     std::stringstream text;
     text << in.rdbuf();
-    const auto json = nlohmann::json::parse(text.str());
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(text.str());
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(path + ": damaged, not valid JSON (" + e.what() + ")");
+    }
+    if (!json.is_object() || !json.contains("experiment"))
+        throw std::runtime_error(path + ":experiment: missing");
     return parse_experiment(json.at("experiment"), path + ":experiment");
+}
+
+//! Creates DIR if needed and takes its lock: before anything in it is read or written.
+std::shared_ptr<RunDirectoryLock> lock_run_directory(const RunOptions& options, bool create) {
+    if (options.out_dir.empty()) return nullptr;
+    std::error_code ec;
+    if (create) fs::create_directories(options.out_dir, ec);
+    if (!fs::is_directory(options.out_dir, ec))
+        throw std::runtime_error(options.out_dir + (create ? ": cannot create the run directory"
+                                                           : ": no such run directory"));
+    return std::make_shared<RunDirectoryLock>(options.out_dir, options.writer);
 }
 
 }  // namespace
@@ -68,6 +87,7 @@ EvolutionRun::Start EvolutionRun::fresh_start(const Experiment& experiment,
     s.state.experiment = s.original;
     s.state.seed = s.original.evolution.seed;
     s.state.rng = Rng(s.state.seed).state();
+    s.lock = lock_run_directory(options, true);
     if (!options.out_dir.empty()) {
         for (const char* name : {kCheckpointFile, kPreviousCheckpointFile})
             if (fs::exists(fs::path(options.out_dir) / name))
@@ -83,6 +103,7 @@ EvolutionRun::EvolutionRun(const Experiment& experiment, RunOptions options)
 
 std::unique_ptr<EvolutionRun> EvolutionRun::resume(RunOptions options) {
     if (options.out_dir.empty()) throw std::invalid_argument("resuming needs the run directory");
+    auto lock = lock_run_directory(options, false);
     auto loaded = load_checkpoint(options.out_dir);
     if (options.seed && *options.seed != loaded.state.seed)
         throw std::invalid_argument("--seed " + std::to_string(*options.seed) +
@@ -93,18 +114,21 @@ std::unique_ptr<EvolutionRun> EvolutionRun::resume(RunOptions options) {
     s.warnings = std::move(loaded.warnings);
     s.checkpoint_path = loaded.path;
     s.resumed = true;
+    s.lock = std::move(lock);
     try {
         s.original = read_original_experiment(options.out_dir);
     } catch (const std::exception& e) {
         s.warnings.push_back(std::string(e.what()) +
-                             "; run.json will record the checkpoint's experiment");
+                             "; rewritten from the checkpoint's experiment (its current rules)");
         s.original = s.state.experiment;
+        s.rewrite_run_info = true;
     }
     return std::unique_ptr<EvolutionRun>(new EvolutionRun(std::move(s), std::move(options)));
 }
 
 EvolutionRun::EvolutionRun(Start start, RunOptions options)
     : options_(std::move(options)),
+      lock_(std::move(start.lock)),
       original_experiment_(std::move(start.original)),
       state_(std::move(start.state)),
       developer_(state_.experiment),
@@ -122,7 +146,7 @@ EvolutionRun::EvolutionRun(Start start, RunOptions options)
     if (evolution.population < 1) throw std::invalid_argument("evolution.population must be >= 1");
     if (!options_.out_dir.empty()) {
         output_.emplace(options_.out_dir);
-        if (!start.resumed || !fs::exists(output_->path("run.json")))
+        if (!start.resumed || start.rewrite_run_info)
             output_->write_run_info(original_experiment_, state_);
     }
 }

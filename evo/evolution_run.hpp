@@ -42,12 +42,16 @@
 
 namespace bhm::evo {
 
+class RunDirectoryLock;
+
 struct RunOptions {
     std::string out_dir;                  //!< empty: keep everything in memory, write no files
     std::optional<int> generations;       //!< total generations, generation 0 included
     std::optional<double> wall_budget_h;  //!< wall-time budget across resumes
     std::optional<int> threads;           //!< 0 = all hardware threads
     std::optional<std::uint64_t> seed;    //!< new runs only; must match the checkpoint on resume
+    //! Named in out_dir's lock file (evo/run_lock.hpp) for anyone refused while this run owns it.
+    std::string writer = "bhm";
     //! Where simulations run; null: a ThreadEvaluator with `threads` threads in this process.
     std::shared_ptr<Evaluator> evaluator;
 };
@@ -104,10 +108,13 @@ enum class StopReason { GenerationBudget, WallBudget, StopRequested };
 
 class EvolutionRun {
   public:
-    //! A new run. With an out_dir, refuses a directory that already holds a checkpoint (resume it
-    //! instead) and writes run.json. Throws std::invalid_argument / std::runtime_error.
+    //! A new run. With an out_dir: creates it, takes its lock for the run's lifetime (a directory
+    //! another writer owns throws RunDirectoryBusy naming it), refuses a directory that already
+    //! holds a checkpoint (resume it instead) and writes run.json. Throws std::invalid_argument /
+    //! std::runtime_error.
     EvolutionRun(const Experiment& experiment, RunOptions options);
-    //! Continues the run in options.out_dir from its checkpoint (or the previous one).
+    //! Continues the run in options.out_dir from its checkpoint (or the previous one), after
+    //! taking the directory's lock. A missing or damaged run.json is rewritten (with a warning).
     static std::unique_ptr<EvolutionRun> resume(RunOptions options);
     ~EvolutionRun();
     EvolutionRun(const EvolutionRun&) = delete;
@@ -156,6 +163,8 @@ class EvolutionRun {
         std::vector<std::string> warnings;
         std::string checkpoint_path;
         bool resumed = false;
+        bool rewrite_run_info = false;  //!< run.json was missing or damaged
+        std::shared_ptr<RunDirectoryLock> lock;
     };
     static Start fresh_start(const Experiment& experiment, const RunOptions& options);
     EvolutionRun(Start start, RunOptions options);
@@ -170,6 +179,7 @@ class EvolutionRun {
     void progress_end();
 
     RunOptions options_;
+    std::shared_ptr<RunDirectoryLock> lock_;  //!< held for the run's lifetime (null: no out_dir)
     Experiment original_experiment_;
     RunState state_;
     Developer developer_;

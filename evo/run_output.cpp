@@ -1,9 +1,13 @@
 #include "evo/run_output.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 
 #include "bhm_version.hpp"
+#include "engine/atomic_file.hpp"
 #include "evo/checkpoint.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/vxa.hpp"
@@ -66,6 +70,12 @@ RunOutput::RunOutput(std::string dir) : dir_(std::move(dir)) {
     fs::create_directories(fs::path(dir_) / "champions", ec);
     if (ec)
         throw std::runtime_error(dir_ + ": cannot create the run directory (" + ec.message() + ")");
+    // Refused now rather than after a generation of simulations.
+    if (::access(dir_.c_str(), W_OK | X_OK) != 0) {
+        const int error = errno;
+        throw std::runtime_error(dir_ + ": the run directory is not writable (" +
+                                 engine::error_text(error) + ")");
+    }
 }
 
 std::string RunOutput::path(const std::string& name) const {

@@ -13,6 +13,7 @@
 #include "evo/checkpoint.hpp"
 #include "evo/constraints.hpp"
 #include "evo/evolution_run.hpp"
+#include "evo/run_lock.hpp"
 #include "evo_test_support.hpp"
 #include "xml_check.hpp"
 
@@ -191,9 +192,15 @@ TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
           uninterrupted.state().champion->individual.report.fitness);
     CHECK(champion.at("phenotype").at("layers").size() == 3);
     CHECK_NOTHROW(bhm::test::XmlReader::parse(read_file(whole / "champion.vxa")));
-    // A new run refuses a directory that already holds one.
-    CHECK_THROWS_WITH_AS(EvolutionRun(e, options(4, 1, whole.string())),
+    // While a run object lives it owns its directory; a new run elsewhere refuses a directory
+    // that already holds a run (here a copy without the owner).
+    CHECK_THROWS_AS(EvolutionRun(e, options(4, 1, whole.string())), RunDirectoryBusy);
+    const fs::path copy = fresh_dir("whole-copy");
+    fs::copy(whole, copy, fs::copy_options::recursive);
+    fs::remove(copy / kRunLockFile);
+    CHECK_THROWS_WITH_AS(EvolutionRun(e, options(4, 1, copy.string())),
                          doctest::Contains("--resume"), std::runtime_error);
+    fs::remove_all(copy);
     fs::remove_all(whole);
     fs::remove_all(parts);
 }
@@ -291,11 +298,10 @@ TEST_CASE("a corrupt checkpoint falls back to the previous one; both corrupt is 
     std::ofstream(dir / "checkpoint.json") << "not json";
     std::ofstream(dir / "checkpoint.prev.json") << "{}";
     CHECK_THROWS_WITH_AS(EvolutionRun::resume(options(3, 2, dir.string())),
-                         doctest::Contains("checkpoint.prev.json: format: missing"),
-                         std::runtime_error);
+                         doctest::Contains("checkpoint.prev.json: damaged"), std::runtime_error);
     fs::remove_all(dir);
     CHECK_THROWS_WITH_AS(EvolutionRun::resume(options(3, 2, dir.string())),
-                         doctest::Contains("missing"), std::runtime_error);
+                         doctest::Contains("no such run directory"), std::runtime_error);
 }
 
 TEST_CASE("a change of rules between generations re-scores the population and is recorded") {
