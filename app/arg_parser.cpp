@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "app/path_checks.hpp"
+
 namespace bhm::app {
 
 ArgParser::ArgParser(std::string command, std::string synopsis, std::string summary)
@@ -13,9 +15,19 @@ ArgParser::ArgParser(std::string command, std::string synopsis, std::string summ
     flag("--help", "show this help and exit");
 }
 
-ArgParser& ArgParser::option(std::string name, std::string value_name, std::string help) {
-    options_.push_back({std::move(name), std::move(value_name), std::move(help)});
+ArgParser& ArgParser::option(std::string name, std::string value_name, std::string help,
+                             PathRole role) {
+    options_.push_back({std::move(name), std::move(value_name), std::move(help), role});
     return *this;
+}
+
+void ArgParser::check_paths() const {
+    for (const auto& o : options_) {
+        const auto it = values_.find(o.name);
+        if (it == values_.end()) continue;
+        if (o.role == PathRole::OutputFile) check_output_file(o.name, it->second);
+        if (o.role == PathRole::OutputDir) check_output_dir(o.name, it->second);
+    }
 }
 
 ArgParser& ArgParser::flag(std::string name, std::string help) {
@@ -132,6 +144,7 @@ std::string ArgParser::usage() const {
 int run_command(ArgParser& parser, const std::vector<std::string>& args, int (*body)(ArgParser&)) {
     try {
         if (!parser.parse(args)) return 0;
+        parser.check_paths();
         return body(parser);
     } catch (const UsageError& e) {
         std::cerr << "bhm " << parser.command() << ": " << e.what() << "\n"

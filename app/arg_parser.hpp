@@ -13,16 +13,25 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+//! What an option's value is, for the checks made before the command starts (path_checks.hpp).
+enum class PathRole {
+    None,
+    OutputFile,  //!< a file to write: its folder must exist and be writable
+    OutputDir,   //!< a folder to write into (created if missing)
+};
+
 struct OptionSpec {
     std::string name;        //!< "--out"
     std::string value_name;  //!< "DIR"; empty for a flag
     std::string help;
+    PathRole role = PathRole::None;
 };
 
 class ArgParser {
   public:
     ArgParser(std::string command, std::string synopsis, std::string summary);
-    ArgParser& option(std::string name, std::string value_name, std::string help);
+    ArgParser& option(std::string name, std::string value_name, std::string help,
+                      PathRole role = PathRole::None);
     ArgParser& flag(std::string name, std::string help);
     ArgParser& positional(std::string name, std::string help, bool repeated = false,
                           bool required = true);
@@ -36,6 +45,10 @@ class ArgParser {
     double get_double(const std::string& name, double fallback) const;
     long long get_int(const std::string& name, long long fallback) const;
     const std::vector<std::string>& positionals() const { return positionals_; }
+
+    //! Checks every given output path (PathRole): UsageError for an empty one, std::runtime_error
+    //! naming the option and the path for the rest. run_command calls it before the command.
+    void check_paths() const;
 
     std::string usage() const;
     const std::string& command() const { return command_; }
@@ -53,8 +66,9 @@ class ArgParser {
     std::vector<std::string> positionals_;
 };
 
-//! Runs a subcommand body, turning UsageError into "bhm CMD: message" + usage and exit 2, and
-//! any other exception into "bhm CMD: message" and exit 1.
+//! Runs a subcommand body once the arguments parse and the output paths pass check_paths(),
+//! turning UsageError into "bhm CMD: message" + usage and exit 2, and any other exception into
+//! "bhm CMD: message" and exit 1.
 int run_command(ArgParser& parser, const std::vector<std::string>& args, int (*body)(ArgParser&));
 
 }  // namespace bhm::app

@@ -11,6 +11,7 @@
 #include "app/arg_parser.hpp"
 #include "app/commands.hpp"
 #include "app/evolve_cluster.hpp"
+#include "app/path_checks.hpp"
 #include "evo/batch.hpp"
 #include "evo/evolution_run.hpp"
 #include "evo/experiment_io.hpp"
@@ -131,6 +132,8 @@ int evolve(ArgParser& args) {
     if (!args.has("--out")) throw UsageError("missing --out DIR");
     evo::RunOptions options;
     options.out_dir = args.get("--out");
+    options.writer = "bhm evolve";
+    if (args.has("--resume")) check_existing_dir("--out", options.out_dir);
     if (args.has("--generations")) {
         const long long n = args.get_int("--generations", 0);
         if (n < 1 || n > 100000000) throw UsageError("--generations must be in [1, 1e8]");
@@ -268,7 +271,8 @@ int evolve(ArgParser& args) {
 int cmd_evolve(const Args& args) {
     ArgParser parser("evolve", "EXPERIMENT.json --out DIR [OPTIONS]", kSummary);
     parser.positional("EXPERIMENT.json", "the experiment file (docs/experiment-format.md)")
-        .option("--out", "DIR", "run directory (created; must not hold a run unless --resume)")
+        .option("--out", "DIR", "run directory (created; must not hold a run unless --resume)",
+                PathRole::OutputDir)
         .option("--generations", "N",
                 "total generations including generation 0 (default: experiment's)")
         .option("--hours", "H", "wall-time budget in hours, across resumes (default: experiment's)")

@@ -10,8 +10,8 @@
 #include "app/arg_parser.hpp"
 #include "app/commands.hpp"
 #include "app/run_directory.hpp"
-#include "evo/experiment_io.hpp"
 #include "engine/replay.hpp"
+#include "evo/experiment_io.hpp"
 #include "evo/scene.hpp"
 #include "evo/surface_mesh.hpp"
 #include "evo/vtk_series.hpp"
@@ -164,13 +164,16 @@ int cmd_export(const Args& args) {
         "written atomically.");
     parser.positional("SOURCE", "an experiment file (with --body) or a run directory");
     parser.option("--body", "BODY.json", "the body to export (with an experiment file)");
-    parser.option("--vxa", "OUT.vxa", "write a VoxCAD VXA 1.0 file");
-    parser.option("--body-out", "BODY.json", "write the (framed) body as a body file");
-    parser.option("--experiment-out", "FILE.json",
-                  "write the experiment as a full experiment file");
+    parser.option("--vxa", "OUT.vxa", "write a VoxCAD VXA 1.0 file", PathRole::OutputFile);
+    parser.option("--body-out", "BODY.json", "write the (framed) body as a body file",
+                  PathRole::OutputFile);
+    parser.option("--experiment-out", "FILE.json", "write the experiment as a full experiment file",
+                  PathRole::OutputFile);
     parser.option("--mesh", "FILE.stl|FILE.obj",
-                  "write the outer surface (binary STL, or OBJ with FILE.mtl beside it)");
-    parser.option("--vtk", "DIR", "write a ParaView time series (series.pvd + .vtu frames)");
+                  "write the outer surface (binary STL, or OBJ with FILE.mtl beside it)",
+                  PathRole::OutputFile);
+    parser.option("--vtk", "DIR", "write a ParaView time series (series.pvd + .vtu frames)",
+                  PathRole::OutputDir);
     parser.option("--replay", "REPLAY.bin",
                   "a recorded simulation of the body: --mesh deformed, --vtk one frame each");
     parser.option("--time", "T", "replay time for --mesh (default: the last frame)");

@@ -63,8 +63,10 @@ int cmd_import(const Args& args) {
         "\n"
         "exit status: 0 ok, 1 unreadable file or an experiment BHM cannot simulate, 2 usage.");
     parser.positional("FILE.vxa", "the VoxCAD file");
-    parser.option("--experiment-out", "EXPERIMENT.json", "write the experiment file");
-    parser.option("--body-out", "BODY.json", "write the body file (workspace-sized)");
+    parser.option("--experiment-out", "EXPERIMENT.json", "write the experiment file",
+                  PathRole::OutputFile);
+    parser.option("--body-out", "BODY.json", "write the body file (workspace-sized)",
+                  PathRole::OutputFile);
     return run_command(parser, args, import_vxa);
 }
 

@@ -318,14 +318,17 @@ int cmd_render(const Args& args) {
                     "the experiment: workspace, materials, boundary faces, enclosure")
         .option("--body", "BODY.json", "the body to draw (at rest unless --replay)")
         .option("--replay", "REPLAY.bin", "a recorded simulation (bhm simulate's replay.bin)")
-        .option("--out", "FILE.png", "write one image")
+        .option("--out", "FILE.png", "write one image", PathRole::OutputFile)
         .option("--time", "T", "replay time in seconds for --out (default: the last frame)")
         .flag("--nearest", "show the last recorded frame at or before T instead of blending frames")
         .option("--frames", "N",
                 "with --out-dir: N images spread over the replay; with --video/--gif: N frames")
-        .option("--out-dir", "DIR", "folder for --frames (frame-00000.png, ...)")
-        .option("--video", "FILE.mp4", "an H.264 video of the replay (needs ffmpeg on PATH)")
-        .option("--gif", "FILE.gif", "an animated GIF of the replay (needs ffmpeg on PATH)")
+        .option("--out-dir", "DIR", "folder for --frames (frame-00000.png, ...)",
+                PathRole::OutputDir)
+        .option("--video", "FILE.mp4", "an H.264 video of the replay (needs ffmpeg on PATH)",
+                PathRole::OutputFile)
+        .option("--gif", "FILE.gif", "an animated GIF of the replay (needs ffmpeg on PATH)",
+                PathRole::OutputFile)
         .option("--fps", "F", "video frame rate (default: the replay's, i.e. real time)")
         .flag("--caption", "write the time, fitness and bend angle so far into every image")
         .option("--size", "WxH", "image size in pixels (default 1280x720)")

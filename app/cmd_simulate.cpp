@@ -171,7 +171,8 @@ int cmd_simulate(const Args& args) {
     parser.positional("EXPERIMENT.json", "the experiment (docs/experiment-format.md)")
         .option("--body", "BODY.json", "the body to simulate (required)")
         .option("--seconds", "T", "total simulated seconds (default: settle_s + evaluate_s)")
-        .option("--out", "DIR", "output directory, created if missing (default: ./sim-out)")
+        .option("--out", "DIR", "output directory, created if missing (default: ./sim-out)",
+                PathRole::OutputDir)
         .option("--phase-seed", "N",
                 "seed of the per-voxel actuation phases when the experiment's phase is random "
                 "(default 0)");

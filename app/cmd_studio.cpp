@@ -94,12 +94,14 @@ int cmd_studio(const Args& args) {
         .flag("--headless", "no window: draw off-screen (needs no display)")
         .option("--frames", "N",
                 "draw at least N frames (window: close after N; default 3 headless)")
-        .option("--screenshot", "PNG", "headless: write the last frame to PNG")
+        .option("--screenshot", "PNG", "headless: write the last frame to PNG",
+                PathRole::OutputFile)
         .option("--size", "WxH", "window or off-screen size in pixels, e.g. 1280x800")
         .option("--script", "JSON", "headless: run the steps of a script (docs/studio.md)")
         .option("--settings-dir", "DIR",
                 "read and write settings.json there (default: $XDG_CONFIG_HOME/bhm-studio; "
-                "headless runs keep no settings unless this is given)");
+                "headless runs keep no settings unless this is given)",
+                PathRole::OutputDir);
     return run_command(parser, args, [](ArgParser& p) -> int {
 #if BHM_WITH_GUI
         return studio_main(p);
