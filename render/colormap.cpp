@@ -22,8 +22,14 @@ constexpr Stops kDiverging = {glm::vec3{0.15f, 0.30f, 0.70f}, glm::vec3{0.55f, 0
                               glm::vec3{0.97f, 0.97f, 0.97f}, glm::vec3{0.93f, 0.60f, 0.50f},
                               glm::vec3{0.72f, 0.13f, 0.15f}};
 
+//! t clamped to [0, 1], NaN to 0: a float-to-int conversion of NaN or infinity is undefined.
+float unit(float t) {
+    if (!(t > 0.0f)) return 0.0f;  // NaN included
+    return t < 1.0f ? t : 1.0f;
+}
+
 glm::vec3 interpolate(const Stops& stops, float t) {
-    const float x = std::clamp(t, 0.0f, 1.0f) * static_cast<float>(stops.size() - 1);
+    const float x = unit(t) * static_cast<float>(stops.size() - 1);
     const int i = std::min(static_cast<int>(x), static_cast<int>(stops.size()) - 2);
     const float f = x - static_cast<float>(i);
     return stops[i] * (1.0f - f) + stops[i + 1] * f;
@@ -31,6 +37,7 @@ glm::vec3 interpolate(const Stops& stops, float t) {
 
 // A hue wheel of moderate saturation: phase 0 and 2 pi get the same colour.
 glm::vec3 hue_wheel(float t) {
+    if (!std::isfinite(t)) t = 0.0f;
     const float h = (t - std::floor(t)) * 6.0f;
     const float c = 0.75f, m = 0.18f;
     const float x = c * (1.0f - std::fabs(std::fmod(h, 2.0f) - 1.0f));
@@ -61,9 +68,13 @@ glm::vec3 hue_wheel(float t) {
 }  // namespace
 
 float ScalarRange::normalize(float value) const {
+    // Any input, finite or not, gives a number in [0, 1]: 0.5 where nothing sensible exists (an
+    // empty, infinite or NaN range; a NaN value).
     const float span = max - min;
-    if (!(std::fabs(span) > 0.0f) || !std::isfinite(value)) return 0.5f;
-    return std::clamp((value - min) / span, 0.0f, 1.0f);
+    if (!std::isfinite(span) || !(std::fabs(span) > 0.0f) || std::isnan(value)) return 0.5f;
+    const float t = (value - min) / span;  // +-inf for an infinite value: clamped below
+    if (std::isnan(t)) return 0.5f;
+    return std::clamp(t, 0.0f, 1.0f);
 }
 
 glm::vec4 sample_color_map(ColorMapName map, float t) {

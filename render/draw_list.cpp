@@ -184,10 +184,17 @@ void add_floor(const Scene& scene, const Bounds& workspace, DrawList& list) {
                 x1 = std::ceil((area.max.x + margin) / s) * s;
     const float y0 = std::floor((area.min.y - margin) / s) * s,
                 y1 = std::ceil((area.max.y + margin) / s) * s;
+    // A replay can hold any numbers (a diverged run, a damaged file): no floor at all when they
+    // are not finite, no grid when it would need more lines than anyone could see.
+    if (!std::isfinite(x0) || !std::isfinite(x1) || !std::isfinite(y0) || !std::isfinite(y1))
+        return;
     const glm::vec3 corners[4] = {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}};
     add_quad(list.floor, corners, palette::kFloor);
-    const int lines_x = static_cast<int>(std::lround((x1 - x0) / s));
-    const int lines_y = static_cast<int>(std::lround((y1 - y0) / s));
+    constexpr float kMaxGridLines = 4096.0f;
+    const float cells_x = (x1 - x0) / s, cells_y = (y1 - y0) / s;
+    if (!(cells_x <= kMaxGridLines) || !(cells_y <= kMaxGridLines)) return;
+    const int lines_x = static_cast<int>(std::lround(cells_x));
+    const int lines_y = static_cast<int>(std::lround(cells_y));
     for (int i = 0; i <= lines_x; ++i) {
         const float x = x0 + static_cast<float>(i) * s;
         add_line(list.floor_lines, {x, y0, 0}, {x, y1, 0}, palette::kGrid, kGridLinePx);

@@ -1,6 +1,9 @@
 // Colour maps: ends, monotone lightness where it matters, wrap-around where it must.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <glm/glm.hpp>
 
 #include "render/colormap.hpp"
@@ -58,4 +61,36 @@ TEST_CASE("scalar ranges normalise and clamp; an empty range maps to the middle"
     CHECK(ScalarRange{3.0f, 3.0f}.normalize(3.0f) == 0.5f);
     CHECK(parse_color_map("diverging") == ColorMapName::Diverging);
     CHECK_FALSE(parse_color_map("jet"));
+}
+
+TEST_CASE("colour maps and ranges take any float, finite or not, and give colours in [0, 1]") {
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float big = std::numeric_limits<float>::max();
+    const float inputs[] = {nan, inf, -inf, big, -big, 1e-45f, -0.0f, 0.5f, 1e30f, -1e30f};
+    for (const ColorMapName map :
+         {ColorMapName::Sequential, ColorMapName::Diverging, ColorMapName::Cyclic}) {
+        for (const float t : inputs) {
+            const glm::vec4 c = sample_color_map(map, t);
+            for (int k = 0; k < 4; ++k) {
+                CHECK(std::isfinite(c[k]));
+                CHECK(c[k] >= 0.0f);
+                CHECK(c[k] <= 1.0f);
+            }
+        }
+        CHECK(sample_color_map(map, nan) == sample_color_map(map, 0.0f));
+    }
+    // Ranges from a replay with infinite or huge voxel sizes: the strain range was NaN.
+    const ScalarRange ranges[] = {{-inf, inf},  {nan, nan},    {0.0f, nan},  {-big, big},
+                                  {0.0f, 0.0f}, {1.0f, -1.0f}, {-1.0f, 1.0f}};
+    for (const auto& range : ranges)
+        for (const float v : inputs) {
+            const float t = range.normalize(v);
+            CHECK(t >= 0.0f);
+            CHECK(t <= 1.0f);
+        }
+    CHECK(ScalarRange{-inf, inf}.normalize(3.0f) == 0.5f);
+    CHECK(ScalarRange{-1.0f, 1.0f}.normalize(inf) == 1.0f);
+    CHECK(ScalarRange{-1.0f, 1.0f}.normalize(-inf) == 0.0f);
+    CHECK(ScalarRange{-1.0f, 1.0f}.normalize(nan) == 0.5f);
 }
