@@ -45,6 +45,13 @@ RunChampion load_run_champion(const std::string& run_dir) {
     if (!champion.contains("phenotype"))
         throw std::runtime_error(champion_path + ":phenotype: missing");
     out.body = evo::parse_body(champion["phenotype"], champion_path + " (phenotype)");
+    // A champion from another experiment (files mixed up, a damaged run.json) would export
+    // materials and cells that experiment does not define: refuse it, naming both files.
+    const auto problems =
+        evo::validate_body_against(out.body, out.experiment, champion_path + " (phenotype)");
+    if (!problems.empty())
+        throw std::runtime_error(problems.front().to_string() + " (the champion does not fit " +
+                                 run_path + "'s experiment)");
     out.fitness = champion.value("fitness", 0.0);
     out.generation = champion.value("generation_found", 0);
     return out;

@@ -81,7 +81,12 @@ void controls(Studio& s) {
 void status(Studio& s) {
     const auto& run = s.run;
     if (!run || (run->phase == RunPhase::Idle && run->history.empty())) {
-        ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
+        if (s.showing_run_directory && !s.run_directory.error().empty())
+            // e.g. a damaged run.json: say which file, rather than "No run yet".
+            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1.0f), "Cannot show the run: %s",
+                               s.run_directory.error().c_str());
+        else
+            ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
         return;
     }
     if (!run->loaded) {  // a resumed run while its checkpoint loads: no defaults shown as its own

@@ -80,6 +80,14 @@ std::vector<GenerationRecord> read_fitness_csv(const fs::path& path) {
     return records;
 }
 
+json parse_json_file(const fs::path& path) {
+    try {
+        return json::parse(read_text(path));
+    } catch (const json::exception& e) {
+        throw std::runtime_error(path.string() + ": damaged, not valid JSON (" + e.what() + ")");
+    }
+}
+
 }  // namespace
 
 void RunDirectoryWatch::open(const std::string& run_dir) {
@@ -119,7 +127,7 @@ bool RunDirectoryWatch::refresh() {
     try {
         if (run_t != experiment_mtime_ || !snapshot_) {
             // run.json: the experiment as started plus every change of fitness rules.
-            const json info = json::parse(read_text(dir / "run.json"));
+            const json info = parse_json_file(dir / "run.json");
             json experiment = info.at("experiment");
             const std::string label = (dir / "run.json").string();
             snap->initial_measure = evo::parse_experiment(experiment, label).fitness.measure;
@@ -147,7 +155,7 @@ bool RunDirectoryWatch::refresh() {
             }
         }
         if (champion_t != champion_mtime_ && champion_t != fs::file_time_type{}) {
-            const json c = json::parse(read_text(dir / "champion.json"));
+            const json c = parse_json_file(dir / "champion.json");
             const std::string label = (dir / "champion.json").string();
             PopulationMember& m = snap->champion;
             m.id = c.at("id").get<std::int64_t>();
@@ -166,6 +174,10 @@ bool RunDirectoryWatch::refresh() {
         }
         snap->message = "run directory " + dir_ + " (read-only view, refreshed as it grows)";
         error_.clear();
+    } catch (const json::exception& e) {
+        // A field missing or of the wrong type (nlohmann's messages name no file).
+        error_ = dir_ + ": run.json or champion.json is damaged (" + std::string(e.what()) + ")";
+        return false;
     } catch (const std::exception& e) {
         error_ = e.what();  // e.g. a file replaced mid-read: keep the last good view
         return false;
