@@ -6,6 +6,7 @@
 #include <numbers>
 #include <thread>
 
+#include "engine/limits.hpp"
 #include "engine/world.hpp"
 #include "evo/scene.hpp"
 
@@ -142,6 +143,11 @@ void run_controlled(engine::World& world, double total_s, double sample_hz,
     const double dt = world.model().dt_s();
     const double half_step = 0.5 * dt;
     if (world.diverged()) return;
+    // As engine::run: never silently zero steps (limits::step_budget_problem refuses it up front).
+    if (world.steps() == 0 && total_s > 0.0 && engine::limits::steps_for(total_s, dt) == 0)
+        throw std::invalid_argument("evaluation: a step of " + std::to_string(dt) +
+                                    " s is longer than twice the " + std::to_string(total_s) +
+                                    " s to simulate: zero steps would run");
     honour(control);
     tracker.observe(world);
     exploits.observe(world);
