@@ -226,7 +226,8 @@ TEST_CASE("pause and stop reach into the simulations of a generation; resume re-
     e.simulation.record_fps = 0.5;  // one sample in the window: only the in-between checks remain
     const fs::path whole = fresh_dir("cancel-whole"), parts = fresh_dir("cancel-parts");
 
-    EvolutionRun run(e, options(3, 2, parts.string()));
+    auto owned = std::make_unique<EvolutionRun>(e, options(3, 2, parts.string()));
+    EvolutionRun& run = *owned;
     CHECK(run.checkpoint_path().empty());  // nothing on disk yet
     CHECK_FALSE(run.progress().running);
     StopReason reason = StopReason::GenerationBudget;
@@ -263,6 +264,7 @@ TEST_CASE("pause and stop reach into the simulations of a generation; resume re-
     CHECK(fs::exists(run.checkpoint_path()));
     CHECK(run.state().history.size() == 1);
 
+    owned.reset();  // releases the directory
     auto resumed = EvolutionRun::resume(options(3, 2, parts.string()));
     CHECK(resumed->checkpoint_path() == (parts / kCheckpointFile).string());
     CHECK(resumed->run() == StopReason::GenerationBudget);
@@ -294,6 +296,7 @@ TEST_CASE("a corrupt checkpoint falls back to the previous one; both corrupt is 
     EvolutionRun reference(e, options(3, 2));
     reference.run();
     CHECK(without_wall(resumed->state().history) == without_wall(reference.state().history));
+    resumed.reset();  // releases the directory
 
     std::ofstream(dir / "checkpoint.json") << "not json";
     std::ofstream(dir / "checkpoint.prev.json") << "{}";
