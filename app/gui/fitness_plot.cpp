@@ -1,4 +1,5 @@
 #include "app/gui/fitness_plot.hpp"
+#include "app/gui/ui_widgets.hpp"
 
 #include <algorithm>
 #include <array>
@@ -55,7 +56,7 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
     hovered_generation.reset();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
-    ImGui::InvisibleButton("fitness plot", size);
+    area_button("fitness plot", size);
     const bool hovered = ImGui::IsItemHovered();
     const float font = ImGui::GetFontSize();
     const ImVec2 lo{origin.x + font * 3.6f, origin.y + font * 0.6f};

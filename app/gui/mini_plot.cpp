@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/gui/plot_axes.hpp"
+#include "app/gui/ui_widgets.hpp"
 
 namespace bhm::app::gui {
 
@@ -68,7 +69,7 @@ std::optional<double> draw_time_plot(const char* id, const std::vector<double>& 
                                      const char* title, const char* unit, ImVec2 size) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
-    ImGui::InvisibleButton(id, size);
+    area_button(id, size);
     const bool active = ImGui::IsItemActive();
     std::vector<double> ys;
     for (const auto& c : curves)
@@ -115,7 +116,7 @@ std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPo
                                      int* hovered, bool integer_x) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
-    ImGui::InvisibleButton(id, size);
+    area_button(id, size);
     const bool item_hovered = ImGui::IsItemHovered();
     const bool clicked = ImGui::IsItemClicked();
     std::vector<double> xs, ys;

@@ -23,7 +23,7 @@ void timeline(Studio& s, float height) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const float width = ImGui::GetContentRegionAvail().x;
-    ImGui::InvisibleButton("timeline", ImVec2(width, height));
+    area_button("timeline", ImVec2(width, height));
     record_widget(s, "timeline");
     const float pad = ImGui::GetFontSize() * 0.5f;
     const ImVec2 lo{origin.x + pad, origin.y + 2.0f};

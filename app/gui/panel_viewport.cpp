@@ -236,7 +236,7 @@ void draw_viewport_panel(Studio& s, ViewRenderer& renderer) {
     renderer.draw_to_texture(list, s.view.camera, fb_w, fb_h, s.view.samples);
     // The image is copied into the UI's framebuffer in draw order; the invisible button owns
     // the mouse over it (ImGui then reports io.WantCaptureMouse, and windows do not drag).
-    ImGui::InvisibleButton("3d view", size,
+    area_button("3d view", size,
                            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                                ImGuiButtonFlags_MouseButtonMiddle);
     renderer.add_view_blit(ImGui::GetWindowDrawList(), origin,

@@ -147,4 +147,10 @@ std::string format_duration(double seconds) {
     return text;
 }
 
+bool area_button(const char* id, ImVec2 size, ImGuiButtonFlags flags) {
+    size.x = size.x >= 1.0f ? size.x : 1.0f;  // also maps NaN to 1
+    size.y = size.y >= 1.0f ? size.y : 1.0f;
+    return ImGui::InvisibleButton(id, size, flags);
+}
+
 }  // namespace bhm::app::gui

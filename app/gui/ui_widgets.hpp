@@ -13,6 +13,9 @@ namespace bhm::app::gui {
 void record_widget(Studio& studio, const std::string& name);
 //! A button recorded under its label (without the "##id" part).
 bool tracked_button(Studio& studio, const char* label, ImVec2 size = ImVec2(0, 0));
+//! ImGui::InvisibleButton with each side at least one pixel: in a tiny window the space left for a
+//! plot or the 3D view can be zero or negative, which ImGui asserts on (the studio aborted).
+bool area_button(const char* id, ImVec2 size, ImGuiButtonFlags flags = 0);
 
 //! Field editors bound to studio.draft. They return true when an edit is complete (Enter, focus
 //! left, a drag released, a box ticked): the caller then calls commit_draft with a label.
