@@ -117,15 +117,7 @@ int simulate(ArgParser& args) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
 
-    RunStats stats;
-    stats.voxels = model->voxel_count();
-    stats.links = model->link_count();
-    stats.steps = world.steps();
-    stats.dt_s = model->dt_s();
-    stats.sim_time_s = world.time_s();
-    stats.wall_s = wall_s;
-    stats.diverged = world.diverged();
-    stats.divergence_reason = world.divergence_reason();
+    const RunStats stats = run_stats_of(*model, world, wall_s);
     const DisplacementSummary displacements =
         summarize_displacements(recorder.samples(), settle_s, model->voxel_size_m());
 

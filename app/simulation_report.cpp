@@ -166,4 +166,17 @@ nlohmann::ordered_json summary_json(const RunStats& stats, const DisplacementSum
     return j;
 }
 
+RunStats run_stats_of(const engine::Model& model, const engine::World& world, double wall_s) {
+    RunStats stats;
+    stats.voxels = model.voxel_count();
+    stats.links = model.link_count();
+    stats.steps = world.steps();
+    stats.dt_s = model.dt_s();
+    stats.sim_time_s = world.time_s();
+    stats.wall_s = wall_s;
+    stats.diverged = world.diverged();
+    stats.divergence_reason = world.divergence_reason();
+    return stats;
+}
+
 }  // namespace bhm::app

@@ -95,6 +95,9 @@ struct RunStats {
     }
 };
 
+//! The figures of a finished (or diverged) simulation of `model` in `world`.
+RunStats run_stats_of(const engine::Model& model, const engine::World& world, double wall_s);
+
 //! summary.json's fields (docs in `bhm simulate --help`): run stats, then displacements.
 nlohmann::ordered_json summary_json(const RunStats& stats,
                                     const DisplacementSummary& displacements);

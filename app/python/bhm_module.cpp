@@ -181,15 +181,7 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
                     [&](const engine::World& w) { recorder.observe(w); });
         wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    app::RunStats stats;
-    stats.voxels = model->voxel_count();
-    stats.links = model->link_count();
-    stats.steps = world.steps();
-    stats.dt_s = model->dt_s();
-    stats.sim_time_s = world.time_s();
-    stats.wall_s = wall_s;
-    stats.diverged = world.diverged();
-    stats.divergence_reason = world.divergence_reason();
+    const app::RunStats stats = app::run_stats_of(*model, world, wall_s);
     const auto& samples = recorder.samples();
     auto summary = app::summary_json(
         stats, app::summarize_displacements(samples, settle_s, model->voxel_size_m()));
