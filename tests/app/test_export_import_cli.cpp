@@ -14,6 +14,7 @@
 #include "../evo/mesh_check.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/scene.hpp"
+#include "app/shell_run.hpp"
 
 namespace {
 
@@ -24,22 +25,10 @@ const std::string kSource = BHM_SOURCE_DIR;
 const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
 const std::string kExperiment = kSource + "/assets/experiments/quick-demo.json";
 
-struct Result {
-    int status;
-    std::string output;
-};
+using Result = test::ShellResult;
 
 Result bhm_run(const std::string& args) {
-    const std::string command = kBhm + " " + args + " 2>&1";
-    std::FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string out;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-        out.append(buffer, n);
-    const int raw = pclose(pipe);
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+    return test::run_shell(kBhm + " " + args);
 }
 
 std::string read_text(const fs::path& path) {

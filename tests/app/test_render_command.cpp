@@ -16,6 +16,7 @@
 #include "evo/scene.hpp"
 #include "render/image.hpp"
 #include "render/replay_view.hpp"
+#include "app/shell_run.hpp"
 
 namespace {
 
@@ -27,22 +28,10 @@ const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
 const std::string kExperiment =
     kSource + "/assets/experiments/quick-demo.json";  // 8 x 6 x 5, x- fixed
 
-struct Result {
-    int status;
-    std::string output;
-};
+using Result = test::ShellResult;
 
 Result run(const std::string& args, const std::string& env = "") {
-    const std::string command = env + " " + kBhm + " render " + args + " 2>&1";
-    std::FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string out;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-        out.append(buffer, n);
-    const int raw = pclose(pipe);
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+    return test::run_shell(env + " " + kBhm + " render " + args);
 }
 
 // A workspace-sized temp folder with a 4 x 3 x 2 body (muscle on top) and a replay of it that

@@ -15,6 +15,7 @@
 #include "evo/scene.hpp"
 #include "render/image.hpp"
 #include "render/replay_view.hpp"
+#include "app/shell_run.hpp"
 
 namespace {
 
@@ -25,21 +26,10 @@ const std::string kSource = BHM_SOURCE_DIR;
 const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
 const std::string kExperiment = kSource + "/assets/experiments/quick-demo.json";
 
-struct Result {
-    int status;
-    std::string output;
-};
+using Result = test::ShellResult;
 
 Result shell(const std::string& command) {
-    std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string out;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
-        out.append(buffer, n);
-    const int raw = pclose(pipe);
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), out};
+    return test::run_shell(command);
 }
 
 // "key=value" lines of ffprobe's default writer.
