@@ -256,6 +256,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
         }
     }
+    poisson_cross_weights(pp, d.stored);
 
     // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
     std::array<std::vector<double>, 3> link_omega2;                // per link: max(k/m, k_rot/I)

@@ -76,6 +76,10 @@ struct PoissonParams {
     std::vector<float> lambda2;                   //!< cross modulus, octant with 2 linked axes
     std::vector<float> lambda3;                   //!< cross modulus, octant with 3 linked axes
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
+    //! voxel: the cross term of axis a as weights of its four lateral half-link strains
+    //! (poisson_cross_weights): [a][0], [a][1] the - and + links of axis a + 1, [a][2], [a][3]
+    //! those of axis a + 2 (cyclic); 0 where the half-link is absent.
+    std::array<std::array<std::vector<float>, 4>, 3> cross_weight;
 };
 
 struct Model::Data {

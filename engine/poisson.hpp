@@ -35,6 +35,14 @@ PoissonModuli poisson_moduli(double youngs_modulus, double nu, int linked_axes);
 //! volumetric 3K = E / (1 - 2 nu), whichever is larger; 1 at nu = 0): scales the stable step.
 double poisson_stiffness_factor(double nu);
 
+//! Fills pp.cross_weight (sized `stored`) from has_plus / has_minus / lambda2 / lambda3: the
+//! octant moduli depend only on which half-links exist, so each voxel's cross term is a fixed
+//! linear combination of its lateral half-link strains (poisson.cpp).
+void poisson_cross_weights(PoissonParams& pp, int stored);
+
+//! Sizes the Poisson scratch of a World (once, so a step allocates nothing).
+void prepare_poisson_scratch(const Model::Data& model, PoissonScratch& scratch);
+
 //! Writes every link's rest-length shift (LinkScratch::poisson_rest) from the current positions:
 //! shift = -L (lambda_a S_a + lambda_b S_b) / (2 M_link), S the end voxel's cross strains.
 void poisson_pass(const Model::Data& model, const VoxelState& voxels,

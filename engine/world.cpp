@@ -83,6 +83,7 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     state_->data = &state_->model->data();
     const Model::Data& d = *state_->data;
     init_voxels(d, state_->voxels);
+    if (d.poisson.active) prepare_poisson_scratch(d, state_->poisson);
     // At t = 0 every link is straight at its lattice length; its extension is that length minus
     // its (possibly already actuated) rest length, so the first damping rate is zero.
     const Phase phase = actuation_phase(d, 0.0);
