@@ -307,63 +307,26 @@ bool EvolutionRun::run_generation() {
     Rng rng;
     rng.set_state(state_.rng);
     std::int64_t next_id = state_.next_id;
-    const int population_size = rules.evolution.population;
     const auto& constraints = rules.fitness.constraints;
-    std::vector<Individual> fresh;
-    int clones = 0, newcomers_skipped = 0;
-    if (g == 0) {
-        for (int i = 0; i < population_size; ++i) {
-            Individual ind;
-            if (!draw_random_individual(ind, rng, next_id, g, constraints))
-                throw std::runtime_error(
-                    "no valid random individual in " +
-                    std::to_string(std::max(100, rules.evolution.max_neutral_retries)) +
-                    " draws: the constraints may be too strict for this workspace");
-            ++next_id;
-            fresh.push_back(std::move(ind));
-        }
-    } else {
-        for (auto& m : population)
-            ++m.age;
-        const double crossover_rate = rules.evolution.crossover_rate;
-        for (std::size_t p = 0; p < population.size(); ++p) {
-            const Individual& parent = population[p];
-            // Rate 0 draws nothing, so mutation-only runs keep the paper's random stream.
-            const Individual* mate = nullptr;
-            if (crossover_rate > 0.0 && population.size() > 1 && rng.uniform() < crossover_rate) {
-                auto m = static_cast<std::size_t>(rng.index(static_cast<int>(population.size()) - 1));
-                mate = &population[m >= p ? m + 1 : m];  // any member but the parent
-            }
-            auto out = mate ? cross_then_mutate(parent.genome, mate->genome, parent.phenotype,
-                                                developer_, constraints, rules.evolution.cppn,
-                                                rules.evolution.max_neutral_retries, rng)
-                            : mutate_until_new(parent.genome, parent.phenotype, developer_,
-                                               constraints, rules.evolution.cppn,
-                                               rules.evolution.max_neutral_retries, rng);
-            Individual child;
-            child.id = next_id++;
-            child.parent_id = parent.id;
-            // AFPO: an offspring is as old as its oldest parent.
-            child.age = mate && !out.cloned ? std::max(parent.age, mate->age) : parent.age;
-            child.born_generation = g;
-            child.genome = std::move(out.genome);
-            child.phenotype = std::move(out.phenotype);
-            if (out.cloned) {  // same phenotype as the parent: same result
-                child.report = parent.report;
-                child.evaluated = parent.evaluated;
-                child.valid = parent.valid;
-                ++clones;
-            }
-            fresh.push_back(std::move(child));
-        }
-        Individual newcomer;
-        if (draw_random_individual(newcomer, rng, next_id, g, constraints)) {
-            ++next_id;
-            fresh.push_back(std::move(newcomer));
-        } else {
-            ++newcomers_skipped;
-        }
+
+    // The algorithm's breeding step (evolution.algorithm): which members carry over into the pool
+    // and which new individuals are evaluated below.
+    Brood brood;
+    switch (rules.evolution.algorithm) {
+        case Algorithm::Afpo:
+            if (g == 0)
+                breed_random(rules, g, rng, next_id, brood);
+            else
+                breed_afpo(rules, g, std::move(population), rng, next_id, brood);
+            break;
+        default:
+            throw std::invalid_argument(
+                std::string("evolution.algorithm \"") +
+                kAlgorithmNames[static_cast<int>(rules.evolution.algorithm)] +
+                "\" is not built yet");
     }
+    std::vector<Individual>& fresh = brood.fresh;
+    const int clones = brood.clones, newcomers_skipped = brood.newcomers_skipped;
 
     // Results: a clone's from its parent, then the cache, then one simulation per new phenotype.
     int cache_hits = 0;
@@ -419,22 +382,18 @@ bool EvolutionRun::run_generation() {
         fresh[i].valid = !rejected_by_exploit(fresh[i].report.exploits, constraints);
     }
 
-    // AFPO selection over the old population (aged) plus the new individuals.
-    std::vector<Individual> pool = std::move(population);
+    // The algorithm's selection step: the next population, in selection order, from the carried
+    // members plus the new individuals.
+    std::vector<Individual> pool = std::move(brood.carried);
     for (auto& f : fresh)
         pool.push_back(std::move(f));
-    std::vector<AfpoObjectives> objectives;
-    objectives.reserve(pool.size());
-    for (const auto& m : pool)
-        objectives.push_back({m.report.fitness, m.age, m.phenotype.active_voxels, m.id});
-    const bool third_objective = rules.fitness.minimize_active_voxels;
-    const auto survivors = select_survivors(objectives, population_size, third_objective);
-    const auto ranks = pareto_ranks(objectives, third_objective);
     std::vector<Individual> next_population;
     std::vector<int> next_ranks;
-    for (int index : survivors) {
-        next_population.push_back(pool[static_cast<std::size_t>(index)]);
-        next_ranks.push_back(ranks[static_cast<std::size_t>(index)]);
+    switch (rules.evolution.algorithm) {
+        case Algorithm::Afpo:
+        default:
+            select_afpo(rules, std::move(pool), next_population, next_ranks);
+            break;
     }
 
     const Individual& best = best_member(next_population);
@@ -521,6 +480,85 @@ bool EvolutionRun::run_generation() {
     report->eta_s = std::max(0.0, std::min(by_generations, wall_budget_s_ - state_.elapsed_s));
     publish(std::move(report));
     return true;
+}
+
+void EvolutionRun::breed_random(const Experiment& rules, int g, Rng& rng, std::int64_t& next_id,
+                                Brood& out) const {
+    for (int i = 0; i < rules.evolution.population; ++i) {
+        Individual ind;
+        if (!draw_random_individual(ind, rng, next_id, g, rules.fitness.constraints))
+            throw std::runtime_error(
+                "no valid random individual in " +
+                std::to_string(std::max(100, rules.evolution.max_neutral_retries)) +
+                " draws: the constraints may be too strict for this workspace");
+        ++next_id;
+        out.fresh.push_back(std::move(ind));
+    }
+}
+
+void EvolutionRun::breed_afpo(const Experiment& rules, int g, std::vector<Individual> population,
+                              Rng& rng, std::int64_t& next_id, Brood& brood) const {
+    const auto& constraints = rules.fitness.constraints;
+    std::vector<Individual>& fresh = brood.fresh;
+    int& clones = brood.clones;
+    for (auto& m : population)
+        ++m.age;
+    const double crossover_rate = rules.evolution.crossover_rate;
+    for (std::size_t p = 0; p < population.size(); ++p) {
+        const Individual& parent = population[p];
+        // Rate 0 draws nothing, so mutation-only runs keep the paper's random stream.
+        const Individual* mate = nullptr;
+        if (crossover_rate > 0.0 && population.size() > 1 && rng.uniform() < crossover_rate) {
+            auto m = static_cast<std::size_t>(rng.index(static_cast<int>(population.size()) - 1));
+            mate = &population[m >= p ? m + 1 : m];  // any member but the parent
+        }
+        auto out = mate ? cross_then_mutate(parent.genome, mate->genome, parent.phenotype,
+                                            developer_, constraints, rules.evolution.cppn,
+                                            rules.evolution.max_neutral_retries, rng)
+                        : mutate_until_new(parent.genome, parent.phenotype, developer_,
+                                           constraints, rules.evolution.cppn,
+                                           rules.evolution.max_neutral_retries, rng);
+        Individual child;
+        child.id = next_id++;
+        child.parent_id = parent.id;
+        // AFPO: an offspring is as old as its oldest parent.
+        child.age = mate && !out.cloned ? std::max(parent.age, mate->age) : parent.age;
+        child.born_generation = g;
+        child.genome = std::move(out.genome);
+        child.phenotype = std::move(out.phenotype);
+        if (out.cloned) {  // same phenotype as the parent: same result
+            child.report = parent.report;
+            child.evaluated = parent.evaluated;
+            child.valid = parent.valid;
+            ++clones;
+        }
+        fresh.push_back(std::move(child));
+    }
+    Individual newcomer;
+    if (draw_random_individual(newcomer, rng, next_id, g, constraints)) {
+        ++next_id;
+        fresh.push_back(std::move(newcomer));
+    } else {
+        ++brood.newcomers_skipped;
+    }
+    // AFPO's pool is the whole aged population plus its new individuals.
+    brood.carried = std::move(population);
+}
+
+void EvolutionRun::select_afpo(const Experiment& rules, std::vector<Individual> pool,
+                               std::vector<Individual>& next_population,
+                               std::vector<int>& next_ranks) const {
+    std::vector<AfpoObjectives> objectives;
+    objectives.reserve(pool.size());
+    for (const auto& m : pool)
+        objectives.push_back({m.report.fitness, m.age, m.phenotype.active_voxels, m.id});
+    const bool third_objective = rules.fitness.minimize_active_voxels;
+    const auto survivors = select_survivors(objectives, rules.evolution.population, third_objective);
+    const auto ranks = pareto_ranks(objectives, third_objective);
+    for (int index : survivors) {
+        next_population.push_back(pool[static_cast<std::size_t>(index)]);
+        next_ranks.push_back(ranks[static_cast<std::size_t>(index)]);
+    }
 }
 
 }  // namespace bhm::evo

@@ -170,6 +170,27 @@ class EvolutionRun {
     EvolutionRun(Start start, RunOptions options);
     bool draw_random_individual(Individual& out, Rng& rng, std::int64_t id, int generation,
                                 const Constraints& constraints) const;
+
+    // The algorithm-specific steps of run_generation (evolution.algorithm). A generation is:
+    // breed (which members carry over into the pool, which new individuals to make), evaluate the
+    // new ones (shared by every algorithm: cache, then the evaluator), select (the next
+    // population, in selection order, from the pool). A new algorithm adds its breed_* and
+    // select_* and one case in each of run_generation's two switches.
+    struct Brood {
+        std::vector<Individual> carried;  //!< members kept into the pool, already evaluated
+        std::vector<Individual> fresh;    //!< new individuals, evaluated by run_generation
+        int clones = 0;                   //!< fresh members that copy a parent's result
+        int newcomers_skipped = 0;
+    };
+    //! Generation 0 of AFPO: population-many random valid individuals.
+    void breed_random(const Experiment& rules, int g, Rng& rng, std::int64_t& next_id,
+                      Brood& brood) const;
+    //! AFPO (paper section 3): every member ages and makes one child; one random newcomer.
+    void breed_afpo(const Experiment& rules, int g, std::vector<Individual> population, Rng& rng,
+                    std::int64_t& next_id, Brood& brood) const;
+    //! AFPO's Pareto selection on (fitness, age[, active voxels]) back to population-many.
+    void select_afpo(const Experiment& rules, std::vector<Individual> pool,
+                     std::vector<Individual>& next_population, std::vector<int>& next_ranks) const;
     void publish(std::shared_ptr<const GenerationReport> report);
     //! Seconds spent paused since the run was made (the current pause included).
     double paused_seconds() const;

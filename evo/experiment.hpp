@@ -104,7 +104,13 @@ struct CppnSettings {
     bool operator==(const CppnSettings&) const = default;
 };
 
+//! The evolutionary method (docs/evolution.md): the paper's AFPO, NEAT (Stanley & Miikkulainen
+//! 2002) or novelty search (Lehman & Stanley 2011). EvolutionRun::run_generation dispatches on it.
+enum class Algorithm { Afpo, Neat, Novelty };
+inline constexpr std::array<const char*, 3> kAlgorithmNames = {"afpo", "neat", "novelty"};
+
 struct Evolution {
+    Algorithm algorithm = Algorithm::Afpo;
     int population = 50;
     int generations = 2000;
     double wall_budget_h = 48.0;

@@ -290,9 +290,12 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         auto& evo = e.evolution;
         const std::string path = "evolution";
         r.check_keys(*ev, path,
-                     {"population", "generations", "wall_budget_h", "max_neutral_retries", "seed",
-                      "threads", "crossover_rate", "cppn"});
+                     {"algorithm", "population", "generations", "wall_budget_h",
+                      "max_neutral_retries", "seed", "threads", "crossover_rate", "cppn"});
         constexpr long long kBig = 1'000'000'000LL;
+        evo.algorithm = static_cast<Algorithm>(
+            r.choice(*ev, "algorithm", path, {kAlgorithmNames.begin(), kAlgorithmNames.end()},
+                     static_cast<int>(evo.algorithm)));
         evo.population =
             static_cast<int>(r.integer(*ev, "population", path, evo.population, -kBig, kBig));
         evo.generations =
@@ -487,6 +490,10 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     if (cp.material_outputs == MaterialOutputs::PerMaterial && e.materials.size() < 2)
         bad("evolution.cppn.material_outputs",
             "\"per_material\" needs at least two materials to choose between");
+    if (ev.algorithm == Algorithm::Neat || ev.algorithm == Algorithm::Novelty)
+        bad("evolution.algorithm", std::string("\"") +
+                                       kAlgorithmNames[static_cast<int>(ev.algorithm)] +
+                                       "\" is not built yet; use \"afpo\"");
     return problems;
 }
 
@@ -553,7 +560,8 @@ json experiment_to_json(const Experiment& e) {
                       {"reject_detached_motion", c.reject_detached_motion},
                       {"reject_tentacle", c.reject_tentacle}}}};
     const auto& ev = e.evolution;
-    j["evolution"] = {{"population", ev.population},
+    j["evolution"] = {{"algorithm", kAlgorithmNames[static_cast<int>(ev.algorithm)]},
+                      {"population", ev.population},
                       {"generations", ev.generations},
                       {"wall_budget_h", ev.wall_budget_h},
                       {"max_neutral_retries", ev.max_neutral_retries},

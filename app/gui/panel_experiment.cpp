@@ -190,6 +190,12 @@ void fitness_section(Studio& s) {
 
 void evolution_section(Studio& s) {
     auto& ev = s.draft.evolution;
+    int algorithm = static_cast<int>(ev.algorithm);
+    ImGui::SetNextItemWidth(field_width());
+    if (ImGui::Combo("Algorithm", &algorithm, "afpo\0neat\0novelty\0")) {
+        ev.algorithm = static_cast<evo::Algorithm>(algorithm);
+        commit_draft(s, "evolution algorithm");
+    }
     if (field_int("Population", ev.population, "", "[2, 100000]; paper: 50"))
         commit_draft(s, "population");
     if (field_int("Generations", ev.generations, "", ">= 0; paper: 2000"))
@@ -229,7 +235,7 @@ void draw_experiment_panel(Studio& s) {
     if (ImGui::CollapsingHeader("Actuation and environment")) actuation_section(s);
     if (ImGui::CollapsingHeader("Simulation timing", open)) simulation_section(s);
     if (ImGui::CollapsingHeader("Fitness", open)) fitness_section(s);
-    if (ImGui::CollapsingHeader("Evolution (AFPO, CPPN)")) evolution_section(s);
+    if (ImGui::CollapsingHeader("Evolution (algorithm, CPPN)")) evolution_section(s);
 }
 
 }  // namespace bhm::app::gui
