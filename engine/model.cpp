@@ -66,6 +66,33 @@ int chunk_offset(int begin, Offset offset) {
     return common;
 }
 
+// Each run costs a loop entry in each pass (setup, a partial vector), more than gathering a few
+// vectors does: a uniform run shorter than this next to a gathered or another short run is
+// gathered instead (gathering is valid for any slot), then equal neighbours merge.
+constexpr int kMinUniformRun = 4 * kLanes;
+
+template <class Run, class IsGathered, class Gather>
+void absorb_short_runs(std::vector<Run>& runs, IsGathered is_gathered, Gather gather) {
+    auto joins = [&](std::size_t i, std::size_t j) {  // run j is i's neighbour and absorbs it
+        const bool adjacent = runs[i].end == runs[j].begin || runs[j].end == runs[i].begin;
+        return adjacent && (is_gathered(runs[j]) || runs[j].end - runs[j].begin < kMinUniformRun);
+    };
+    std::vector<Run> out;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        Run r = runs[i];
+        const bool short_run = r.end - r.begin < kMinUniformRun;
+        if (short_run && ((i > 0 && joins(i, i - 1)) || (i + 1 < runs.size() && joins(i, i + 1))))
+            gather(r);
+        const bool same = !out.empty() && out.back().end == r.begin && is_gathered(out.back()) &&
+                          is_gathered(r);
+        if (same)
+            out.back().end = r.end;
+        else
+            out.push_back(r);
+    }
+    runs = std::move(out);
+}
+
 // Cuts [0, slots) into uniform and gathered runs (model_data.hpp) and sizes the zero lead of the
 // link scratch and the tail of dummy voxels so every offset read stays in bounds.
 void build_runs(Model::Data& d) {
@@ -91,6 +118,10 @@ void build_runs(Model::Data& d) {
                 runs.push_back({begin, begin + kLanes, delta});
             max_delta = std::max(max_delta, delta);
         }
+        if (a != 0)  // (x links are always uniform: the +x neighbour is the next voxel)
+            absorb_short_runs(
+                runs, [](const LinkRun& r) { return r.delta == 0; },
+                [](LinkRun& r) { r.delta = 0; });
     }
     // Voxel v may read slot v - below for axis a when that slot's link (if any) ends at v.
     auto below_ok = [&](int a, int v, int below) {
@@ -98,12 +129,21 @@ void build_runs(Model::Data& d) {
         if (d.minus[a][v] != kNoLink) return d.minus[a][v] == w;
         return w < 0 || !has_link(a, w) || d.plus[a][w] == v;
     };
-    auto below_of = [&](int a, int begin, int previous) {
-        int below = chunk_offset(begin, [&](int v) {
+    auto chunk_below = [&](int a, int begin) {
+        return chunk_offset(begin, [&](int v) {
             return v < d.voxels && d.minus[a][v] != kNoLink ? v - d.minus[a][v] : 0;
         });
+    };
+    auto below_of = [&](int a, int begin, int previous) {
+        int below = chunk_below(a, begin);
         if (below < 0) return 0;
         if (below == 0) below = previous;
+        // A chunk with no such link (the first row or layer of a block) takes the offset of the
+        // next chunk that has one, so it joins that chunk's uniform run instead of gathering.
+        for (int next = begin + kLanes; below <= 0 && next < d.slots; next += kLanes) {
+            below = chunk_below(a, next);
+            if (below < 0) return 0;
+        }
         if (below <= 0) return 0;
         for (int v = begin; v < begin + kLanes; ++v)
             if (!below_ok(a, v, below)) return 0;
@@ -121,6 +161,9 @@ void build_runs(Model::Data& d) {
             d.voxel_runs.push_back({begin, begin + kLanes, by, bz});
         max_below = std::max({max_below, by, bz});
     }
+    absorb_short_runs(
+        d.voxel_runs, [](const VoxelRun& r) { return r.below_y == 0; },
+        [](VoxelRun& r) { r.below_y = r.below_z = 0; });
     d.stored = d.slots + max_delta;
     d.link_lead = (std::max(max_below, kLinkLead) + kLanes - 1) / kLanes * kLanes;
 }

@@ -19,7 +19,9 @@
 // - Solid regions need no gathers: the slots are cut into runs of whole vectors. In a "uniform"
 //   run every link's + end is the slot plus one constant (y: the voxels of a row, z: of a layer)
 //   and every voxel's - link is its slot minus one constant, so the passes read both ends
-//   contiguously; the other runs go through the tables. Absent links may point anywhere (their
+//   contiguously; the other runs go through the tables. A short uniform run between gathered
+//   ones is gathered too (a loop entry costs more than a few gathered vectors), and a chunk with
+//   no - link on an axis (the first row or layer) takes the next chunk's offset. Absent links may point anywhere (their
 //   chord is replaced), so they never break a run; zero slots before slot 0 (link_lead) and dummy
 //   voxels after the last slot (up to `stored`) keep every offset read in bounds.
 // - Positions are stored relative to the body's origin (the low corner of the occupied cells'
