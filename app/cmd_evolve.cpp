@@ -82,9 +82,11 @@ std::string clock_text(double seconds) {
 void print_progress(const evo::GenerationReport& r) {
     std::fprintf(
         stderr,
-        "gen %d/%d  best %.6g%s  median %.6g  sims %d (%.2f/s)  diverged %d  elapsed %s  eta %s\n",
+        "gen %d/%d  best %.6g%s  median %.6g  sims %d (%.2f/s)  diverged %d%s  elapsed %s  "
+        "eta %s\n",
         r.generation, r.generation_budget - 1, r.best_fitness, r.new_champion ? " *" : "",
         r.median_fitness, r.simulations, r.simulations_per_s, r.diverged,
+        r.species > 0 ? ("  species " + std::to_string(r.species)).c_str() : "",
         clock_text(r.elapsed_s).c_str(), clock_text(r.eta_s).c_str());
 }
 

@@ -22,8 +22,10 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "bhm-evolution-checkpoint";
-// 2: the payload is wrapped with its CRC-32 (checkpoint.hpp). 1: the bare payload, still read.
-constexpr int kFormatVersion = 2;
+// 3: NEAT runs add "neat" (innovation counters, species) and genes with history; history rows
+// carry "species". 2: the payload is wrapped with its CRC-32 (checkpoint.hpp). 1: the bare
+// payload, still read. 2 and 3 read the same way: every addition of 3 is optional.
+constexpr int kFormatVersion = 3;
 constexpr int kOldestReadableVersion = 1;
 constexpr std::string_view kChecksumPrefix = "{\"checksum\":\"crc32:";
 constexpr std::string_view kPayloadPrefix = "\",\"payload\":";
@@ -163,7 +165,8 @@ json history_row_to_json(const HistoryRow& h) {
             {"wall_s", h.wall_s},
             {"rules_version", h.rules_version},
             {"best_exploits", exploits_to_json(h.best_exploits)},
-            {"flagged_members", h.flagged_members}};
+            {"flagged_members", h.flagged_members},
+            {"species", h.species}};
 }
 
 HistoryRow history_row_from_json(const json& j, const std::string& path) {
@@ -189,7 +192,60 @@ HistoryRow history_row_from_json(const json& j, const std::string& path) {
     }
     if (j.contains("flagged_members"))
         h.flagged_members = static_cast<int>(f.integer("flagged_members"));
+    if (j.contains("species")) h.species = static_cast<int>(f.integer("species"));  // format 3
     return h;
+}
+
+json neat_state_to_json(const NeatState& n) {
+    json species = json::array();
+    for (const auto& s : n.species)
+        species.push_back({{"id", s.id},
+                           {"representative", genome_to_json(s.representative)},
+                           {"best_fitness", s.best_fitness},
+                           {"last_improved", s.last_improved},
+                           {"created", s.created},
+                           {"members", s.members}});
+    return {{"next_innovation", n.next_innovation},
+            {"next_node_id", n.next_node_id},
+            {"next_species_id", n.next_species_id},
+            {"threshold", n.threshold},
+            {"species", species}};
+}
+
+NeatState neat_state_from_json(const json& j, double weight_range, std::size_t population) {
+    const Fields f(j, "neat");
+    NeatState n;
+    n.next_innovation = f.integer("next_innovation");
+    n.next_node_id = f.integer("next_node_id");
+    n.next_species_id = static_cast<int>(f.integer("next_species_id"));
+    n.threshold = f.number("threshold");
+    const auto& species = f.array("species");
+    std::size_t members = 0;
+    for (std::size_t i = 0; i < species.size(); ++i) {
+        const Fields s(species[i], item("neat.species", i));
+        NeatSpecies sp;
+        sp.id = static_cast<int>(s.integer("id"));
+        try {
+            sp.representative = genome_from_json(s.at("representative"), weight_range);
+        } catch (const std::invalid_argument& e) {
+            throw FieldError(s.join("representative") + ": " + e.what());
+        }
+        // -inf cannot be stored in JSON (it is written as null): a species always has a best.
+        sp.best_fitness = s.number("best_fitness");
+        sp.last_improved = static_cast<int>(s.integer("last_improved"));
+        sp.created = static_cast<int>(s.integer("created"));
+        for (const auto& m : s.array("members")) {
+            if (!m.is_number_integer() || m.get<std::int64_t>() < 0 ||
+                m.get<std::size_t>() >= population)
+                s.fail("members", "expected indices into the population");
+            sp.members.push_back(m.get<int>());
+        }
+        if (sp.members.empty()) s.fail("members", "a species has at least one member");
+        members += sp.members.size();
+        n.species.push_back(std::move(sp));
+    }
+    if (members != population) f.fail("species", "every population member in one species expected");
+    return n;
 }
 
 //! The fitness block alone, parsed through the lead's experiment reader.
@@ -278,6 +334,7 @@ json run_state_to_json(const RunState& s) {
               {"rule_changes", changes},
               {"cache_capacity", s.cache.capacity()},
               {"cache", cache}};
+    if (s.experiment.evolution.algorithm == Algorithm::Neat) j["neat"] = neat_state_to_json(s.neat);
     j["champion"] = s.champion ? json{{"generation_found", s.champion->generation_found},
                                       {"individual", individual_to_json(s.champion->individual)}}
                                : json(nullptr);
@@ -346,6 +403,9 @@ RunState run_state_from_json(const json& j, const std::string& label) {
                 {static_cast<int>(c.integer("generation")),
                  fitness_from_json(c.at("fitness"), s.experiment, c.join("fitness"))});
         }
+
+        if (s.experiment.evolution.algorithm == Algorithm::Neat && s.generation >= 0)
+            s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
 
         if (!f.at("champion").is_null()) {
             const Fields c(f.at("champion"), "champion");

@@ -13,6 +13,7 @@
 #include "evo/crossover.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/mutation.hpp"
+#include "evo/neat_generation.hpp"
 #include "evo/run_lock.hpp"
 #include "evo/worker_pool.hpp"
 
@@ -312,6 +313,7 @@ bool EvolutionRun::run_generation() {
     // The algorithm's breeding step (evolution.algorithm): which members carry over into the pool
     // and which new individuals are evaluated below.
     Brood brood;
+    NeatState neat = state_.neat;
     switch (rules.evolution.algorithm) {
         case Algorithm::Afpo:
             if (g == 0)
@@ -319,6 +321,14 @@ bool EvolutionRun::run_generation() {
             else
                 breed_afpo(rules, g, std::move(population), rng, next_id, brood);
             break;
+        case Algorithm::Neat: {
+            NeatBrood made;
+            neat_breed(rules, developer_, g, population, neat, rng, next_id, made);
+            brood.carried = std::move(made.carried);
+            brood.fresh = std::move(made.fresh);
+            brood.clones = made.clones;
+            break;
+        }
         default:
             throw std::invalid_argument(
                 std::string("evolution.algorithm \"") +
@@ -390,6 +400,10 @@ bool EvolutionRun::run_generation() {
     std::vector<Individual> next_population;
     std::vector<int> next_ranks;
     switch (rules.evolution.algorithm) {
+        case Algorithm::Neat:
+            next_population = neat_select(rules, g, std::move(pool), neat);
+            next_ranks.assign(next_population.size(), 0);  // no Pareto layers in NEAT
+            break;
         case Algorithm::Afpo:
         default:
             select_afpo(rules, std::move(pool), next_population, next_ranks);
@@ -418,6 +432,8 @@ bool EvolutionRun::run_generation() {
     row.best_exploits = best.report.exploits;
     for (const auto& m : next_population)
         row.flagged_members += m.report.exploits.any() ? 1 : 0;
+    if (rules.evolution.algorithm == Algorithm::Neat)
+        row.species = static_cast<int>(neat.species.size());
 
     // Commit.
     state_.experiment = rules;
@@ -429,6 +445,7 @@ bool EvolutionRun::run_generation() {
     state_.population = std::move(next_population);
     state_.pareto_rank = std::move(next_ranks);
     state_.champion = champion;
+    state_.neat = std::move(neat);
     state_.history.push_back(row);
     if (rules_changed) state_.rule_changes.push_back({g, rules.fitness});
     for (std::size_t j = 0; j < jobs.size(); ++j)
@@ -457,6 +474,8 @@ bool EvolutionRun::run_generation() {
     report->median_fitness = row.median_fitness;
     report->champion = *state_.champion;
     report->new_champion = new_champion;
+    report->species = row.species;
+    const auto species_of = species_of_members(state_.neat, state_.population.size());
     for (std::size_t k = 0; k < state_.population.size(); ++k) {
         const auto& m = state_.population[k];
         report->population.push_back(
@@ -464,7 +483,9 @@ bool EvolutionRun::run_generation() {
              m.phenotype.voxels > 0
                  ? static_cast<double>(m.phenotype.active_voxels) / m.phenotype.voxels
                  : 0.0,
-             state_.pareto_rank[k], m.report.diverged, m.valid, m.report.exploits});
+             state_.pareto_rank[k], m.report.diverged, m.valid, m.report.exploits,
+             species_of[k] >= 0 ? state_.neat.species[static_cast<std::size_t>(species_of[k])].id
+                                : 0});
     }
     report->evaluations = row.evaluations;
     report->simulations = row.simulations;

@@ -66,6 +66,7 @@ struct PopulationEntry {
     bool diverged = false;
     bool valid = true;
     ExploitReport exploits;  //!< escaped / detached_motion / tentacle and their measures
+    int species = 0;         //!< NEAT: the member's species id (0 for other algorithms)
 };
 
 //! An immutable snapshot of one completed generation.
@@ -86,6 +87,7 @@ struct GenerationReport {
     int clones = 0;      //!< mutants that found no new valid phenotype in max_neutral_retries
     int diverged = 0;
     int newcomers_skipped = 0;  //!< no valid random newcomer found (over-strict constraints)
+    int species = 0;            //!< NEAT: species in the population (0 for other algorithms)
     double generation_wall_s = 0.0;
     double elapsed_s = 0.0;          //!< across resumes
     double simulations_per_s = 0.0;  //!< this generation

@@ -109,6 +109,22 @@ struct CppnSettings {
 enum class Algorithm { Afpo, Neat, Novelty };
 inline constexpr std::array<const char*, 3> kAlgorithmNames = {"afpo", "neat", "novelty"};
 
+//! NEAT's parameters (evolution.neat; docs/evolution.md#neat). Defaults follow Stanley &
+//! Miikkulainen 2002 where the paper gives one.
+struct NeatSettings {
+    double c1 = 1.0;  //!< compatibility distance: weight of excess genes
+    double c2 = 1.0;  //!< ... of disjoint genes
+    double c3 = 0.4;  //!< ... of the mean weight difference of matching genes
+    double compatibility_threshold = 3.0;  //!< delta below which a genome joins a species
+    int target_species = 0;        //!< > 0: the threshold moves toward this many species
+    double threshold_step = 0.3;   //!< how far the threshold moves per generation
+    double survival_fraction = 0.2;  //!< best fraction of each species that may parent
+    int elitism = 1;               //!< best members of each species copied unchanged
+    int stagnation_generations = 15;  //!< no improvement for this long: the species breeds no more
+    double crossover_rate = 0.75;  //!< share of offspring made by crossover (then mutation)
+    bool operator==(const NeatSettings&) const = default;
+};
+
 struct Evolution {
     Algorithm algorithm = Algorithm::Afpo;
     int population = 50;
@@ -121,6 +137,7 @@ struct Evolution {
     //! before mutation is tried; 0 = the paper's mutation-only AFPO.
     double crossover_rate = 0.0;
     CppnSettings cppn;
+    NeatSettings neat;  //!< used when algorithm is Neat
     bool operator==(const Evolution&) const = default;
 };
 

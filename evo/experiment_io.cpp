@@ -291,7 +291,7 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         const std::string path = "evolution";
         r.check_keys(*ev, path,
                      {"algorithm", "population", "generations", "wall_budget_h",
-                      "max_neutral_retries", "seed", "threads", "crossover_rate", "cppn"});
+                      "max_neutral_retries", "seed", "threads", "crossover_rate", "cppn", "neat"});
         constexpr long long kBig = 1'000'000'000LL;
         evo.algorithm = static_cast<Algorithm>(
             r.choice(*ev, "algorithm", path, {kAlgorithmNames.begin(), kAlgorithmNames.end()},
@@ -332,6 +332,27 @@ Experiment parse_experiment(const json& root, const std::string& file) {
                 r.choice(*c, "material_outputs", cpath,
                          {kMaterialOutputsNames.begin(), kMaterialOutputsNames.end()},
                          static_cast<int>(cp.material_outputs)));
+        }
+        if (const json* n = r.object(*ev, "neat", path)) {
+            auto& ne = evo.neat;
+            const std::string npath = "evolution.neat";
+            r.check_keys(*n, npath,
+                         {"c1", "c2", "c3", "compatibility_threshold", "target_species",
+                          "threshold_step", "survival_fraction", "elitism",
+                          "stagnation_generations", "crossover_rate"});
+            ne.c1 = r.number(*n, "c1", npath, ne.c1);
+            ne.c2 = r.number(*n, "c2", npath, ne.c2);
+            ne.c3 = r.number(*n, "c3", npath, ne.c3);
+            ne.compatibility_threshold =
+                r.number(*n, "compatibility_threshold", npath, ne.compatibility_threshold);
+            ne.target_species = static_cast<int>(
+                r.integer(*n, "target_species", npath, ne.target_species, -kBig, kBig));
+            ne.threshold_step = r.number(*n, "threshold_step", npath, ne.threshold_step);
+            ne.survival_fraction = r.number(*n, "survival_fraction", npath, ne.survival_fraction);
+            ne.elitism = static_cast<int>(r.integer(*n, "elitism", npath, ne.elitism, -kBig, kBig));
+            ne.stagnation_generations = static_cast<int>(r.integer(
+                *n, "stagnation_generations", npath, ne.stagnation_generations, -kBig, kBig));
+            ne.crossover_rate = r.number(*n, "crossover_rate", npath, ne.crossover_rate);
         }
     }
 
@@ -490,7 +511,28 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     if (cp.material_outputs == MaterialOutputs::PerMaterial && e.materials.size() < 2)
         bad("evolution.cppn.material_outputs",
             "\"per_material\" needs at least two materials to choose between");
-    if (ev.algorithm == Algorithm::Neat || ev.algorithm == Algorithm::Novelty)
+    const auto& ne = ev.neat;
+    auto neat_number = [&](const char* key, double v, double lo, double hi, bool lo_open,
+                           const char* range) {
+        if (!finite(v) || v < lo || v > hi || (lo_open && v == lo))
+            bad(std::string("evolution.neat.") + key, std::string("must be in ") + range);
+    };
+    neat_number("c1", ne.c1, 0, 100, false, "[0, 100]");
+    neat_number("c2", ne.c2, 0, 100, false, "[0, 100]");
+    neat_number("c3", ne.c3, 0, 100, false, "[0, 100]");
+    neat_number("compatibility_threshold", ne.compatibility_threshold, 0, 1000, true,
+                "(0, 1000]");
+    neat_number("threshold_step", ne.threshold_step, 0, 100, true, "(0, 100]");
+    neat_number("survival_fraction", ne.survival_fraction, 0, 1, true, "(0, 1]");
+    neat_number("crossover_rate", ne.crossover_rate, 0, 1, false, "[0, 1]");
+    if (ne.target_species < 0 || ne.target_species > ev.population)
+        bad("evolution.neat.target_species",
+            "must be in [0, evolution.population] (0 = keep the threshold fixed)");
+    if (ne.elitism < 0 || ne.elitism > ev.population)
+        bad("evolution.neat.elitism", "must be in [0, evolution.population]");
+    if (ne.stagnation_generations < 1 || ne.stagnation_generations > 100000000)
+        bad("evolution.neat.stagnation_generations", "must be in [1, 1e8]");
+    if (ev.algorithm == Algorithm::Novelty)
         bad("evolution.algorithm", std::string("\"") +
                                        kAlgorithmNames[static_cast<int>(ev.algorithm)] +
                                        "\" is not built yet; use \"afpo\"");
@@ -575,6 +617,20 @@ json experiment_to_json(const Experiment& e) {
                         {"mutation_weight_sigma", ev.cppn.mutation_weight_sigma},
                         {"material_outputs",
                          kMaterialOutputsNames[static_cast<int>(ev.cppn.material_outputs)]}}}};
+    // NEAT's block only where it says something: AFPO files stay as they were.
+    if (ev.algorithm == Algorithm::Neat || !(ev.neat == NeatSettings{})) {
+        const auto& n = ev.neat;
+        j["evolution"]["neat"] = {{"c1", n.c1},
+                                  {"c2", n.c2},
+                                  {"c3", n.c3},
+                                  {"compatibility_threshold", n.compatibility_threshold},
+                                  {"target_species", n.target_species},
+                                  {"threshold_step", n.threshold_step},
+                                  {"survival_fraction", n.survival_fraction},
+                                  {"elitism", n.elitism},
+                                  {"stagnation_generations", n.stagnation_generations},
+                                  {"crossover_rate", n.crossover_rate}};
+    }
     return j;
 }
 

@@ -106,6 +106,24 @@ std::string genome_problem(const Genome& genome, double weight_range) {
     for (std::size_t h = 0; h < genome.hidden.size(); ++h)
         if (static_cast<int>(genome.hidden[h]) >= kActivationCount)
             return "hidden[" + std::to_string(h) + "]: unknown function";
+    if (genome.has_history()) {
+        if (genome.hidden_ids.size() != genome.hidden.size())
+            return "hidden_ids: one id per hidden node expected";
+        for (std::size_t h = 0; h < genome.hidden_ids.size(); ++h) {
+            if (genome.hidden_ids[h] < genome.first_hidden())
+                return "hidden_ids[" + std::to_string(h) + "]: ids of hidden nodes follow the outputs";
+            for (std::size_t k = 0; k < h; ++k)
+                if (genome.hidden_ids[k] == genome.hidden_ids[h])
+                    return "hidden_ids[" + std::to_string(h) + "]: duplicate id";
+        }
+        for (std::size_t i = 0; i < genome.edges.size(); ++i) {
+            const std::string where = "edges[" + std::to_string(i) + "]: ";
+            if (genome.edges[i].innovation < 0) return where + "innovation number missing";
+            for (std::size_t j = 0; j < i; ++j)
+                if (genome.edges[j].innovation == genome.edges[i].innovation)
+                    return where + "duplicate innovation number";
+        }
+    }
     try {
         topological_order(genome);
     } catch (const std::invalid_argument&) {
@@ -161,18 +179,24 @@ nlohmann::json genome_to_json(const Genome& genome) {
     for (auto f : genome.hidden)
         hidden.push_back(kActivationNames[static_cast<std::size_t>(f)]);
     nlohmann::json edges = nlohmann::json::array();
-    for (const auto& e : genome.edges)
-        edges.push_back({e.from, e.to, e.weight});
+    for (const auto& e : genome.edges) {
+        if (e.innovation >= 0)
+            edges.push_back({e.from, e.to, e.weight, e.innovation});
+        else
+            edges.push_back({e.from, e.to, e.weight});
+    }
     nlohmann::json outputs = {"material", "active"};
     if (genome.output_count != kOutputCount) {
         outputs = {"material"};
         for (int k = 1; k < genome.output_count; ++k)
             outputs.push_back("material_" + std::to_string(k));
     }
-    return {{"inputs", {"x", "y", "z", "d", "bias"}},
-            {"outputs", outputs},
-            {"hidden", hidden},
-            {"edges", edges}};
+    nlohmann::json out = {{"inputs", {"x", "y", "z", "d", "bias"}},
+                          {"outputs", outputs},
+                          {"hidden", hidden},
+                          {"edges", edges}};
+    if (!genome.hidden_ids.empty()) out["hidden_ids"] = genome.hidden_ids;
+    return out;
 }
 
 Genome genome_from_json(const nlohmann::json& json, double weight_range) {
@@ -201,10 +225,21 @@ Genome genome_from_json(const nlohmann::json& json, double weight_range) {
     if (!json.contains("edges") || !json["edges"].is_array()) fail("edges", "expected an array");
     for (std::size_t i = 0; i < json["edges"].size(); ++i) {
         const auto& e = json["edges"][i];
-        if (!e.is_array() || e.size() != 3 || !e[0].is_number_integer() ||
-            !e[1].is_number_integer() || !e[2].is_number())
-            fail("edges[" + std::to_string(i) + "]", "expected [from, to, weight]");
-        genome.edges.push_back({e[0].get<int>(), e[1].get<int>(), e[2].get<double>()});
+        // A fourth entry, the innovation number, in NEAT genomes.
+        if (!e.is_array() || (e.size() != 3 && e.size() != 4) || !e[0].is_number_integer() ||
+            !e[1].is_number_integer() || !e[2].is_number() ||
+            (e.size() == 4 && !e[3].is_number_unsigned()))
+            fail("edges[" + std::to_string(i) + "]", "expected [from, to, weight(, innovation)]");
+        genome.edges.push_back({e[0].get<int>(), e[1].get<int>(), e[2].get<double>(),
+                                e.size() == 4 ? e[3].get<std::int64_t>() : std::int64_t{-1}});
+    }
+    if (json.contains("hidden_ids")) {
+        const auto& ids = json["hidden_ids"];
+        if (!ids.is_array()) fail("hidden_ids", "expected an array of node ids");
+        for (const auto& id : ids) {
+            if (!id.is_number_unsigned()) fail("hidden_ids", "expected non-negative integers");
+            genome.hidden_ids.push_back(id.get<std::int64_t>());
+        }
     }
     if (auto problem = genome_problem(genome, weight_range); !problem.empty()) fail("", problem);
     return genome;

@@ -39,6 +39,9 @@ struct CppnEdge {
     int from = 0;  //!< node index (an input or a hidden node)
     int to = 0;    //!< node index (a hidden or an output node)
     double weight = 0.0;
+    //! NEAT's historical marking of this connection gene (evo/neat_innovation.hpp); -1 in genomes
+    //! that carry no history (AFPO's, novelty's).
+    std::int64_t innovation = -1;
     bool operator==(const CppnEdge&) const = default;
 };
 
@@ -47,6 +50,10 @@ struct Genome {
     std::vector<Activation> hidden;
     std::vector<CppnEdge> edges;
     int output_count = kOutputCount;  //!< 2 (the paper's) or 1 + materials (per_material)
+    //! NEAT only: the run-wide id of each hidden node (hidden_ids[h] for node first_hidden() + h),
+    //! so genes of two genomes can be aligned; inputs and outputs are their own ids. Empty in
+    //! genomes without history.
+    std::vector<std::int64_t> hidden_ids;
 
     int first_hidden() const { return kInputCount + output_count; }
     int node_count() const { return first_hidden() + static_cast<int>(hidden.size()); }
@@ -54,11 +61,26 @@ struct Genome {
     static bool is_input(int node) { return node < kInputCount; }
     bool is_output(int node) const { return node >= kInputCount && node < first_hidden(); }
     bool is_hidden(int node) const { return node >= first_hidden(); }
+    //! True for a NEAT genome: hidden node ids or innovation numbers present.
+    bool has_history() const {
+        if (!hidden_ids.empty()) return true;
+        for (const auto& e : edges)
+            if (e.innovation >= 0) return true;
+        return false;
+    }
+    //! The run-wide id of node index `node` (NEAT); the index itself without history.
+    std::int64_t node_id(int node) const {
+        return is_hidden(node) && !hidden_ids.empty()
+                   ? hidden_ids[static_cast<std::size_t>(node - first_hidden())]
+                   : node;
+    }
     bool operator==(const Genome&) const = default;
 };
 
 //! Empty when the genome is well formed: node indices in range, no edge into an input or out of an
-//! output, no self loop or duplicate edge, weights finite and within +-weight_range, acyclic.
+//! output, no self loop or duplicate edge, weights finite and within +-weight_range, acyclic; with
+//! NEAT history: one id per hidden node, unique and above the outputs, and every edge with a
+//! unique innovation number.
 std::string genome_problem(const Genome& genome, double weight_range);
 
 //! True when adding from -> to keeps the graph acyclic (to does not already reach from).

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
@@ -18,7 +19,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string fitness_csv(const std::vector<HistoryRow>& history) {
-    std::string out = std::string(kFitnessCsvHeader) + "\n";
+    // NEAT runs add a species column; the others keep the header they always had.
+    const bool species = std::any_of(history.begin(), history.end(),
+                                     [](const HistoryRow& h) { return h.species > 0; });
+    std::string out = std::string(kFitnessCsvHeader) + (species ? ",species\n" : "\n");
     for (const auto& h : history) {
         // Integers and the to_chars-based numbers never depend on the locale.
         const long long wall_ms = static_cast<long long>(h.wall_s * 1000.0 + 0.5);
@@ -30,7 +34,8 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
                std::to_string(h.best_id) + "," + std::to_string(h.diverged) + "," + wall + "," +
                (h.best_exploits.escaped ? "1," : "0,") +
                (h.best_exploits.detached_motion ? "1," : "0,") +
-               (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) + "\n";
+               (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) +
+               (species ? "," + std::to_string(h.species) : std::string()) + "\n";
     }
     return out;
 }

@@ -8,6 +8,7 @@
 #include "evo/experiment.hpp"
 #include "evo/fitness_cache.hpp"
 #include "evo/individual.hpp"
+#include "evo/neat_species.hpp"
 #include "evo/rng.hpp"
 
 namespace bhm::evo {
@@ -26,6 +27,7 @@ struct HistoryRow {
     int rules_version = 0;  //!< bumped by every change of fitness rules between generations
     ExploitReport best_exploits;  //!< the flags of the best member
     int flagged_members = 0;      //!< population members raising any exploit flag
+    int species = 0;              //!< NEAT: species after this generation (0 for other algorithms)
     bool operator==(const HistoryRow&) const = default;
 };
 
@@ -55,6 +57,7 @@ struct RunState {
     std::vector<HistoryRow> history;
     std::vector<RuleChange> rule_changes;
     FitnessCache cache;
+    NeatState neat;  //!< evolution.algorithm = "neat" only: innovation counters, species
 };
 
 }  // namespace bhm::evo
