@@ -149,3 +149,42 @@ TEST_CASE(
     CHECK_THROWS_WITH_AS(parse_experiment(text, "x.json"), doctest::Contains("evolution.neat.c4"),
                          ValidationError);
 }
+
+TEST_CASE("a format 2 checkpoint of an AFPO run (before evolution.algorithm) still resumes") {
+    const auto e = test::tiny_experiment();
+    const fs::path whole = fresh_dir("afpo-whole"), old = fresh_dir("afpo-old");
+    EvolutionRun uninterrupted(e, options(3, 1, whole.string()));
+    uninterrupted.run();
+    {
+        EvolutionRun first(e, options(3, 1, old.string()));
+        first.set_report_callback([&](auto r) {
+            if (r->generation == 1) first.request_stop();
+        });
+        first.run();
+    }
+    // Rewrite both checkpoints as a build before this field wrote them: format 2, no algorithm,
+    // no species in the history rows.
+    for (const char* name : {kCheckpointFile, kPreviousCheckpointFile}) {
+        const fs::path path = old / name;
+        std::ifstream in(path);
+        std::stringstream text;
+        text << in.rdbuf();
+        in.close();
+        std::vector<std::string> notes;
+        auto payload = parse_checkpoint_text(text.str(), notes);
+        payload["format_version"] = 2;
+        payload["experiment"]["evolution"].erase("algorithm");
+        for (auto& row : payload["history"])
+            row.erase("species");
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << checkpoint_text(payload);
+    }
+    auto resumed = EvolutionRun::resume(options(3, 1, old.string()));
+    CHECK(resumed->resume_warnings().empty());
+    CHECK(resumed->state().experiment.evolution.algorithm == Algorithm::Afpo);
+    resumed->run();
+    CHECK(without_wall(resumed->state().history) == without_wall(uninterrupted.state().history));
+    CHECK(resumed->state().champion->individual.genome ==
+          uninterrupted.state().champion->individual.genome);
+    fs::remove_all(whole);
+    fs::remove_all(old);
+}

@@ -63,7 +63,7 @@ TEST_CASE("a checkpoint whose contents changed but still parse is caught by its 
     std::vector<std::string> notes;
     const auto payload = parse_checkpoint_text(text, notes);
     CHECK(notes.empty());
-    CHECK(payload.at("format_version") == 2);
+    CHECK(payload.at("format_version") == 3);
     CHECK(checkpoint_text(payload) == text);  // the format round-trips byte for byte
 
     // One digit of the generation counter changed: valid JSON, wrong run. Falls back.
