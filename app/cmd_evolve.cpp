@@ -28,7 +28,7 @@ const char* const kSummary =
     "median_fitness,\n"
     "                           best_age, best_id, diverged, wall_s (counts per generation),\n"
     "                           best_escaped, best_detached_motion, best_tentacle, flagged_members\n"
-    "                           (exploit flags, docs/evolution.md)\n"
+    "                           (exploit flags, docs/evolution.md); NEAT runs add species\n"
     "  champion.json            genome, phenotype layers, fitness, generation found\n"
     "  champions/gen-NNNNN.json every new champion\n"
     "  champion.vxa             the champion for VoxCAD (VXA 1.0)\n"

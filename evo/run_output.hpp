@@ -20,7 +20,8 @@ inline constexpr const char* kFitnessCsvHeader =
     "s,best_escaped,best_detached_motion,best_tentacle,flagged_members";
 
 //! fitness.csv text: the header then one row per generation. Numbers in the C locale; fitness with
-//! the shortest exact form, wall_s with millisecond resolution.
+//! the shortest exact form, wall_s with millisecond resolution. NEAT runs (rows with species > 0)
+//! add a last column, species.
 std::string fitness_csv(const std::vector<HistoryRow>& history);
 
 nlohmann::json champion_to_json(const Experiment& experiment, const ChampionRecord& champion);

@@ -63,6 +63,7 @@ struct EvolutionSnapshot {
     double elapsed_s = 0.0;
     double eta_s = -1.0;  //!< negative while unknown
     std::int64_t evaluations = 0;
+    int species = 0;  //!< NEAT: species in the population (0 for other algorithms)
     std::vector<GenerationRecord> history;
     std::vector<RuleChange> rule_changes;
     evo::FitnessMeasure initial_measure = evo::FitnessMeasure::ComFinal3d;  //!< before any change

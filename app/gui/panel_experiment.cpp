@@ -188,14 +188,62 @@ void fitness_section(Studio& s) {
         commit_draft(s, "minimum active voxels");
 }
 
+//! NEAT's parameters (docs/evolution.md#neat), shown when the algorithm is "neat".
+void neat_fields(Studio& s) {
+    auto& n = s.draft.evolution.neat;
+    if (field_double("NEAT c1", n.c1, "", "[0, 100]: weight of excess genes; 1", "%.3g"))
+        commit_draft(s, "NEAT c1");
+    if (field_double("NEAT c2", n.c2, "", "[0, 100]: weight of disjoint genes; 1", "%.3g"))
+        commit_draft(s, "NEAT c2");
+    if (field_double("NEAT c3", n.c3, "", "[0, 100]: weight of the mean weight difference; 0.4",
+                     "%.3g"))
+        commit_draft(s, "NEAT c3");
+    if (field_double("Compat. threshold", n.compatibility_threshold, "delta",
+                     "(0, 1000]: closer than this to a representative joins its species; 3",
+                     "%.3g"))
+        commit_draft(s, "NEAT compatibility threshold");
+    if (field_int("Target species", n.target_species, "",
+                  "[0, population]: the threshold moves toward this many; 0 = fixed"))
+        commit_draft(s, "NEAT target species");
+    if (field_double("Threshold step", n.threshold_step, "delta", "(0, 100]; 0.3", "%.3g"))
+        commit_draft(s, "NEAT threshold step");
+    if (field_double("Survival", n.survival_fraction, "fraction",
+                     "(0, 1]: best share of a species that parents; 0.2", "%.3g"))
+        commit_draft(s, "NEAT survival fraction");
+    if (field_int("Elitism", n.elitism, "per species", "best members copied unchanged; 1"))
+        commit_draft(s, "NEAT elitism");
+    if (field_int("Stagnation", n.stagnation_generations, "generations",
+                  "no improvement this long: no more offspring; 15"))
+        commit_draft(s, "NEAT stagnation");
+    if (field_double("NEAT crossover", n.crossover_rate, "",
+                     "[0, 1]: share of offspring made by crossover; 0.75", "%.3g"))
+        commit_draft(s, "NEAT crossover rate");
+}
+
 void evolution_section(Studio& s) {
     auto& ev = s.draft.evolution;
-    int algorithm = static_cast<int>(ev.algorithm);
+    // One selectable per algorithm, each recorded so a script can pick it ("algorithm neat").
     ImGui::SetNextItemWidth(field_width());
-    if (ImGui::Combo("Algorithm", &algorithm, "afpo\0neat\0novelty\0")) {
-        ev.algorithm = static_cast<evo::Algorithm>(algorithm);
-        commit_draft(s, "evolution algorithm");
+    const bool open = ImGui::BeginCombo(
+        "Algorithm", evo::kAlgorithmNames[static_cast<std::size_t>(ev.algorithm)]);
+    record_widget(s, "Algorithm");
+    if (open) {
+        for (std::size_t k = 0; k < evo::kAlgorithmNames.size(); ++k) {
+            const auto algorithm = static_cast<evo::Algorithm>(k);
+            if (ImGui::Selectable(evo::kAlgorithmNames[k], ev.algorithm == algorithm) &&
+                ev.algorithm != algorithm) {
+                ev.algorithm = algorithm;
+                commit_draft(s, "evolution algorithm");
+            }
+            record_widget(s, std::string("algorithm ") + evo::kAlgorithmNames[k]);
+        }
+        ImGui::EndCombo();
     }
+    if (ev.algorithm == evo::Algorithm::Afpo &&
+        field_double("Crossover rate", ev.crossover_rate, "",
+                     "[0, 1]: share of AFPO children made by crossover; 0 = the paper's", "%.3g"))
+        commit_draft(s, "AFPO crossover rate");
+    if (ev.algorithm == evo::Algorithm::Neat) neat_fields(s);
     if (field_int("Population", ev.population, "", "[2, 100000]; paper: 50"))
         commit_draft(s, "population");
     if (field_int("Generations", ev.generations, "", ">= 0; paper: 2000"))
@@ -235,7 +283,9 @@ void draw_experiment_panel(Studio& s) {
     if (ImGui::CollapsingHeader("Actuation and environment")) actuation_section(s);
     if (ImGui::CollapsingHeader("Simulation timing", open)) simulation_section(s);
     if (ImGui::CollapsingHeader("Fitness", open)) fitness_section(s);
-    if (ImGui::CollapsingHeader("Evolution (algorithm, CPPN)")) evolution_section(s);
+    const bool evolution_open = ImGui::CollapsingHeader("Evolution (algorithm, CPPN)");
+    record_widget(s, "header Evolution");
+    if (evolution_open) evolution_section(s);
 }
 
 }  // namespace bhm::app::gui

@@ -123,6 +123,12 @@ void status(Studio& s) {
         std::snprintf(text, sizeof text, "%lld", static_cast<long long>(live.simulations));
         cell("simulations", text);
         cell("measure", evo::kFitnessNames[static_cast<std::size_t>(measure)]);
+        cell("algorithm", evo::kAlgorithmNames[static_cast<std::size_t>(
+                              run->experiment.evolution.algorithm)]);
+        if (run->species > 0) {
+            std::snprintf(text, sizeof text, "%d", run->species);
+            cell("species", text);
+        }
         ImGui::EndTable();
     }
     if (!s.showing_run_directory && progress.running && run_is_live(phase) &&

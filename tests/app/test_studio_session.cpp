@@ -246,3 +246,33 @@ TEST_CASE("studio session: a simulated body replays at t = 5 s with the settle p
     CHECK(studio.clock.playing);
     CHECK(studio.clock.time_s > 5.0);
 }
+
+TEST_CASE("studio session: the experiment editor picks NEAT; Start runs it and shows its species") {
+    const auto dir = testing::fresh_dir("session-neat");
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 1400);
+    run_script(session, json::parse(R"([
+        {"click": "header Evolution"}, {"frames": 2},
+        {"click": "Algorithm"}, {"frames": 2},
+        {"click": "algorithm neat"}, {"frames": 2}])"));
+    CHECK(studio.document.experiment().evolution.algorithm == evo::Algorithm::Neat);
+    CHECK(studio.document.undo_label() == "evolution algorithm");
+    run_script(session, json::parse(R"([
+        {"set": "evolution.neat.target_species", "value": 2},
+        {"click": "Start"},
+        {"wait_generations": 2, "timeout_s": 240},
+        {"wait_run": "finished", "timeout_s": 60},
+        {"frames": 2}])"));
+    const auto run = studio.evolution.snapshot();
+    REQUIRE(run);
+    CHECK(run->experiment.evolution.algorithm == evo::Algorithm::Neat);
+    CHECK(run->experiment.evolution.neat.target_species == 2);
+    CHECK(run->generation == 2);
+    CHECK(run->species >= 1);
+    std::ifstream csv(dir / "run" / "fitness.csv");
+    std::string header;
+    std::getline(csv, header);
+    CHECK(header.substr(header.size() - 8) == ",species");
+}
