@@ -314,6 +314,8 @@ bool EvolutionRun::run_generation() {
     // and which new individuals are evaluated below.
     Brood brood;
     NeatState neat = state_.neat;
+    if (rules_changed && rules.evolution.algorithm == Algorithm::Neat)
+        restart_species_records(population, g - 1, neat);
     switch (rules.evolution.algorithm) {
         case Algorithm::Afpo:
             if (g == 0)

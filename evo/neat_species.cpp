@@ -66,6 +66,18 @@ void speciate(const std::vector<Individual>& population, const NeatSettings& set
     }
 }
 
+void restart_species_records(const std::vector<Individual>& population, int generation,
+                             NeatState& state) {
+    for (auto& s : state.species) {
+        std::stable_sort(s.members.begin(), s.members.end(), [&](int a, int b) {
+            return better(population[static_cast<std::size_t>(a)],
+                          population[static_cast<std::size_t>(b)]);
+        });
+        s.best_fitness = population[static_cast<std::size_t>(s.members.front())].report.fitness;
+        s.last_improved = generation;
+    }
+}
+
 std::vector<int> species_of_members(const NeatState& state, std::size_t population_size) {
     std::vector<int> of(population_size, -1);
     for (std::size_t s = 0; s < state.species.size(); ++s)

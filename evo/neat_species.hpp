@@ -50,6 +50,12 @@ struct NeatState {
 void speciate(const std::vector<Individual>& population, const NeatSettings& settings,
               int generation, NeatState& state);
 
+//! After a change of fitness rules re-scored the population: each species' members re-sorted best
+//! first, its record restarted from its best member's new fitness as of `generation` (records
+//! under the old measure say nothing about stagnation under the new one).
+void restart_species_records(const std::vector<Individual>& population, int generation,
+                             NeatState& state);
+
 //! Species index (into state.species) of each population member.
 std::vector<int> species_of_members(const NeatState& state, std::size_t population_size);
 

@@ -266,6 +266,14 @@ TEST_CASE("speciation by threshold, fitness sharing, offspring per species and s
         m.report.fitness = 1.0;
     CHECK(allot_offspring(population, state, s, 1, 9) == std::vector<int>{6, 3});
 
+    // A change of fitness rules: records restart from the re-scored members, best first again.
+    population[2].report.fitness = 4.0;  // a2 now beats a
+    restart_species_records(population, 7, state);
+    CHECK(state.species[0].members == std::vector<int>{2, 0});
+    CHECK(state.species[0].best_fitness == 4.0);
+    CHECK(state.species[0].last_improved == 7);
+    population[2].report.fitness = 1.0;
+
     // A target of one species raises the threshold by one step after a speciation with two.
     s.target_species = 1;
     const double before = state.threshold;

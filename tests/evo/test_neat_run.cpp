@@ -188,3 +188,26 @@ TEST_CASE("a format 2 checkpoint of an AFPO run (before evolution.algorithm) sti
     fs::remove_all(whole);
     fs::remove_all(old);
 }
+
+TEST_CASE("a change of fitness rules during a NEAT run restarts the species' records") {
+    auto e = neat_experiment();
+    EvolutionRun run(e, options(4, 1));
+    run.set_report_callback([&](auto r) {
+        if (r->generation == 1) {
+            Fitness f = e.fitness;
+            f.measure = FitnessMeasure::ComFinal3d;
+            run.request_fitness_change(f);
+        }
+    });
+    run.run();
+    const auto& state = run.state();
+    CHECK(state.experiment.fitness.measure == FitnessMeasure::ComFinal3d);
+    CHECK(state.rules_version == 1);
+    for (const auto& s : state.neat.species) {
+        CHECK(s.last_improved >= 1);  // no record kept from the old measure
+        double best = -1e300;
+        for (int m : s.members)
+            best = std::max(best, state.population[static_cast<std::size_t>(m)].report.fitness);
+        CHECK(s.best_fitness >= best);
+    }
+}
