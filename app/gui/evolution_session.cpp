@@ -119,9 +119,12 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         snap->simulations_per_s = report->simulations_per_s;
         snap->eta_s = report->eta_s;
     }
+    const auto species_of = evo::species_of_members(state.neat, state.population.size());
     for (std::size_t k = 0; k < state.population.size(); ++k) {
         const auto& m = state.population[k];
         PopulationMember p;
+        if (species_of[k] >= 0)
+            p.species = state.neat.species[static_cast<std::size_t>(species_of[k])].id;
         p.id = m.id;
         p.fitness = m.report.fitness;
         p.age = m.age;

@@ -42,6 +42,7 @@ struct PopulationMember {
     int voxels = 0;
     int active_voxels = 0;
     int pareto_rank = 0;  //!< 0 = on the Pareto front of (fitness up, age down[, active down])
+    int species = 0;      //!< NEAT: its species id (0 for other algorithms)
     bool valid = true;    //!< false: breaks the current constraints
     evo::ExploitReport exploits;  //!< escaped / detached_motion / tentacle (evo/exploit_flags.hpp)
     std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)

@@ -84,11 +84,16 @@ void draw_population_panel(Studio& s) {
     if (tracked_button(s, "Follow champion")) follow_champion(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
+    // NEAT has species instead of a Pareto front: that column shows each member's species.
+    const bool neat = run.experiment.evolution.algorithm == evo::Algorithm::Neat;
     int front = 0;
     for (const auto& m : run.population)
         front += m.pareto_rank == 0;
-    ImGui::TextDisabled("%zu individuals, %d on the Pareto front (*)", run.population.size(),
-                        front);
+    if (neat)
+        ImGui::TextDisabled("%zu individuals in %d species", run.population.size(), run.species);
+    else
+        ImGui::TextDisabled("%zu individuals, %d on the Pareto front (*)", run.population.size(),
+                            front);
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
     if (!ImGui::BeginTable("population", 7, flags, ImGui::GetContentRegionAvail())) return;
@@ -99,7 +104,7 @@ void draw_population_panel(Studio& s) {
     ImGui::TableSetupColumn("age");
     ImGui::TableSetupColumn("voxels");
     ImGui::TableSetupColumn("active");
-    ImGui::TableSetupColumn("front");
+    ImGui::TableSetupColumn(neat ? "species" : "front");
     ImGui::TableSetupColumn("flags");
     ImGui::TableHeadersRow();
     for (const auto& m : run.population) {
@@ -125,7 +130,10 @@ void draw_population_panel(Studio& s) {
         ImGui::TableNextColumn();
         ImGui::Text("%.0f %%", 100.0 * m.active_fraction());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
+        if (neat)
+            ImGui::Text("%d", m.species);
+        else
+            ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
         ImGui::TableNextColumn();
         exploit_cell(s, m.exploits, std::string("flags ") + id);
     }

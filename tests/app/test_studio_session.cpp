@@ -271,6 +271,8 @@ TEST_CASE("studio session: the experiment editor picks NEAT; Start runs it and s
     CHECK(run->experiment.evolution.neat.target_species == 2);
     CHECK(run->generation == 2);
     CHECK(run->species >= 1);
+    for (const auto& m : run->population)
+        CHECK(m.species >= 1);  // the Population panel's species column
     std::ifstream csv(dir / "run" / "fitness.csv");
     std::string header;
     std::getline(csv, header);
