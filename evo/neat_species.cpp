@@ -157,6 +157,14 @@ std::vector<int> allot_offspring(const std::vector<Individual>& population, cons
         ++counts[order[k]];
         ++given;
     }
+    // The population's best member must survive (elitism keeps it only if its species breeds):
+    // a species with a low mean can round to no offspring, so it takes one from the largest.
+    if (counts[best_species] == 0) {
+        const auto largest = static_cast<std::size_t>(
+            std::max_element(counts.begin(), counts.end()) - counts.begin());
+        --counts[largest];
+        ++counts[best_species];
+    }
     return counts;
 }
 

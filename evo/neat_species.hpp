@@ -14,7 +14,8 @@
 // proportion to the sum of its members' adjusted fitness (the largest-remainder method, so the
 // counts add up to the population exactly; ties go to the older species); a species that has not
 // improved its best fitness for stagnation_generations gets none, unless it holds the
-// population's best member.
+// population's best member; that species always gets at least one offspring (taken from the
+// species with the most), so with elitism >= 1 the population's best is never lost.
 #include <cstdint>
 #include <vector>
 

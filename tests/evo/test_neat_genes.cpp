@@ -261,6 +261,14 @@ TEST_CASE("speciation by threshold, fitness sharing, offspring per species and s
     CHECK(allot_offspring(population, state, s, 1 + s.stagnation_generations, 10) ==
           std::vector<int>{10, 0});
 
+    // The best member's species always breeds: here its mean is low (a2 scores -2, shifting a to
+    // 5, a2 to 0, b to 4: shares 2.5 and 4) and one offspring would go to b's species.
+    state.species[0].last_improved = state.species[1].last_improved = 0;
+    population[2].report.fitness = -2.0;
+    CHECK(adjusted_fitness(population, state) == std::vector<double>{2.5, 4.0, 0.0});
+    CHECK(allot_offspring(population, state, s, 1, 1) == std::vector<int>{1, 0});
+    CHECK(allot_offspring(population, state, s, 1, 3) == std::vector<int>{1, 2});
+
     // Everyone equally fit: shares by species size.
     for (auto& m : population)
         m.report.fitness = 1.0;
