@@ -265,41 +265,10 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
                               limits::voxel_omega2(mat, L, spec.actuation.temperature_amplitude_c));
     }
 
-    // Poisson coupling (poisson.hpp): each octant of a voxel has the moduli of the axes its
-    // half-links span; a link's own modulus is the mean over the four octants at each end.
-    std::array<std::vector<double>, 3> octant_modulus;  // per axis: that mean / E, per voxel
+    // Poisson coupling (poisson.hpp): per-voxel moduli and centre-strain coefficients; a link's
+    // own modulus is the mean over the four octants at each end.
+    const std::array<std::vector<double>, 3> octant_modulus = build_poisson_params(d);
     PoissonParams& pp = d.poisson;
-    pp.lambda2.assign(d.stored, 0.0f);
-    pp.lambda3.assign(d.stored, 0.0f);
-    for (int a = 0; a < 3; ++a) {
-        pp.has_plus[a].assign(d.stored, 0.0f);
-        pp.has_minus[a].assign(d.stored, 0.0f);
-        pp.rest_scale[a].assign(d.stored, 0.0f);
-        octant_modulus[a].assign(d.stored, 0.0);
-    }
-    for (int v = 0; v < n; ++v) {
-        for (int a = 0; a < 3; ++a) {
-            pp.has_plus[a][v] = d.plus[a][v] != v ? 1.0f : 0.0f;
-            pp.has_minus[a][v] = d.minus[a][v] != kNoLink ? 1.0f : 0.0f;
-        }
-        const Material& mat = spec.materials[d.voxel_material[v] - 1];
-        // A held voxel is the clamp plane through its centre: it adds no lateral constraint of
-        // its own (a continuum clamp's constraint fades within a fraction of a voxel; measured
-        // against CalculiX in docs/physics.md), so its octants are uncoupled (nu = 0).
-        const double e = mat.youngs_modulus_pa, nu = d.voxel_fixed[v] ? 0.0 : mat.poisson_ratio;
-        pp.lambda2[v] = static_cast<float>(poisson_moduli(e, nu, 2).lambda);
-        pp.lambda3[v] = static_cast<float>(poisson_moduli(e, nu, 3).lambda);
-        pp.active = pp.active || nu != 0.0;
-        for (int a = 0; a < 3; ++a) {
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            double sum = 0.0;
-            for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
-                for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]})
-                    sum += poisson_moduli(e, nu, 1 + static_cast<int>(hb) + static_cast<int>(hc)).m;
-            octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
-        }
-    }
-    poisson_cross_weights(pp, d.stored);
 
     // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
     std::array<std::vector<double>, 3> link_omega2;                // per link: max(k/m, k_rot/I)
@@ -347,6 +316,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             max_omega2 = std::max(max_omega2, omega2);
         }
     }
+
+    if (pp.active) finish_poisson_params(d);
 
     // Voxelyze's recommended step: 1 / (2 pi sqrt(k_max / m_min)), rotational modes included.
     d.stable_dt_s = limits::stable_step_for(max_omega2);

@@ -71,17 +71,27 @@ struct LinkParams {
 
 //! Poisson coupling (engine/poisson.hpp): per voxel slot and per link slot, float like the link
 //! kernel. Absent (all empty) when no voxel couples its axes (every nu = 0, or a 1-D body).
+//! Side index s: 0 = the voxel's - half-link on an axis, 1 = its + half-link.
 struct PoissonParams {
     bool active = false;
     std::array<std::vector<float>, 3> has_plus;   //!< voxel: 1 = a link to its +a neighbour
     std::array<std::vector<float>, 3> has_minus;  //!< voxel: 1 = a link to its -a neighbour
+    std::vector<float> shear;                     //!< voxel: G (Pa)
+    std::vector<float> lambda1;                   //!< cross modulus, octant with 1 linked axis
     std::vector<float> lambda2;                   //!< cross modulus, octant with 2 linked axes
     std::vector<float> lambda3;                   //!< cross modulus, octant with 3 linked axes
+    //! voxel, per [axis][side]: the centre strain the volumetric term of that side's octants uses,
+    //! mu = own * e_side + other * e_other_side + far * e_far + pair * d (poisson.hpp).
+    //! The strains are stresses over the voxel's E (a link's strain times E_link / E_voxel), so
+    //! two materials in one link stay springs in series.
+    std::array<std::array<std::vector<float>, 2>, 3> mu_own, mu_other, mu_far, mu_pair;
+    //! voxel, per [axis][side]: gamma = dev_scale * e_side + mu_pair * d, or mu where at_end = 1
+    std::array<std::array<std::vector<float>, 2>, 3> dev_scale, at_end;
+    //! voxel, per [axis][side]: the link slot e_far reads (the partner's other link), or kNoLink
+    std::array<std::array<std::vector<std::int32_t>, 2>, 3> far_slot;
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
-    //! voxel: the cross term of axis a as weights of its four lateral half-link strains
-    //! (poisson_cross_weights): [a][0], [a][1] the - and + links of axis a + 1, [a][2], [a][3]
-    //! those of axis a + 2 (cyclic); 0 where the half-link is absent.
-    std::array<std::array<std::vector<float>, 4>, 3> cross_weight;
+    std::array<std::vector<float>, 3> pair_step;   //!< link slot: relaxation step of d, 0 if none
+    std::vector<std::int32_t> pair_voxels;         //!< voxels at either end of an isolated link
 };
 
 struct Model::Data {

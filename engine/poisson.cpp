@@ -1,11 +1,8 @@
-// Poisson coupling (poisson.hpp): moduli, the per-step rest-length shifts and their energy.
+// Poisson coupling (poisson.hpp): moduli, the model's constants, the per-step pass and its energy.
 #include "engine/poisson.hpp"
 
 #include <algorithm>
 #include <cmath>
-
-#include "engine/kernel_dispatch.hpp"
-#include "engine/link_kinematics.hpp"  // BHM_ENGINE_INLINE
 
 namespace bhm::engine {
 
@@ -23,205 +20,374 @@ double poisson_stiffness_factor(double nu) {
     return std::max({1.0, m, 1.0 / (1.0 - 2.0 * nu)});
 }
 
-void poisson_cross_weights(PoissonParams& pp, int stored) {
-    for (auto& axis : pp.cross_weight)
-        for (auto& w : axis)
-            w.assign(stored, 0.0f);
-    // Cross modulus of an octant whose half-links on the two lateral axes exist as hb, hc.
-    auto octant_lambda = [&](int v, double hb, double hc) {
-        return hb * hc * pp.lambda3[v] + (hb + hc - 2.0 * hb * hc) * pp.lambda2[v];
-    };
-    for (int v = 0; v < stored; ++v) {
-        for (int a = 0; a < 3; ++a) {
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            const double hb[2] = {pp.has_minus[b][v], pp.has_plus[b][v]};
-            const double hc[2] = {pp.has_minus[c][v], pp.has_plus[c][v]};
-            // term_a = 1/8 sum_{sb,sc} lambda(sb, sc) (e_b[sb] + e_c[sc]): e_b[sb] collects the
-            // two octants on its side, lambda(sb, 0) + lambda(sb, 1), and e_c[sc] likewise.
-            for (int side = 0; side < 2; ++side) {
-                const double along_b =
-                    octant_lambda(v, hb[side], hc[0]) + octant_lambda(v, hb[side], hc[1]);
-                const double along_c =
-                    octant_lambda(v, hb[0], hc[side]) + octant_lambda(v, hb[1], hc[side]);
-                pp.cross_weight[a][side][v] = static_cast<float>(0.125 * hb[side] * along_b);
-                pp.cross_weight[a][2 + side][v] = static_cast<float>(0.125 * hc[side] * along_c);
-            }
-        }
-    }
-}
-
-void prepare_poisson_scratch(const Model::Data& d, PoissonScratch& p) {
-    const std::size_t lead = static_cast<std::size_t>(d.link_lead);
-    if (p.term[0].size() == static_cast<std::size_t>(d.stored) &&
-        p.strain_storage[0].size() == lead + d.stored)
-        return;
-    for (int a = 0; a < 3; ++a) {
-        // Zero lead slots: voxel runs read the strain of slot c - below (model_data.hpp), and
-        // kNoLink (-1) in gathered ones; slots the passes never write stay zero.
-        p.strain_storage[a].assign(lead + d.stored, 0.0f);
-        p.strain[a] = p.strain_storage[a].data() + lead;
-        p.term[a].assign(d.stored, 0.0f);
-    }
+double octant_volumetric_modulus(double e, double nu, int linked_axes) {
+    if (linked_axes <= 0) return 0.0;
+    return poisson_moduli(e, nu, linked_axes).m - e / (1.0 + nu);  // M_k - 2 G
 }
 
 namespace {
 
-// The step runs three loops, each over the same runs as the link and voxel passes (whole vectors,
-// empty vectors skipped, uniform runs without gathers; model_data.hpp):
-//   1. strains: per link slot, e = (|d| - actuated rest) / L, exactly 0 for absent slots;
-//   2. cross terms: per voxel and axis a, term_a = sum of cross_weight[a][k] times the four
-//      lateral half-link strains (the - and + links of the two other axes). The octant moduli
-//      depend only on which half-links exist, so the weights are precomputed at model build
-//      (poisson_cross_weights) and a voxel costs 6 strain reads and 12 products;
-//   3. shifts: per link slot, shift = rest_scale (term at its - end + term at its + end).
-// Each loop writes only its own slot: no atomics, fixed order, the same bits on every ISA level.
+constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half-link
 
-template <bool kGather>
-BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, int axis, float sin_t,
-                                   float cos_t, const LinkRun& run, float* __restrict out) {
-    const LinkParams& lp = d.links[axis];
-    const float* __restrict exists = lp.exists.data();
-    const float* __restrict rest_base = lp.rest_base.data();
-    const float* __restrict rest_sin = lp.rest_sin.data();
-    const float* __restrict rest_cos = lp.rest_cos.data();
-    const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
-    const double* __restrict px = s.pos[0].data();
-    const double* __restrict py = s.pos[1].data();
-    const double* __restrict pz = s.pos[2].data();
-    const int* __restrict plus = d.plus[axis].data();
-    const int delta = run.delta;
-#pragma GCC ivdep
-    for (int c = run.begin; c < run.end; ++c) {
-        const int b = kGather ? plus[c] : c + delta;
-        const float dx = static_cast<float>(px[b] - px[c]);
-        const float dy = static_cast<float>(py[b] - py[c]);
-        const float dz = static_cast<float>(pz[b] - pz[c]);
-        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
-        out[c] = exists[c] * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest) * inv_l;
-    }
+int links_on_axis(const PoissonParams& pp, int a, int v) {
+    return static_cast<int>(pp.has_minus[a][v] + pp.has_plus[a][v]);
 }
 
-BHM_ENGINE_INLINE void compute_strains(const Model::Data& d, const VoxelState& s, float sin_t,
-                                       float cos_t, PoissonScratch& p) {
-    for (int a = 0; a < 3; ++a)
-        for (const LinkRun& run : d.link_runs[a])
-            if (run.delta == 0)
-                strain_loop<true>(d, s, a, sin_t, cos_t, run, p.strain[a]);
-            else
-                strain_loop<false>(d, s, a, sin_t, cos_t, run, p.strain[a]);
-}
-
-template <bool kGather>
-BHM_ENGINE_INLINE void cross_term_loop(const Model::Data& d, PoissonScratch& p,
-                                       const VoxelRun& run) {
-    const auto& w = d.poisson.cross_weight;
-    const float* __restrict wx0 = w[0][0].data();
-    const float* __restrict wx1 = w[0][1].data();
-    const float* __restrict wx2 = w[0][2].data();
-    const float* __restrict wx3 = w[0][3].data();
-    const float* __restrict wy0 = w[1][0].data();
-    const float* __restrict wy1 = w[1][1].data();
-    const float* __restrict wy2 = w[1][2].data();
-    const float* __restrict wy3 = w[1][3].data();
-    const float* __restrict wz0 = w[2][0].data();
-    const float* __restrict wz1 = w[2][1].data();
-    const float* __restrict wz2 = w[2][2].data();
-    const float* __restrict wz3 = w[2][3].data();
-    const float* __restrict sx = p.strain[0];
-    const float* __restrict sy = p.strain[1];
-    const float* __restrict sz = p.strain[2];
-    const int* __restrict minus_y = d.minus[1].data();
-    const int* __restrict minus_z = d.minus[2].data();
-    float* __restrict tx = p.term[0].data();
-    float* __restrict ty = p.term[1].data();
-    float* __restrict tz = p.term[2].data();
-    const int below_y = run.below_y, below_z = run.below_z;
-#pragma GCC ivdep
-    for (int c = run.begin; c < run.end; ++c) {
-        // Half-link strains: [0] the link whose + end is c, [1] the link c owns.
-        const float ex0 = sx[c - 1], ex1 = sx[c];
-        const float ey0 = sy[kGather ? minus_y[c] : c - below_y], ey1 = sy[c];
-        const float ez0 = sz[kGather ? minus_z[c] : c - below_z], ez1 = sz[c];
-        tx[c] = (wx0[c] * ey0 + wx1[c] * ey1) + (wx2[c] * ez0 + wx3[c] * ez1);
-        ty[c] = (wy0[c] * ez0 + wy1[c] * ez1) + (wy2[c] * ex0 + wy3[c] * ex1);
-        tz[c] = (wz0[c] * ex0 + wz1[c] * ex1) + (wz2[c] * ey0 + wz3[c] * ey1);
-    }
-}
-
-template <bool kGather>
-BHM_ENGINE_INLINE void shift_loop(const Model::Data& d, const PoissonScratch& p, int axis,
-                                  const LinkRun& run, float* __restrict shift) {
-    const float* __restrict scale = d.poisson.rest_scale[axis].data();
-    const float* __restrict term = p.term[axis].data();
-    const int* __restrict plus = d.plus[axis].data();
-    const int delta = run.delta;
-#pragma GCC ivdep
-    for (int c = run.begin; c < run.end; ++c) {
-        const int b = kGather ? plus[c] : c + delta;
-        shift[c] = scale[c] * (term[c] + term[b]);
-    }
-}
-
-// The six half-link strains of voxel v (energy diagnostics): [axis][0] the link whose + end is
-// v (minus[a][v]), [axis][1] the one it owns (slot v); zero slots when absent.
-struct HalfLinks {
-    float e[3][2];
-    float h[3][2];  // 1 = the half-link exists
-};
-
-HalfLinks half_links(const Model::Data& d, const PoissonScratch& p, int v) {
-    HalfLinks out;
-    for (int a = 0; a < 3; ++a) {
-        out.e[a][0] = p.strain[a][d.minus[a][v]];  // kNoLink reads a zero lead slot
-        out.e[a][1] = p.strain[a][v];
-        out.h[a][0] = d.poisson.has_minus[a][v];
-        out.h[a][1] = d.poisson.has_plus[a][v];
-    }
-    return out;
+// dW/dd^2 of one end of an isolated link (per volume): G from the deviatoric term, lambda_o / 8
+// from each of the four octants on the linked side.
+double pair_curvature(const PoissonParams& pp, int a, int v, int side) {
+    (void)side;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    double sum = pp.shear[v];
+    for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
+        for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]}) {
+            const int k = 1 + static_cast<int>(hb) + static_cast<int>(hc);
+            const float lambda = k == 3 ? pp.lambda3[v] : k == 2 ? pp.lambda2[v] : pp.lambda1[v];
+            sum += 0.125 * lambda;
+        }
+    return sum;
 }
 
 }  // namespace
 
-BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
-                                    std::array<LinkScratch, 3>& links, PoissonScratch& p,
-                                    float sin_t, float cos_t) {
-    prepare_poisson_scratch(d, p);  // (sized at World creation: allocates nothing here)
-    compute_strains(d, s, sin_t, cos_t, p);
-    for (const VoxelRun& run : d.voxel_runs)
-        if (run.below_y == 0)
-            cross_term_loop<true>(d, p, run);
-        else
-            cross_term_loop<false>(d, p, run);
-    for (int a = 0; a < 3; ++a)
-        for (const LinkRun& run : d.link_runs[a])
-            if (run.delta == 0)
-                shift_loop<true>(d, p, a, run, links[a].poisson_rest);
-            else
-                shift_loop<false>(d, p, a, run, links[a].poisson_rest);
+std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
+    const BodySpec& spec = d.spec;
+    const int n = d.voxels;
+    PoissonParams& pp = d.poisson;
+    std::array<std::vector<double>, 3> octant_modulus;  // per axis: that mean / E, per voxel
+    for (auto* v : {&pp.shear, &pp.lambda1, &pp.lambda2, &pp.lambda3})
+        v->assign(d.stored, 0.0f);
+    for (int a = 0; a < 3; ++a) {
+        pp.has_plus[a].assign(d.stored, 0.0f);
+        pp.has_minus[a].assign(d.stored, 0.0f);
+        pp.rest_scale[a].assign(d.stored, 0.0f);
+        pp.pair_step[a].assign(d.stored, 0.0f);
+        for (int s = 0; s < kSides; ++s) {
+            for (auto* v : {&pp.mu_own[a][s], &pp.mu_other[a][s], &pp.mu_far[a][s],
+                            &pp.mu_pair[a][s], &pp.dev_scale[a][s], &pp.at_end[a][s]})
+                v->assign(d.stored, 0.0f);
+            pp.far_slot[a][s].assign(d.stored, kNoLink);
+        }
+        octant_modulus[a].assign(d.stored, 0.0);
+    }
+    std::vector<char> relaxed(d.stored, 0);
+    for (int v = 0; v < n; ++v) {
+        for (int a = 0; a < 3; ++a) {
+            pp.has_plus[a][v] = d.plus[a][v] != v ? 1.0f : 0.0f;
+            pp.has_minus[a][v] = d.minus[a][v] != kNoLink ? 1.0f : 0.0f;
+        }
+        const Material& mat = spec.materials[d.voxel_material[v] - 1];
+        // A held voxel is the clamp plane through its centre: it adds no lateral constraint of
+        // its own (a continuum clamp's constraint fades within a fraction of a voxel; measured
+        // against CalculiX in docs/physics.md), so its octants are uncoupled (nu = 0).
+        const double e = mat.youngs_modulus_pa, nu = d.voxel_fixed[v] ? 0.0 : mat.poisson_ratio;
+        pp.shear[v] = static_cast<float>(e / (2.0 * (1.0 + nu)));
+        pp.lambda1[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 1));
+        pp.lambda2[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 2));
+        pp.lambda3[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 3));
+        pp.active = pp.active || nu != 0.0;
+        // Auxetic voxels (lambda < 0) keep the half-link strains: the centre estimates below are
+        // not contractions, and only lambda >= 0 keeps their energy positive for any estimate.
+        relaxed[v] = nu > 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            double sum = 0.0;
+            for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
+                for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]})
+                    sum += poisson_moduli(e, nu, 1 + static_cast<int>(hb) + static_cast<int>(hc)).m;
+            octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
+        }
+    }
+    // The centre strain of each voxel on each axis (poisson.hpp), in the voxel's own strain
+    // units: a link's strain times E_link / E_voxel (its stress over the voxel's modulus).
+    auto young = [&](int v) { return spec.materials[d.voxel_material[v] - 1].youngs_modulus_pa; };
+    std::vector<char> pair_voxel(d.stored, 0);
+    for (int v = 0; v < n; ++v)
+        for (int a = 0; a < 3; ++a) {
+            const float h[kSides] = {pp.has_minus[a][v], pp.has_plus[a][v]};
+            const int partner[kSides] = {d.minus[a][v], d.plus[a][v]};
+            float w[kSides] = {0.0f, 0.0f};
+            for (int s = 0; s < kSides; ++s)
+                if (h[s] != 0.0f) {
+                    const double ep = young(partner[s]), ev = young(v);
+                    w[s] = static_cast<float>(2.0 * ep / (ep + ev));  // series(E_v, E_p) / E_v
+                }
+            for (int s = 0; s < kSides; ++s)
+                pp.dev_scale[a][s][v] = w[s];
+            if (!relaxed[v]) {
+                for (int s = 0; s < kSides; ++s)
+                    pp.mu_own[a][s][v] = w[s];
+                continue;
+            }
+            const int count = links_on_axis(pp, a, v);
+            if (count == 2) {  // interior: the mean of the two half-links
+                for (int s = 0; s < kSides; ++s) {
+                    pp.mu_own[a][s][v] = 0.5f * w[s];
+                    pp.mu_other[a][s][v] = 0.5f * w[1 - s];
+                }
+                continue;
+            }
+            if (count == 0) continue;
+            const int s = h[1] != 0.0f ? 1 : 0;
+            const int p = partner[s];
+            if (links_on_axis(pp, a, p) == 2) {
+                // End of a column of three or more: the derivative at the end of the parabola
+                // through the last three centres, (3 e_link - e_next) / 2.
+                const int next = s == 1 ? d.plus[a][p] : d.minus[a][p];
+                const double ep = young(p), en = young(next);
+                pp.mu_own[a][s][v] = 1.5f * w[s];
+                pp.mu_far[a][s][v] =
+                    static_cast<float>(-0.5 * (2.0 * ep * en / (ep + en)) / young(v));
+                pp.far_slot[a][s][v] = s == 1 ? p : d.minus[a][p];
+                pp.at_end[a][s][v] = 1.0f;
+            } else if (relaxed[p]) {
+                // An isolated link (a column of two): the two centres are e_link -+ d, d relaxed.
+                pp.mu_own[a][s][v] = w[s];
+                pp.mu_pair[a][s][v] = s == 1 ? -1.0f : 1.0f;
+                pair_voxel[v] = 1;
+            } else {
+                pp.mu_own[a][s][v] = w[s];
+            }
+        }
+    pp.pair_voxels.clear();
+    for (int v = 0; v < n; ++v)
+        if (pair_voxel[v]) pp.pair_voxels.push_back(v);
+    return octant_modulus;
 }
 
-double poisson_cross_energy(const Model::Data& d, const VoxelState& s, float sin_t, float cos_t) {
+void finish_poisson_params(Model::Data& d) {
+    PoissonParams& pp = d.poisson;
+    // dW/(dd dd') / V between this link's d and the d of another isolated link at the same end
+    // voxel u (side s of axis a): lambda_o / 8 over the two octants both half-links span.
+    auto coupling = [&](int a, int u, int s) {
+        double sum = 0.0;
+        for (int a2 = 0; a2 < 3; ++a2) {
+            if (a2 == a) continue;
+            for (int s2 = 0; s2 < kSides; ++s2) {
+                if (pp.mu_pair[a2][s2][u] == 0.0f) continue;
+                const int c = 3 - a - a2;
+                (void)s;
+                for (float hc : {pp.has_minus[c][u], pp.has_plus[c][u]}) {
+                    const float lambda = hc != 0.0f ? pp.lambda3[u] : pp.lambda2[u];
+                    sum += 0.125 * std::fabs(lambda);
+                }
+            }
+        }
+        return sum;
+    };
+    // One Jacobi step per time step with the row-sum step 1 / (h + sum |coupling|): the
+    // iteration matrix then has eigenvalues in [0, 1), which keeps the time-extrapolated guess
+    // of poisson_pass stable (a negative eigenvalue would make it oscillate and grow).
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < d.voxels; ++c) {
+            if (pp.mu_pair[a][1][c] == 0.0f) continue;
+            const int b = d.plus[a][c];
+            const double h = pair_curvature(pp, a, c, 1) + pair_curvature(pp, a, b, 0);
+            const double off = coupling(a, c, 1) + coupling(a, b, 0);
+            pp.pair_step[a][c] = static_cast<float>(1.0 / (h + off));
+        }
+}
+
+namespace {
+
+// Strain of every link slot of one axis: (|d| - actuated rest) / L, 0 for absent slots.
+void link_strains(const Model::Data& d, const VoxelState& s, int axis, float sin_t, float cos_t,
+                  float* __restrict out) {
+    const LinkParams& lp = d.links[axis];
+    const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
+    const double* px = s.pos[0].data();
+    const double* py = s.pos[1].data();
+    const double* pz = s.pos[2].data();
+    const int* plus = d.plus[axis].data();
+    for (int c = 0; c < d.slots; ++c) {
+        const int b = axis == 0 ? c + 1 : plus[c];
+        const float dx = static_cast<float>(px[b] - px[c]);
+        const float dy = static_cast<float>(py[b] - py[c]);
+        const float dz = static_cast<float>(pz[b] - pz[c]);
+        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
+        out[c] = lp.exists[c] * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest) * inv_l;
+    }
+}
+
+void ensure(PoissonScratch& p, int stored) {
+    const std::size_t span = static_cast<std::size_t>(kLinkLead) + stored + kLanes;
+    if (p.storage[0].size() == 9 * span) return;
+    for (int a = 0; a < 3; ++a) {
+        p.storage[a].assign(9 * span, 0.0f);
+        float* base = p.storage[a].data() + kLinkLead;
+        float** fields[] = {&p.strain[a],   &p.pair_d[a],    &p.pair_d_prev[a],
+                            &p.grad_neg[a], &p.grad_pos[a],  &p.far_neg[a],
+                            &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a]};
+        for (float** f : fields) {
+            *f = base;
+            base += span;
+        }
+    }
+}
+
+// The strains one voxel's octants see: mu (volumetric term) and gamma (deviatoric term) of each
+// axis and side, h = 1 where that half-link exists.
+struct VoxelStrains {
+    float mu[3][kSides], gamma[3][kSides], h[3][kSides];
+};
+
+VoxelStrains voxel_strains(const Model::Data& d, const PoissonScratch& p, int v) {
+    const PoissonParams& pp = d.poisson;
+    VoxelStrains out;
+    for (int a = 0; a < 3; ++a) {
+        const int below = d.minus[a][v];  // kNoLink reads the zero lead slot
+        const float e[kSides] = {p.strain[a][below], p.strain[a][v]};
+        const float dd[kSides] = {p.pair_d[a][below], p.pair_d[a][v]};
+        out.h[a][0] = pp.has_minus[a][v];
+        out.h[a][1] = pp.has_plus[a][v];
+        for (int s = 0; s < kSides; ++s) {
+            const float far = p.strain[a][pp.far_slot[a][s][v]];
+            const float pair = pp.mu_pair[a][s][v] * dd[s];
+            out.mu[a][s] = pp.mu_own[a][s][v] * e[s] + pp.mu_other[a][s][v] * e[1 - s] +
+                           pp.mu_far[a][s][v] * far + pair;
+            // The deviatoric term uses the half-link, except at a column's end, where it takes
+            // the same estimate as the volumetric one (so a uniform strain stays exact there).
+            const float half = pp.dev_scale[a][s][v] * e[s] + pair;
+            out.gamma[a][s] = half + pp.at_end[a][s][v] * (out.mu[a][s] - half);
+        }
+    }
+    return out;
+}
+
+float octant_lambda(const PoissonParams& pp, int v, float count) {
+    return count == 3.0f   ? pp.lambda3[v]
+           : count == 2.0f ? pp.lambda2[v]
+           : count == 1.0f ? pp.lambda1[v]
+                           : 0.0f;
+}
+
+}  // namespace
+
+namespace {
+
+// Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
+// of its end estimates and to the relaxations d (all per unit volume).
+void voxel_gradients(const Model::Data& d, PoissonScratch& p, int v) {
+    const PoissonParams& pp = d.poisson;
+    const VoxelStrains k = voxel_strains(d, p, v);
+    float P[3][kSides] = {};
+    for (int sx = 0; sx < kSides; ++sx)
+        for (int sy = 0; sy < kSides; ++sy)
+            for (int sz = 0; sz < kSides; ++sz) {
+                const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
+                const float theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
+                const float t = 0.125f * octant_lambda(pp, v, hx + hy + hz) * theta;
+                P[0][sx] += hx * t;
+                P[1][sy] += hy * t;
+                P[2][sz] += hz * t;
+            }
+    const float g = pp.shear[v];
+    for (int a = 0; a < 3; ++a) {
+        float grad[kSides], far[kSides], dgrad[kSides];
+        for (int s = 0; s < kSides; ++s) {
+            const float deviatoric = g * k.gamma[a][s];  // 4 octants x 2 G gamma / 8
+            const float end = pp.at_end[a][s][v];
+            const float own = pp.mu_own[a][s][v];
+            const float dev = pp.dev_scale[a][s][v];
+            grad[s] = own * P[a][s] + pp.mu_other[a][1 - s][v] * P[a][1 - s] +
+                      (dev + end * (own - dev)) * deviatoric;
+            far[s] = pp.mu_far[a][s][v] * (P[a][s] + deviatoric);
+            dgrad[s] = pp.mu_pair[a][s][v] * (P[a][s] + deviatoric);
+        }
+        p.grad_neg[a][v] = grad[0];
+        p.grad_pos[a][v] = grad[1];
+        p.far_neg[a][v] = far[0];
+        p.far_pos[a][v] = far[1];
+        p.dgrad_neg[a][v] = dgrad[0];
+        p.dgrad_pos[a][v] = dgrad[1];
+    }
+}
+
+}  // namespace
+
+void prepare_poisson_scratch(const Model::Data& d, PoissonScratch& p) {
+    ensure(p, d.stored);
+}
+
+void poisson_pass(const Model::Data& d, const VoxelState& s, std::array<LinkScratch, 3>& links,
+                  PoissonScratch& p, float sin_t, float cos_t) {
+    ensure(p, d.stored);
+    const PoissonParams& pp = d.poisson;
+    for (int a = 0; a < 3; ++a)
+        link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
+    // Relax the isolated links' d at the current positions first, so the forces below see d of
+    // these positions (a d one step behind acts as a damping or, coupled, an anti-damping of
+    // the bending modes): one Jacobi step from d extrapolated in time (2 d_n-1 - d_n-2), which
+    // leaves an error of order dt^2 (an inertia-like term) instead of dt (a velocity term).
+    if (!pp.pair_voxels.empty()) {
+        for (int a = 0; a < 3; ++a)
+            for (int c = 0; c < d.slots; ++c) {
+                const float last = p.pair_d[a][c];
+                p.pair_d[a][c] = 2.0f * last - p.pair_d_prev[a][c];
+                p.pair_d_prev[a][c] = last;
+            }
+        for (int v : pp.pair_voxels)
+            voxel_gradients(d, p, v);
+        for (int a = 0; a < 3; ++a) {
+            const float* step = pp.pair_step[a].data();
+            const int* plus = d.plus[a].data();
+            for (int c = 0; c < d.slots; ++c)
+                p.pair_d[a][c] -= step[c] * (p.dgrad_pos[a][c] + p.dgrad_neg[a][plus[c]]);
+        }
+    }
+    for (int v = 0; v < d.voxels; ++v)
+        voxel_gradients(d, p, v);
+    // Per link: the normal stress dW/de (both ends, and the end estimates that reach past their
+    // partner), applied as the rest-length shift L e - L sigma / M_link.
+    for (int a = 0; a < 3; ++a) {
+        const float L = static_cast<float>(d.voxel_size_m);
+        const float* scale = pp.rest_scale[a].data();
+        const float* hp = pp.has_plus[a].data();
+        const int* plus = d.plus[a].data();
+        const int* minus = d.minus[a].data();
+        float* shift = links[a].poisson_rest;
+        for (int c = 0; c < d.slots; ++c) {
+            const int b = plus[c];
+            const float sigma = p.grad_pos[a][c] + p.grad_neg[a][b] + p.far_pos[a][minus[c]] +
+                                hp[b] * p.far_neg[a][plus[b]];
+            shift[c] = L * p.strain[a][c] + scale[c] * sigma;
+        }
+    }
+}
+
+double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const PoissonScratch& state,
+                            float sin_t, float cos_t) {
     if (!d.poisson.active) return 0.0;
+    const PoissonParams& pp = d.poisson;
     PoissonScratch p;
-    prepare_poisson_scratch(d, p);
-    compute_strains(d, s, sin_t, cos_t, p);
+    ensure(p, d.stored);
+    const bool stepped = !state.storage[0].empty();
+    for (int a = 0; a < 3; ++a) {
+        link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
+        if (stepped) std::copy(state.pair_d[a], state.pair_d[a] + d.stored, p.pair_d[a]);
+    }
     const double volume = std::pow(d.voxel_size_m, 3);
     double energy = 0.0;
-    // Per octant: lambda (e_a e_b + e_b e_c + e_c e_a) over its linked half-links, volume V / 8.
+    // W = sum over octants of V / 8 (G sum gamma^2 + lambda_o / 2 theta^2) ...
     for (int v = 0; v < d.voxels; ++v) {
-        const HalfLinks k = half_links(d, p, v);
-        for (int sx = 0; sx < 2; ++sx)
-            for (int sy = 0; sy < 2; ++sy)
-                for (int sz = 0; sz < 2; ++sz) {
-                    const double hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
-                    const double count = hx + hy + hz;
-                    const double lambda = count == 3.0   ? d.poisson.lambda3[v]
-                                          : count == 2.0 ? d.poisson.lambda2[v]
-                                                         : 0.0;
-                    const double ex = k.e[0][sx], ey = k.e[1][sy], ez = k.e[2][sz];
-                    energy += 0.125 * volume * lambda * (ex * ey + ey * ez + ez * ex);
+        const VoxelStrains k = voxel_strains(d, p, v);
+        for (int sx = 0; sx < kSides; ++sx)
+            for (int sy = 0; sy < kSides; ++sy)
+                for (int sz = 0; sz < kSides; ++sz) {
+                    const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
+                    const double theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
+                    const double gx = k.gamma[0][sx], gy = k.gamma[1][sy], gz = k.gamma[2][sz];
+                    energy += 0.125 * volume *
+                              (pp.shear[v] * (gx * gx + gy * gy + gz * gz) +
+                               0.5 * octant_lambda(pp, v, hx + hy + hz) * theta * theta);
                 }
     }
+    // ... less the links' own 1/2 M_link V e^2, which link_elastic_energy counts.
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < d.voxels; ++c) {
+            const double e = p.strain[a][c];
+            energy -= 0.5 * d.links[a].k_axial[c] * d.voxel_size_m * d.voxel_size_m * e * e;
+        }
     return energy;
 }
 

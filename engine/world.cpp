@@ -272,7 +272,7 @@ double World::potential_energy_j() const {
     for (int axis = 0; axis < 3; ++axis)
         e += link_elastic_energy(d, s, axis, static_cast<float>(phase.sin_t),
                                  static_cast<float>(phase.cos_t));
-    e += poisson_cross_energy(d, s, static_cast<float>(phase.sin_t),
+    e += poisson_cross_energy(d, s, state_->poisson, static_cast<float>(phase.sin_t),
                               static_cast<float>(phase.cos_t));
     const double g = d.spec.environment.gravity_m_s2;
     for (int c = 0; c < d.voxels; ++c) {

@@ -45,11 +45,20 @@ struct LinkScratch {
     std::array<float*, 3> prev_theta_pos{};
 };
 
-//! Per step scratch of the Poisson pass.
+//! Per step scratch of the Poisson pass, and its one piece of state: the lateral-strain
+//! relaxation d of every isolated link (poisson.hpp), kept from step to step.
 struct PoissonScratch {
-    std::array<std::vector<float>, 3> strain_storage;  //!< kLinkLead zero slots + stored
-    std::array<float*, 3> strain{};                    //!< link slot: (length - rest) / L
-    std::array<std::vector<float>, 3> term;            //!< voxel: lambda x cross strains of axis a
+    //! All per-slot arrays below: kLinkLead zero slots, then stored + kLanes.
+    std::array<std::vector<float>, 3> storage;
+    std::array<float*, 3> strain{};       //!< link slot: (length - rest) / L
+    std::array<float*, 3> pair_d{};       //!< link slot: relaxation d (state)
+    std::array<float*, 3> pair_d_prev{};  //!< link slot: d one step earlier (state)
+    std::array<float*, 3> grad_neg{};     //!< voxel: dW/de of its - half-link (per volume)
+    std::array<float*, 3> grad_pos{};     //!< voxel: dW/de of its + half-link
+    std::array<float*, 3> far_neg{};      //!< voxel: dW/de of the link before its - neighbour
+    std::array<float*, 3> far_pos{};      //!< voxel: dW/de of the link after its + neighbour
+    std::array<float*, 3> dgrad_neg{};    //!< voxel: dW/dd of its - link
+    std::array<float*, 3> dgrad_pos{};    //!< voxel: dW/dd of its + link
 };
 
 struct World::State {

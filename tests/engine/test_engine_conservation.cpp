@@ -129,5 +129,8 @@ TEST_CASE("damped free vibration decays") {
         previous = e;
     }
     MESSAGE("energy " << e0 << " J -> " << previous << " J after 30000 steps");
-    CHECK(previous < 0.05 * e0);
+    // 0.050 of e0 before the Poisson coupling stopped locking; the unlocked beam is 7 % softer in
+    // bending at nu = 0.35, so its first mode is slower and stiffness-proportional damping takes
+    // a little less per step (0.057). Undamped, the same beam keeps its energy (test above).
+    CHECK(previous < 0.07 * e0);
 }
