@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/kernel_dispatch.hpp"
+#include "engine/link_kinematics.hpp"  // BHM_ENGINE_INLINE
+
 namespace bhm::engine {
 
 PoissonModuli poisson_moduli(double e, double nu, int linked_axes) {
@@ -210,19 +213,62 @@ void link_strains(const Model::Data& d, const VoxelState& s, int axis, float sin
 }
 
 void ensure(PoissonScratch& p, int stored) {
+    constexpr int kFields = 10;
     const std::size_t span = static_cast<std::size_t>(kLinkLead) + stored + kLanes;
-    if (p.storage[0].size() == 9 * span) return;
+    if (p.storage[0].size() == kFields * span) return;
     for (int a = 0; a < 3; ++a) {
-        p.storage[a].assign(9 * span, 0.0f);
+        p.storage[a].assign(kFields * span, 0.0f);
         float* base = p.storage[a].data() + kLinkLead;
-        float** fields[] = {&p.strain[a],   &p.pair_d[a],    &p.pair_d_prev[a],
-                            &p.grad_neg[a], &p.grad_pos[a],  &p.far_neg[a],
-                            &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a]};
+        float** fields[kFields] = {
+            &p.strain[a],   &p.pair_d[a],  &p.pair_last[a], &p.pair_prev[a], &p.grad_neg[a],
+            &p.grad_pos[a], &p.far_neg[a], &p.far_pos[a],   &p.dgrad_neg[a], &p.dgrad_pos[a]};
         for (float** f : fields) {
             *f = base;
             base += span;
         }
     }
+}
+
+// Raw views of every array the voxel kernel touches, taken once per pass ([axis][side]).
+struct Views {
+    const float *shear, *lambda1, *lambda2, *lambda3;
+    const float *h[3][kSides], *own[3][kSides], *other[3][kSides], *far[3][kSides],
+        *pair[3][kSides], *dev[3][kSides], *end[3][kSides];
+    const int *far_slot[3][kSides], *below[3];
+    const float *strain[3], *d[3];
+    float *grad_neg[3], *grad_pos[3], *far_neg[3], *far_pos[3], *dgrad_neg[3], *dgrad_pos[3];
+};
+
+Views views_of(const Model::Data& d, PoissonScratch& p) {
+    const PoissonParams& pp = d.poisson;
+    Views w{};
+    w.shear = pp.shear.data();
+    w.lambda1 = pp.lambda1.data();
+    w.lambda2 = pp.lambda2.data();
+    w.lambda3 = pp.lambda3.data();
+    for (int a = 0; a < 3; ++a) {
+        w.h[a][0] = pp.has_minus[a].data();
+        w.h[a][1] = pp.has_plus[a].data();
+        for (int s = 0; s < kSides; ++s) {
+            w.own[a][s] = pp.mu_own[a][s].data();
+            w.other[a][s] = pp.mu_other[a][s].data();
+            w.far[a][s] = pp.mu_far[a][s].data();
+            w.pair[a][s] = pp.mu_pair[a][s].data();
+            w.dev[a][s] = pp.dev_scale[a][s].data();
+            w.end[a][s] = pp.at_end[a][s].data();
+            w.far_slot[a][s] = pp.far_slot[a][s].data();
+        }
+        w.below[a] = d.minus[a].data();
+        w.strain[a] = p.strain[a];
+        w.d[a] = p.pair_d[a];
+        w.grad_neg[a] = p.grad_neg[a];
+        w.grad_pos[a] = p.grad_pos[a];
+        w.far_neg[a] = p.far_neg[a];
+        w.far_pos[a] = p.far_pos[a];
+        w.dgrad_neg[a] = p.dgrad_neg[a];
+        w.dgrad_pos[a] = p.dgrad_pos[a];
+    }
+    return w;
 }
 
 // The strains one voxel's octants see: mu (volumetric term) and gamma (deviatoric term) of each
@@ -231,76 +277,86 @@ struct VoxelStrains {
     float mu[3][kSides], gamma[3][kSides], h[3][kSides];
 };
 
-VoxelStrains voxel_strains(const Model::Data& d, const PoissonScratch& p, int v) {
-    const PoissonParams& pp = d.poisson;
+BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v) {
     VoxelStrains out;
+    #pragma GCC unroll 8
     for (int a = 0; a < 3; ++a) {
-        const int below = d.minus[a][v];  // kNoLink reads the zero lead slot
-        const float e[kSides] = {p.strain[a][below], p.strain[a][v]};
-        const float dd[kSides] = {p.pair_d[a][below], p.pair_d[a][v]};
-        out.h[a][0] = pp.has_minus[a][v];
-        out.h[a][1] = pp.has_plus[a][v];
+        const int below = w.below[a][v];  // kNoLink reads the zero lead slot
+        const float e[kSides] = {w.strain[a][below], w.strain[a][v]};
+        const float dd[kSides] = {w.d[a][below], w.d[a][v]};
+        #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
-            const float far = p.strain[a][pp.far_slot[a][s][v]];
-            const float pair = pp.mu_pair[a][s][v] * dd[s];
-            out.mu[a][s] = pp.mu_own[a][s][v] * e[s] + pp.mu_other[a][s][v] * e[1 - s] +
-                           pp.mu_far[a][s][v] * far + pair;
+            out.h[a][s] = w.h[a][s][v];
+            const float far = w.strain[a][w.far_slot[a][s][v]];
+            const float pair = w.pair[a][s][v] * dd[s];
+            out.mu[a][s] =
+                w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] + w.far[a][s][v] * far + pair;
             // The deviatoric term uses the half-link, except at a column's end, where it takes
             // the same estimate as the volumetric one (so a uniform strain stays exact there).
-            const float half = pp.dev_scale[a][s][v] * e[s] + pair;
-            out.gamma[a][s] = half + pp.at_end[a][s][v] * (out.mu[a][s] - half);
+            const float half = w.dev[a][s][v] * e[s] + pair;
+            out.gamma[a][s] = half + w.end[a][s][v] * (out.mu[a][s] - half);
         }
     }
     return out;
 }
 
-float octant_lambda(const PoissonParams& pp, int v, float count) {
-    return count == 3.0f   ? pp.lambda3[v]
-           : count == 2.0f ? pp.lambda2[v]
-           : count == 1.0f ? pp.lambda1[v]
-                           : 0.0f;
+// lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
+BHM_ENGINE_INLINE float octant_lambda(const Views& w, int v, float hx, float hy, float hz) {
+    const float three = hx * hy * hz;
+    const float pairs = hx * hy + hy * hz + hz * hx;
+    const float two = pairs - 3.0f * three;
+    const float one = hx + hy + hz - 2.0f * pairs + 3.0f * three;
+    return one * w.lambda1[v] + two * w.lambda2[v] + three * w.lambda3[v];
 }
-
-}  // namespace
-
-namespace {
 
 // Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
 // of its end estimates and to the relaxations d (all per unit volume).
-void voxel_gradients(const Model::Data& d, PoissonScratch& p, int v) {
-    const PoissonParams& pp = d.poisson;
-    const VoxelStrains k = voxel_strains(d, p, v);
+BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v) {
+    const VoxelStrains k = voxel_strains(w, v);
     float P[3][kSides] = {};
+    #pragma GCC unroll 8
     for (int sx = 0; sx < kSides; ++sx)
+        #pragma GCC unroll 8
         for (int sy = 0; sy < kSides; ++sy)
+            #pragma GCC unroll 8
             for (int sz = 0; sz < kSides; ++sz) {
                 const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
                 const float theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
-                const float t = 0.125f * octant_lambda(pp, v, hx + hy + hz) * theta;
+                const float t = 0.125f * octant_lambda(w, v, hx, hy, hz) * theta;
                 P[0][sx] += hx * t;
                 P[1][sy] += hy * t;
                 P[2][sz] += hz * t;
             }
-    const float g = pp.shear[v];
+    const float g = w.shear[v];
+    #pragma GCC unroll 8
     for (int a = 0; a < 3; ++a) {
         float grad[kSides], far[kSides], dgrad[kSides];
+        #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             const float deviatoric = g * k.gamma[a][s];  // 4 octants x 2 G gamma / 8
-            const float end = pp.at_end[a][s][v];
-            const float own = pp.mu_own[a][s][v];
-            const float dev = pp.dev_scale[a][s][v];
-            grad[s] = own * P[a][s] + pp.mu_other[a][1 - s][v] * P[a][1 - s] +
+            const float end = w.end[a][s][v];
+            const float own = w.own[a][s][v];
+            const float dev = w.dev[a][s][v];
+            grad[s] = own * P[a][s] + w.other[a][1 - s][v] * P[a][1 - s] +
                       (dev + end * (own - dev)) * deviatoric;
-            far[s] = pp.mu_far[a][s][v] * (P[a][s] + deviatoric);
-            dgrad[s] = pp.mu_pair[a][s][v] * (P[a][s] + deviatoric);
+            far[s] = w.far[a][s][v] * (P[a][s] + deviatoric);
+            dgrad[s] = w.pair[a][s][v] * (P[a][s] + deviatoric);
         }
-        p.grad_neg[a][v] = grad[0];
-        p.grad_pos[a][v] = grad[1];
-        p.far_neg[a][v] = far[0];
-        p.far_pos[a][v] = far[1];
-        p.dgrad_neg[a][v] = dgrad[0];
-        p.dgrad_pos[a][v] = dgrad[1];
+        w.grad_neg[a][v] = grad[0];
+        w.grad_pos[a][v] = grad[1];
+        w.far_neg[a][v] = far[0];
+        w.far_pos[a][v] = far[1];
+        w.dgrad_neg[a][v] = dgrad[0];
+        w.dgrad_pos[a][v] = dgrad[1];
     }
+}
+
+// The voxel loop, compiled per ISA level (kernel_dispatch.hpp): dummy slots have all
+// coefficients zero, so whole vectors run.
+BHM_ENGINE_KERNEL void poisson_voxel_kernel(const Views& w, int slots) {
+#pragma GCC ivdep
+    for (int v = 0; v < slots; ++v)
+        voxel_gradients(w, v);
 }
 
 }  // namespace
@@ -315,32 +371,20 @@ void poisson_pass(const Model::Data& d, const VoxelState& s, std::array<LinkScra
     const PoissonParams& pp = d.poisson;
     for (int a = 0; a < 3; ++a)
         link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
-    // Relax the isolated links' d at the current positions first, so the forces below see d of
-    // these positions (a d one step behind acts as a damping or, coupled, an anti-damping of
-    // the bending modes): one Jacobi step from d extrapolated in time (2 d_n-1 - d_n-2), which
-    // leaves an error of order dt^2 (an inertia-like term) instead of dt (a velocity term).
-    if (!pp.pair_voxels.empty()) {
+    // The isolated links' d: the forces use d extrapolated in time from the last two relaxed
+    // values (2 d_n-1 - d_n-2, an error of order dt^2, i.e. an inertia-like term; a d one step
+    // behind would be an error of order dt, a damping or, coupled across axes, an
+    // anti-damping of the bending modes), and one Jacobi step from there is the relaxed value.
+    const bool pairs = !pp.pair_voxels.empty();
+    if (pairs)
         for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < d.slots; ++c) {
-                const float last = p.pair_d[a][c];
-                p.pair_d[a][c] = 2.0f * last - p.pair_d_prev[a][c];
-                p.pair_d_prev[a][c] = last;
-            }
-        for (int v : pp.pair_voxels)
-            voxel_gradients(d, p, v);
-        for (int a = 0; a < 3; ++a) {
-            const float* step = pp.pair_step[a].data();
-            const int* plus = d.plus[a].data();
             for (int c = 0; c < d.slots; ++c)
-                p.pair_d[a][c] -= step[c] * (p.dgrad_pos[a][c] + p.dgrad_neg[a][plus[c]]);
-        }
-    }
-    for (int v = 0; v < d.voxels; ++v)
-        voxel_gradients(d, p, v);
+                p.pair_d[a][c] = 2.0f * p.pair_last[a][c] - p.pair_prev[a][c];
+    poisson_voxel_kernel(views_of(d, p), d.slots);
     // Per link: the normal stress dW/de (both ends, and the end estimates that reach past their
     // partner), applied as the rest-length shift L e - L sigma / M_link.
+    const float L = static_cast<float>(d.voxel_size_m);
     for (int a = 0; a < 3; ++a) {
-        const float L = static_cast<float>(d.voxel_size_m);
         const float* scale = pp.rest_scale[a].data();
         const float* hp = pp.has_plus[a].data();
         const int* plus = d.plus[a].data();
@@ -352,25 +396,34 @@ void poisson_pass(const Model::Data& d, const VoxelState& s, std::array<LinkScra
                                 hp[b] * p.far_neg[a][plus[b]];
             shift[c] = L * p.strain[a][c] + scale[c] * sigma;
         }
+        if (!pairs) continue;
+        const float* step = pp.pair_step[a].data();
+        for (int c = 0; c < d.slots; ++c) {
+            const float relaxed =
+                p.pair_d[a][c] - step[c] * (p.dgrad_pos[a][c] + p.dgrad_neg[a][plus[c]]);
+            p.pair_prev[a][c] = p.pair_last[a][c];
+            p.pair_last[a][c] = relaxed;
+        }
     }
 }
 
 double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const PoissonScratch& state,
                             float sin_t, float cos_t) {
     if (!d.poisson.active) return 0.0;
-    const PoissonParams& pp = d.poisson;
     PoissonScratch p;
     ensure(p, d.stored);
     const bool stepped = !state.storage[0].empty();
     for (int a = 0; a < 3; ++a) {
         link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
-        if (stepped) std::copy(state.pair_d[a], state.pair_d[a] + d.stored, p.pair_d[a]);
+        // The relaxed d of the last step (the forces used its extrapolation).
+        if (stepped) std::copy(state.pair_last[a], state.pair_last[a] + d.stored, p.pair_d[a]);
     }
+    const Views w = views_of(d, p);
     const double volume = std::pow(d.voxel_size_m, 3);
     double energy = 0.0;
     // W = sum over octants of V / 8 (G sum gamma^2 + lambda_o / 2 theta^2) ...
     for (int v = 0; v < d.voxels; ++v) {
-        const VoxelStrains k = voxel_strains(d, p, v);
+        const VoxelStrains k = voxel_strains(w, v);
         for (int sx = 0; sx < kSides; ++sx)
             for (int sy = 0; sy < kSides; ++sy)
                 for (int sz = 0; sz < kSides; ++sz) {
@@ -378,8 +431,8 @@ double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const Poi
                     const double theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
                     const double gx = k.gamma[0][sx], gy = k.gamma[1][sy], gz = k.gamma[2][sz];
                     energy += 0.125 * volume *
-                              (pp.shear[v] * (gx * gx + gy * gy + gz * gz) +
-                               0.5 * octant_lambda(pp, v, hx + hy + hz) * theta * theta);
+                              (w.shear[v] * (hx * gx * gx + hy * gy * gy + hz * gz * gz) +
+                               0.5 * octant_lambda(w, v, hx, hy, hz) * theta * theta);
                 }
     }
     // ... less the links' own 1/2 M_link V e^2, which link_elastic_energy counts.
