@@ -18,8 +18,9 @@ inline constexpr double kMaxDensityKgM3 = 1e6;       //!< 40x osmium
 inline constexpr double kMinPoissonRatio = -0.9;     //!< inclusive; -1 makes G infinite
 inline constexpr double kMaxPoissonRatio = 0.49;     //!< inclusive; 0.5 is incompressible
 //! Largest |cte x temperature amplitude| (linear actuation strain) the engine runs stably on the
-//! paper's scenes at the default damping and dt_fraction (tests/engine/test_engine_envelope.cpp).
-inline constexpr double kMaxActuationStrain = 0.45;
+//! paper's scenes at the default damping and dt_fraction (tests/engine/test_engine_envelope.cpp;
+//! measured: all three survive 0.6, the banded block diverges at 0.65).
+inline constexpr double kMaxActuationStrain = 0.6;
 inline constexpr double kMaxDtFraction = 1.0;
 inline constexpr double kMaxDampingRatio = 10.0;
 //! A simulation needing more steps than this is refused (hours of wall time per simulation).

@@ -20,6 +20,8 @@
 #include "engine/link_pass.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "engine/kernel_dispatch.hpp"
 #include "engine/link_kinematics.hpp"
@@ -69,7 +71,7 @@ BHM_ENGINE_INLINE LinkFrame frame_of(const AxisView& v, int axis, float exists, 
 BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest_base) {
     // Written so that NaN fails every test. Bounds on the lattice length L, not the actuated rest
     // length: a link of a voxel contracted to 0.4 L may legitimately stretch past 0.8 L.
-    return (f.length > 0.1f * rest_base) & (extension < rest_base) &
+    return (f.length > 0.1f * rest_base) & (extension < 2.0f * rest_base) &
            (f.axis_cos > kMinOnePlusCos - 1.0f);
 }
 
@@ -133,7 +135,11 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
         // stable step bounds at the largest size (limits::link_omega2).
         const float size = actuated * inv_voxel_size;
         const float size2 = size * size;
-        bad += static_cast<int>((exists[c] > 0.0f) & !healthy(f, extension, rest_base[c]));
+        // The guard measures the geometric stretch (beyond the actuated rest), not `extension`,
+        // which also holds the Poisson shift (it is stress / M, large under large cross strains
+        // though the link itself is not stretched).
+        bad +=
+            static_cast<int>((exists[c] > 0.0f) & !healthy(f, f.length - actuated, rest_base[c]));
 
         // Deformation plus beta times its rate (Rayleigh damping), then the beam equations.
         const float k = damp[c];
@@ -194,18 +200,32 @@ BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxe
     return bad;
 }
 
-int first_bad_link(const Model::Data& model, const VoxelState& voxels, const LinkScratch& scratch,
-                   int axis, float sin_t, float cos_t) {
+int first_bad_link(const Model::Data& model, const VoxelState& voxels,
+                   const LinkScratch& /*scratch: the guard ignores the Poisson shift*/, int axis,
+                   float sin_t, float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
     const LinkParams& lp = model.links[axis];
     for (int c = 0; c < model.voxels; ++c) {
         if (lp.exists[c] == 0.0f) continue;
         const LinkFrame f = frame_of(v, axis, 1.0f, lp.rest_base[c], c);
-        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c] +
-                           scratch.poisson_rest[c];
+        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
         if (!healthy(f, f.length - rest, lp.rest_base[c])) return c;
     }
     return -1;
+}
+
+std::string describe_link(const Model::Data& model, const VoxelState& voxels, int axis, int c,
+                          float sin_t, float cos_t) {
+    const AxisView v = axis_view(model, voxels, axis);
+    const LinkParams& lp = model.links[axis];
+    const LinkFrame f = frame_of(v, axis, 1.0f, lp.rest_base[c], c);
+    const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
+    const float L = lp.rest_base[c];
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "length %.3g L, actuated rest %.3g L, axis %.0f degrees off",
+                  f.length / L, rest / L,
+                  std::acos(std::fmax(-1.0f, std::fmin(1.0f, f.axis_cos))) * 57.29578f);
+    return buf;
 }
 
 double link_elastic_energy(const Model::Data& model, const VoxelState& voxels, int axis,

@@ -32,6 +32,9 @@ namespace {
 
 constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half-link
 
+// 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp).
+constexpr float kInverseSaturation = 1.0f / 0.1f;
+
 int links_on_axis(const PoissonParams& pp, int a, int v) {
     return static_cast<int>(pp.has_minus[a][v] + pp.has_plus[a][v]);
 }
@@ -279,12 +282,12 @@ struct VoxelStrains {
 
 BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v) {
     VoxelStrains out;
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int a = 0; a < 3; ++a) {
         const int below = w.below[a][v];  // kNoLink reads the zero lead slot
         const float e[kSides] = {w.strain[a][below], w.strain[a][v]};
         const float dd[kSides] = {w.d[a][below], w.d[a][v]};
-        #pragma GCC unroll 8
+#pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             out.h[a][s] = w.h[a][s][v];
             const float far = w.strain[a][w.far_slot[a][s][v]];
@@ -314,24 +317,29 @@ BHM_ENGINE_INLINE float octant_lambda(const Views& w, int v, float hx, float hy,
 BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v) {
     const VoxelStrains k = voxel_strains(w, v);
     float P[3][kSides] = {};
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int sx = 0; sx < kSides; ++sx)
-        #pragma GCC unroll 8
+#pragma GCC unroll 8
         for (int sy = 0; sy < kSides; ++sy)
-            #pragma GCC unroll 8
+#pragma GCC unroll 8
             for (int sz = 0; sz < kSides; ++sz) {
                 const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
                 const float theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
-                const float t = 0.125f * octant_lambda(w, v, hx, hy, hz) * theta;
+                // Volumetric stress lambda theta / sqrt(1 + (theta / theta_0)^2) (poisson.hpp).
+                // (Only where lambda > 0: an auxetic voxel's negative lambda stays linear, its
+                // energy is positive only with the deviatoric term's full weight.)
+                const float lambda = octant_lambda(w, v, hx, hy, hz);
+                const float q = theta * kInverseSaturation * static_cast<float>(lambda > 0.0f);
+                const float t = 0.125f * lambda * theta / std::sqrt(1.0f + q * q);
                 P[0][sx] += hx * t;
                 P[1][sy] += hy * t;
                 P[2][sz] += hz * t;
             }
     const float g = w.shear[v];
-    #pragma GCC unroll 8
+#pragma GCC unroll 8
     for (int a = 0; a < 3; ++a) {
         float grad[kSides], far[kSides], dgrad[kSides];
-        #pragma GCC unroll 8
+#pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             const float deviatoric = g * k.gamma[a][s];  // 4 octants x 2 G gamma / 8
             const float end = w.end[a][s][v];
@@ -430,9 +438,15 @@ double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const Poi
                     const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
                     const double theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
                     const double gx = k.gamma[0][sx], gy = k.gamma[1][sy], gz = k.gamma[2][sz];
-                    energy += 0.125 * volume *
-                              (w.shear[v] * (hx * gx * gx + hy * gy * gy + hz * gz * gz) +
-                               0.5 * octant_lambda(w, v, hx, hy, hz) * theta * theta);
+                    const double lambda = octant_lambda(w, v, hx, hy, hz);
+                    const double q = theta * kInverseSaturation;
+                    const double theta0 = 1.0 / kInverseSaturation;
+                    const double volumetric =
+                        lambda > 0.0 ? lambda * theta0 * theta0 * (std::sqrt(1.0 + q * q) - 1.0)
+                                     : 0.5 * lambda * theta * theta;
+                    energy +=
+                        0.125 * volume *
+                        (w.shear[v] * (hx * gx * gx + hy * gy * gy + hz * gz * gz) + volumetric);
                 }
     }
     // ... less the links' own 1/2 M_link V e^2, which link_elastic_energy counts.

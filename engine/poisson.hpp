@@ -21,6 +21,12 @@
 // section (so a free bar contracts by -nu eps and keeps E), the energy is positive for nu >= 0
 // (auxetic voxels keep half-link strains), and at nu = 0 it is the links' own E e^2 / 2.
 //
+// At large strains (an active region held by a passive frame or the clamp, contracted to
+// 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link
+// past zero length; it saturates instead, lambda theta / sqrt(1 + (theta / theta_0)^2) with
+// theta_0 = 0.1 (energy lambda theta_0^2 (sqrt(1 + (theta / theta_0)^2) - 1), still convex;
+// 0.5 % below linear at a volume strain of 0.01).
+//
 // The coupling is applied as a shift of each link's rest length, computed from the current
 // positions before the link passes (no lag: a lagged coupling feeds energy into the volumetric
 // modes): shift = L e - L sigma / M_link with sigma = dW/de / V, so the link kernel, with its

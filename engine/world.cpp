@@ -127,7 +127,8 @@ void World::step() {
             const int c = first_bad_link(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
             if (c < 0) continue;
             const int b = axis == 0 ? c + 1 : d.plus[axis][c];
-            why << " (" << kAxisNames[axis] << " link from voxel " << c << " to voxel " << b << ")";
+            why << " (" << kAxisNames[axis] << " link from voxel " << c << " to voxel " << b << ": "
+                << describe_link(d, s.voxels, axis, c, sin_t, cos_t) << ")";
             break;
         }
         why << " at t = " << t << " s, step " << s.steps;

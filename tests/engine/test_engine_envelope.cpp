@@ -52,7 +52,7 @@ TEST_CASE("envelope: the paper's scenes survive the largest admitted actuation s
         auto model = Model::build(paper_scene(scene, amplitude));
         World w(model);
         // One whole 2 Hz period after the start: the expansion peak at 0.125 s, the contraction
-        // peak (voxels at 1 - 0.45 of their size) at 0.375 s.
+        // peak (voxels at 1 - 0.6 of their size) at 0.375 s.
         const bool ok = w.advance_to(0.05 + 0.5);
         if (!ok) MESSAGE(w.divergence_reason());
         REQUIRE(ok);

@@ -101,7 +101,7 @@ TEST_CASE("limits: what the engine refuses, validate refuses on the same field")
          "materials[0].youngs_modulus_pa"},
         {"nu", [](Experiment& e) { e.materials[1].physics.poisson_ratio = -0.95; },
          "materials[1].poisson_ratio"},
-        {"strain", [](Experiment& e) { e.actuation.temperature_amplitude_c = 46.0; },
+        {"strain", [](Experiment& e) { e.actuation.temperature_amplitude_c = 61.0; },
          "actuation.temperature_amplitude_c"},
         {"damping", [](Experiment& e) { e.simulation.bond_damping_ratio = 11.0; },
          "simulation.bond_damping_ratio"},
@@ -114,9 +114,9 @@ TEST_CASE("limits: what the engine refuses, validate refuses on the same field")
         CHECK(names(validate_experiment(e, "e"), c.field));
         CHECK_FALSE(build_reason(e, body).empty());
     }
-    // The strain bound itself runs: cte 0.01 x 45 degC = 0.45.
+    // The strain bound itself runs: cte 0.01 x 60 degC = 0.6.
     Experiment edge = base;
-    edge.actuation.temperature_amplitude_c = 45.0;
+    edge.actuation.temperature_amplitude_c = 60.0;
     CHECK(validate_experiment(edge, "e").empty());
     CHECK(build_reason(edge, body).empty());
 }
