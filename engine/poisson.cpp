@@ -196,35 +196,53 @@ void finish_poisson_params(Model::Data& d) {
 
 namespace {
 
-// Strain of every link slot of one axis: (|d| - actuated rest) / L, 0 for absent slots.
-void link_strains(const Model::Data& d, const VoxelState& s, int axis, float sin_t, float cos_t,
-                  float* __restrict out) {
+// Strain of every link slot: (|d| - actuated rest) / L, exactly 0 for absent slots, over the
+// same runs as the link pass (whole vectors, empty vectors skipped, uniform runs without
+// gathers; model_data.hpp). Slots in no run keep the zero they were sized with.
+template <bool kGather>
+BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, int axis, float sin_t,
+                                   float cos_t, const LinkRun& run, float* __restrict out) {
     const LinkParams& lp = d.links[axis];
+    const float* __restrict exists = lp.exists.data();
+    const float* __restrict rest_base = lp.rest_base.data();
+    const float* __restrict rest_sin = lp.rest_sin.data();
+    const float* __restrict rest_cos = lp.rest_cos.data();
     const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
-    const double* px = s.pos[0].data();
-    const double* py = s.pos[1].data();
-    const double* pz = s.pos[2].data();
-    const int* plus = d.plus[axis].data();
-    for (int c = 0; c < d.slots; ++c) {
-        const int b = axis == 0 ? c + 1 : plus[c];
+    const double* __restrict px = s.pos[0].data();
+    const double* __restrict py = s.pos[1].data();
+    const double* __restrict pz = s.pos[2].data();
+    const int* __restrict plus = d.plus[axis].data();
+    const int delta = run.delta;
+#pragma GCC ivdep
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
         const float dx = static_cast<float>(px[b] - px[c]);
         const float dy = static_cast<float>(py[b] - py[c]);
         const float dz = static_cast<float>(pz[b] - pz[c]);
-        const float rest = lp.rest_base[c] + sin_t * lp.rest_sin[c] + cos_t * lp.rest_cos[c];
-        out[c] = lp.exists[c] * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest) * inv_l;
+        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
+        out[c] = exists[c] * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest) * inv_l;
     }
 }
 
+BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, int axis,
+                                    float sin_t, float cos_t, float* __restrict out) {
+    for (const LinkRun& run : d.link_runs[axis])
+        if (run.delta == 0)
+            strain_loop<true>(d, s, axis, sin_t, cos_t, run, out);
+        else
+            strain_loop<false>(d, s, axis, sin_t, cos_t, run, out);
+}
+
 void ensure(PoissonScratch& p, int stored) {
-    constexpr int kFields = 10;
+    constexpr int kFields = 9;
     const std::size_t span = static_cast<std::size_t>(kLinkLead) + stored + kLanes;
     if (p.storage[0].size() == kFields * span) return;
     for (int a = 0; a < 3; ++a) {
         p.storage[a].assign(kFields * span, 0.0f);
         float* base = p.storage[a].data() + kLinkLead;
-        float** fields[kFields] = {
-            &p.strain[a],   &p.pair_d[a],  &p.pair_last[a], &p.pair_prev[a], &p.grad_neg[a],
-            &p.grad_pos[a], &p.far_neg[a], &p.far_pos[a],   &p.dgrad_neg[a], &p.dgrad_pos[a]};
+        float** fields[kFields] = {&p.strain[a],   &p.pair_d[a],    &p.pair_last[a],
+                                   &p.grad_neg[a], &p.grad_pos[a],  &p.far_neg[a],
+                                   &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a]};
         for (float** f : fields) {
             *f = base;
             base += span;
@@ -359,12 +377,58 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v) {
     }
 }
 
-// The voxel loop, compiled per ISA level (kernel_dispatch.hpp): dummy slots have all
-// coefficients zero, so whole vectors run.
-BHM_ENGINE_KERNEL void poisson_voxel_kernel(const Views& w, int slots) {
+// The voxel loop: dummy slots have all coefficients zero, so whole vectors run.
+BHM_ENGINE_INLINE void voxel_loop(const Views& w, int slots) {
 #pragma GCC ivdep
     for (int v = 0; v < slots; ++v)
         voxel_gradients(w, v);
+}
+
+}  // namespace
+
+namespace {
+
+// Per link slot of one run: the normal stress dW/de (both ends, and the end estimates that reach
+// past their partner), applied as the rest-length shift L e - L sigma / M_link; then the
+// isolated links' d: the forces used d extrapolated in time from the last two relaxed values
+// (2 d_n-1 - d_n-2, an error of order dt^2, an inertia-like term; a d one step behind would be
+// an error of order dt, a damping or, coupled across axes, an anti-damping of the bending
+// modes); one Jacobi step from it is the relaxed value, and the next step's guess is set here.
+template <bool kGather>
+BHM_ENGINE_INLINE void shift_loop(const Model::Data& d, PoissonScratch& p, int a,
+                                  const LinkRun& run, bool pairs, float* __restrict shift) {
+    const PoissonParams& pp = d.poisson;
+    const float L = static_cast<float>(d.voxel_size_m);
+    const float* __restrict scale = pp.rest_scale[a].data();
+    const float* __restrict hp = pp.has_plus[a].data();
+    const float* __restrict step = pp.pair_step[a].data();
+    const int* __restrict plus = d.plus[a].data();
+    const int* __restrict minus = d.minus[a].data();
+    const float* __restrict strain = p.strain[a];
+    const float* __restrict grad_pos = p.grad_pos[a];
+    const float* __restrict grad_neg = p.grad_neg[a];
+    const float* __restrict far_pos = p.far_pos[a];
+    const float* __restrict far_neg = p.far_neg[a];
+    const float* __restrict dgrad_pos = p.dgrad_pos[a];
+    const float* __restrict dgrad_neg = p.dgrad_neg[a];
+    float* __restrict pair_d = p.pair_d[a];
+    float* __restrict pair_last = p.pair_last[a];
+    const int delta = run.delta;
+#pragma GCC ivdep
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
+        const float sigma =
+            grad_pos[c] + grad_neg[b] + far_pos[minus[c]] + hp[b] * far_neg[plus[b]];
+        shift[c] = L * strain[c] + scale[c] * sigma;
+    }
+    if (!pairs) return;
+#pragma GCC ivdep
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
+        const float relaxed = pair_d[c] - step[c] * (dgrad_pos[c] + dgrad_neg[b]);
+        pair_d[c] = 2.0f * relaxed - pair_last[c];
+        pair_last[c] = relaxed;
+    }
 }
 
 }  // namespace
@@ -373,46 +437,20 @@ void prepare_poisson_scratch(const Model::Data& d, PoissonScratch& p) {
     ensure(p, d.stored);
 }
 
-void poisson_pass(const Model::Data& d, const VoxelState& s, std::array<LinkScratch, 3>& links,
-                  PoissonScratch& p, float sin_t, float cos_t) {
-    ensure(p, d.stored);
-    const PoissonParams& pp = d.poisson;
+BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
+                                    std::array<LinkScratch, 3>& links, PoissonScratch& p,
+                                    float sin_t, float cos_t) {
+    ensure(p, d.stored);  // (sized at World creation: allocates nothing here)
     for (int a = 0; a < 3; ++a)
         link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
-    // The isolated links' d: the forces use d extrapolated in time from the last two relaxed
-    // values (2 d_n-1 - d_n-2, an error of order dt^2, i.e. an inertia-like term; a d one step
-    // behind would be an error of order dt, a damping or, coupled across axes, an
-    // anti-damping of the bending modes), and one Jacobi step from there is the relaxed value.
-    const bool pairs = !pp.pair_voxels.empty();
-    if (pairs)
-        for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < d.slots; ++c)
-                p.pair_d[a][c] = 2.0f * p.pair_last[a][c] - p.pair_prev[a][c];
-    poisson_voxel_kernel(views_of(d, p), d.slots);
-    // Per link: the normal stress dW/de (both ends, and the end estimates that reach past their
-    // partner), applied as the rest-length shift L e - L sigma / M_link.
-    const float L = static_cast<float>(d.voxel_size_m);
-    for (int a = 0; a < 3; ++a) {
-        const float* scale = pp.rest_scale[a].data();
-        const float* hp = pp.has_plus[a].data();
-        const int* plus = d.plus[a].data();
-        const int* minus = d.minus[a].data();
-        float* shift = links[a].poisson_rest;
-        for (int c = 0; c < d.slots; ++c) {
-            const int b = plus[c];
-            const float sigma = p.grad_pos[a][c] + p.grad_neg[a][b] + p.far_pos[a][minus[c]] +
-                                hp[b] * p.far_neg[a][plus[b]];
-            shift[c] = L * p.strain[a][c] + scale[c] * sigma;
-        }
-        if (!pairs) continue;
-        const float* step = pp.pair_step[a].data();
-        for (int c = 0; c < d.slots; ++c) {
-            const float relaxed =
-                p.pair_d[a][c] - step[c] * (p.dgrad_pos[a][c] + p.dgrad_neg[a][plus[c]]);
-            p.pair_prev[a][c] = p.pair_last[a][c];
-            p.pair_last[a][c] = relaxed;
-        }
-    }
+    voxel_loop(views_of(d, p), d.slots);
+    const bool pairs = !d.poisson.pair_voxels.empty();
+    for (int a = 0; a < 3; ++a)
+        for (const LinkRun& run : d.link_runs[a])
+            if (run.delta == 0)
+                shift_loop<true>(d, p, a, run, pairs, links[a].poisson_rest);
+            else
+                shift_loop<false>(d, p, a, run, pairs, links[a].poisson_rest);
 }
 
 double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const PoissonScratch& state,

@@ -51,9 +51,8 @@ struct PoissonScratch {
     //! All per-slot arrays below: kLinkLead zero slots, then stored + kLanes.
     std::array<std::vector<float>, 3> storage;
     std::array<float*, 3> strain{};     //!< link slot: (length - rest) / L
-    std::array<float*, 3> pair_d{};     //!< link slot: d the forces use (extrapolated)
+    std::array<float*, 3> pair_d{};     //!< link slot: d the next forces use (extrapolated, state)
     std::array<float*, 3> pair_last{};  //!< link slot: relaxed d of the last step (state)
-    std::array<float*, 3> pair_prev{};  //!< link slot: relaxed d of the step before (state)
     std::array<float*, 3> grad_neg{};   //!< voxel: dW/de of its - half-link (per volume)
     std::array<float*, 3> grad_pos{};   //!< voxel: dW/de of its + half-link
     std::array<float*, 3> far_neg{};    //!< voxel: dW/de of the link before its - neighbour
