@@ -233,13 +233,14 @@ BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, i
             strain_loop<false>(d, s, axis, sin_t, cos_t, run, out);
 }
 
-void ensure(PoissonScratch& p, int stored) {
+// lead: zero slots before slot 0 (uniform voxel runs read slot v - below, model_data.hpp).
+void ensure(PoissonScratch& p, int stored, int lead) {
     constexpr int kFields = 9;
-    const std::size_t span = static_cast<std::size_t>(kLinkLead) + stored + kLanes;
+    const std::size_t span = static_cast<std::size_t>(lead) + stored + kLanes;
     if (p.storage[0].size() == kFields * span) return;
     for (int a = 0; a < 3; ++a) {
         p.storage[a].assign(kFields * span, 0.0f);
-        float* base = p.storage[a].data() + kLinkLead;
+        float* base = p.storage[a].data() + lead;
         float** fields[kFields] = {&p.strain[a],   &p.pair_d[a],    &p.pair_last[a],
                                    &p.grad_neg[a], &p.grad_pos[a],  &p.far_neg[a],
                                    &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a]};
@@ -298,17 +299,19 @@ struct VoxelStrains {
     float mu[3][kSides], gamma[3][kSides], h[3][kSides];
 };
 
-BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v) {
+// below: per axis, the link slot whose + end is v (kNoLink reads the zero lead slot); far: per
+// axis and side, the slot of the partner's other link (only read where mu_far != 0).
+BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&below)[3],
+                                             const int (&far_of)[3][kSides]) {
     VoxelStrains out;
 #pragma GCC unroll 8
     for (int a = 0; a < 3; ++a) {
-        const int below = w.below[a][v];  // kNoLink reads the zero lead slot
-        const float e[kSides] = {w.strain[a][below], w.strain[a][v]};
-        const float dd[kSides] = {w.d[a][below], w.d[a][v]};
+        const float e[kSides] = {w.strain[a][below[a]], w.strain[a][v]};
+        const float dd[kSides] = {w.d[a][below[a]], w.d[a][v]};
 #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             out.h[a][s] = w.h[a][s][v];
-            const float far = w.strain[a][w.far_slot[a][s][v]];
+            const float far = w.strain[a][far_of[a][s]];
             const float pair = w.pair[a][s][v] * dd[s];
             out.mu[a][s] =
                 w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] + w.far[a][s][v] * far + pair;
@@ -319,6 +322,15 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v) {
         }
     }
     return out;
+}
+
+// The same through the tables (energy diagnostics).
+VoxelStrains voxel_strains(const Views& w, int v) {
+    const int below[3] = {w.below[0][v], w.below[1][v], w.below[2][v]};
+    const int far_of[3][kSides] = {{w.far_slot[0][0][v], w.far_slot[0][1][v]},
+                                   {w.far_slot[1][0][v], w.far_slot[1][1][v]},
+                                   {w.far_slot[2][0][v], w.far_slot[2][1][v]}};
+    return voxel_strains(w, v, below, far_of);
 }
 
 // lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
@@ -332,8 +344,9 @@ BHM_ENGINE_INLINE float octant_lambda(const Views& w, int v, float hx, float hy,
 
 // Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
 // of its end estimates and to the relaxations d (all per unit volume).
-BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v) {
-    const VoxelStrains k = voxel_strains(w, v);
+BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)[3],
+                                       const int (&far_of)[3][kSides]) {
+    const VoxelStrains k = voxel_strains(w, v, below, far_of);
     float P[3][kSides] = {};
 #pragma GCC unroll 8
     for (int sx = 0; sx < kSides; ++sx)
@@ -377,11 +390,22 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v) {
     }
 }
 
-// The voxel loop: dummy slots have all coefficients zero, so whole vectors run.
-BHM_ENGINE_INLINE void voxel_loop(const Views& w, int slots) {
+// The voxels of one run (dummy slots have all coefficients zero, so whole vectors run). Along x
+// the - link, the partner's other links and d are contiguous (lattice order: slots v - 1, v - 2
+// and v + 1); along y and z a uniform run reads them at a constant offset, a gathered one
+// through the tables, and the far links (nonzero only at column ends) through far_slot.
+template <bool kGather>
+BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
+    const int below_y = run.below_y, below_z = run.below_z;
 #pragma GCC ivdep
-    for (int v = 0; v < slots; ++v)
-        voxel_gradients(w, v);
+    for (int v = run.begin; v < run.end; ++v) {
+        const int below[3] = {v - 1, kGather ? w.below[1][v] : v - below_y,
+                              kGather ? w.below[2][v] : v - below_z};
+        const int far_of[3][kSides] = {{v - 2, v + 1},
+                                       {w.far_slot[1][0][v], w.far_slot[1][1][v]},
+                                       {w.far_slot[2][0][v], w.far_slot[2][1][v]}};
+        voxel_gradients(w, v, below, far_of);
+    }
 }
 
 }  // namespace
@@ -434,16 +458,21 @@ BHM_ENGINE_INLINE void shift_loop(const Model::Data& d, PoissonScratch& p, int a
 }  // namespace
 
 void prepare_poisson_scratch(const Model::Data& d, PoissonScratch& p) {
-    ensure(p, d.stored);
+    ensure(p, d.stored, d.link_lead);
 }
 
 BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
                                     std::array<LinkScratch, 3>& links, PoissonScratch& p,
                                     float sin_t, float cos_t) {
-    ensure(p, d.stored);  // (sized at World creation: allocates nothing here)
+    ensure(p, d.stored, d.link_lead);  // (sized at World creation: allocates nothing here)
     for (int a = 0; a < 3; ++a)
         link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
-    voxel_loop(views_of(d, p), d.slots);
+    const Views w = views_of(d, p);
+    for (const VoxelRun& run : d.voxel_runs)
+        if (run.below_y == 0)
+            voxel_loop<true>(w, run);
+        else
+            voxel_loop<false>(w, run);
     const bool pairs = !d.poisson.pair_voxels.empty();
     for (int a = 0; a < 3; ++a)
         for (const LinkRun& run : d.link_runs[a])
@@ -457,7 +486,7 @@ double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const Poi
                             float sin_t, float cos_t) {
     if (!d.poisson.active) return 0.0;
     PoissonScratch p;
-    ensure(p, d.stored);
+    ensure(p, d.stored, d.link_lead);
     const bool stepped = !state.storage[0].empty();
     for (int a = 0; a < 3; ++a) {
         link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
