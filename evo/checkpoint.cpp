@@ -10,6 +10,7 @@
 
 #include "bhm_version.hpp"
 #include "engine/atomic_file.hpp"
+#include "evo/behaviour.hpp"
 #include "evo/crc32.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo/phenotype.hpp"
@@ -104,6 +105,21 @@ std::string item(const std::string& path, std::size_t i) {
     return path + "[" + std::to_string(i) + "]";
 }
 
+//! A behaviour descriptor: empty (diverged, or written before descriptors) or kBehaviourLength
+//! numbers.
+std::vector<double> behaviour_from_json(const json& j, const std::string& where) {
+    if (!j.is_array() || (!j.empty() && j.size() != static_cast<std::size_t>(kBehaviourLength)))
+        throw FieldError(where + ": expected an empty array or " +
+                         std::to_string(kBehaviourLength) + " numbers");
+    std::vector<double> values;
+    values.reserve(j.size());
+    for (const auto& v : j) {
+        if (!v.is_number()) throw FieldError(where + ": expected numbers");
+        values.push_back(v.get<double>());
+    }
+    return values;
+}
+
 }  // namespace
 
 FitnessReport report_from_json(const json& j, const std::string& path) {
@@ -125,6 +141,8 @@ FitnessReport report_from_json(const json& j, const std::string& path) {
             throw FieldError(path + "." + e.what());
         }
     }
+    if (j.contains("behaviour"))  // absent in results written before behaviour descriptors
+        r.behaviour = behaviour_from_json(j.at("behaviour"), f.join("behaviour"));
     return r;
 }
 
@@ -277,7 +295,8 @@ json report_to_json(const FitnessReport& r) {
     return {{"fitness", r.fitness},         {"measures", measures},
             {"diverged", r.diverged},       {"divergence_reason", r.divergence_reason},
             {"simulated_s", r.simulated_s}, {"steps", r.steps},
-            {"sim_wall_s", r.sim_wall_s}, {"exploits", exploits_to_json(r.exploits)}};
+            {"sim_wall_s", r.sim_wall_s}, {"exploits", exploits_to_json(r.exploits)},
+            {"behaviour", r.behaviour}};
 }
 
 json individual_to_json(const Individual& ind) {
@@ -313,7 +332,7 @@ json run_state_to_json(const RunState& s) {
         for (double m : r->measures)
             measures.push_back(m);
         cache.push_back({hex(hash), r->diverged, r->steps, r->simulated_s, measures,
-                         r->divergence_reason, exploits_to_json(r->exploits)});
+                         r->divergence_reason, exploits_to_json(r->exploits), r->behaviour});
     }
     json rng = json::array();
     for (auto word : s.rng)
@@ -421,13 +440,15 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         for (std::size_t i = 0; i < cache.size(); ++i) {
             const auto& e = cache[i];
             const std::string where = item("cache", i);
-            // A 7th entry (exploit flags) since exploit detection; older checkpoints have 6.
-            if (!e.is_array() || (e.size() != 6 && e.size() != 7) || !e[0].is_string() || !e[1].is_boolean() ||
+            // A 7th entry (exploit flags) since exploit detection, an 8th (the behaviour
+            // descriptor) since novelty search; older checkpoints have 6 or 7.
+            if (!e.is_array() || e.size() < 6 || e.size() > 8 || !e[0].is_string() || !e[1].is_boolean() ||
                 !e[2].is_number_integer() || !e[3].is_number() || !e[4].is_array() ||
                 e[4].size() != static_cast<std::size_t>(kMeasureCount) || !e[5].is_string())
                 throw FieldError(
                     where +
-                    ": expected [hash, diverged, steps, simulated_s, measures, reason, exploits]");
+                    ": expected [hash, diverged, steps, simulated_s, measures, reason, exploits, "
+                    "behaviour]");
             FitnessReport r;
             r.diverged = e[1].get<bool>();
             r.steps = e[2].get<std::int64_t>();
@@ -437,13 +458,14 @@ RunState run_state_from_json(const json& j, const std::string& label) {
                 r.measures[k] = e[4][k].get<double>();
             }
             r.divergence_reason = e[5].get<std::string>();
-            if (e.size() == 7) {
+            if (e.size() >= 7) {
                 try {
                     r.exploits = exploits_from_json(e[6]);
                 } catch (const std::invalid_argument& ex) {
                     throw FieldError(where + "." + ex.what());
                 }
             }
+            if (e.size() == 8) r.behaviour = behaviour_from_json(e[7], where + "[7]");
             r.fitness = fitness_under(r, s.experiment.fitness);
             s.cache.insert(Fields::parse_hex(e[0].get<std::string>(), where), r);
         }

@@ -11,6 +11,9 @@
 //  - Job: batch_id, rules_id, index, then the body: 3 x i32 size, then one byte per cell.
 //  - Result: batch_id, index, then the report as checkpoint JSON (report_to_json: the same fields
 //    a checkpoint keeps; doubles round-trip exactly through nlohmann's shortest representation).
+// Versions: 1 = results without a behaviour descriptor; 2 = results carry `behaviour`
+// (evo/behaviour.hpp), which novelty search needs from every rank. A version-1 rank would send
+// results that silently lack it, so mixed versions are refused rather than read.
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -20,7 +23,7 @@
 
 namespace bhm::evo {
 
-inline constexpr std::uint16_t kEvaluationWireVersion = 1;
+inline constexpr std::uint16_t kEvaluationWireVersion = 2;
 
 struct WireError : std::runtime_error {
     using std::runtime_error::runtime_error;

@@ -8,6 +8,7 @@
 
 #include "engine/limits.hpp"
 #include "engine/world.hpp"
+#include "evo/behaviour.hpp"
 #include "evo/scene.hpp"
 
 namespace bhm::evo {
@@ -43,27 +44,35 @@ double fitness_under(const FitnessReport& report, const Fitness& rules) {
     return fitness_under(report, rules.measure);
 }
 
-MeasureTracker::MeasureTracker(const Experiment& experiment, const engine::World& world)
-    : settle_s_(experiment.simulation.settle_s), voxel_size_m_(experiment.voxel_size_m) {
+BendLayers bend_layers(const Experiment& experiment, const engine::World& world) {
+    BendLayers layers;
     const auto& model = world.model();
     const Face face = bend_base_face(experiment.boundary);
     const auto axis = static_cast<std::size_t>(face) / 2;
     const bool base_on_high_side = static_cast<int>(face) % 2 == 1;
     const int n = model.voxel_count();
-    if (n == 0) return;
+    if (n == 0) return layers;
     int lo = model.voxel_coords(0)[axis], hi = lo;
     for (int v = 1; v < n; ++v) {
         lo = std::min(lo, model.voxel_coords(v)[axis]);
         hi = std::max(hi, model.voxel_coords(v)[axis]);
     }
-    if (lo == hi) return;  // one layer: no line to bend
+    if (lo == hi) return layers;  // one layer: no line to bend
     const int base_layer = base_on_high_side ? hi : lo;
     const int tip_layer = base_on_high_side ? lo : hi;
     for (int v = 0; v < n; ++v) {
         const int c = model.voxel_coords(v)[axis];
-        if (c == base_layer) base_voxels_.push_back(v);
-        if (c == tip_layer) tip_voxels_.push_back(v);
+        if (c == base_layer) layers.base.push_back(v);
+        if (c == tip_layer) layers.tip.push_back(v);
     }
+    return layers;
+}
+
+MeasureTracker::MeasureTracker(const Experiment& experiment, const engine::World& world)
+    : settle_s_(experiment.simulation.settle_s), voxel_size_m_(experiment.voxel_size_m) {
+    auto layers = bend_layers(experiment, world);
+    base_voxels_ = std::move(layers.base);
+    tip_voxels_ = std::move(layers.tip);
 }
 
 std::array<double, 3> MeasureTracker::centroid(const engine::World& world,
@@ -138,7 +147,7 @@ void honour(const EvaluationControl& control) {
 //! target, so the same steps are taken (tests/evo/test_fitness.cpp checks against engine::run).
 void run_controlled(engine::World& world, double total_s, double sample_hz,
                     const EvaluationControl& control, MeasureTracker& tracker,
-                    ExploitTracker& exploits) {
+                    ExploitTracker& exploits, BehaviourTracker& behaviour) {
     const double period = 1.0 / sample_hz;
     const double dt = world.model().dt_s();
     const double half_step = 0.5 * dt;
@@ -151,6 +160,7 @@ void run_controlled(engine::World& world, double total_s, double sample_hz,
     honour(control);
     tracker.observe(world);
     exploits.observe(world);
+    behaviour.observe(world);
     if (world.time_s() >= total_s - half_step) return;
     for (std::int64_t k = 1;; ++k) {
         double due = static_cast<double>(k) * period;
@@ -163,6 +173,7 @@ void run_controlled(engine::World& world, double total_s, double sample_hz,
         }
         tracker.observe(world);
         exploits.observe(world);
+        behaviour.observe(world);
         if (last) return;
     }
 }
@@ -183,9 +194,11 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     engine::World world(engine::Model::build(spec));
     MeasureTracker tracker(experiment, world);
     ExploitTracker exploits(experiment, world);
+    BehaviourTracker behaviour(experiment, world);
     const double sample_hz =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    run_controlled(world, evaluation_seconds(experiment), sample_hz, control, tracker, exploits);
+    run_controlled(world, evaluation_seconds(experiment), sample_hz, control, tracker, exploits,
+                   behaviour);
 
     FitnessReport report;
     report.measures = tracker.measures();
@@ -202,6 +215,7 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     if (report.diverged)
         report.measures.fill(0.0);  // keep files free of NaN; fitness says diverged
     report.exploits = exploits.report(report.diverged);
+    if (!report.diverged) report.behaviour = behaviour.descriptor();
     report.fitness = fitness_under(report, experiment.fitness);
     report.sim_wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -44,6 +44,9 @@ struct FitnessReport {
     std::int64_t steps = 0;
     double sim_wall_s = 0.0;  //!< wall-clock time of the simulation (not deterministic)
     ExploitReport exploits;   //!< escaped / detached_motion / tentacle with their measures
+    //! Where the body went (evo/behaviour.hpp): kBehaviourLength values in voxel lengths, empty
+    //! when diverged or read from a result written before descriptors existed.
+    std::vector<double> behaviour;
 };
 
 //! The fitness of a report under a measure (kDivergedFitness when it diverged).
@@ -76,6 +79,14 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
                             const EvaluationControl& control);
 FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
                             const std::atomic<bool>* cancel = nullptr);
+
+//! The voxels (model indices) at the two ends of the bend line: the base layer (the first fixed
+//! face's, x- when none is fixed) and the filled layer farthest from it. Both empty for a body of
+//! a single layer along that axis.
+struct BendLayers {
+    std::vector<int> base, tip;
+};
+BendLayers bend_layers(const Experiment& experiment, const engine::World& world);
 
 //! The observer that computes the measures from the samples; public for tests and the studio.
 class MeasureTracker {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "evo/behaviour.hpp"
 #include "evo/evaluation_wire.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo_test_support.hpp"
@@ -63,8 +64,11 @@ TEST_CASE("results keep every double bit for bit") {
     m.report.exploits.tentacle = true;
     m.report.exploits.thin_share = 0.1 + 0.7;
     m.report.exploits.thin_voxels = 5;
+    for (int k = 0; k < kBehaviourLength; ++k)  // novelty search needs it from every rank
+        m.report.behaviour.push_back(std::nextafter(0.1 * k - 1.0, 5.0));
     const auto back = decode_result(encode_result(m));
     CHECK(back.report.exploits == m.report.exploits);
+    CHECK(back.report.behaviour == m.report.behaviour);
     CHECK(back.batch_id == 3);
     CHECK(back.index == 9);
     CHECK(back.report.fitness == m.report.fitness);
@@ -87,6 +91,11 @@ TEST_CASE("other versions, kinds, truncations and garbage are refused by name") 
     std::string other_version = bytes;
     other_version[4] = static_cast<char>(kEvaluationWireVersion + 1);
     CHECK_THROWS_WITH_AS(decode_job(other_version), doctest::Contains("wire version"), WireError);
+    // Version 1 results had no behaviour descriptor: a rank of that build is refused, not misread.
+    static_assert(kEvaluationWireVersion == 2);
+    std::string version_1 = encode_result(ResultMessage{});
+    version_1[4] = 1;
+    CHECK_THROWS_WITH_AS(decode_result(version_1), doctest::Contains("wire version 1"), WireError);
     CHECK_THROWS_WITH_AS(decode_result(bytes), doctest::Contains("kind"), WireError);
     CHECK_THROWS_WITH_AS(decode_job(bytes.substr(0, bytes.size() - 1)),
                          doctest::Contains("truncated"), WireError);
