@@ -32,7 +32,8 @@ inline constexpr int kBehaviourLength = kBehaviourSamples * kBehaviourPointValue
 class BehaviourRecorder {
   public:
     BehaviourRecorder(double settle_s, double evaluate_s, double voxel_size_m);
-    void observe(double t_s, const std::array<double, 3>& com_m, const std::array<double, 3>& tip_m);
+    void observe(double t_s, const std::array<double, 3>& com_m,
+                 const std::array<double, 3>& tip_m);
     //! kBehaviourLength values once every sample time was reached, else empty.
     std::vector<double> descriptor() const;
 

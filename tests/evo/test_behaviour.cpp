@@ -113,8 +113,8 @@ TEST_CASE("a free fall's descriptor follows g t^2 / 2 and agrees with the fitnes
     // The last sample is the end of the simulation: its COM displacement is com_final_3d.
     const auto last = sample(r.behaviour, kBehaviourSamples - 1);
     const double norm = std::sqrt(last[0] * last[0] + last[1] * last[1] + last[2] * last[2]);
-    CHECK(norm == bhm::test::relative(r.measures[static_cast<int>(FitnessMeasure::ComFinal3d)],
-                                      1e-12));
+    CHECK(norm ==
+          bhm::test::relative(r.measures[static_cast<int>(FitnessMeasure::ComFinal3d)], 1e-12));
 }
 
 TEST_CASE("a bending bimorph's tip swings; its passive twin stays where it settled") {
