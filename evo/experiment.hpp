@@ -125,6 +125,18 @@ struct NeatSettings {
     bool operator==(const NeatSettings&) const = default;
 };
 
+//! Novelty search (Lehman & Stanley 2011; evo/novelty.hpp, docs/evolution.md): used when the
+//! algorithm is "novelty".
+struct NoveltySettings {
+    int k = 15;  //!< nearest behaviours averaged (Lehman & Stanley's 15)
+    //! Novelty a new individual needs to enter the archive at the start (voxel lengths of
+    //! behaviour distance); adapts every generation (evo/novelty_archive.hpp).
+    double archive_threshold = 1.0;
+    int archive_capacity = 1000;  //!< the oldest entries leave beyond this
+    bool with_fitness = false;    //!< fitness as a second AFPO objective beside novelty
+    bool operator==(const NoveltySettings&) const = default;
+};
+
 struct Evolution {
     Algorithm algorithm = Algorithm::Afpo;
     int population = 50;
@@ -138,6 +150,7 @@ struct Evolution {
     double crossover_rate = 0.0;
     CppnSettings cppn;
     NeatSettings neat;  //!< used when algorithm is Neat
+    NoveltySettings novelty;
     bool operator==(const Evolution&) const = default;
 };
 

@@ -291,7 +291,8 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         const std::string path = "evolution";
         r.check_keys(*ev, path,
                      {"algorithm", "population", "generations", "wall_budget_h",
-                      "max_neutral_retries", "seed", "threads", "crossover_rate", "cppn", "neat"});
+                      "max_neutral_retries", "seed", "threads", "crossover_rate", "cppn", "neat",
+                      "novelty"});
         constexpr long long kBig = 1'000'000'000LL;
         evo.algorithm = static_cast<Algorithm>(
             r.choice(*ev, "algorithm", path, {kAlgorithmNames.begin(), kAlgorithmNames.end()},
@@ -353,6 +354,16 @@ Experiment parse_experiment(const json& root, const std::string& file) {
             ne.stagnation_generations = static_cast<int>(r.integer(
                 *n, "stagnation_generations", npath, ne.stagnation_generations, -kBig, kBig));
             ne.crossover_rate = r.number(*n, "crossover_rate", npath, ne.crossover_rate);
+        }
+        if (const json* n = r.object(*ev, "novelty", path)) {
+            auto& nv = evo.novelty;
+            const std::string npath = "evolution.novelty";
+            r.check_keys(*n, npath, {"k", "archive_threshold", "archive_capacity", "with_fitness"});
+            nv.k = static_cast<int>(r.integer(*n, "k", npath, nv.k, -kBig, kBig));
+            nv.archive_threshold = r.number(*n, "archive_threshold", npath, nv.archive_threshold);
+            nv.archive_capacity = static_cast<int>(
+                r.integer(*n, "archive_capacity", npath, nv.archive_capacity, -kBig, kBig));
+            nv.with_fitness = r.boolean(*n, "with_fitness", npath, nv.with_fitness);
         }
     }
 
@@ -508,6 +519,12 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("evolution.cppn.mutation_weight_sigma", "must be in (0, 100]");
     if (!finite(ev.crossover_rate) || ev.crossover_rate < 0 || ev.crossover_rate > 1)
         bad("evolution.crossover_rate", "must be in [0, 1] (0 = mutation only, the paper's)");
+    const auto& nv = ev.novelty;
+    if (nv.k < 1 || nv.k > 1000) bad("evolution.novelty.k", "must be in [1, 1000]; 15 by default");
+    if (!finite(nv.archive_threshold) || nv.archive_threshold <= 0 || nv.archive_threshold > 1e6)
+        bad("evolution.novelty.archive_threshold", "must be in (0, 1e6] voxel lengths; 1 by default");
+    if (nv.archive_capacity < 0 || nv.archive_capacity > 100000)
+        bad("evolution.novelty.archive_capacity", "must be in [0, 100000]; 1000 by default");
     if (cp.material_outputs == MaterialOutputs::PerMaterial && e.materials.size() < 2)
         bad("evolution.cppn.material_outputs",
             "\"per_material\" needs at least two materials to choose between");
@@ -630,6 +647,13 @@ json experiment_to_json(const Experiment& e) {
                                   {"elitism", n.elitism},
                                   {"stagnation_generations", n.stagnation_generations},
                                   {"crossover_rate", n.crossover_rate}};
+    }
+    if (ev.algorithm == Algorithm::Novelty || !(ev.novelty == NoveltySettings{})) {
+        const auto& n = ev.novelty;
+        j["evolution"]["novelty"] = {{"k", n.k},
+                                     {"archive_threshold", n.archive_threshold},
+                                     {"archive_capacity", n.archive_capacity},
+                                     {"with_fitness", n.with_fitness}};
     }
     return j;
 }
