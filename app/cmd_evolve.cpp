@@ -28,7 +28,9 @@ const char* const kSummary =
     "median_fitness,\n"
     "                           best_age, best_id, diverged, wall_s (counts per generation),\n"
     "                           best_escaped, best_detached_motion, best_tentacle, flagged_members\n"
-    "                           (exploit flags, docs/evolution.md); NEAT runs add species\n"
+    "                           (exploit flags, docs/evolution.md); NEAT adds species, novelty\n"
+    "                           search best_novelty, median_novelty, archive_size, archive_added,\n"
+    "                           archive_threshold, champion_fitness\n"
     "  champion.json            genome, phenotype layers, fitness, generation found\n"
     "  champions/gen-NNNNN.json every new champion\n"
     "  champion.vxa             the champion for VoxCAD (VXA 1.0)\n"
@@ -79,14 +81,25 @@ std::string clock_text(double seconds) {
     return buffer;
 }
 
+//! Novelty search's part of the progress line: novelty, archive, the champion's fitness.
+std::string novelty_text(const evo::GenerationReport& r) {
+    if (!r.novelty) return "";
+    char buffer[160];
+    std::snprintf(buffer, sizeof buffer, "  novelty %.4g  archive %d (+%d)  champion %.6g",
+                  r.novelty->best_novelty, r.novelty->archive_size, r.novelty->archive_added,
+                  r.novelty->champion_fitness);
+    return buffer;
+}
+
 void print_progress(const evo::GenerationReport& r) {
     std::fprintf(
         stderr,
-        "gen %d/%d  best %.6g%s  median %.6g  sims %d (%.2f/s)  diverged %d%s  elapsed %s  "
+        "gen %d/%d  best %.6g%s  median %.6g  sims %d (%.2f/s)  diverged %d%s%s  elapsed %s  "
         "eta %s\n",
         r.generation, r.generation_budget - 1, r.best_fitness, r.new_champion ? " *" : "",
         r.median_fitness, r.simulations, r.simulations_per_s, r.diverged,
         r.species > 0 ? ("  species " + std::to_string(r.species)).c_str() : "",
+        novelty_text(r).c_str(),
         clock_text(r.elapsed_s).c_str(), clock_text(r.eta_s).c_str());
 }
 

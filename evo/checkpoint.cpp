@@ -172,7 +172,7 @@ Individual individual_from_json(const json& j, const std::string& path, const De
 }
 
 json history_row_to_json(const HistoryRow& h) {
-    return {{"generation", h.generation},
+    json j = {{"generation", h.generation},
             {"evaluations", h.evaluations},
             {"simulations", h.simulations},
             {"best_fitness", h.best_fitness},
@@ -185,6 +185,16 @@ json history_row_to_json(const HistoryRow& h) {
             {"best_exploits", exploits_to_json(h.best_exploits)},
             {"flagged_members", h.flagged_members},
             {"species", h.species}};
+    if (h.novelty) {
+        const auto& n = *h.novelty;
+        j["novelty"] = {{"best_novelty", n.best_novelty},
+                        {"median_novelty", n.median_novelty},
+                        {"archive_size", n.archive_size},
+                        {"archive_added", n.archive_added},
+                        {"archive_threshold", n.archive_threshold},
+                        {"champion_fitness", n.champion_fitness}};
+    }
+    return j;
 }
 
 HistoryRow history_row_from_json(const json& j, const std::string& path) {
@@ -211,7 +221,36 @@ HistoryRow history_row_from_json(const json& j, const std::string& path) {
     if (j.contains("flagged_members"))
         h.flagged_members = static_cast<int>(f.integer("flagged_members"));
     if (j.contains("species")) h.species = static_cast<int>(f.integer("species"));  // format 3
+    if (j.contains("novelty")) {  // novelty search runs only
+        const Fields n(j.at("novelty"), f.join("novelty"));
+        NoveltyRow row;
+        row.best_novelty = n.number("best_novelty");
+        row.median_novelty = n.number("median_novelty");
+        row.archive_size = static_cast<int>(n.integer("archive_size"));
+        row.archive_added = static_cast<int>(n.integer("archive_added"));
+        row.archive_threshold = n.number("archive_threshold");
+        row.champion_fitness = n.number("champion_fitness");
+        h.novelty = row;
+    }
     return h;
+}
+
+json novelty_archive_to_json(const NoveltyArchive& a) {
+    return {{"threshold", a.threshold}, {"entries", a.entries}};
+}
+
+NoveltyArchive novelty_archive_from_json(const json& j) {
+    const Fields f(j, "novelty_archive");
+    NoveltyArchive a;
+    a.threshold = f.number("threshold");
+    if (!(a.threshold > 0.0)) f.fail("threshold", "must be > 0");
+    const auto& entries = f.array("entries");
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        auto entry = behaviour_from_json(entries[i], item("novelty_archive.entries", i));
+        if (entry.empty()) f.fail("entries", "an archive entry is a whole descriptor");
+        a.entries.push_back(std::move(entry));
+    }
+    return a;
 }
 
 json neat_state_to_json(const NeatState& n) {
@@ -354,6 +393,8 @@ json run_state_to_json(const RunState& s) {
               {"cache_capacity", s.cache.capacity()},
               {"cache", cache}};
     if (s.experiment.evolution.algorithm == Algorithm::Neat) j["neat"] = neat_state_to_json(s.neat);
+    if (s.experiment.evolution.algorithm == Algorithm::Novelty)
+        j["novelty_archive"] = novelty_archive_to_json(s.novelty_archive);
     j["champion"] = s.champion ? json{{"generation_found", s.champion->generation_found},
                                       {"individual", individual_to_json(s.champion->individual)}}
                                : json(nullptr);
@@ -425,6 +466,8 @@ RunState run_state_from_json(const json& j, const std::string& label) {
 
         if (s.experiment.evolution.algorithm == Algorithm::Neat && s.generation >= 0)
             s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
+        if (s.experiment.evolution.algorithm == Algorithm::Novelty && s.generation >= 0)
+            s.novelty_archive = novelty_archive_from_json(f.at("novelty_archive"));
 
         if (!f.at("champion").is_null()) {
             const Fields c(f.at("champion"), "champion");

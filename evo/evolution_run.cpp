@@ -14,6 +14,7 @@
 #include "evo/experiment_io.hpp"
 #include "evo/mutation.hpp"
 #include "evo/neat_generation.hpp"
+#include "evo/novelty_selection.hpp"
 #include "evo/run_lock.hpp"
 #include "evo/worker_pool.hpp"
 
@@ -318,6 +319,7 @@ bool EvolutionRun::run_generation() {
         restart_species_records(population, g - 1, neat);
     switch (rules.evolution.algorithm) {
         case Algorithm::Afpo:
+        case Algorithm::Novelty:  // novelty search breeds as AFPO; only its selection differs
             if (g == 0)
                 breed_random(rules, g, rng, next_id, brood);
             else
@@ -397,11 +399,27 @@ bool EvolutionRun::run_generation() {
     // The algorithm's selection step: the next population, in selection order, from the carried
     // members plus the new individuals.
     std::vector<Individual> pool = std::move(brood.carried);
+    const std::size_t first_new = pool.size();
     for (auto& f : fresh)
         pool.push_back(std::move(f));
     std::vector<Individual> next_population;
     std::vector<int> next_ranks;
+    std::optional<NoveltySelection> novelty;
+    std::vector<double> next_novelty;
     switch (rules.evolution.algorithm) {
+        case Algorithm::Novelty: {
+            const NoveltyArchive archive =
+                g == 0 ? NoveltyArchive{{}, rules.evolution.novelty.archive_threshold}
+                       : state_.novelty_archive;
+            novelty = select_by_novelty(pool, first_new, archive, rules);
+            for (int index : novelty->survivors) {
+                const auto i = static_cast<std::size_t>(index);
+                next_population.push_back(pool[i]);
+                next_ranks.push_back(novelty->ranks[i]);
+                next_novelty.push_back(novelty->novelty[i]);
+            }
+            break;
+        }
         case Algorithm::Neat:
             next_population = neat_select(rules, g, std::move(pool), neat);
             next_ranks.assign(next_population.size(), 0);  // no Pareto layers in NEAT
@@ -413,9 +431,12 @@ bool EvolutionRun::run_generation() {
     }
 
     const Individual& best = best_member(next_population);
+    // Novelty selection may drop the fittest new individual, so its champion comes from the whole
+    // pool (AFPO's and NEAT's populations keep the pool's best anyway).
+    const Individual& contender = novelty ? best_member(pool) : best;
     bool new_champion = false;
-    if (!champion || best.report.fitness > champion->individual.report.fitness) {
-        champion = ChampionRecord{best, g};
+    if (!champion || contender.report.fitness > champion->individual.report.fitness) {
+        champion = ChampionRecord{contender, g};
         new_champion = true;
     }
     const double generation_wall_s = progress().elapsed_s;  // paused time excluded
@@ -436,6 +457,21 @@ bool EvolutionRun::run_generation() {
         row.flagged_members += m.report.exploits.any() ? 1 : 0;
     if (rules.evolution.algorithm == Algorithm::Neat)
         row.species = static_cast<int>(neat.species.size());
+    if (novelty) {
+        NoveltyRow n;
+        std::vector<double> sorted = next_novelty;
+        std::sort(sorted.begin(), sorted.end());
+        if (!sorted.empty()) {
+            const std::size_t m = sorted.size();
+            n.best_novelty = sorted.back();
+            n.median_novelty = m % 2 == 1 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
+        }
+        n.archive_size = static_cast<int>(novelty->archive.entries.size());
+        n.archive_added = novelty->added;
+        n.archive_threshold = novelty->archive.threshold;
+        n.champion_fitness = champion->individual.report.fitness;
+        row.novelty = n;
+    }
 
     // Commit.
     state_.experiment = rules;
@@ -448,6 +484,7 @@ bool EvolutionRun::run_generation() {
     state_.pareto_rank = std::move(next_ranks);
     state_.champion = champion;
     state_.neat = std::move(neat);
+    if (novelty) state_.novelty_archive = std::move(novelty->archive);
     state_.history.push_back(row);
     if (rules_changed) state_.rule_changes.push_back({g, rules.fitness});
     for (std::size_t j = 0; j < jobs.size(); ++j)
@@ -477,6 +514,7 @@ bool EvolutionRun::run_generation() {
     report->champion = *state_.champion;
     report->new_champion = new_champion;
     report->species = row.species;
+    report->novelty = row.novelty;
     const auto species_of = species_of_members(state_.neat, state_.population.size());
     for (std::size_t k = 0; k < state_.population.size(); ++k) {
         const auto& m = state_.population[k];
@@ -488,6 +526,7 @@ bool EvolutionRun::run_generation() {
              state_.pareto_rank[k], m.report.diverged, m.valid, m.report.exploits,
              species_of[k] >= 0 ? state_.neat.species[static_cast<std::size_t>(species_of[k])].id
                                 : 0});
+        if (k < next_novelty.size()) report->population.back().novelty = next_novelty[k];
     }
     report->evaluations = row.evaluations;
     report->simulations = row.simulations;

@@ -67,6 +67,7 @@ struct PopulationEntry {
     bool valid = true;
     ExploitReport exploits;  //!< escaped / detached_motion / tentacle and their measures
     int species = 0;         //!< NEAT: the member's species id (0 for other algorithms)
+    double novelty = 0.0;    //!< novelty search: the member's novelty (0 for other algorithms)
 };
 
 //! An immutable snapshot of one completed generation.
@@ -88,6 +89,7 @@ struct GenerationReport {
     int diverged = 0;
     int newcomers_skipped = 0;  //!< no valid random newcomer found (over-strict constraints)
     int species = 0;            //!< NEAT: species in the population (0 for other algorithms)
+    std::optional<NoveltyRow> novelty;  //!< novelty search: novelty and archive figures
     double generation_wall_s = 0.0;
     double elapsed_s = 0.0;          //!< across resumes
     double simulations_per_s = 0.0;  //!< this generation

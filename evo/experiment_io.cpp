@@ -549,10 +549,6 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("evolution.neat.elitism", "must be in [0, evolution.population]");
     if (ne.stagnation_generations < 1 || ne.stagnation_generations > 100000000)
         bad("evolution.neat.stagnation_generations", "must be in [1, 1e8]");
-    if (ev.algorithm == Algorithm::Novelty)
-        bad("evolution.algorithm", std::string("\"") +
-                                       kAlgorithmNames[static_cast<int>(ev.algorithm)] +
-                                       "\" is not built yet; use \"afpo\"");
     return problems;
 }
 

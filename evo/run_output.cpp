@@ -22,7 +22,14 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
     // NEAT runs add a species column; the others keep the header they always had.
     const bool species = std::any_of(history.begin(), history.end(),
                                      [](const HistoryRow& h) { return h.species > 0; });
-    std::string out = std::string(kFitnessCsvHeader) + (species ? ",species\n" : "\n");
+    // Novelty search runs add their novelty and archive figures (docs/evolution.md).
+    const bool novelty = std::any_of(history.begin(), history.end(),
+                                     [](const HistoryRow& h) { return h.novelty.has_value(); });
+    std::string out = std::string(kFitnessCsvHeader) + (species ? ",species" : "") +
+                      (novelty ? ",best_novelty,median_novelty,archive_size,archive_added,"
+                                 "archive_threshold,champion_fitness"
+                               : "") +
+                      "\n";
     for (const auto& h : history) {
         // Integers and the to_chars-based numbers never depend on the locale.
         const long long wall_ms = static_cast<long long>(h.wall_s * 1000.0 + 0.5);
@@ -35,7 +42,15 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
                (h.best_exploits.escaped ? "1," : "0,") +
                (h.best_exploits.detached_motion ? "1," : "0,") +
                (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) +
-               (species ? "," + std::to_string(h.species) : std::string()) + "\n";
+               (species ? "," + std::to_string(h.species) : std::string());
+        if (novelty) {
+            const NoveltyRow n = h.novelty.value_or(NoveltyRow{});
+            out += "," + format_number(n.best_novelty) + "," + format_number(n.median_novelty) +
+                   "," + std::to_string(n.archive_size) + "," + std::to_string(n.archive_added) +
+                   "," + format_number(n.archive_threshold) + "," +
+                   format_number(n.champion_fitness);
+        }
+        out += "\n";
     }
     return out;
 }

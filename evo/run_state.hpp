@@ -9,9 +9,22 @@
 #include "evo/fitness_cache.hpp"
 #include "evo/individual.hpp"
 #include "evo/neat_species.hpp"
+#include "evo/novelty_archive.hpp"
 #include "evo/rng.hpp"
 
 namespace bhm::evo {
+
+//! Novelty search's figures of one generation (evolution.algorithm = "novelty"; fitness.csv's
+//! extra columns).
+struct NoveltyRow {
+    double best_novelty = 0.0;  //!< highest novelty in the population after selection
+    double median_novelty = 0.0;
+    int archive_size = 0;            //!< after this generation's additions
+    int archive_added = 0;           //!< entries this generation added
+    double archive_threshold = 0.0;  //!< after this generation's adaptation
+    double champion_fitness = 0.0;   //!< the best fitness seen so far: the run's champion
+    bool operator==(const NoveltyRow&) const = default;
+};
 
 //! One row of fitness.csv. Counts are for that generation alone.
 struct HistoryRow {
@@ -28,6 +41,7 @@ struct HistoryRow {
     ExploitReport best_exploits;  //!< the flags of the best member
     int flagged_members = 0;      //!< population members raising any exploit flag
     int species = 0;              //!< NEAT: species after this generation (0 for other algorithms)
+    std::optional<NoveltyRow> novelty;  //!< novelty search only
     bool operator==(const HistoryRow&) const = default;
 };
 
@@ -58,6 +72,7 @@ struct RunState {
     std::vector<RuleChange> rule_changes;
     FitnessCache cache;
     NeatState neat;  //!< evolution.algorithm = "neat" only: innovation counters, species
+    NoveltyArchive novelty_archive;  //!< evolution.algorithm = "novelty" only
 };
 
 }  // namespace bhm::evo

@@ -220,6 +220,21 @@ void neat_fields(Studio& s) {
         commit_draft(s, "NEAT crossover rate");
 }
 
+//! Novelty search's parameters (evolution.novelty; docs/evolution.md#novelty-search).
+void novelty_fields(Studio& s) {
+    auto& n = s.draft.evolution.novelty;
+    if (field_int("Novelty k", n.k, "", "[1, 1000] nearest behaviours averaged; 15"))
+        commit_draft(s, "novelty k");
+    if (field_double("Archive threshold", n.archive_threshold, "voxels",
+                     "(0, 1e6] novelty to enter the archive at the start; adapts; 1", "%.3g"))
+        commit_draft(s, "novelty archive threshold");
+    if (field_int("Archive capacity", n.archive_capacity, "", "[0, 100000] oldest leave; 1000"))
+        commit_draft(s, "novelty archive capacity");
+    if (field_bool("With fitness", n.with_fitness,
+                   "fitness as a second objective beside novelty (finds better benders)"))
+        commit_draft(s, "novelty with fitness");
+}
+
 void evolution_section(Studio& s) {
     auto& ev = s.draft.evolution;
     // One selectable per algorithm, each recorded so a script can pick it ("algorithm neat").
@@ -239,11 +254,12 @@ void evolution_section(Studio& s) {
         }
         ImGui::EndCombo();
     }
-    if (ev.algorithm == evo::Algorithm::Afpo &&
+    if ((ev.algorithm == evo::Algorithm::Afpo || ev.algorithm == evo::Algorithm::Novelty) &&
         field_double("Crossover rate", ev.crossover_rate, "",
                      "[0, 1]: share of AFPO children made by crossover; 0 = the paper's", "%.3g"))
         commit_draft(s, "AFPO crossover rate");
     if (ev.algorithm == evo::Algorithm::Neat) neat_fields(s);
+    if (ev.algorithm == evo::Algorithm::Novelty) novelty_fields(s);
     if (field_int("Population", ev.population, "", "[2, 100000]; paper: 50"))
         commit_draft(s, "population");
     if (field_int("Generations", ev.generations, "", ">= 0; paper: 2000"))
