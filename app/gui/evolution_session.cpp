@@ -114,6 +114,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
     snap->history = sh.history;
     snap->rule_changes = sh.changes;
     snap->species = state.history.empty() ? 0 : state.history.back().species;
+    snap->novelty = state.history.empty() ? std::nullopt : state.history.back().novelty;
     snap->evaluations = sh.simulations;
     if (const auto report = run.latest_report()) {
         snap->simulations_per_s = report->simulations_per_s;

@@ -3,11 +3,13 @@
 // state): immutable, taken by the UI thread at the start of a frame (latest_slot.hpp).
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "evo/experiment.hpp"
 #include "evo/exploit_flags.hpp"
+#include "evo/run_state.hpp"
 
 namespace bhm::app::gui {
 
@@ -65,6 +67,7 @@ struct EvolutionSnapshot {
     double eta_s = -1.0;  //!< negative while unknown
     std::int64_t evaluations = 0;
     int species = 0;  //!< NEAT: species in the population (0 for other algorithms)
+    std::optional<evo::NoveltyRow> novelty;  //!< novelty search: novelty and archive figures
     std::vector<GenerationRecord> history;
     std::vector<RuleChange> rule_changes;
     evo::FitnessMeasure initial_measure = evo::FitnessMeasure::ComFinal3d;  //!< before any change

@@ -129,6 +129,12 @@ void status(Studio& s) {
             std::snprintf(text, sizeof text, "%d", run->species);
             cell("species", text);
         }
+        if (run->novelty) {  // novelty search: how novel, how much remembered
+            std::snprintf(text, sizeof text, "%.4g", run->novelty->best_novelty);
+            cell("novelty", text);
+            std::snprintf(text, sizeof text, "%d", run->novelty->archive_size);
+            cell("archive", text);
+        }
         ImGui::EndTable();
     }
     if (!s.showing_run_directory && progress.running && run_is_live(phase) &&
