@@ -9,9 +9,9 @@
 //                    [--settle-s S] [--evaluate-s S] [--algorithms afpo,crossover,neat,novelty]
 //                    [--commit SHA]
 //
-// Defaults: 80 simulations, seeds 1..5, 2 threads, assets/experiments/quick-demo.json (run from
+// Defaults: 60 simulations, seeds 1..5, 2 threads, assets/experiments/quick-demo.json (run from
 // the repository root, as scripts/bench.sh does) with its evaluation shortened to 0.1 s of settling
-// + 0.5 s (one 2 Hz cycle; 0 keeps the file's) so that the 20 runs take ~15 minutes on two loaded
+// + 0.5 s (one 2 Hz cycle; 0 keeps the file's) so that the 20 runs take ~10 minutes on two loaded
 // cores; the four algorithms:
 //   afpo       the paper's AFPO (mutation only)
 //   crossover  AFPO with evolution.crossover_rate 0.3
@@ -124,7 +124,7 @@ int run(int argc, char** argv) {
     const char* env_commit = std::getenv("BHM_COMMIT");
     std::string commit = env_commit ? env_commit : "unknown";
     std::string experiment_path = "assets/experiments/quick-demo.json";
-    int budget = 80, seeds = 5, threads = 2;
+    int budget = 60, seeds = 5, threads = 2;
     double settle_s = 0.1, evaluate_s = 0.5;
     std::uint64_t first_seed = 1;
     std::vector<std::string> wanted = {"afpo", "crossover", "neat", "novelty"};
