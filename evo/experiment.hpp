@@ -115,8 +115,15 @@ struct NeatSettings {
     double c1 = 1.0;  //!< compatibility distance: weight of excess genes
     double c2 = 1.0;  //!< ... of disjoint genes
     double c3 = 0.4;  //!< ... of the mean weight difference of matching genes
+    //! Divide E and D by N, the larger genome's gene count, once either has 20 genes or more (the
+    //! paper's normalisation). Off by default (N = 1): the step from 1 to 20 at 20 genes makes
+    //! every large genome close to every other, so one species swallows the population.
+    bool normalize_by_size = false;
     double compatibility_threshold = 3.0;  //!< delta below which a genome joins a species
-    int target_species = 0;        //!< > 0: the threshold moves toward this many species
+    //! > 0: the threshold moves toward this many species (0: fixed). On by default: with CPPNs of
+    //! 20 genes or more, N normalises E and D, and the paper's fixed 3 soon puts everyone in one
+    //! species.
+    int target_species = 5;
     double threshold_step = 0.3;   //!< how far the threshold moves per generation
     double survival_fraction = 0.2;  //!< best fraction of each species that may parent
     int elitism = 1;               //!< best members of each species copied unchanged

@@ -338,12 +338,15 @@ Experiment parse_experiment(const json& root, const std::string& file) {
             auto& ne = evo.neat;
             const std::string npath = "evolution.neat";
             r.check_keys(*n, npath,
-                         {"c1", "c2", "c3", "compatibility_threshold", "target_species",
+                         {"c1", "c2", "c3", "normalize_by_size", "compatibility_threshold",
+                          "target_species",
                           "threshold_step", "survival_fraction", "elitism",
                           "stagnation_generations", "crossover_rate"});
             ne.c1 = r.number(*n, "c1", npath, ne.c1);
             ne.c2 = r.number(*n, "c2", npath, ne.c2);
             ne.c3 = r.number(*n, "c3", npath, ne.c3);
+            ne.normalize_by_size =
+                r.boolean(*n, "normalize_by_size", npath, ne.normalize_by_size);
             ne.compatibility_threshold =
                 r.number(*n, "compatibility_threshold", npath, ne.compatibility_threshold);
             ne.target_species = static_cast<int>(
@@ -542,9 +545,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     neat_number("threshold_step", ne.threshold_step, 0, 100, true, "(0, 100]");
     neat_number("survival_fraction", ne.survival_fraction, 0, 1, true, "(0, 1]");
     neat_number("crossover_rate", ne.crossover_rate, 0, 1, false, "[0, 1]");
-    if (ne.target_species < 0 || ne.target_species > ev.population)
-        bad("evolution.neat.target_species",
-            "must be in [0, evolution.population] (0 = keep the threshold fixed)");
+    if (ne.target_species < 0 || ne.target_species > 100000)
+        bad("evolution.neat.target_species", "must be in [0, 100000] (0 = keep the threshold fixed)");
     if (ne.elitism < 0 || ne.elitism > ev.population)
         bad("evolution.neat.elitism", "must be in [0, evolution.population]");
     if (ne.stagnation_generations < 1 || ne.stagnation_generations > 100000000)
@@ -636,6 +638,7 @@ json experiment_to_json(const Experiment& e) {
         j["evolution"]["neat"] = {{"c1", n.c1},
                                   {"c2", n.c2},
                                   {"c3", n.c3},
+                                  {"normalize_by_size", n.normalize_by_size},
                                   {"compatibility_threshold", n.compatibility_threshold},
                                   {"target_species", n.target_species},
                                   {"threshold_step", n.threshold_step},

@@ -68,7 +68,9 @@ double compatibility_distance(const Genome& a, const Genome& b, const NeatSettin
     const double w_bar =
         al.matching.empty() ? 0.0 : weight_difference / static_cast<double>(al.matching.size());
     const std::size_t larger = std::max(a.edges.size(), b.edges.size());
-    const double n = larger < kSmallGenomeGenes ? 1.0 : static_cast<double>(larger);
+    const double n = !s.normalize_by_size || larger < kSmallGenomeGenes
+                         ? 1.0
+                         : static_cast<double>(larger);
     return s.c1 * excess / n + s.c2 * disjoint / n + s.c3 * w_bar;
 }
 

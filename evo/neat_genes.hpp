@@ -4,8 +4,8 @@
 //   delta = c1 E / N + c2 D / N + c3 W-bar
 // E = excess genes (innovation beyond the other genome's largest), D = disjoint genes (the other
 // unmatched ones), W-bar = mean |weight difference| of matching genes (0 when none match),
-// N = connection genes of the larger genome, or 1 when both have fewer than 20 (the paper's
-// normalisation for small genomes). Only connection genes count, as in the paper.
+// N = 1, or with neat.normalize_by_size the paper's normalisation: connection genes of the larger
+// genome, 1 when both have fewer than 20. Only connection genes count, as in the paper.
 #include <cstddef>
 #include <vector>
 

@@ -198,12 +198,15 @@ void neat_fields(Studio& s) {
     if (field_double("NEAT c3", n.c3, "", "[0, 100]: weight of the mean weight difference; 0.4",
                      "%.3g"))
         commit_draft(s, "NEAT c3");
+    if (field_bool("NEAT divide by N", n.normalize_by_size,
+                   "divide E and D by the larger gene count from 20 genes on (the paper's)"))
+        commit_draft(s, "NEAT size normalisation");
     if (field_double("Compat. threshold", n.compatibility_threshold, "delta",
                      "(0, 1000]: closer than this to a representative joins its species; 3",
                      "%.3g"))
         commit_draft(s, "NEAT compatibility threshold");
     if (field_int("Target species", n.target_species, "",
-                  "[0, population]: the threshold moves toward this many; 0 = fixed"))
+                  "[0, 100000]: the threshold moves toward this many; 0 = fixed; 5"))
         commit_draft(s, "NEAT target species");
     if (field_double("Threshold step", n.threshold_step, "delta", "(0, 100]; 0.3", "%.3g"))
         commit_draft(s, "NEAT threshold step");

@@ -141,7 +141,8 @@ TEST_CASE("gene alignment and the compatibility distance of Fig. 4's parents, by
     CHECK(compatibility_distance(b, a, s) == doctest::Approx(4.0 + 1.5 + 0.6));
     CHECK(compatibility_distance(a, a, s) == 0.0);
 
-    // 20 genes or more: E and D are divided by the larger genome's gene count.
+    // 20 genes or more, with normalize_by_size: E and D are divided by the larger genome's gene
+    // count; without (the default), N = 1 whatever the size.
     Genome big_a = a, big_b = b;
     for (int k = 0; k < 14; ++k) {  // the same 14 extra genes in both: matching, equal weights
         big_a.edges.push_back({k % 5, 5 + k % 2, 0.1, 100 + k});
@@ -149,8 +150,11 @@ TEST_CASE("gene alignment and the compatibility distance of Fig. 4's parents, by
     }
     // Now 20 and 23 genes; innovation 100+ makes 8, 6, 7, 9 and 10 all disjoint (none is excess).
     // W-bar: 3 over 19 matching genes.
+    CHECK(compatibility_distance(big_a, big_b, s) == doctest::Approx(0.5 * 5 + 1.0 * 3.0 / 19.0));
+    s.normalize_by_size = true;
     CHECK(compatibility_distance(big_a, big_b, s) ==
           doctest::Approx(2.0 * 0 / 23.0 + 0.5 * 5 / 23.0 + 1.0 * 3.0 / 19.0));
+    CHECK(compatibility_distance(a, b, s) == doctest::Approx(4.0 + 1.5 + 0.6));  // N = 1 below 20
 }
 
 TEST_CASE("crossover: matching genes from either parent, disjoint and excess from the fitter") {
@@ -236,6 +240,7 @@ TEST_CASE("speciation by threshold, fitness sharing, offspring per species and s
     a2.edges[0].weight = 0.3;  // delta(a, a2) = 0.4 * 0.2 / 6
     std::vector<Individual> population = {member(a, 3.0, 1), member(b, 2.0, 2), member(a2, 1.0, 3)};
     NeatSettings s;  // threshold 3: delta(a, b) = 5.24 apart, a and a2 together
+    s.target_species = 0;  // a fixed threshold until said otherwise below
     NeatState state;
     state.threshold = s.compatibility_threshold;
     speciate(population, s, 0, state);

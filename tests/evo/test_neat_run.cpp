@@ -138,7 +138,7 @@ TEST_CASE(
     bad([](NeatSettings& n) { n.compatibility_threshold = 0; },
         "evolution.neat.compatibility_threshold");
     bad([](NeatSettings& n) { n.survival_fraction = 0; }, "evolution.neat.survival_fraction");
-    bad([](NeatSettings& n) { n.target_species = 11; }, "evolution.neat.target_species");
+    bad([](NeatSettings& n) { n.target_species = -1; }, "evolution.neat.target_species");
     bad([](NeatSettings& n) { n.elitism = -1; }, "evolution.neat.elitism");
     bad([](NeatSettings& n) { n.stagnation_generations = 0; },
         "evolution.neat.stagnation_generations");
