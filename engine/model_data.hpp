@@ -92,6 +92,19 @@ struct PoissonParams {
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
     std::array<std::vector<float>, 3> pair_step;   //!< link slot: relaxation step of d, 0 if none
     std::vector<std::int32_t> pair_voxels;         //!< voxels at either end of an isolated link
+    //! The far links of the column-end estimates, as sparse lists (a few voxels per column), so
+    //! the dense loops read them contiguously instead of through tables on every slot:
+    //! far_reads[a]: (voxel, side, slot) with mu_far != 0, copies strain[slot] to the voxel's
+    //! far strain (y and z; x reads v - 2 and v + 1 directly); far_pos_links[a] / far_neg_links[a]:
+    //! (link slot, voxel) whose far gradient (far_pos / far_neg) that link's stress takes.
+    struct FarRead {
+        std::int32_t voxel = 0, side = 0, slot = 0;
+    };
+    struct FarLink {
+        std::int32_t link = 0, voxel = 0;
+    };
+    std::array<std::vector<FarRead>, 3> far_reads;
+    std::array<std::vector<FarLink>, 3> far_pos_links, far_neg_links;
 };
 
 struct Model::Data {

@@ -155,6 +155,18 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                 pp.mu_own[a][s][v] = w[s];
             }
         }
+    for (int a = 0; a < 3; ++a) {
+        pp.far_reads[a].clear();
+        pp.far_pos_links[a].clear();
+        pp.far_neg_links[a].clear();
+        for (int v = 0; v < n; ++v)
+            for (int s = 0; s < kSides; ++s) {
+                if (pp.mu_far[a][s][v] == 0.0f) continue;
+                const int slot = pp.far_slot[a][s][v];
+                if (a != 0) pp.far_reads[a].push_back({v, s, slot});
+                (s == 1 ? pp.far_pos_links : pp.far_neg_links)[a].push_back({slot, v});
+            }
+    }
     pp.pair_voxels.clear();
     for (int v = 0; v < n; ++v)
         if (pair_voxel[v]) pp.pair_voxels.push_back(v);
@@ -235,7 +247,7 @@ BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, i
 
 // lead: zero slots before slot 0 (uniform voxel runs read slot v - below, model_data.hpp).
 void ensure(PoissonScratch& p, int stored, int lead) {
-    constexpr int kFields = 9;
+    constexpr int kFields = 13;
     const std::size_t span = static_cast<std::size_t>(lead) + stored + kLanes;
     if (p.storage[0].size() == kFields * span) return;
     for (int a = 0; a < 3; ++a) {
@@ -243,7 +255,9 @@ void ensure(PoissonScratch& p, int stored, int lead) {
         float* base = p.storage[a].data() + lead;
         float** fields[kFields] = {&p.strain[a],   &p.pair_d[a],    &p.pair_last[a],
                                    &p.grad_neg[a], &p.grad_pos[a],  &p.far_neg[a],
-                                   &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a]};
+                                   &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a],
+                                   &p.far_strain_neg[a], &p.far_strain_pos[a],
+                                   &p.far_from_below[a], &p.far_from_above[a]};
         for (float** f : fields) {
             *f = base;
             base += span;
@@ -257,7 +271,7 @@ struct Views {
     const float *h[3][kSides], *own[3][kSides], *other[3][kSides], *far[3][kSides],
         *pair[3][kSides], *dev[3][kSides], *end[3][kSides];
     const int *far_slot[3][kSides], *below[3];
-    const float *strain[3], *d[3];
+    const float *strain[3], *d[3], *far_strain[3][kSides];
     float *grad_neg[3], *grad_pos[3], *far_neg[3], *far_pos[3], *dgrad_neg[3], *dgrad_pos[3];
 };
 
@@ -283,6 +297,8 @@ Views views_of(const Model::Data& d, PoissonScratch& p) {
         w.below[a] = d.minus[a].data();
         w.strain[a] = p.strain[a];
         w.d[a] = p.pair_d[a];
+        w.far_strain[a][0] = p.far_strain_neg[a];
+        w.far_strain[a][1] = p.far_strain_pos[a];
         w.grad_neg[a] = p.grad_neg[a];
         w.grad_pos[a] = p.grad_pos[a];
         w.far_neg[a] = p.far_neg[a];
@@ -300,9 +316,9 @@ struct VoxelStrains {
 };
 
 // below: per axis, the link slot whose + end is v (kNoLink reads the zero lead slot); far: per
-// axis and side, the slot of the partner's other link (only read where mu_far != 0).
+// axis and side, the strain of the partner's other link (only used where mu_far != 0).
 BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&below)[3],
-                                             const int (&far_of)[3][kSides]) {
+                                             const float (&far_strain)[3][kSides]) {
     VoxelStrains out;
 #pragma GCC unroll 8
     for (int a = 0; a < 3; ++a) {
@@ -311,7 +327,7 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
 #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             out.h[a][s] = w.h[a][s][v];
-            const float far = w.strain[a][far_of[a][s]];
+            const float far = far_strain[a][s];
             const float pair = w.pair[a][s][v] * dd[s];
             out.mu[a][s] =
                 w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] + w.far[a][s][v] * far + pair;
@@ -327,10 +343,11 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
 // The same through the tables (energy diagnostics).
 VoxelStrains voxel_strains(const Views& w, int v) {
     const int below[3] = {w.below[0][v], w.below[1][v], w.below[2][v]};
-    const int far_of[3][kSides] = {{w.far_slot[0][0][v], w.far_slot[0][1][v]},
-                                   {w.far_slot[1][0][v], w.far_slot[1][1][v]},
-                                   {w.far_slot[2][0][v], w.far_slot[2][1][v]}};
-    return voxel_strains(w, v, below, far_of);
+    float far[3][kSides];
+    for (int a = 0; a < 3; ++a)
+        for (int s = 0; s < kSides; ++s)
+            far[a][s] = w.strain[a][w.far_slot[a][s][v]];
+    return voxel_strains(w, v, below, far);
 }
 
 // lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
@@ -345,8 +362,8 @@ BHM_ENGINE_INLINE float octant_lambda(const Views& w, int v, float hx, float hy,
 // Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
 // of its end estimates and to the relaxations d (all per unit volume).
 BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)[3],
-                                       const int (&far_of)[3][kSides]) {
-    const VoxelStrains k = voxel_strains(w, v, below, far_of);
+                                       const float (&far_strain)[3][kSides]) {
+    const VoxelStrains k = voxel_strains(w, v, below, far_strain);
     float P[3][kSides] = {};
 #pragma GCC unroll 8
     for (int sx = 0; sx < kSides; ++sx)
@@ -393,18 +410,39 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
 // The voxels of one run (dummy slots have all coefficients zero, so whole vectors run). Along x
 // the - link, the partner's other links and d are contiguous (lattice order: slots v - 1, v - 2
 // and v + 1); along y and z a uniform run reads them at a constant offset, a gathered one
-// through the tables, and the far links (nonzero only at column ends) through far_slot.
+// through the tables, and the far links (nonzero only at column ends) from the far strains the
+// sparse copy filled (far_strain_copies).
 template <bool kGather>
 BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
     const int below_y = run.below_y, below_z = run.below_z;
+    const float* __restrict ex = w.strain[0];
 #pragma GCC ivdep
     for (int v = run.begin; v < run.end; ++v) {
         const int below[3] = {v - 1, kGather ? w.below[1][v] : v - below_y,
                               kGather ? w.below[2][v] : v - below_z};
-        const int far_of[3][kSides] = {{v - 2, v + 1},
-                                       {w.far_slot[1][0][v], w.far_slot[1][1][v]},
-                                       {w.far_slot[2][0][v], w.far_slot[2][1][v]}};
-        voxel_gradients(w, v, below, far_of);
+        const float far[3][kSides] = {{ex[v - 2], ex[v + 1]},
+                                      {w.far_strain[1][0][v], w.far_strain[1][1][v]},
+                                      {w.far_strain[2][0][v], w.far_strain[2][1][v]}};
+        voxel_gradients(w, v, below, far);
+    }
+}
+
+// The far links are a few per column (its two ends): copied through the model's sparse lists
+// instead of gathered on every slot of the dense loops (a gather is one scalar load per lane).
+void far_strain_copies(const PoissonParams& pp, PoissonScratch& p) {
+    for (int a = 1; a < 3; ++a) {
+        float* far[kSides] = {p.far_strain_neg[a], p.far_strain_pos[a]};
+        for (const PoissonParams::FarRead& r : pp.far_reads[a])
+            far[r.side][r.voxel] = p.strain[a][r.slot];
+    }
+}
+
+void far_gradient_copies(const PoissonParams& pp, PoissonScratch& p) {
+    for (int a = 0; a < 3; ++a) {
+        for (const PoissonParams::FarLink& f : pp.far_pos_links[a])
+            p.far_from_below[a][f.link] = p.far_pos[a][f.voxel];
+        for (const PoissonParams::FarLink& f : pp.far_neg_links[a])
+            p.far_from_above[a][f.link] = p.far_neg[a][f.voxel];
     }
 }
 
@@ -424,15 +462,13 @@ BHM_ENGINE_INLINE void shift_loop(const Model::Data& d, PoissonScratch& p, int a
     const PoissonParams& pp = d.poisson;
     const float L = static_cast<float>(d.voxel_size_m);
     const float* __restrict scale = pp.rest_scale[a].data();
-    const float* __restrict hp = pp.has_plus[a].data();
     const float* __restrict step = pp.pair_step[a].data();
     const int* __restrict plus = d.plus[a].data();
-    const int* __restrict minus = d.minus[a].data();
     const float* __restrict strain = p.strain[a];
     const float* __restrict grad_pos = p.grad_pos[a];
     const float* __restrict grad_neg = p.grad_neg[a];
-    const float* __restrict far_pos = p.far_pos[a];
-    const float* __restrict far_neg = p.far_neg[a];
+    const float* __restrict from_below = p.far_from_below[a];
+    const float* __restrict from_above = p.far_from_above[a];
     const float* __restrict dgrad_pos = p.dgrad_pos[a];
     const float* __restrict dgrad_neg = p.dgrad_neg[a];
     float* __restrict pair_d = p.pair_d[a];
@@ -441,8 +477,7 @@ BHM_ENGINE_INLINE void shift_loop(const Model::Data& d, PoissonScratch& p, int a
 #pragma GCC ivdep
     for (int c = run.begin; c < run.end; ++c) {
         const int b = kGather ? plus[c] : c + delta;
-        const float sigma =
-            grad_pos[c] + grad_neg[b] + far_pos[minus[c]] + hp[b] * far_neg[plus[b]];
+        const float sigma = grad_pos[c] + grad_neg[b] + from_below[c] + from_above[c];
         shift[c] = L * strain[c] + scale[c] * sigma;
     }
     if (!pairs) return;
@@ -467,12 +502,14 @@ BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
     ensure(p, d.stored, d.link_lead);  // (sized at World creation: allocates nothing here)
     for (int a = 0; a < 3; ++a)
         link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
+    far_strain_copies(d.poisson, p);
     const Views w = views_of(d, p);
     for (const VoxelRun& run : d.voxel_runs)
         if (run.below_y == 0)
             voxel_loop<true>(w, run);
         else
             voxel_loop<false>(w, run);
+    far_gradient_copies(d.poisson, p);
     const bool pairs = !d.poisson.pair_voxels.empty();
     for (int a = 0; a < 3; ++a)
         for (const LinkRun& run : d.link_runs[a])

@@ -59,6 +59,11 @@ struct PoissonScratch {
     std::array<float*, 3> far_pos{};    //!< voxel: dW/de of the link after its + neighbour
     std::array<float*, 3> dgrad_neg{};  //!< voxel: dW/dd of its - link
     std::array<float*, 3> dgrad_pos{};  //!< voxel: dW/dd of its + link
+    //! Filled only at the entries of PoissonParams' far lists (zero elsewhere, never written):
+    std::array<float*, 3> far_strain_neg{};  //!< voxel: strain of its - side's far link
+    std::array<float*, 3> far_strain_pos{};  //!< voxel: strain of its + side's far link
+    std::array<float*, 3> far_from_below{};  //!< link slot: far_pos of the voxel below it
+    std::array<float*, 3> far_from_above{};  //!< link slot: far_neg of the voxel two above it
 };
 
 struct World::State {
