@@ -21,9 +21,10 @@
 //   and every voxel's - link is its slot minus one constant, so the passes read both ends
 //   contiguously; the other runs go through the tables. A short uniform run between gathered
 //   ones is gathered too (a loop entry costs more than a few gathered vectors), and a chunk with
-//   no - link on an axis (the first row or layer) takes the next chunk's offset. Absent links may point anywhere (their
-//   chord is replaced), so they never break a run; zero slots before slot 0 (link_lead) and dummy
-//   voxels after the last slot (up to `stored`) keep every offset read in bounds.
+//   no - link on an axis (the first row or layer) takes the next chunk's offset. Absent links may
+//   point anywhere (their chord is replaced), so they never break a run; zero slots before slot 0
+//   (link_lead) and dummy voxels after the last slot (up to `stored`) keep every offset read in
+//   bounds.
 // - Positions are stored relative to the body's origin (the low corner of the occupied cells'
 //   bounding box, `origin_m`), and the floor is at -origin_z: a body gives the same trajectory
 //   bit for bit wherever it sits in its workspace (shifted by whole voxels); the World adds the

@@ -253,11 +253,11 @@ void ensure(PoissonScratch& p, int stored, int lead) {
     for (int a = 0; a < 3; ++a) {
         p.storage[a].assign(kFields * span, 0.0f);
         float* base = p.storage[a].data() + lead;
-        float** fields[kFields] = {&p.strain[a],   &p.pair_d[a],    &p.pair_last[a],
-                                   &p.grad_neg[a], &p.grad_pos[a],  &p.far_neg[a],
-                                   &p.far_pos[a],  &p.dgrad_neg[a], &p.dgrad_pos[a],
-                                   &p.far_strain_neg[a], &p.far_strain_pos[a],
-                                   &p.far_from_below[a], &p.far_from_above[a]};
+        float** fields[kFields] = {&p.strain[a],         &p.pair_d[a],         &p.pair_last[a],
+                                   &p.grad_neg[a],       &p.grad_pos[a],       &p.far_neg[a],
+                                   &p.far_pos[a],        &p.dgrad_neg[a],      &p.dgrad_pos[a],
+                                   &p.far_strain_neg[a], &p.far_strain_pos[a], &p.far_from_below[a],
+                                   &p.far_from_above[a]};
         for (float** f : fields) {
             *f = base;
             base += span;
