@@ -40,6 +40,7 @@ bool remove_node(Genome& g, Rng& rng) {
     const int h = rng.index(g.hidden_count());
     const int node = g.first_hidden() + h;
     g.hidden.erase(g.hidden.begin() + h);
+    if (!g.hidden_ids.empty()) g.hidden_ids.erase(g.hidden_ids.begin() + h);  // NEAT genomes
     std::vector<CppnEdge> kept;
     kept.reserve(g.edges.size());
     for (auto e : g.edges) {
@@ -128,10 +129,20 @@ MutationKind random_mutation_kind(Rng& rng) {
 MutationOutcome mutate_until_new(const Genome& parent, const Phenotype& parent_phenotype,
                                  const Developer& developer, const Constraints& constraints,
                                  const CppnSettings& settings, int max_retries, Rng& rng) {
+    return mutate_until_new(parent, parent_phenotype, developer, constraints, max_retries, rng,
+                            [&](Genome& child, MutationKind kind) {
+                                return apply_mutation(child, kind, settings, rng);
+                            });
+}
+
+MutationOutcome mutate_until_new(const Genome& parent, const Phenotype& parent_phenotype,
+                                 const Developer& developer, const Constraints& constraints,
+                                 int max_retries, Rng& rng,
+                                 const std::function<bool(Genome&, MutationKind)>& mutate) {
     MutationOutcome out;
     for (int attempt = 1; attempt <= max_retries; ++attempt) {
         Genome child = parent;
-        if (!apply_mutation(child, random_mutation_kind(rng), settings, rng)) continue;
+        if (!mutate(child, random_mutation_kind(rng))) continue;
         Phenotype phenotype = developer.develop(child);
         if (phenotype == parent_phenotype) continue;
         if (!constraint_violation(constraints, developer.experiment().boundary, developer.space(),

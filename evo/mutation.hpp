@@ -3,6 +3,7 @@
 // remove an edge), each drawn with probability 1/6, and the neutral-mutation retry: a child whose
 // phenotype equals its parent's, or breaks a constraint, is redrawn from the parent.
 #include <array>
+#include <functional>
 
 #include "evo/experiment.hpp"
 #include "evo/genome.hpp"
@@ -43,5 +44,12 @@ struct MutationOutcome {
 MutationOutcome mutate_until_new(const Genome& parent, const Phenotype& parent_phenotype,
                                  const Developer& developer, const Constraints& constraints,
                                  const CppnSettings& settings, int max_retries, Rng& rng);
+
+//! The same retry loop with another set of operators (NEAT's numbered genes): `mutate` applies
+//! the drawn kind in place and returns false when it had nothing to act on.
+MutationOutcome mutate_until_new(const Genome& parent, const Phenotype& parent_phenotype,
+                                 const Developer& developer, const Constraints& constraints,
+                                 int max_retries, Rng& rng,
+                                 const std::function<bool(Genome&, MutationKind)>& mutate);
 
 }  // namespace bhm::evo

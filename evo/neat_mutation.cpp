@@ -4,8 +4,6 @@
 #include <utility>
 #include <vector>
 
-#include "evo/constraints.hpp"
-
 namespace bhm::evo {
 
 namespace {
@@ -32,32 +30,6 @@ bool add_node(Genome& g, const CppnSettings& s, Rng& rng, InnovationTable& table
     return true;
 }
 
-bool modify_node(Genome& g, Rng& rng) {
-    if (g.hidden.empty()) return false;
-    auto& f = g.hidden[static_cast<std::size_t>(rng.index(g.hidden_count()))];
-    f = static_cast<Activation>((static_cast<int>(f) + 1 + rng.index(kActivationCount - 1)) %
-                                kActivationCount);
-    return true;
-}
-
-bool remove_node(Genome& g, Rng& rng) {
-    if (g.hidden.empty()) return false;
-    const int h = rng.index(g.hidden_count());
-    const int node = g.first_hidden() + h;
-    g.hidden.erase(g.hidden.begin() + h);
-    g.hidden_ids.erase(g.hidden_ids.begin() + h);
-    std::vector<CppnEdge> kept;
-    kept.reserve(g.edges.size());
-    for (auto e : g.edges) {
-        if (e.from == node || e.to == node) continue;
-        if (e.from > node) --e.from;  // later hidden nodes shift down by one
-        if (e.to > node) --e.to;
-        kept.push_back(e);
-    }
-    g.edges = std::move(kept);
-    return true;
-}
-
 bool add_edge(Genome& g, const CppnSettings& s, Rng& rng, InnovationTable& table) {
     const int n = g.node_count();
     std::vector<std::pair<int, int>> candidates;
@@ -71,20 +43,6 @@ bool add_edge(Genome& g, const CppnSettings& s, Rng& rng, InnovationTable& table
         candidates[static_cast<std::size_t>(rng.index(static_cast<int>(candidates.size())))];
     g.edges.push_back({from, to, rng.uniform(-s.weight_range, s.weight_range),
                        table.connection(g.node_id(from), g.node_id(to))});
-    return true;
-}
-
-bool modify_edge(Genome& g, const CppnSettings& s, Rng& rng) {
-    if (g.edges.empty()) return false;
-    auto& e = g.edges[static_cast<std::size_t>(rng.index(static_cast<int>(g.edges.size())))];
-    e.weight = std::clamp(e.weight + s.mutation_weight_sigma * rng.normal(), -s.weight_range,
-                          s.weight_range);
-    return true;
-}
-
-bool remove_edge(Genome& g, Rng& rng) {
-    if (g.edges.empty()) return false;
-    g.edges.erase(g.edges.begin() + rng.index(static_cast<int>(g.edges.size())));
     return true;
 }
 
@@ -106,44 +64,21 @@ bool apply_neat_mutation(Genome& genome, MutationKind kind, const CppnSettings& 
     switch (kind) {
         case MutationKind::AddNode:
             return add_node(genome, settings, rng, table);
-        case MutationKind::ModifyNode:
-            return modify_node(genome, rng);
-        case MutationKind::RemoveNode:
-            return remove_node(genome, rng);
         case MutationKind::AddEdge:
             return add_edge(genome, settings, rng, table);
-        case MutationKind::ModifyEdge:
-            return modify_edge(genome, settings, rng);
-        case MutationKind::RemoveEdge:
-            return remove_edge(genome, rng);
+        default:  // changing or removing genes needs no new innovation number: AFPO's operators
+            return apply_mutation(genome, kind, settings, rng);
     }
-    return false;
 }
 
 MutationOutcome neat_mutate_until_new(const Genome& base, const Phenotype& reference,
                                       const Developer& developer, const Constraints& constraints,
                                       const CppnSettings& settings, int max_retries, Rng& rng,
                                       InnovationTable& table) {
-    MutationOutcome out;
-    for (int attempt = 1; attempt <= max_retries; ++attempt) {
-        Genome child = base;
-        if (!apply_neat_mutation(child, random_mutation_kind(rng), settings, rng, table)) continue;
-        Phenotype phenotype = developer.develop(child);
-        if (phenotype == reference) continue;
-        if (!constraint_violation(constraints, developer.experiment().boundary, developer.space(),
-                                  phenotype)
-                 .empty())
-            continue;
-        out.genome = std::move(child);
-        out.phenotype = std::move(phenotype);
-        out.attempts = attempt;
-        return out;
-    }
-    out.genome = base;
-    out.phenotype = reference;
-    out.attempts = max_retries;
-    out.cloned = true;
-    return out;
+    return mutate_until_new(base, reference, developer, constraints, max_retries, rng,
+                            [&](Genome& child, MutationKind kind) {
+                                return apply_neat_mutation(child, kind, settings, rng, table);
+                            });
 }
 
 }  // namespace bhm::evo
