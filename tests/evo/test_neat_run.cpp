@@ -12,6 +12,7 @@
 #include "evo/evolution_run.hpp"
 #include "evo/experiment_io.hpp"
 #include "evo_test_support.hpp"
+#include "run_test_support.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
@@ -28,25 +29,14 @@ Experiment neat_experiment() {
 }
 
 RunOptions options(int generations, int threads, const std::string& dir = "") {
-    RunOptions o;
-    o.generations = generations;
-    o.threads = threads;
-    o.out_dir = dir;
-    return o;
-}
-
-std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
-    for (auto& r : rows)
-        r.wall_s = 0.0;
-    return rows;
+    return test::run_options(generations, threads, dir);
 }
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-neat-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
+    return test::fresh_dir("neat", name);
 }
+
+using test::without_wall;
 
 std::string first_line(const fs::path& path) {
     std::ifstream in(path);
@@ -92,14 +82,8 @@ TEST_CASE("a stopped and resumed NEAT run equals its uninterrupted twin") {
     const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
     EvolutionRun uninterrupted(e, options(5, 2, whole.string()));
     uninterrupted.run();
-    {
-        EvolutionRun first(e, options(5, 1, parts.string()));
-        first.set_report_callback([&](auto r) {
-            if (r->generation == 2) first.request_stop();
-        });
-        CHECK(first.run() == StopReason::StopRequested);
-    }
-    auto resumed = EvolutionRun::resume(options(5, 2, parts.string()));
+    auto resumed = test::stopped_then_resumed(e, parts.string(), 5, 2, 2);
+    REQUIRE(resumed);
     CHECK(resumed->resume_warnings().empty());
     CHECK(resumed->state().generation == 2);
     CHECK(resumed->run() == StopReason::GenerationBudget);

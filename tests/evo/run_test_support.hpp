@@ -1,0 +1,59 @@
+#pragma once
+// Shared fixtures for the tests that drive whole EvolutionRuns: options, a per-process temporary
+// folder, histories compared without their wall-clock column, and the stop-then-resume half of
+// the "a resumed run equals its uninterrupted twin" tests.
+#include <unistd.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "evo/evaluator.hpp"
+#include "evo/evolution_run.hpp"
+
+namespace bhm::evo::test {
+
+inline RunOptions run_options(int generations, int threads, const std::string& dir = "",
+                              std::shared_ptr<Evaluator> evaluator = nullptr) {
+    RunOptions o;
+    o.generations = generations;
+    o.threads = threads;
+    o.out_dir = dir;
+    o.evaluator = std::move(evaluator);
+    return o;
+}
+
+//! The history without wall_s (the only field that depends on the machine's speed).
+inline std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
+    for (auto& r : rows)
+        r.wall_s = 0.0;
+    return rows;
+}
+
+//! An empty path under the temporary folder, unique to this suite (`suite`) and process.
+inline std::filesystem::path fresh_dir(const std::string& suite, const std::string& name) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() /
+        ("bhm-test-" + suite + "-" + name + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    return dir;
+}
+
+//! Runs `experiment` in `dir` with one thread until generation `stop_at` is reported, stops it as
+//! Ctrl-C would, and returns the run resumed from that folder with `generations` and `threads`.
+//! Returns null if the first run did not stop on request.
+inline std::unique_ptr<EvolutionRun> stopped_then_resumed(const Experiment& experiment,
+                                                          const std::string& dir, int generations,
+                                                          int threads, int stop_at) {
+    {
+        EvolutionRun first(experiment, run_options(generations, 1, dir));
+        first.set_report_callback([&](auto r) {
+            if (r->generation == stop_at) first.request_stop();
+        });
+        if (first.run() != StopReason::StopRequested) return nullptr;
+    }
+    return EvolutionRun::resume(run_options(generations, threads, dir));
+}
+
+}  // namespace bhm::evo::test
