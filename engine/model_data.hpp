@@ -81,6 +81,9 @@ struct PoissonParams {
     std::vector<float> lambda1;                   //!< cross modulus, octant with 1 linked axis
     std::vector<float> lambda2;                   //!< cross modulus, octant with 2 linked axes
     std::vector<float> lambda3;                   //!< cross modulus, octant with 3 linked axes
+    //! voxel, per octant o = 4 sx + 2 sy + sz: lambda_o / 8 of that octant (its linked axes
+    //! picked from lambda1..3), precomputed so the kernel does not rebuild it every step
+    std::array<std::vector<float>, 8> octant_lambda8;
     //! voxel, per [axis][side]: the centre strain the volumetric term of that side's octants uses,
     //! mu = own * e_side + other * e_other_side + far * e_far + pair * d (poisson.hpp).
     //! The strains are stresses over the voxel's E (a link's strain times E_link / E_voxel), so

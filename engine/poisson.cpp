@@ -35,6 +35,16 @@ constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half
 // 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp).
 constexpr float kInverseSaturation = 1.0f / 0.1f;
 
+// lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
+inline float octant_lambda(float hx, float hy, float hz, float lambda1, float lambda2,
+                           float lambda3) {
+    const float three = hx * hy * hz;
+    const float pairs = hx * hy + hy * hz + hz * hx;
+    const float two = pairs - 3.0f * three;
+    const float one = hx + hy + hz - 2.0f * pairs + 3.0f * three;
+    return one * lambda1 + two * lambda2 + three * lambda3;
+}
+
 int links_on_axis(const PoissonParams& pp, int a, int v) {
     return static_cast<int>(pp.has_minus[a][v] + pp.has_plus[a][v]);
 }
@@ -63,6 +73,8 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
     std::array<std::vector<double>, 3> octant_modulus;  // per axis: that mean / E, per voxel
     for (auto* v : {&pp.shear, &pp.lambda1, &pp.lambda2, &pp.lambda3})
         v->assign(d.stored, 0.0f);
+    for (auto& v : pp.octant_lambda8)
+        v.assign(d.stored, 0.0f);
     for (int a = 0; a < 3; ++a) {
         pp.has_plus[a].assign(d.stored, 0.0f);
         pp.has_minus[a].assign(d.stored, 0.0f);
@@ -104,6 +116,13 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
             octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
         }
     }
+    for (int v = 0; v < n; ++v)
+        for (int o = 0; o < 8; ++o)
+            pp.octant_lambda8[o][v] =
+                0.125f * octant_lambda(o & 4 ? pp.has_plus[0][v] : pp.has_minus[0][v],
+                                       o & 2 ? pp.has_plus[1][v] : pp.has_minus[1][v],
+                                       o & 1 ? pp.has_plus[2][v] : pp.has_minus[2][v],
+                                       pp.lambda1[v], pp.lambda2[v], pp.lambda3[v]);
     // The centre strain of each voxel on each axis (poisson.hpp), in the voxel's own strain
     // units: a link's strain times E_link / E_voxel (its stress over the voxel's modulus).
     auto young = [&](int v) { return spec.materials[d.voxel_material[v] - 1].youngs_modulus_pa; };
@@ -267,7 +286,7 @@ void ensure(PoissonScratch& p, int stored, int lead) {
 
 // Raw views of every array the voxel kernel touches, taken once per pass ([axis][side]).
 struct Views {
-    const float *shear, *lambda1, *lambda2, *lambda3;
+    const float *shear, *lambda8[8];
     const float *h[3][kSides], *own[3][kSides], *other[3][kSides], *far[3][kSides],
         *pair[3][kSides], *dev[3][kSides], *end[3][kSides];
     const int *far_slot[3][kSides], *below[3];
@@ -279,9 +298,8 @@ Views views_of(const Model::Data& d, PoissonScratch& p) {
     const PoissonParams& pp = d.poisson;
     Views w{};
     w.shear = pp.shear.data();
-    w.lambda1 = pp.lambda1.data();
-    w.lambda2 = pp.lambda2.data();
-    w.lambda3 = pp.lambda3.data();
+    for (int o = 0; o < 8; ++o)
+        w.lambda8[o] = pp.octant_lambda8[o].data();
     for (int a = 0; a < 3; ++a) {
         w.h[a][0] = pp.has_minus[a].data();
         w.h[a][1] = pp.has_plus[a].data();
@@ -350,15 +368,6 @@ VoxelStrains voxel_strains(const Views& w, int v) {
     return voxel_strains(w, v, below, far);
 }
 
-// lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
-BHM_ENGINE_INLINE float octant_lambda(const Views& w, int v, float hx, float hy, float hz) {
-    const float three = hx * hy * hz;
-    const float pairs = hx * hy + hy * hz + hz * hx;
-    const float two = pairs - 3.0f * three;
-    const float one = hx + hy + hz - 2.0f * pairs + 3.0f * three;
-    return one * w.lambda1[v] + two * w.lambda2[v] + three * w.lambda3[v];
-}
-
 // Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
 // of its end estimates and to the relaxations d (all per unit volume).
 BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)[3],
@@ -376,9 +385,9 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
                 // Volumetric stress lambda theta / sqrt(1 + (theta / theta_0)^2) (poisson.hpp).
                 // (Only where lambda > 0: an auxetic voxel's negative lambda stays linear, its
                 // energy is positive only with the deviatoric term's full weight.)
-                const float lambda = octant_lambda(w, v, hx, hy, hz);
-                const float q = theta * kInverseSaturation * static_cast<float>(lambda > 0.0f);
-                const float t = 0.125f * lambda * theta / std::sqrt(1.0f + q * q);
+                const float lambda8 = w.lambda8[4 * sx + 2 * sy + sz][v];  // lambda_o / 8
+                const float q = theta * kInverseSaturation * static_cast<float>(lambda8 > 0.0f);
+                const float t = lambda8 * theta / std::sqrt(1.0f + q * q);
                 P[0][sx] += hx * t;
                 P[1][sy] += hy * t;
                 P[2][sz] += hz * t;
@@ -542,7 +551,7 @@ double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const Poi
                     const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
                     const double theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
                     const double gx = k.gamma[0][sx], gy = k.gamma[1][sy], gz = k.gamma[2][sz];
-                    const double lambda = octant_lambda(w, v, hx, hy, hz);
+                    const double lambda = 8.0 * w.lambda8[4 * sx + 2 * sy + sz][v];
                     const double q = theta * kInverseSaturation;
                     const double theta0 = 1.0 / kInverseSaturation;
                     const double volumetric =
