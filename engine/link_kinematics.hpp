@@ -33,10 +33,10 @@ struct LinkFrame {
 //! caller; the clamp only keeps the numbers finite.
 inline constexpr float kMinOnePlusCos = 0.5f;
 
-BHM_ENGINE_INLINE LinkFrame link_frame(float dx, float dy, float dz, float aw, float ax, float ay,
-                                       float az, float bw, float bx, float by, float bz) {
+//! The frame of chord d whose length len = sqrt(d.d) is already known (computed exactly so).
+BHM_ENGINE_INLINE LinkFrame link_frame(float dx, float dy, float dz, float len, float aw, float ax,
+                                       float ay, float az, float bw, float bx, float by, float bz) {
     LinkFrame f;
-    const float len = std::sqrt(dx * dx + dy * dy + dz * dz);
     const float inv_len = 1.0f / len;
     f.length = len;
     f.ex = dx * inv_len;
@@ -84,6 +84,15 @@ BHM_ENGINE_INLINE LinkFrame link_frame(float dx, float dy, float dz, float aw, f
     f.theta_pos[1] = two_pos * (-gw * sy - sw * gy + cy);
     f.theta_pos[2] = two_pos * (-gw * sz - sw * gz + cz);
     return f;
+}
+
+BHM_ENGINE_INLINE float chord_length(float dx, float dy, float dz) {
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+BHM_ENGINE_INLINE LinkFrame link_frame(float dx, float dy, float dz, float aw, float ax, float ay,
+                                       float az, float bw, float bx, float by, float bz) {
+    return link_frame(dx, dy, dz, chord_length(dx, dy, dz), aw, ax, ay, az, bw, bx, by, bz);
 }
 
 }  // namespace bhm::engine

@@ -75,11 +75,30 @@ BHM_ENGINE_INLINE bool healthy(const LinkFrame& f, float extension, float rest_b
            (f.axis_cos > kMinOnePlusCos - 1.0f);
 }
 
+// The Poisson coupling's inputs to the link pass of one axis (poisson.hpp): the strains and
+// stresses its pass left in scratch, from which the rest-length shift L e - L sigma / M_link is
+// formed here (one pass over the links less, and no shift array to write and read back).
+struct PoissonInputs {
+    const float* strain = nullptr;
+    const float* grad_pos = nullptr;    // of the link's - end voxel (its + half-link)
+    const float* grad_neg = nullptr;    // of the link's + end voxel (its - half-link)
+    const float* from_below = nullptr;  // far terms of the column-end estimates
+    const float* from_above = nullptr;
+    const float* rest_scale = nullptr;  // -L / M_link
+};
+
+PoissonInputs poisson_inputs(const Model::Data& model, const PoissonScratch& p, int axis) {
+    return {p.strain[axis],         p.grad_pos[axis],       p.grad_neg[axis],
+            p.far_from_below[axis], p.far_from_above[axis], model.poisson.rest_scale[axis].data()};
+}
+
 // One axis's loop over the link slots of one run. kGather: the + end of slot c is plus[c];
-// otherwise it is voxel c + delta, and nothing is gathered.
-template <bool kGather>
+// otherwise it is voxel c + delta, and nothing is gathered. kPoisson: the chords come from the
+// Poisson pass's scratch and the rest lengths take its shift.
+template <bool kGather, bool kPoisson>
 BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, LinkScratch& out,
-                                int axis, float sin_t, float cos_t, const LinkRun& run) {
+                                const PoissonInputs& pi, int axis, float sin_t, float cos_t,
+                                const LinkRun& run) {
     const LinkParams& lp = model.links[axis];
     const float* __restrict exists = lp.exists.data();
     const float* __restrict k_axial = lp.k_axial.data();
@@ -89,7 +108,17 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     const float* __restrict rest_base = lp.rest_base.data();
     const float* __restrict rest_sin = lp.rest_sin.data();
     const float* __restrict rest_cos = lp.rest_cos.data();
-    const float* __restrict poisson_rest = out.poisson_rest;
+    const float* __restrict chord0 = out.chord[0];
+    const float* __restrict chord1 = out.chord[1];
+    const float* __restrict chord2 = out.chord[2];
+    const float* __restrict lengths = out.length;
+    const float* __restrict strain = pi.strain;
+    const float* __restrict grad_pos = pi.grad_pos;
+    const float* __restrict grad_neg = pi.grad_neg;
+    const float* __restrict from_below = pi.from_below;
+    const float* __restrict from_above = pi.from_above;
+    const float* __restrict rest_scale = pi.rest_scale;
+    const float voxel_size = static_cast<float>(model.voxel_size_m);
     const float inv_voxel_size = static_cast<float>(1.0 / model.voxel_size_m);
     const int* __restrict plus = v.plus;
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
@@ -124,9 +153,18 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
 #pragma GCC ivdep
     for (int c = run.begin; c < run.end; ++c) {
         const int b = kGather ? plus[c] : c + delta;
-        const LinkFrame f = frame_of(p0, p1, p2, qw, q0, q1, q2, c, b, exists[c], rest_base[c]);
+        LinkFrame f;
+        float rest_shift = 0.0f;
+        if constexpr (kPoisson) {
+            f = link_frame(chord0[c], chord1[c], chord2[c], lengths[c], qw[c], q0[c], q1[c],
+                           q2[c], qw[b], q0[b], q1[b], q2[b]);
+            const float sigma = grad_pos[c] + grad_neg[b] + from_below[c] + from_above[c];
+            rest_shift = voxel_size * strain[c] + rest_scale[c] * sigma;
+        } else {
+            f = frame_of(p0, p1, p2, qw, q0, q1, q2, c, b, exists[c], rest_base[c]);
+        }
         const float actuated = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
-        const float rest = actuated + poisson_rest[c];
+        const float rest = actuated + rest_shift;
         const float extension = f.length - rest;
         // Stiffness follows the actuated size s: axial E A / L ~ s, and bending and torsion
         // ~ s^2, so the transverse (shear) stiffness, moment / |d|^2, stays that of the rest
@@ -191,12 +229,23 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
 }  // namespace
 
 BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxels,
-                                LinkScratch& out, int axis, float sin_t, float cos_t) {
+                                LinkScratch& out, const PoissonScratch* poisson, int axis,
+                                float sin_t, float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
     int bad = 0;
-    for (const LinkRun& run : model.link_runs[axis])
-        bad += run.delta == 0 ? link_loop<true>(model, v, out, axis, sin_t, cos_t, run)
-                              : link_loop<false>(model, v, out, axis, sin_t, cos_t, run);
+    if (poisson) {
+        const PoissonInputs pi = poisson_inputs(model, *poisson, axis);
+        for (const LinkRun& run : model.link_runs[axis])
+            bad += run.delta == 0
+                       ? link_loop<true, true>(model, v, out, pi, axis, sin_t, cos_t, run)
+                       : link_loop<false, true>(model, v, out, pi, axis, sin_t, cos_t, run);
+    } else {
+        const PoissonInputs none;
+        for (const LinkRun& run : model.link_runs[axis])
+            bad += run.delta == 0
+                       ? link_loop<true, false>(model, v, out, none, axis, sin_t, cos_t, run)
+                       : link_loop<false, false>(model, v, out, none, axis, sin_t, cos_t, run);
+    }
     return bad;
 }
 

@@ -10,11 +10,13 @@
 namespace bhm::engine {
 
 //! Runs the link pass of one axis; sin_t and cos_t modulate the rest lengths of actuated links
-//! (rest = base + sin_t * rest_sin + cos_t * rest_cos + the Poisson shift in scratch). Returns the
+//! (rest = base + sin_t * rest_sin + cos_t * rest_cos). With `poisson` (the coupling is on and
+//! poisson_pass has run this step) the rest length also takes the Poisson shift, and the chords
+//! come from scratch (poisson.hpp). Returns the
 //! number of links that are unhealthy: stretched past one lattice length L, shorter than L / 10,
 //! sheared past 120 degrees, or non-finite (the step must then not be committed).
-int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& scratch, int axis,
-              float sin_t, float cos_t);
+int link_pass(const Model::Data& model, const VoxelState& voxels, LinkScratch& scratch,
+              const PoissonScratch* poisson, int axis, float sin_t, float cos_t);
 
 //! Index of the first unhealthy link slot of an axis (after link_pass reported one), or -1.
 int first_bad_link(const Model::Data& model, const VoxelState& voxels, const LinkScratch& scratch,

@@ -229,7 +229,47 @@ namespace {
 
 // Strain of every link slot: (|d| - actuated rest) / L, exactly 0 for absent slots, over the
 // same runs as the link pass (whole vectors, empty vectors skipped, uniform runs without
-// gathers; model_data.hpp). Slots in no run keep the zero they were sized with.
+// gathers; model_data.hpp). Slots in no run keep the zero they were sized with. Each slot's chord
+// and length are kept for the link pass, as it would measure them (link axis first; an absent
+// link's is the straight rest chord), so it need not read the double positions again.
+template <bool kGather>
+BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, int axis, float sin_t,
+                                   float cos_t, const LinkRun& run, float* __restrict out,
+                                   LinkScratch& link) {
+    const LinkParams& lp = d.links[axis];
+    const float* __restrict exists = lp.exists.data();
+    const float* __restrict rest_base = lp.rest_base.data();
+    const float* __restrict rest_sin = lp.rest_sin.data();
+    const float* __restrict rest_cos = lp.rest_cos.data();
+    const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    const double* __restrict p0 = s.pos[axis].data();
+    const double* __restrict p1 = s.pos[a1].data();
+    const double* __restrict p2 = s.pos[a2].data();
+    float* __restrict chord0 = link.chord[0];
+    float* __restrict chord1 = link.chord[1];
+    float* __restrict chord2 = link.chord[2];
+    float* __restrict lengths = link.length;
+    const int* __restrict plus = d.plus[axis].data();
+    const int delta = run.delta;
+#pragma GCC ivdep
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
+        const float e = exists[c];
+        const float d0 = static_cast<float>(p0[b] - p0[c]) * e + (1.0f - e) * rest_base[c];
+        const float d1 = static_cast<float>(p1[b] - p1[c]) * e;
+        const float d2 = static_cast<float>(p2[b] - p2[c]) * e;
+        const float length = chord_length(d0, d1, d2);
+        chord0[c] = d0;
+        chord1[c] = d1;
+        chord2[c] = d2;
+        lengths[c] = length;
+        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
+        out[c] = e * (length - rest) * inv_l;
+    }
+}
+
+// Without chords to keep (the energy diagnostic): the same strains.
 template <bool kGather>
 BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, int axis, float sin_t,
                                    float cos_t, const LinkRun& run, float* __restrict out) {
@@ -239,24 +279,34 @@ BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, in
     const float* __restrict rest_sin = lp.rest_sin.data();
     const float* __restrict rest_cos = lp.rest_cos.data();
     const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
-    const double* __restrict px = s.pos[0].data();
-    const double* __restrict py = s.pos[1].data();
-    const double* __restrict pz = s.pos[2].data();
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    const double* __restrict p0 = s.pos[axis].data();
+    const double* __restrict p1 = s.pos[a1].data();
+    const double* __restrict p2 = s.pos[a2].data();
     const int* __restrict plus = d.plus[axis].data();
-    const int delta = run.delta;
-#pragma GCC ivdep
     for (int c = run.begin; c < run.end; ++c) {
-        const int b = kGather ? plus[c] : c + delta;
-        const float dx = static_cast<float>(px[b] - px[c]);
-        const float dy = static_cast<float>(py[b] - py[c]);
-        const float dz = static_cast<float>(pz[b] - pz[c]);
+        const int b = kGather ? plus[c] : c + run.delta;
+        const float e = exists[c];
+        const float d0 = static_cast<float>(p0[b] - p0[c]) * e + (1.0f - e) * rest_base[c];
+        const float d1 = static_cast<float>(p1[b] - p1[c]) * e;
+        const float d2 = static_cast<float>(p2[b] - p2[c]) * e;
         const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
-        out[c] = exists[c] * (std::sqrt(dx * dx + dy * dy + dz * dz) - rest) * inv_l;
+        out[c] = e * (chord_length(d0, d1, d2) - rest) * inv_l;
     }
 }
 
 BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, int axis,
-                                    float sin_t, float cos_t, float* __restrict out) {
+                                    float sin_t, float cos_t, float* __restrict out,
+                                    LinkScratch& link) {
+    for (const LinkRun& run : d.link_runs[axis])
+        if (run.delta == 0)
+            strain_loop<true>(d, s, axis, sin_t, cos_t, run, out, link);
+        else
+            strain_loop<false>(d, s, axis, sin_t, cos_t, run, out, link);
+}
+
+void link_strains(const Model::Data& d, const VoxelState& s, int axis, float sin_t, float cos_t,
+                  float* __restrict out) {
     for (const LinkRun& run : d.link_runs[axis])
         if (run.delta == 0)
             strain_loop<true>(d, s, axis, sin_t, cos_t, run, out);
@@ -459,37 +509,21 @@ void far_gradient_copies(const PoissonParams& pp, PoissonScratch& p) {
 
 namespace {
 
-// Per link slot of one run: the normal stress dW/de (both ends, and the end estimates that reach
-// past their partner), applied as the rest-length shift L e - L sigma / M_link; then the
-// isolated links' d: the forces used d extrapolated in time from the last two relaxed values
-// (2 d_n-1 - d_n-2, an error of order dt^2, an inertia-like term; a d one step behind would be
-// an error of order dt, a damping or, coupled across axes, an anti-damping of the bending
-// modes); one Jacobi step from it is the relaxed value, and the next step's guess is set here.
+// The isolated links' d (the link pass applies the normal stresses, link_pass.cpp): the forces
+// used d extrapolated in time from the last two relaxed values (2 d_n-1 - d_n-2, an error of
+// order dt^2, an inertia-like term; a d one step behind would be an error of order dt, a damping
+// or, coupled across axes, an anti-damping of the bending modes); one Jacobi step from it is the
+// relaxed value, and the next step's guess is set here.
 template <bool kGather>
-BHM_ENGINE_INLINE void shift_loop(const Model::Data& d, PoissonScratch& p, int a,
-                                  const LinkRun& run, bool pairs, float* __restrict shift) {
-    const PoissonParams& pp = d.poisson;
-    const float L = static_cast<float>(d.voxel_size_m);
-    const float* __restrict scale = pp.rest_scale[a].data();
-    const float* __restrict step = pp.pair_step[a].data();
+BHM_ENGINE_INLINE void pair_loop(const Model::Data& d, PoissonScratch& p, int a,
+                                 const LinkRun& run) {
+    const float* __restrict step = d.poisson.pair_step[a].data();
     const int* __restrict plus = d.plus[a].data();
-    const float* __restrict strain = p.strain[a];
-    const float* __restrict grad_pos = p.grad_pos[a];
-    const float* __restrict grad_neg = p.grad_neg[a];
-    const float* __restrict from_below = p.far_from_below[a];
-    const float* __restrict from_above = p.far_from_above[a];
     const float* __restrict dgrad_pos = p.dgrad_pos[a];
     const float* __restrict dgrad_neg = p.dgrad_neg[a];
     float* __restrict pair_d = p.pair_d[a];
     float* __restrict pair_last = p.pair_last[a];
     const int delta = run.delta;
-#pragma GCC ivdep
-    for (int c = run.begin; c < run.end; ++c) {
-        const int b = kGather ? plus[c] : c + delta;
-        const float sigma = grad_pos[c] + grad_neg[b] + from_below[c] + from_above[c];
-        shift[c] = L * strain[c] + scale[c] * sigma;
-    }
-    if (!pairs) return;
 #pragma GCC ivdep
     for (int c = run.begin; c < run.end; ++c) {
         const int b = kGather ? plus[c] : c + delta;
@@ -510,7 +544,7 @@ BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
                                     float sin_t, float cos_t) {
     ensure(p, d.stored, d.link_lead);  // (sized at World creation: allocates nothing here)
     for (int a = 0; a < 3; ++a)
-        link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
+        link_strains(d, s, a, sin_t, cos_t, p.strain[a], links[a]);
     far_strain_copies(d.poisson, p);
     const Views w = views_of(d, p);
     for (const VoxelRun& run : d.voxel_runs)
@@ -519,13 +553,13 @@ BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
         else
             voxel_loop<false>(w, run);
     far_gradient_copies(d.poisson, p);
-    const bool pairs = !d.poisson.pair_voxels.empty();
+    if (d.poisson.pair_voxels.empty()) return;
     for (int a = 0; a < 3; ++a)
         for (const LinkRun& run : d.link_runs[a])
             if (run.delta == 0)
-                shift_loop<true>(d, p, a, run, pairs, links[a].poisson_rest);
+                pair_loop<true>(d, p, a, run);
             else
-                shift_loop<false>(d, p, a, run, pairs, links[a].poisson_rest);
+                pair_loop<false>(d, p, a, run);
 }
 
 double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const PoissonScratch& state,

@@ -61,8 +61,9 @@ double poisson_stiffness_factor(double nu);
 //! Sizes the Poisson scratch of a World (once, so a step allocates nothing).
 void prepare_poisson_scratch(const Model::Data& model, PoissonScratch& scratch);
 
-//! Writes every link's rest-length shift (LinkScratch::poisson_rest) from the current positions
-//! and relaxes the isolated links' d (the one state in `scratch`).
+//! From the current positions: every link's strain, chord and length, and the normal stresses
+//! (in `scratch` and `links`) from which the link pass forms the rest-length shifts; then relaxes
+//! the isolated links' d (the one state in `scratch`).
 void poisson_pass(const Model::Data& model, const VoxelState& voxels,
                   std::array<LinkScratch, 3>& links, PoissonScratch& scratch, float sin_t,
                   float cos_t);

@@ -37,10 +37,10 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
 }
 
 void init_links(const Model::Data& d, LinkScratch& l) {
-    // 20 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
+    // 23 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
     // each has link_lead zero slots first.
     const std::size_t span = static_cast<std::size_t>(d.link_lead) + d.stored;
-    l.storage.assign(20 * span, 0.0f);
+    l.storage.assign(23 * span, 0.0f);
     float* base = l.storage.data() + d.link_lead;
     auto next = [&]() {
         float* p = base;
@@ -58,7 +58,9 @@ void init_links(const Model::Data& d, LinkScratch& l) {
         l.prev_theta_neg[i] = next();
     for (int i = 0; i < 3; ++i)
         l.prev_theta_pos[i] = next();
-    l.poisson_rest = next();
+    for (int i = 0; i < 3; ++i)
+        l.chord[i] = next();
+    l.length = next();
 }
 
 struct Phase {
@@ -118,7 +120,8 @@ void World::step() {
     if (d.poisson.active) poisson_pass(d, s.voxels, s.links, s.poisson, sin_t, cos_t);
     int bad_links = 0;
     for (int axis = 0; axis < 3; ++axis)
-        bad_links += link_pass(d, s.voxels, s.links[axis], axis, sin_t, cos_t);
+        bad_links += link_pass(d, s.voxels, s.links[axis], d.poisson.active ? &s.poisson : nullptr,
+                               axis, sin_t, cos_t);
     if (bad_links != 0) {
         std::ostringstream why;
         why << "link stretched by more than a voxel, squeezed below a tenth of one, or sheared "

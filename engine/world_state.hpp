@@ -40,7 +40,12 @@ struct LinkScratch {
     std::array<float*, 3> moment_neg{};
     std::array<float*, 3> moment_pos{};
     float* prev_extension = nullptr;
-    float* poisson_rest = nullptr;  //!< rest-length shift of the Poisson coupling (poisson.hpp)
+    //! With the Poisson coupling on, its strain pass measures every link's chord (+ end minus
+    //! - end, an absent link's the straight rest chord) and length once, and the link pass reads
+    //! them instead of measuring again from the double positions. Components in the axis's own
+    //! order: along the link axis, then the next two axes cyclically (link_kinematics.hpp).
+    std::array<float*, 3> chord{};
+    float* length = nullptr;
     std::array<float*, 3> prev_theta_neg{};
     std::array<float*, 3> prev_theta_pos{};
 };
