@@ -89,8 +89,9 @@ struct PoissonParams {
     //! The strains are stresses over the voxel's E (a link's strain times E_link / E_voxel), so
     //! two materials in one link stay springs in series.
     std::array<std::array<std::vector<float>, 2>, 3> mu_own, mu_other, mu_far, mu_pair;
-    //! voxel, per [axis][side]: gamma = dev_scale * e_side + mu_pair * d, or mu where at_end = 1
-    std::array<std::array<std::vector<float>, 2>, 3> dev_scale, at_end;
+    //! voxel, per [axis][side]: gamma = dev_scale * e_side + mu_pair * d, or mu at a column's
+    //! end (where mu_far < 0); dev_scale > 0 exactly where that half-link exists
+    std::array<std::array<std::vector<float>, 2>, 3> dev_scale;
     //! voxel, per [axis][side]: the link slot e_far reads (the partner's other link), or kNoLink
     std::array<std::array<std::vector<std::int32_t>, 2>, 3> far_slot;
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent

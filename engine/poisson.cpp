@@ -82,7 +82,7 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
         pp.pair_step[a].assign(d.stored, 0.0f);
         for (int s = 0; s < kSides; ++s) {
             for (auto* v : {&pp.mu_own[a][s], &pp.mu_other[a][s], &pp.mu_far[a][s],
-                            &pp.mu_pair[a][s], &pp.dev_scale[a][s], &pp.at_end[a][s]})
+                            &pp.mu_pair[a][s], &pp.dev_scale[a][s]})
                 v->assign(d.stored, 0.0f);
             pp.far_slot[a][s].assign(d.stored, kNoLink);
         }
@@ -164,7 +164,6 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                 pp.mu_far[a][s][v] =
                     static_cast<float>(-0.5 * (2.0 * ep * en / (ep + en)) / young(v));
                 pp.far_slot[a][s][v] = s == 1 ? p : d.minus[a][p];
-                pp.at_end[a][s][v] = 1.0f;
             } else if (relaxed[p]) {
                 // An isolated link (a column of two): the two centres are e_link -+ d, d relaxed.
                 pp.mu_own[a][s][v] = w[s];
@@ -337,8 +336,8 @@ void ensure(PoissonScratch& p, int stored, int lead) {
 // Raw views of every array the voxel kernel touches, taken once per pass ([axis][side]).
 struct Views {
     const float *shear, *lambda8[8];
-    const float *h[3][kSides], *own[3][kSides], *other[3][kSides], *far[3][kSides],
-        *pair[3][kSides], *dev[3][kSides], *end[3][kSides];
+    const float *own[3][kSides], *other[3][kSides], *far[3][kSides], *pair[3][kSides],
+        *dev[3][kSides];
     const int *far_slot[3][kSides], *below[3];
     const float *strain[3], *d[3], *far_strain[3][kSides];
     float *grad_neg[3], *grad_pos[3], *far_neg[3], *far_pos[3], *dgrad_neg[3], *dgrad_pos[3];
@@ -351,15 +350,12 @@ Views views_of(const Model::Data& d, PoissonScratch& p) {
     for (int o = 0; o < 8; ++o)
         w.lambda8[o] = pp.octant_lambda8[o].data();
     for (int a = 0; a < 3; ++a) {
-        w.h[a][0] = pp.has_minus[a].data();
-        w.h[a][1] = pp.has_plus[a].data();
         for (int s = 0; s < kSides; ++s) {
             w.own[a][s] = pp.mu_own[a][s].data();
             w.other[a][s] = pp.mu_other[a][s].data();
             w.far[a][s] = pp.mu_far[a][s].data();
             w.pair[a][s] = pp.mu_pair[a][s].data();
             w.dev[a][s] = pp.dev_scale[a][s].data();
-            w.end[a][s] = pp.at_end[a][s].data();
             w.far_slot[a][s] = pp.far_slot[a][s].data();
         }
         w.below[a] = d.minus[a].data();
@@ -375,6 +371,16 @@ Views views_of(const Model::Data& d, PoissonScratch& p) {
         w.dgrad_pos[a] = p.dgrad_pos[a];
     }
     return w;
+}
+
+// Flags derived from the coefficients (one array stream less each, per axis and side): a
+// half-link exists exactly where its series weight dev_scale is set (> 0), and a side is a
+// column's end estimate exactly where it reads a far link (mu_far < 0). Exactly 1 or 0.
+BHM_ENGINE_INLINE float half_link_exists(const Views& w, int a, int s, int v) {
+    return static_cast<float>(w.dev[a][s][v] > 0.0f);
+}
+BHM_ENGINE_INLINE float at_column_end(const Views& w, int a, int s, int v) {
+    return static_cast<float>(w.far[a][s][v] < 0.0f);
 }
 
 // The strains one voxel's octants see: mu (volumetric term) and gamma (deviatoric term) of each
@@ -394,7 +400,7 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
         const float dd[kSides] = {w.d[a][below[a]], w.d[a][v]};
 #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
-            out.h[a][s] = w.h[a][s][v];
+            out.h[a][s] = half_link_exists(w, a, s, v);
             const float far = far_strain[a][s];
             const float pair = w.pair[a][s][v] * dd[s];
             out.mu[a][s] =
@@ -402,7 +408,7 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
             // The deviatoric term uses the half-link, except at a column's end, where it takes
             // the same estimate as the volumetric one (so a uniform strain stays exact there).
             const float half = w.dev[a][s][v] * e[s] + pair;
-            out.gamma[a][s] = half + w.end[a][s][v] * (out.mu[a][s] - half);
+            out.gamma[a][s] = half + at_column_end(w, a, s, v) * (out.mu[a][s] - half);
         }
     }
     return out;
@@ -449,7 +455,7 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
 #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             const float deviatoric = g * k.gamma[a][s];  // 4 octants x 2 G gamma / 8
-            const float end = w.end[a][s][v];
+            const float end = at_column_end(w, a, s, v);
             const float own = w.own[a][s][v];
             const float dev = w.dev[a][s][v];
             grad[s] = own * P[a][s] + w.other[a][1 - s][v] * P[a][1 - s] +
