@@ -317,6 +317,9 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         }
     }
 
+    // A body without links (a lone voxel) has no strain to couple: skip the pass (it would
+    // write zeros every step).
+    if (d.link_count == 0) pp.active = false;
     if (pp.active) finish_poisson_params(d);
 
     // Voxelyze's recommended step: 1 / (2 pi sqrt(k_max / m_min)), rotational modes included.
