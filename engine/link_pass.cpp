@@ -156,8 +156,8 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
         LinkFrame f;
         float rest_shift = 0.0f;
         if constexpr (kPoisson) {
-            f = link_frame(chord0[c], chord1[c], chord2[c], lengths[c], qw[c], q0[c], q1[c],
-                           q2[c], qw[b], q0[b], q1[b], q2[b]);
+            f = link_frame(chord0[c], chord1[c], chord2[c], lengths[c], qw[c], q0[c], q1[c], q2[c],
+                           qw[b], q0[b], q1[b], q2[b]);
             const float sigma = grad_pos[c] + grad_neg[b] + from_below[c] + from_above[c];
             rest_shift = voxel_size * strain[c] + rest_scale[c] * sigma;
         } else {

@@ -268,32 +268,6 @@ BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, in
     }
 }
 
-// Without chords to keep (the energy diagnostic): the same strains.
-template <bool kGather>
-BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, int axis, float sin_t,
-                                   float cos_t, const LinkRun& run, float* __restrict out) {
-    const LinkParams& lp = d.links[axis];
-    const float* __restrict exists = lp.exists.data();
-    const float* __restrict rest_base = lp.rest_base.data();
-    const float* __restrict rest_sin = lp.rest_sin.data();
-    const float* __restrict rest_cos = lp.rest_cos.data();
-    const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    const double* __restrict p0 = s.pos[axis].data();
-    const double* __restrict p1 = s.pos[a1].data();
-    const double* __restrict p2 = s.pos[a2].data();
-    const int* __restrict plus = d.plus[axis].data();
-    for (int c = run.begin; c < run.end; ++c) {
-        const int b = kGather ? plus[c] : c + run.delta;
-        const float e = exists[c];
-        const float d0 = static_cast<float>(p0[b] - p0[c]) * e + (1.0f - e) * rest_base[c];
-        const float d1 = static_cast<float>(p1[b] - p1[c]) * e;
-        const float d2 = static_cast<float>(p2[b] - p2[c]) * e;
-        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
-        out[c] = e * (chord_length(d0, d1, d2) - rest) * inv_l;
-    }
-}
-
 BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, int axis,
                                     float sin_t, float cos_t, float* __restrict out,
                                     LinkScratch& link) {
@@ -302,15 +276,6 @@ BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, i
             strain_loop<true>(d, s, axis, sin_t, cos_t, run, out, link);
         else
             strain_loop<false>(d, s, axis, sin_t, cos_t, run, out, link);
-}
-
-void link_strains(const Model::Data& d, const VoxelState& s, int axis, float sin_t, float cos_t,
-                  float* __restrict out) {
-    for (const LinkRun& run : d.link_runs[axis])
-        if (run.delta == 0)
-            strain_loop<true>(d, s, axis, sin_t, cos_t, run, out);
-        else
-            strain_loop<false>(d, s, axis, sin_t, cos_t, run, out);
 }
 
 // lead: zero slots before slot 0 (uniform voxel runs read slot v - below, model_data.hpp).
@@ -574,8 +539,17 @@ double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const Poi
     PoissonScratch p;
     ensure(p, d.stored, d.link_lead);
     const bool stepped = !state.storage[0].empty();
+    // The strain pass also keeps the chords for the link pass: give it somewhere to put them.
+    std::array<LinkScratch, 3> chords;
+    const std::size_t span = static_cast<std::size_t>(d.link_lead) + d.stored;
+    for (LinkScratch& l : chords) {
+        l.storage.assign(4 * span, 0.0f);
+        for (int i = 0; i < 3; ++i)
+            l.chord[i] = l.storage.data() + d.link_lead + i * span;
+        l.length = l.storage.data() + d.link_lead + 3 * span;
+    }
     for (int a = 0; a < 3; ++a) {
-        link_strains(d, s, a, sin_t, cos_t, p.strain[a]);
+        link_strains(d, s, a, sin_t, cos_t, p.strain[a], chords[a]);
         // The relaxed d of the last step (the forces used its extrapolation).
         if (stepped) std::copy(state.pair_last[a], state.pair_last[a] + d.stored, p.pair_d[a]);
     }

@@ -206,8 +206,7 @@ struct CorpusResult {
 };
 
 CorpusResult run_corpus(const std::string& path, const std::string& assets, double voxel_steps,
-                        int min_voxels, int max_voxels, bool per_body,
-                        bool fingerprint) {
+                        int min_voxels, int max_voxels, bool per_body, bool fingerprint) {
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot open the corpus file");
     nlohmann::json corpus;
@@ -419,9 +418,8 @@ int main(int argc, char** argv) {
             if (files.empty()) throw std::runtime_error(corpus_dir + ": no corpus file (*.json)");
             std::sort(files.begin(), files.end());
             for (const auto& file : files) {
-                const CorpusResult c =
-                    run_corpus(file, assets, 2e6 * steps_scale, min_voxels, max_voxels, per_body,
-                               fingerprint);
+                const CorpusResult c = run_corpus(file, assets, 2e6 * steps_scale, min_voxels,
+                                                  max_voxels, per_body, fingerprint);
                 if (c.bodies.empty()) continue;  // no body of this corpus in the voxel range
                 csv << csv_row(c, machine, commit) << "\n";
                 std::cerr << "corpus " << c.name << ": " << c.bodies.size() << " bodies, "
