@@ -90,6 +90,21 @@ BHM_ENGINE_INLINE float chord_length(float dx, float dy, float dz) {
     return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+struct Chord {
+    float d0, d1, d2;  //!< + end minus - end, link axis first
+};
+
+//! The chord of the link from voxel a to voxel b, from positions p0, p1, p2 in the link's axis
+//! order; an absent link (exists 0) sees the straight rest chord, so its (discarded) numbers stay
+//! finite whatever its neighbours do. The link pass and the Poisson strain pass both measure it
+//! so, and must agree bit for bit.
+BHM_ENGINE_INLINE Chord link_chord(const double* __restrict p0, const double* __restrict p1,
+                                   const double* __restrict p2, int a, int b, float exists,
+                                   float rest_base) {
+    return {static_cast<float>(p0[b] - p0[a]) * exists + (1.0f - exists) * rest_base,
+            static_cast<float>(p1[b] - p1[a]) * exists, static_cast<float>(p2[b] - p2[a]) * exists};
+}
+
 BHM_ENGINE_INLINE LinkFrame link_frame(float dx, float dy, float dz, float aw, float ax, float ay,
                                        float az, float bw, float bx, float by, float bz) {
     return link_frame(dx, dy, dz, chord_length(dx, dy, dz), aw, ax, ay, az, bw, bx, by, bz);

@@ -44,18 +44,15 @@ AxisView axis_view(const Model::Data& model, const VoxelState& s, int axis) {
             model.plus[axis].data()};
 }
 
-// The chord of the link from voxel a to voxel b; an absent link sees a straight rest chord so its
-// (discarded) numbers stay finite whatever its neighbours do. Restrict pointers: nothing the link
+// The frame of the link from voxel a to voxel b (link_chord). Restrict pointers: nothing the link
 // pass writes aliases them.
 BHM_ENGINE_INLINE LinkFrame frame_of(const double* __restrict p0, const double* __restrict p1,
                                      const double* __restrict p2, const float* __restrict qw,
                                      const float* __restrict q0, const float* __restrict q1,
                                      const float* __restrict q2, int a, int b, float exists,
                                      float rest_base) {
-    const float dx = static_cast<float>(p0[b] - p0[a]) * exists + (1.0f - exists) * rest_base;
-    const float dy = static_cast<float>(p1[b] - p1[a]) * exists;
-    const float dz = static_cast<float>(p2[b] - p2[a]) * exists;
-    return link_frame(dx, dy, dz, qw[a], q0[a], q1[a], q2[a], qw[b], q0[b], q1[b], q2[b]);
+    const Chord d = link_chord(p0, p1, p2, a, b, exists, rest_base);
+    return link_frame(d.d0, d.d1, d.d2, qw[a], q0[a], q1[a], q2[a], qw[b], q0[b], q1[b], q2[b]);
 }
 
 BHM_ENGINE_INLINE int plus_of(const AxisView& v, int axis, int c) {
