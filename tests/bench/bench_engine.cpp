@@ -8,6 +8,10 @@
 //   median_voxel_steps_per_s,max_voxel_steps_per_s,simulations_per_s_11s,build_us,machine,commit
 //   bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] [--assets DIR] [--scenes-only]
 //                [--corpus-only] [--min-voxels N] [--max-voxels N] [--per-body] [--fingerprint]
+//                [--poisson-off]
+// --poisson-off sets every material's Poisson ratio to 0, which turns the Poisson coupling
+// (engine/poisson.hpp) off: the difference to a normal run is that coupling's cost (its own pass
+// and, through the stiffer normal modes, its shorter stable step).
 // Rates are per CPU second of the stepping thread (CLOCK_THREAD_CPUTIME_ID), so a machine shared
 // with other jobs distorts them less than wall time would; the "_2threads" row is the exception:
 // it measures scaling, so it uses wall time and counts both worlds (voxels and links are the sum,
@@ -151,6 +155,14 @@ std::uint64_t state_fingerprint(const bhm::engine::World& world) {
     return hash;
 }
 
+// The spec as timed: with --poisson-off, every material's nu is 0 (the coupling off).
+BodySpec as_timed(BodySpec spec, bool poisson_off) {
+    if (poisson_off)
+        for (Material& m : spec.materials)
+            m.poisson_ratio = 0.0;
+    return spec;
+}
+
 Result run_single(const std::string& name, const BodySpec& spec, std::int64_t steps,
                   bool fingerprint = false) {
     const double build_start = thread_cpu_s();
@@ -206,7 +218,8 @@ struct CorpusResult {
 };
 
 CorpusResult run_corpus(const std::string& path, const std::string& assets, double voxel_steps,
-                        int min_voxels, int max_voxels, bool per_body, bool fingerprint) {
+                        int min_voxels, int max_voxels, bool per_body, bool fingerprint,
+                        bool poisson_off) {
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot open the corpus file");
     nlohmann::json corpus;
@@ -227,7 +240,8 @@ CorpusResult run_corpus(const std::string& path, const std::string& assets, doub
         // from the run's seed as evaluate_body draws them.
         const auto body = bhm::evo::apply_frame_and_overrides(
             experiment, bhm::evo::parse_body(entry.at("body"), path));
-        const BodySpec spec = bhm::evo::make_body_spec(experiment, body, experiment.evolution.seed);
+        const BodySpec spec = as_timed(
+            bhm::evo::make_body_spec(experiment, body, experiment.evolution.seed), poisson_off);
         int voxels = 0;
         for (auto m : spec.material)
             voxels += m != 0;
@@ -323,7 +337,7 @@ std::string csv_row(const CorpusResult& c, const std::string& machine, const std
     std::cerr << "bench_engine: " << message << "\n"
               << "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] "
                  "[--assets DIR] [--scenes-only] [--corpus-only] [--min-voxels N] "
-                 "[--max-voxels N] [--per-body] [--fingerprint]\n";
+                 "[--max-voxels N] [--per-body] [--fingerprint] [--poisson-off]\n";
     std::exit(2);
 }
 
@@ -334,7 +348,8 @@ int main(int argc, char** argv) {
     const char* env_commit = std::getenv("BHM_COMMIT");
     std::string commit = env_commit ? env_commit : "unknown";
     std::string corpus_dir = "tests/bench/corpus", assets = "assets/experiments";
-    bool scenes_wanted = true, corpus_wanted = true, per_body = false, fingerprint = false;
+    bool scenes_wanted = true, corpus_wanted = true, per_body = false, fingerprint = false,
+         poisson_off = false;
     int min_voxels = 0, max_voxels = 1 << 30;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -366,12 +381,16 @@ int main(int argc, char** argv) {
             per_body = true;
         } else if (arg == "--fingerprint") {
             fingerprint = true;
+        } else if (arg == "--poisson-off") {
+            poisson_off = true;
         } else if (arg == "--help" || arg == "-h") {
             std::cout << "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] "
                          "[--assets DIR] [--scenes-only] [--corpus-only] [--min-voxels N] "
-                         "[--max-voxels N] [--per-body] [--fingerprint]\n"
+                         "[--max-voxels N] [--per-body] [--fingerprint] [--poisson-off]\n"
                          "--per-body: each corpus body's rate on stderr.\n"
                          "--fingerprint: a hash of each simulation's final state on stderr.\n"
+                         "--poisson-off: every material's Poisson ratio set to 0 (the "
+                         "coupling's cost).\n"
                          "Times the engine on fixed scenes and on the body corpus; CSV on "
                          "stdout.\n";
             return 0;
@@ -388,7 +407,9 @@ int main(int argc, char** argv) {
     try {
         if (scenes_wanted) {
             double single_cantilever_wall_rate = 0.0;
-            const auto list = scenes();
+            auto list = scenes();
+            for (Scene& scene : list)
+                scene.spec = as_timed(scene.spec, poisson_off);
             for (const Scene& scene : list) {
                 const auto steps = std::max<std::int64_t>(
                     1, static_cast<std::int64_t>(static_cast<double>(scene.steps) * steps_scale));
@@ -419,7 +440,7 @@ int main(int argc, char** argv) {
             std::sort(files.begin(), files.end());
             for (const auto& file : files) {
                 const CorpusResult c = run_corpus(file, assets, 2e6 * steps_scale, min_voxels,
-                                                  max_voxels, per_body, fingerprint);
+                                                  max_voxels, per_body, fingerprint, poisson_off);
                 if (c.bodies.empty()) continue;  // no body of this corpus in the voxel range
                 csv << csv_row(c, machine, commit) << "\n";
                 std::cerr << "corpus " << c.name << ": " << c.bodies.size() << " bodies, "

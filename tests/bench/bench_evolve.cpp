@@ -7,10 +7,13 @@
 // per simulation onto `threads` idle cores (what a shared machine cannot show by wall time).
 //
 //   bench_evolve [--sims N] [--sim-seconds S] [--threads-list 1,2] [--assets DIR] [--commit SHA]
-//                [PRESET...]
+//                [--poisson-off] [PRESET...]
+// --poisson-off sets every material's Poisson ratio to 0 (the engine's Poisson coupling off), to
+// show that coupling's share of the cost.
 //
 // Defaults: 8 simulations of 0.2 s per (preset, thread count), presets paper-exp1, paper-exp2 and
-// paper-exp3 from assets/experiments (run from the repository root, as scripts/bench.sh does), threads 1 and
+// paper-exp3 from assets/experiments (run from the repository root, as scripts/bench.sh does),
+// threads 1 and
 // 2. CSV on stdout, notes on stderr; the commit comes from --commit or $BHM_COMMIT.
 #include <sys/utsname.h>
 #include <time.h>
@@ -32,8 +35,8 @@
 #include "evo/mutation.hpp"
 #include "evo/phenotype.hpp"
 #include "evo/scene.hpp"
-#include "tests/bench/bench_machine.hpp"
 #include "evo/worker_pool.hpp"
+#include "tests/bench/bench_machine.hpp"
 
 using namespace bhm::evo;
 
@@ -78,6 +81,7 @@ int run(int argc, char** argv) {
     double sim_seconds = 0.2;
     std::vector<int> thread_counts = {1, 2};
     std::vector<std::string> presets;
+    bool poisson_off = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -92,6 +96,8 @@ int run(int argc, char** argv) {
             sims = std::stoi(value());
         else if (a == "--sim-seconds")
             sim_seconds = std::stod(value());
+        else if (a == "--poisson-off")
+            poisson_off = true;
         else if (a == "--threads-list") {
             thread_counts.clear();
             std::stringstream list(value());
@@ -112,7 +118,10 @@ int run(int argc, char** argv) {
     const std::string machine = machine_description();
     for (const auto& preset : presets) {
         const std::string path = assets + "/" + preset + ".json";
-        const Experiment full = load_experiment(path);
+        Experiment full = load_experiment(path);
+        if (poisson_off)
+            for (MaterialEntry& m : full.materials)
+                m.physics.poisson_ratio = 0.0;
         const Developer dev(full);
         const int P = full.evolution.population;
         Rng rng(full.evolution.seed);
@@ -152,7 +161,8 @@ int run(int argc, char** argv) {
             // CPU time of the simulations, scaled to full length: on a machine shared with other
             // jobs the wall-clock rate says more about the load than about the code, so the
             // _cpu figure projects a generation onto `threads` otherwise idle cores.
-            const double cpu_per_full_sim = (process_cpu_s() - cpu_sim) / sims * full_s / sim_seconds;
+            const double cpu_per_full_sim =
+                (process_cpu_s() - cpu_sim) / sims * full_s / sim_seconds;
             const double generation_cpu_s =
                 coordinator_cpu_s + (P + 1) * cpu_per_full_sim / threads;
             const double sim_rate =
