@@ -6,14 +6,17 @@
 // generations_per_hour uses wall time; generations_per_hour_cpu projects the measured CPU time
 // per simulation onto `threads` idle cores (what a shared machine cannot show by wall time).
 //
-//   bench_evolve [--sims N] [--sim-seconds S] [--threads-list 1,2] [--assets DIR] [--commit SHA]
+//   bench_evolve [--sims N (0: all)] [--sim-seconds S] [--threads-list 1,2] [--assets DIR]
+//   [--commit SHA]
 //                [--poisson-off] [PRESET...]
 // --poisson-off sets every material's Poisson ratio to 0 (the engine's Poisson coupling off), to
 // show that coupling's share of the cost.
 //
-// Defaults: 8 simulations of 0.2 s per (preset, thread count), presets paper-exp1, paper-exp2 and
-// paper-exp3 from assets/experiments (run from the repository root, as scripts/bench.sh does),
-// threads 1 and
+// Defaults: one simulation of 0.2 s for each body of a whole random generation 0 (the preset's
+// population; a body's cost follows its voxels, and the first few random bodies are no sample of
+// a generation: in paper-exp1 the first 4 average 88 voxels, all 50 330), presets paper-exp1,
+// paper-exp2 and paper-exp3 from assets/experiments (run from the repository root, as
+// scripts/bench.sh does), threads 1 and
 // 2. CSV on stdout, notes on stderr; the commit comes from --commit or $BHM_COMMIT.
 #include <sys/utsname.h>
 #include <time.h>
@@ -77,7 +80,7 @@ int run(int argc, char** argv) {
     const char* env_commit = std::getenv("BHM_COMMIT");
     std::string commit = env_commit ? env_commit : "unknown";
     std::string assets = "assets/experiments";
-    int sims = 8;
+    int sims = 0;  // 0: the whole population
     double sim_seconds = 0.2;
     std::vector<int> thread_counts = {1, 2};
     std::vector<std::string> presets;
@@ -92,9 +95,10 @@ int run(int argc, char** argv) {
             commit = value();
         else if (a == "--assets")
             assets = value();
-        else if (a == "--sims")
+        else if (a == "--sims") {
             sims = std::stoi(value());
-        else if (a == "--sim-seconds")
+            if (sims < 0) throw std::runtime_error("--sims needs a count >= 0 (0: the population)");
+        } else if (a == "--sim-seconds")
             sim_seconds = std::stod(value());
         else if (a == "--poisson-off")
             poisson_off = true;
@@ -129,6 +133,7 @@ int run(int argc, char** argv) {
         // Coordinator work of one generation, measured: P mutants (with neutral retries) +
         // newcomer.
         Population population = random_population(full, dev, P, rng);
+        const int preset_sims = sims > 0 ? sims : P;
         const auto t_coord = std::chrono::steady_clock::now();
         const double cpu_coord = process_cpu_s();
         for (int k = 0; k < P; ++k)
@@ -140,20 +145,21 @@ int run(int argc, char** argv) {
         const double coordinator_s = seconds_since(t_coord);
         const double coordinator_cpu_s = process_cpu_s() - cpu_coord;
 
-        // Simulations: the first sim_seconds of evaluations of the first `sims` random bodies.
+        // Simulations: the first sim_seconds of evaluations of the first `preset_sims` random
+        // bodies.
         Experiment shortened = full;
         const double full_s = evaluation_seconds(full);
         shortened.simulation.settle_s = std::min(full.simulation.settle_s, sim_seconds / 2);
         shortened.simulation.evaluate_s = sim_seconds - shortened.simulation.settle_s;
         double voxels = 0;
-        for (int k = 0; k < sims; ++k)
+        for (int k = 0; k < preset_sims; ++k)
             voxels += population.phenotypes[static_cast<std::size_t>(k % P)].voxels;
-        voxels /= sims;
+        voxels /= preset_sims;
         for (int threads : thread_counts) {
-            std::vector<FitnessReport> reports(static_cast<std::size_t>(sims));
+            std::vector<FitnessReport> reports(static_cast<std::size_t>(preset_sims));
             const auto t_sim = std::chrono::steady_clock::now();
             const double cpu_sim = process_cpu_s();
-            parallel_for(sims, threads, [&](int k) {
+            parallel_for(preset_sims, threads, [&](int k) {
                 reports[static_cast<std::size_t>(k)] = evaluate_body(
                     shortened, population.phenotypes[static_cast<std::size_t>(k % P)].body);
             });
@@ -162,19 +168,19 @@ int run(int argc, char** argv) {
             // jobs the wall-clock rate says more about the load than about the code, so the
             // _cpu figure projects a generation onto `threads` otherwise idle cores.
             const double cpu_per_full_sim =
-                (process_cpu_s() - cpu_sim) / sims * full_s / sim_seconds;
+                (process_cpu_s() - cpu_sim) / preset_sims * full_s / sim_seconds;
             const double generation_cpu_s =
                 coordinator_cpu_s + (P + 1) * cpu_per_full_sim / threads;
             const double sim_rate =
-                sims * sim_seconds / wall_s;             // simulated seconds per wall second
+                preset_sims * sim_seconds / wall_s;      // simulated seconds per wall second
             const double full_rate = sim_rate / full_s;  // full evaluations per second
             // A generation simulates at most P + 1 new bodies (fewer with cache hits and clones).
             const double generation_s = coordinator_s + (P + 1) / full_rate;
             char row[512];
             std::snprintf(row, sizeof row,
                           "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.3f,%.4f,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%s,%s",
-                          preset.c_str(), threads, P, sims, voxels, sim_seconds, full_s, wall_s,
-                          sim_rate, full_rate, coordinator_s, 3600.0 / generation_s,
+                          preset.c_str(), threads, P, preset_sims, voxels, sim_seconds, full_s,
+                          wall_s, sim_rate, full_rate, coordinator_s, 3600.0 / generation_s,
                           cpu_per_full_sim, 3600.0 / generation_cpu_s,
                           std::thread::hardware_concurrency(), machine.c_str(), commit.c_str());
             std::cout << row << std::endl;
