@@ -166,7 +166,7 @@ double link_omega2(const Material& a, const Material& b, double L, double temper
     const double g = series(shear_modulus(a), shear_modulus(b));
     const double m_min = std::min(a.density_kg_m3, b.density_kg_m3) * (L * L * L);
     const double inertia = m_min * L * L / 6.0;
-    // The Poisson coupling stiffens the axial modes up to the P-wave (uniaxial-strain) modulus.
+    // The Poisson coupling stiffens normal modes up to the bulk (or uniaxial-strain) modulus.
     const double k_axial = series(a.youngs_modulus_pa * poisson_stiffness_factor(a.poisson_ratio),
                                   b.youngs_modulus_pa * poisson_stiffness_factor(b.poisson_ratio)) *
                            L;

@@ -19,14 +19,8 @@ PoissonModuli poisson_moduli(double e, double nu, int linked_axes) {
 }
 
 double poisson_stiffness_factor(double nu) {
-    // The fastest wave of an isotropic solid is the P-wave, whose modulus is the uniaxial-strain
-    // M = lambda + 2 G = E (1 - nu) / ((1 + nu) (1 - 2 nu)) (the most a link's own modulus
-    // m_link reaches: model.cpp); the volumetric 3 K = E / (1 - 2 nu) is no wave's modulus. With
-    // 3 K here the step was 0.83x (nu = 0.35) to 0.58x (nu = 0.49) as long for no stability it
-    // needed: solid blocks and the whole corpus stay stable at 2.2x the step from M
-    // (docs/physics.md).
     const double m = (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    return std::max(1.0, m);
+    return std::max({1.0, m, 1.0 / (1.0 - 2.0 * nu)});
 }
 
 double octant_volumetric_modulus(double e, double nu, int linked_axes) {

@@ -54,8 +54,8 @@ void finish_poisson_params(Model::Data& model);
 //! carrying links.
 PoissonModuli poisson_moduli(double youngs_modulus, double nu, int linked_axes);
 
-//! Largest stiffness of a voxel's normal modes relative to E: the P-wave (uniaxial-strain)
-//! modulus M / E, at least 1 (1 at nu = 0); scales the stable step.
+//! Largest stiffness of a voxel's normal modes relative to E (the uniaxial-strain M or the
+//! volumetric 3K = E / (1 - 2 nu), whichever is larger; 1 at nu = 0): scales the stable step.
 double poisson_stiffness_factor(double nu);
 
 //! Sizes the Poisson scratch of a World (once, so a step allocates nothing).

@@ -11,7 +11,7 @@
 //                [--poisson-off]
 // --poisson-off sets every material's Poisson ratio to 0, which turns the Poisson coupling
 // (engine/poisson.hpp) off: the difference to a normal run is that coupling's cost (its own pass
-// and, past nu = 0.39, the shorter stable step of its P-wave stiffness).
+// and the shorter stable step of its volumetric stiffness).
 // Rates are per CPU second of the stepping thread (CLOCK_THREAD_CPUTIME_ID), so a machine shared
 // with other jobs distorts them less than wall time would; the "_2threads" row is the exception:
 // it measures scaling, so it uses wall time and counts both worlds (voxels and links are the sum,
