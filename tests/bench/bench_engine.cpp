@@ -333,11 +333,13 @@ std::string csv_row(const CorpusResult& c, const std::string& machine, const std
            csv_field(commit);
 }
 
+constexpr const char* kUsage =
+    "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] [--assets DIR] "
+    "[--scenes-only] [--corpus-only] [--min-voxels N] [--max-voxels N] [--per-body] "
+    "[--fingerprint] [--poisson-off]\n";
+
 [[noreturn]] void usage_error(const std::string& message) {
-    std::cerr << "bench_engine: " << message << "\n"
-              << "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] "
-                 "[--assets DIR] [--scenes-only] [--corpus-only] [--min-voxels N] "
-                 "[--max-voxels N] [--per-body] [--fingerprint] [--poisson-off]\n";
+    std::cerr << "bench_engine: " << message << "\n" << kUsage;
     std::exit(2);
 }
 
@@ -384,10 +386,8 @@ int main(int argc, char** argv) {
         } else if (arg == "--poisson-off") {
             poisson_off = true;
         } else if (arg == "--help" || arg == "-h") {
-            std::cout << "usage: bench_engine [--steps-scale X] [--commit SHA] [--corpus DIR] "
-                         "[--assets DIR] [--scenes-only] [--corpus-only] [--min-voxels N] "
-                         "[--max-voxels N] [--per-body] [--fingerprint] [--poisson-off]\n"
-                         "--per-body: each corpus body's rate on stderr.\n"
+            std::cout << kUsage
+                      << "--per-body: each corpus body's rate on stderr.\n"
                          "--fingerprint: a hash of each simulation's final state on stderr.\n"
                          "--poisson-off: every material's Poisson ratio set to 0 (the "
                          "coupling's cost).\n"
