@@ -1,6 +1,7 @@
 // Verification against CalculiX, an independent 3-D continuum FEM (C3D20R bricks): a bar in
-// tension (axial and lateral strain), a clamped block under its own weight and an active/passive
-// bilayer heated by 1 degC (tip deflection), each compared with our engine on the same scene.
+// tension (axial and lateral strain), a clamped block under its own weight (of one material and
+// with two 10x stiffer layers) and an active/passive bilayer heated by 1 degC (tip deflection),
+// each compared with our engine on the same scene.
 // Every case solves in about a second; the suite skips (loudly) only where ccx is not installed
 // (scripts/setup.sh installs calculix-ccx, so CI always runs it).
 #include <doctest/doctest.h>
@@ -144,6 +145,52 @@ double engine_cantilever(int nx, int ny, int nz, double nu) {
     return settle(w, [&](const World& world) { return -layer_displacement(world, nx - 1, 2); });
 }
 
+// ---- layered cantilever under gravity -------------------------------------------------------
+
+// A 20x8x7 cantilever whose layers z = 1 and z = 5 are 10x stiffer: every vertical column ends
+// (z = 0 and z = 6) in a soft voxel against a stiff one, where the Poisson pass keeps the end
+// voxel's half-link strain instead of extrapolating through the stiffer partner (poisson.cpp).
+constexpr double kLayerStiffness = 10.0;
+bool stiff_layer(int z) {
+    return z == 1 || z == 5;
+}
+
+double calculix_layered_cantilever(double nu) {
+    const int nx = 20, ny = 8, nz = 7;
+    ccx::Mesh m{{(nx - 0.5) * kL, ny * kL, nz * kL}, {2 * nx - 1, ny / 2, nz}};
+    std::ostringstream inp;
+    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}, {kLayerStiffness * kE, nu, 1000.0, 0.0}},
+                    [](int, int, int ez) { return stiff_layer(ez) ? 1 : 0; });
+    ccx::write_set(inp, "NSET", "CLAMP",
+                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
+    const double probe_x = (nx - 1) * kL;
+    const auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
+           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    return -ccx::mean(ccx::solve("layered", inp.str()), probe, 2);
+}
+
+double engine_layered_cantilever(double nu) {
+    Material soft;
+    soft.poisson_ratio = nu;
+    Material stiff = soft;
+    stiff.youngs_modulus_pa *= kLayerStiffness;
+    BodySpec s = solid_box(20, 8, 7, soft);
+    s.materials.push_back(stiff);
+    for (int z = 0; z < 7; ++z)
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 20; ++x)
+                s.material[s.cell_index(x, y, z)] = stiff_layer(z) ? 2 : 1;
+    fix_x_min_layer(s);
+    s.environment.gravity_m_s2 = -9.81;
+    s.damping.bond_ratio = 0.1;
+    s.damping.global_ratio = 0.02;
+    World w(Model::build(s));
+    return settle(w, [&](const World& world) { return -layer_displacement(world, 19, 2); });
+}
+
 // ---- bilayer heated by 1 degC ---------------------------------------------------------------
 
 // A 20 x 2 x 2 cantilever whose bottom layer is active (cte 0.01 /degC) and top layer passive,
@@ -222,6 +269,24 @@ TEST_CASE("calculix: the 20x8x7 block cantilever under gravity within 5%, nu 0, 
     if (skip_without_ccx()) return;
     for (double nu : {0.0, 0.35, 0.49})
         check_block_cantilever(nu);
+}
+
+// A known defect, kept from growing: with nu > 0 this body is too stiff (-13.8 % at 0.35, -25.9 %
+// at 0.49 when this test was written; the goal is the 5 % of nu = 0). A mixed link's strain is
+// split between its halves by stress continuity along the link (springs in series), which is
+// right in tension but not for the lateral Poisson strains of bending, which are equal in both
+// layers (docs/physics.md, "Known limits").
+TEST_CASE(
+    "calculix: a cantilever with two 10x stiffer layers under gravity (known: nu > 0 stiff)") {
+    if (skip_without_ccx()) return;
+    const struct { double nu, tolerance; } cases[] = {{0.0, 0.05}, {0.35, 0.16}, {0.49, 0.28}};
+    for (const auto& c : cases) {
+        const double fem = calculix_layered_cantilever(c.nu);
+        const double ours = engine_layered_cantilever(c.nu);
+        MESSAGE("nu " << c.nu << ": tip " << ours << " m, CalculiX " << fem << " m, error "
+                      << 100.0 * (ours / fem - 1.0) << " %");
+        CHECK(relative_error(ours, fem) < c.tolerance);
+    }
 }
 
 TEST_CASE("calculix: an active/passive bilayer heated 1 degC, tip deflection within 10%") {
