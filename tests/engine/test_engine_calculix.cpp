@@ -7,8 +7,12 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <numbers>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "calculix.hpp"
 #include "engine_test_bodies.hpp"
@@ -117,11 +121,14 @@ BarStrains engine_bar(int n, double nu, double stress) {
 // CalculiX: the continuum of an nx x ny x nz voxel cantilever, clamped at the fixed voxels'
 // centre plane (x = 0 here) and loaded by its own weight; mean vertical displacement of the
 // section through the last voxels' centres (x = (nx - 1) L).
-double calculix_cantilever(int nx, int ny, int nz, double nu) {
+// `layer_material(ez)` picks the material of each of the z_elements element layers.
+double calculix_cantilever(int nx, int ny, int nz, const std::vector<ccx::Material>& materials,
+                           int z_elements, const std::function<int(int)>& layer_material,
+                           const std::string& name) {
     const double length = (nx - 0.5) * kL;
-    ccx::Mesh m{{length, ny * kL, nz * kL}, {2 * nx - 1, (ny + 1) / 2, (nz + 1) / 2}};
+    ccx::Mesh m{{length, ny * kL, nz * kL}, {2 * nx - 1, (ny + 1) / 2, z_elements}};
     std::ostringstream inp;
-    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}}, [](int, int, int) { return 0; });
+    ccx::write_mesh(inp, m, materials, [&](int, int, int ez) { return layer_material(ez); });
     ccx::write_set(inp, "NSET", "CLAMP",
                    ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
     const double probe_x = (nx - 1) * kL;
@@ -130,19 +137,28 @@ double calculix_cantilever(int nx, int ny, int nz, double nu) {
     ccx::write_set(inp, "NSET", "PROBE", probe);
     inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
            "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
-    return -ccx::mean(ccx::solve("cantilever", inp.str()), probe, 2);
+    return -ccx::mean(ccx::solve(name, inp.str()), probe, 2);
 }
 
-double engine_cantilever(int nx, int ny, int nz, double nu) {
-    Material mat;
-    mat.poisson_ratio = nu;
-    BodySpec s = solid_box(nx, ny, nz, mat);
+double calculix_cantilever(int nx, int ny, int nz, double nu) {
+    return calculix_cantilever(
+        nx, ny, nz, {{kE, nu, 1000.0, 0.0}}, (nz + 1) / 2, [](int) { return 0; }, "cantilever");
+}
+
+// Ours: the body s (its materials and layout set) clamped at x-, settled under its own weight.
+double engine_cantilever(BodySpec s) {
     fix_x_min_layer(s);
     s.environment.gravity_m_s2 = -9.81;
     s.damping.bond_ratio = 0.1;
     s.damping.global_ratio = 0.02;
     World w(Model::build(s));
-    return settle(w, [&](const World& world) { return -layer_displacement(world, nx - 1, 2); });
+    return settle(w, [&](const World& world) { return -layer_displacement(world, s.nx - 1, 2); });
+}
+
+double engine_cantilever(int nx, int ny, int nz, double nu) {
+    Material mat;
+    mat.poisson_ratio = nu;
+    return engine_cantilever(solid_box(nx, ny, nz, mat));
 }
 
 // ---- layered cantilever under gravity -------------------------------------------------------
@@ -151,25 +167,14 @@ double engine_cantilever(int nx, int ny, int nz, double nu) {
 // (z = 0 and z = 6) in a soft voxel against a stiff one, where the Poisson pass keeps the end
 // voxel's half-link strain instead of extrapolating through the stiffer partner (poisson.cpp).
 constexpr double kLayerStiffness = 10.0;
-bool stiff_layer(int z) {
-    return z == 1 || z == 5;
+int layer_material(int z) {
+    return z == 1 || z == 5 ? 1 : 0;  // 0-based material index
 }
 
 double calculix_layered_cantilever(double nu) {
-    const int nx = 20, ny = 8, nz = 7;
-    ccx::Mesh m{{(nx - 0.5) * kL, ny * kL, nz * kL}, {2 * nx - 1, ny / 2, nz}};
-    std::ostringstream inp;
-    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}, {kLayerStiffness * kE, nu, 1000.0, 0.0}},
-                    [](int, int, int ez) { return stiff_layer(ez) ? 1 : 0; });
-    ccx::write_set(inp, "NSET", "CLAMP",
-                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
-    const double probe_x = (nx - 1) * kL;
-    const auto probe = ccx::nodes_where(
-        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
-    ccx::write_set(inp, "NSET", "PROBE", probe);
-    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
-           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
-    return -ccx::mean(ccx::solve("layered", inp.str()), probe, 2);
+    return calculix_cantilever(20, 8, 7,
+                               {{kE, nu, 1000.0, 0.0}, {kLayerStiffness * kE, nu, 1000.0, 0.0}}, 7,
+                               layer_material, "layered");
 }
 
 double engine_layered_cantilever(double nu) {
@@ -182,13 +187,9 @@ double engine_layered_cantilever(double nu) {
     for (int z = 0; z < 7; ++z)
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 20; ++x)
-                s.material[s.cell_index(x, y, z)] = stiff_layer(z) ? 2 : 1;
-    fix_x_min_layer(s);
-    s.environment.gravity_m_s2 = -9.81;
-    s.damping.bond_ratio = 0.1;
-    s.damping.global_ratio = 0.02;
-    World w(Model::build(s));
-    return settle(w, [&](const World& world) { return -layer_displacement(world, 19, 2); });
+                s.material[s.cell_index(x, y, z)] =
+                    static_cast<std::uint8_t>(1 + layer_material(z));
+    return engine_cantilever(s);
 }
 
 // ---- bilayer heated by 1 degC ---------------------------------------------------------------
