@@ -14,8 +14,8 @@
 // of a column of three or more (unless its partner or far link is stiffer than the end voxel,
 // which then keeps its half-link: poisson.cpp); and e_link -+ d at the two ends of an isolated
 // link (a column of two), d a relaxed internal variable (a per-link state, one under-relaxed
-// Jacobi step per step: each step only lowers the energy, so it damps and never pumps). Sampling the volumetric strain
-// at the centres is what removes the locking: in bending the lateral strain nu kappa z varies
+// Jacobi step per step: each step only lowers the energy, so it damps and never pumps).
+// Sampling the volumetric strain at the centres is what removes the locking: in bending the lateral strain nu kappa z varies
 // through a layer, the half-links of a column see it half a voxel off the axial strain of the
 // voxel's centre, and near nu = 0.5 every such mismatch cost the bulk modulus (the earlier
 // per-half-link form was 17 % too stiff at nu = 0.49). A uniform strain is exact for any
