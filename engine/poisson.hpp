@@ -8,19 +8,19 @@
 // moduli are condensed, lambda_3 = lambda = E nu / ((1 + nu)(1 - 2 nu)), lambda_2 = E nu /
 // (1 - nu^2) (plane stress), lambda_1 = E nu / (1 + nu) (uniaxial), G = E / (2 (1 + nu))).
 // gamma is the half-link's own strain (the deviatoric term, which also holds the lattice's
-// checkerboard modes), and mu is the strain at the voxel's centre, the same for all octants
-// (the volumetric term, B-bar style): the mean of the two half-links inside a column; the
-// derivative of the parabola through the last three centres, (3 e_link - e_next) / 2, at the end
-// of a column of three or more (unless its partner or far link is stiffer than the end voxel,
-// which then keeps its half-link: poisson.cpp); and e_link -+ d at the two ends of an isolated
-// link (a column of two), d a relaxed internal variable (a per-link state, one under-relaxed
-// Jacobi step per step: each step only lowers the energy, so it damps and never pumps).
-// Sampling the volumetric strain at the centres is what removes the locking: in bending the lateral strain nu kappa z varies
-// through a layer, the half-links of a column see it half a voxel off the axial strain of the
-// voxel's centre, and near nu = 0.5 every such mismatch cost the bulk modulus (the earlier
-// per-half-link form was 17 % too stiff at nu = 0.49). A uniform strain is exact for any
-// section (so a free bar contracts by -nu eps and keeps E), the energy is positive for nu >= 0
-// (auxetic voxels keep half-link strains), and at nu = 0 it is the links' own E e^2 / 2.
+// checkerboard modes), and mu is the strain at the voxel's centre, the same for all octants (the
+// volumetric term, B-bar style): the mean of the two half-links inside a column; the derivative of
+// the parabola through the last three centres, (3 e_link - e_next) / 2, at the end of a column of
+// three or more (unless its partner or far link is stiffer than the end voxel, which then keeps its
+// half-link: poisson.cpp); and e_link -+ d at the two ends of an isolated link (a column of two), d
+// a relaxed internal variable (a per-link state, one under-relaxed Jacobi step per step: each step
+// only lowers the energy, so it damps and never pumps). Sampling the volumetric strain at the
+// centres is what removes the locking: in bending the lateral strain nu kappa z varies through a
+// layer, the half-links of a column see it half a voxel off the axial strain of the voxel's centre,
+// and near nu = 0.5 every such mismatch cost the bulk modulus (the earlier per-half-link form was
+// 17 % too stiff at nu = 0.49). A uniform strain is exact for any section (so a free bar contracts
+// by -nu eps and keeps E), the energy is positive for nu >= 0 (auxetic voxels keep half-link
+// strains), and at nu = 0 it is the links' own E e^2 / 2.
 //
 // At large strains (an active region held by a passive frame or the clamp, contracted to
 // 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link
