@@ -7,8 +7,7 @@
 // per simulation onto `threads` idle cores (what a shared machine cannot show by wall time).
 //
 //   bench_evolve [--sims N (0: all)] [--sim-seconds S] [--threads-list 1,2] [--assets DIR]
-//   [--commit SHA]
-//                [--poisson-off] [PRESET...]
+//                [--commit SHA] [--poisson-off] [PRESET...]
 // --poisson-off sets every material's Poisson ratio to 0 (the engine's Poisson coupling off), to
 // show that coupling's share of the cost.
 //
@@ -16,8 +15,8 @@
 // population; a body's cost follows its voxels, and the first few random bodies are no sample of
 // a generation: in paper-exp1 the first 4 average 88 voxels, all 50 330), presets paper-exp1,
 // paper-exp2 and paper-exp3 from assets/experiments (run from the repository root, as
-// scripts/bench.sh does), threads 1 and
-// 2. CSV on stdout, notes on stderr; the commit comes from --commit or $BHM_COMMIT.
+// scripts/bench.sh does), threads 1 and 2. CSV on stdout, notes on stderr; the commit comes from
+// --commit or $BHM_COMMIT.
 #include <sys/utsname.h>
 #include <time.h>
 
