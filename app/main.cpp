@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.hpp"
+#include "app/cli/commands.hpp"
 #include "bhm_version.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "engine/poisson.hpp"
+#include "engine/internal/poisson.hpp"
 
 namespace bhm::engine::limits {
 namespace {

@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/internal/model_data.hpp"
+#include "engine/internal/poisson.hpp"
 #include "engine/limits.hpp"
-#include "engine/model_data.hpp"
-#include "engine/poisson.hpp"
 
 namespace bhm::engine {
 namespace {

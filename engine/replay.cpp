@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "engine/atomic_file.hpp"
+#include "engine/io/atomic_file.hpp"
 
 namespace bhm::engine {
 

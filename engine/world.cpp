@@ -7,11 +7,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/internal/link_pass.hpp"
+#include "engine/internal/poisson.hpp"
+#include "engine/internal/voxel_pass.hpp"
+#include "engine/internal/world_state.hpp"
 #include "engine/limits.hpp"
-#include "engine/link_pass.hpp"
-#include "engine/poisson.hpp"
-#include "engine/voxel_pass.hpp"
-#include "engine/world_state.hpp"
 
 namespace bhm::engine {
 namespace {

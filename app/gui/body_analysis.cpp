@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "evo/scene.hpp"
+#include "evo/experiment/scene.hpp"
 
 namespace bhm::app::gui {
 
@@ -43,7 +43,7 @@ BodyTimeSeries body_time_series(const evo::Experiment& e, const engine::Replay& 
     const double L = r.voxel_size_m;
     const std::size_t n = r.voxel_cell.size();
 
-    // Base and tip layers (evo/fitness.hpp's definition).
+    // Base and tip layers (evo/evaluate/fitness.hpp's definition).
     int face = 0;
     for (int f = 0; f < 6; ++f)
         if (e.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed) {

@@ -10,7 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "engine/replay.hpp"
-#include "evo/experiment.hpp"
+#include "evo/experiment/experiment.hpp"
 #include "render/colormap.hpp"
 
 namespace bhm::app::gui {
@@ -23,7 +23,7 @@ inline constexpr std::array<const char*, 4> kColorByNames = {"material", "displa
 //! centre-of-mass displacement per axis and the tip's displacement in voxel lengths, and the
 //! bend angle (the angle between the settled and the current base-to-tip direction; base = the
 //! layer of the first fixed face, x- when none is fixed; tip = the filled layer farthest from it,
-//! as evo/fitness.hpp defines them) in degrees. Before settle_s every value is 0.
+//! as evo/evaluate/fitness.hpp defines them) in degrees. Before settle_s every value is 0.
 struct BodyTimeSeries {
     std::vector<double> t_s;
     std::array<std::vector<double>, 3> com_vox;

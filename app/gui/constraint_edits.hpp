@@ -5,7 +5,7 @@
 #include <array>
 #include <string>
 
-#include "evo/experiment.hpp"
+#include "evo/experiment/experiment.hpp"
 
 namespace bhm::app::gui {
 

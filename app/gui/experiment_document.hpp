@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "evo/experiment.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment.hpp"
+#include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app::gui {
 

@@ -8,8 +8,8 @@
 #include "app/gui/view_renderer.hpp"
 #include "app/gui/view_scene.hpp"
 #include "app/gui/viewport.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/vxa.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/formats/vxa.hpp"
 
 namespace bhm::app::gui {
 

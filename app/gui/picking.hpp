@@ -9,7 +9,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "evo/experiment.hpp"
+#include "evo/experiment/experiment.hpp"
 #include "render/camera.hpp"
 
 namespace bhm::app::gui {

@@ -10,7 +10,7 @@
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/view_scene.hpp"
 #include "app/gui/viewport.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app::gui {
 

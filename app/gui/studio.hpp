@@ -14,19 +14,19 @@
 
 #include <glm/vec2.hpp>
 
-#include "app/gui/body_simulator.hpp"
-#include "app/gui/champion_history.hpp"
 #include "app/gui/constraint_edits.hpp"
-#include "app/gui/evolution_session.hpp"
-#include "app/gui/evolution_snapshot.hpp"
 #include "app/gui/experiment_document.hpp"
-#include "app/gui/fitness_plot.hpp"
 #include "app/gui/picking.hpp"
-#include "app/gui/replay_player.hpp"
-#include "app/gui/run_directory_watch.hpp"
+#include "app/gui/session/body_simulator.hpp"
+#include "app/gui/session/champion_history.hpp"
+#include "app/gui/session/evolution_session.hpp"
+#include "app/gui/session/evolution_snapshot.hpp"
+#include "app/gui/session/replay_player.hpp"
+#include "app/gui/session/run_directory_watch.hpp"
 #include "app/gui/studio_paths.hpp"
 #include "app/gui/studio_settings.hpp"
-#include "app/gui/tile_layout.hpp"
+#include "app/gui/widgets/fitness_plot.hpp"
+#include "app/gui/widgets/tile_layout.hpp"
 #include "render/camera.hpp"
 
 namespace bhm::app::gui {

@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "app/gui/studio_paths.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
 
 namespace bhm::app::gui {
 

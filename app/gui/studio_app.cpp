@@ -10,11 +10,11 @@
 
 #include "app/gui/export_actions.hpp"
 #include "app/gui/key_bindings.hpp"
-#include "app/gui/panels.hpp"
+#include "app/gui/panels/panels.hpp"
 #include "app/gui/studio_actions.hpp"
-#include "app/gui/tile_layout.hpp"
-#include "app/gui/ui_widgets.hpp"
 #include "app/gui/unsaved_guard.hpp"
+#include "app/gui/widgets/tile_layout.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {
 

@@ -1,6 +1,6 @@
 #pragma once
 // What File > New starts from: the paper's materials (Table 1) and timing, held at x-.
-#include "evo/experiment.hpp"
+#include "evo/experiment/experiment.hpp"
 
 namespace bhm::app::gui {
 

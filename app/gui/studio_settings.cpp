@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "app/gui/studio_paths.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app::gui {
 

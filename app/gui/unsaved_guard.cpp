@@ -5,7 +5,7 @@
 #include <imgui.h>
 
 #include "app/gui/studio_actions.hpp"
-#include "app/gui/ui_widgets.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {
 

@@ -5,7 +5,7 @@
 
 #include <imgui.h>
 
-#include "app/gui/gl_framebuffer.hpp"
+#include "app/gui/widgets/gl_framebuffer.hpp"
 #include "render/camera.hpp"
 #include "render/draw_list.hpp"
 #include "render/image.hpp"

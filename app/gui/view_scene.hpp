@@ -8,7 +8,7 @@
 
 #include <glm/vec4.hpp>
 
-#include "app/gui/body_simulator.hpp"
+#include "app/gui/session/body_simulator.hpp"
 #include "app/gui/studio.hpp"
 #include "render/draw_list.hpp"
 #include "render/scene.hpp"

@@ -1,8 +1,8 @@
 #pragma once
-// The MPI side of EvolveCluster (app/evolve_cluster.hpp), compiled only when CMake finds MPI.
+// The MPI side of EvolveCluster (app/cli/evolve_cluster.hpp), compiled only when CMake finds MPI.
 #include <memory>
 
-#include "app/evolve_cluster.hpp"
+#include "app/cli/evolve_cluster.hpp"
 
 namespace bhm::app {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "evo/evaluation_wire.hpp"
+#include "evo/evaluate/evaluation_wire.hpp"
 
 namespace bhm::app::mpi {
 

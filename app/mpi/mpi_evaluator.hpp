@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "app/mpi/mpi_transport.hpp"
-#include "evo/evaluator.hpp"
+#include "evo/evaluate/evaluator.hpp"
 
 namespace bhm::app::mpi {
 

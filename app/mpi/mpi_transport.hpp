@@ -1,7 +1,7 @@
 #pragma once
 // The few MPI calls the front end makes, over MPI_COMM_WORLD with errors returned (not fatal), so
 // a failed send becomes an exception with MPI's own message. Only the main thread of a rank calls
-// these (MPI_THREAD_FUNNELED). Payloads are byte strings (evo/evaluation_wire.hpp for jobs,
+// these (MPI_THREAD_FUNNELED). Payloads are byte strings (evo/evaluate/evaluation_wire.hpp for jobs,
 // results and rules; short text for the control messages).
 #include <list>
 #include <optional>

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "app/mpi/mpi_transport.hpp"
-#include "evo/evaluation_wire.hpp"
-#include "evo/worker_pool.hpp"
+#include "evo/evaluate/evaluation_wire.hpp"
+#include "evo/evaluate/worker_pool.hpp"
 
 namespace bhm::app::mpi {
 

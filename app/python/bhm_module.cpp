@@ -16,16 +16,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/file_kind.hpp"
-#include "app/run_directory.hpp"
-#include "app/simulation_report.hpp"
+#include "app/cli/file_kind.hpp"
+#include "app/cli/run_directory.hpp"
+#include "app/cli/simulation_report.hpp"
 #include "bhm_version.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/genome.hpp"
-#include "evo/phenotype.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
+#include "evo/genome/genome.hpp"
+#include "evo/genome/phenotype.hpp"
 
 namespace py = pybind11;
 using nlohmann::json;

@@ -12,9 +12,9 @@
 #include <sstream>
 
 #include "../evo/mesh_check.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
 #include "app/shell_run.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
 
 namespace {
 

@@ -10,13 +10,13 @@
 #include <filesystem>
 #include <string>
 
-#include "app/render_scene.hpp"
+#include "app/cli/render_scene.hpp"
+#include "app/shell_run.hpp"
 #include "engine/replay.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
 #include "render/image.hpp"
 #include "render/replay_view.hpp"
-#include "app/shell_run.hpp"
 
 namespace {
 

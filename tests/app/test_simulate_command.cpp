@@ -12,10 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/commands.hpp"
+#include "app/cli/commands.hpp"
 #include "engine/replay.hpp"
-#include "evo/experiment_io.hpp"
-#include "relative_approx.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "support/relative_approx.hpp"
 
 namespace fs = std::filesystem;
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "app/simulate_progress.hpp"
-#include "app/simulation_report.hpp"
-#include "relative_approx.hpp"
+#include "app/cli/simulate_progress.hpp"
+#include "app/cli/simulation_report.hpp"
+#include "support/relative_approx.hpp"
 
 using bhm::app::DisplacementSummary;
 using bhm::app::TrajectorySample;

@@ -10,8 +10,8 @@
 
 #include "app/gui/body_analysis.hpp"
 #include "app/gui/headless_session.hpp"
-#include "app/gui/replay_player.hpp"
 #include "app/gui/script.hpp"
+#include "app/gui/session/replay_player.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/viewport.hpp"
 #include "render/colormap.hpp"

@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "app/commands.hpp"
-#include "evo/experiment_io.hpp"
+#include "app/cli/commands.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"
 #include "test_studio_fixtures.hpp"
 

@@ -4,7 +4,7 @@
 #include "app/gui/constraint_edits.hpp"
 #include "app/gui/experiment_document.hpp"
 #include "app/gui/studio_defaults.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "evo/experiment.hpp"
+#include "evo/experiment/experiment.hpp"
 #include "render/image.hpp"
 
 namespace bhm::app::gui::testing {

@@ -13,8 +13,8 @@
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/unsaved_guard.hpp"
 #include "app/gui/viewport.hpp"
-#include "evo/evolution_run.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/run/evolution_run.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;

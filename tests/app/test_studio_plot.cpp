@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "app/gui/fitness_plot.hpp"
-#include "app/gui/plot_axes.hpp"
+#include "app/gui/widgets/fitness_plot.hpp"
+#include "app/gui/widgets/plot_axes.hpp"
 
 using namespace bhm::app::gui;
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "app/gui/replay_player.hpp"
+#include "app/gui/session/replay_player.hpp"
 
 using namespace bhm;
 using namespace bhm::app::gui;

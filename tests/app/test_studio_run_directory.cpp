@@ -6,8 +6,8 @@
 #include <fstream>
 #include <thread>
 
-#include "app/gui/run_directory_watch.hpp"
-#include "evo/run_output.hpp"
+#include "app/gui/session/run_directory_watch.hpp"
+#include "evo/run/run_output.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;

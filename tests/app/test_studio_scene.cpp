@@ -4,8 +4,8 @@
 
 #include <algorithm>
 
-#include "app/gui/body_simulator.hpp"
 #include "app/gui/constraint_edits.hpp"
+#include "app/gui/session/body_simulator.hpp"
 #include "app/gui/view_scene.hpp"
 #include "test_studio_fixtures.hpp"
 

@@ -9,7 +9,7 @@
 #include "app/gui/headless_session.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"
 #include "test_studio_fixtures.hpp"
 

@@ -33,9 +33,9 @@
 #include <string>
 #include <vector>
 
-#include "evo/evolution_run.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
+#include "evo/run/evolution_run.hpp"
 #include "tests/bench/bench_machine.hpp"
 
 using namespace bhm::evo;

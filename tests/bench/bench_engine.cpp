@@ -10,7 +10,7 @@
 //                [--corpus-only] [--min-voxels N] [--max-voxels N] [--per-body] [--fingerprint]
 //                [--poisson-off]
 // --poisson-off sets every material's Poisson ratio to 0, which turns the Poisson coupling
-// (engine/poisson.hpp) off: the difference to a normal run is that coupling's cost (its own pass
+// (engine/internal/poisson.hpp) off: the difference to a normal run is that coupling's cost (its own pass
 // and the shorter stable step of its volumetric stiffness).
 // Rates are per CPU second of the stepping thread (CLOCK_THREAD_CPUTIME_ID), so a machine shared
 // with other jobs distorts them less than wall time would; the "_2threads" row is the exception:
@@ -44,9 +44,9 @@
 #include "engine/body_spec.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/fitness.hpp"
-#include "evo/scene.hpp"
+#include "evo/evaluate/fitness.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
 
 namespace {
 

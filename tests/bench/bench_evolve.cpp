@@ -31,13 +31,13 @@
 #include <thread>
 #include <vector>
 
-#include "evo/constraints.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/fitness.hpp"
-#include "evo/mutation.hpp"
-#include "evo/phenotype.hpp"
-#include "evo/scene.hpp"
-#include "evo/worker_pool.hpp"
+#include "evo/evaluate/constraints.hpp"
+#include "evo/evaluate/fitness.hpp"
+#include "evo/evaluate/worker_pool.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
+#include "evo/genome/phenotype.hpp"
+#include "evo/search/mutation.hpp"
 #include "tests/bench/bench_machine.hpp"
 
 using namespace bhm::evo;

@@ -24,10 +24,10 @@
 #include <thread>
 #include <vector>
 
-#include "app/gui/body_simulator.hpp"
 #include "app/gui/headless_session.hpp"
+#include "app/gui/session/body_simulator.hpp"
 #include "app/gui/studio_actions.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/scene.hpp"
 #include "tests/bench/bench_machine.hpp"
 
 using namespace bhm;

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "evo/constraints.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/genome.hpp"
-#include "evo/phenotype.hpp"
-#include "evo/rng.hpp"
+#include "evo/evaluate/constraints.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/genome/genome.hpp"
+#include "evo/genome/phenotype.hpp"
+#include "evo/genome/rng.hpp"
 
 using namespace bhm::evo;
 

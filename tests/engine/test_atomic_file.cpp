@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "engine/atomic_file.hpp"
+#include "engine/io/atomic_file.hpp"
 
 using namespace bhm::engine;
 namespace fs = std::filesystem;

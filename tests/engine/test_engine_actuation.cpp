@@ -6,7 +6,7 @@
 
 #include "engine/poses.hpp"
 #include "engine_test_bodies.hpp"
-#include "relative_approx.hpp"
+#include "support/relative_approx.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;

@@ -265,7 +265,7 @@ static void check_block_cantilever(double nu) {
 }
 
 // nu = 0.49 is the case that used to lock (17 % too stiff with half-link lateral strains):
-// engine/poisson.hpp samples the volumetric strain at the voxel centres.
+// engine/internal/poisson.hpp samples the volumetric strain at the voxel centres.
 TEST_CASE("calculix: the 20x8x7 block cantilever under gravity within 5%, nu 0, 0.35, 0.49") {
     if (skip_without_ccx()) return;
     for (double nu : {0.0, 0.35, 0.49})

@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "engine_test_bodies.hpp"
-#include "relative_approx.hpp"
+#include "support/relative_approx.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
@@ -72,7 +72,7 @@ TEST_CASE("slender 40x2x2 cantilever, nu = 0: tip deflection within 5% of Euler-
 }
 
 // A slender beam's bending does not depend on nu (Euler-Bernoulli). With the lateral strain of a
-// two-voxel section relaxed (engine/poisson.hpp) it no longer locks: it was 7 % too stiff at
+// two-voxel section relaxed (engine/internal/poisson.hpp) it no longer locks: it was 7 % too stiff at
 // nu = 0.35 (1.645 mm against 1.761 mm) when the one link through the section set it.
 TEST_CASE("slender 40x2x2 cantilever, nu = 0.35 and 0.49: tip within 5% of Euler-Bernoulli") {
     for (double nu : {0.35, 0.49}) {

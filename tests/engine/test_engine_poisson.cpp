@@ -1,5 +1,5 @@
 // Poisson's ratio: a free bar under axial load contracts laterally by nu times its axial strain,
-// keeps its Young's modulus, and the coupling conserves energy (engine/poisson.hpp).
+// keeps its Young's modulus, and the coupling conserves energy (engine/internal/poisson.hpp).
 #include <doctest/doctest.h>
 
 #include <algorithm>

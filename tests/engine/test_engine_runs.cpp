@@ -1,5 +1,5 @@
 // The passes read solid stretches through "uniform runs" (constant neighbour offsets, no tables)
-// and everything else through the neighbour tables (engine/model_data.hpp). The tables are the
+// and everything else through the neighbour tables (engine/internal/model_data.hpp). The tables are the
 // independent truth: a body stepped with the runs Model::build chose must move bit for bit like
 // the same model with every run turned into a gathered one.
 #include <doctest/doctest.h>
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "engine/model_data.hpp"
+#include "engine/internal/model_data.hpp"
 #include "engine_test_bodies.hpp"
 
 using namespace bhm::engine;

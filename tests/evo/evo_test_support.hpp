@@ -4,7 +4,7 @@
 #include <array>
 #include <string>
 
-#include "evo/experiment.hpp"
+#include "evo/experiment/experiment.hpp"
 
 namespace bhm::evo::test {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "evo/evaluator.hpp"
-#include "evo/evolution_run.hpp"
+#include "evo/evaluate/evaluator.hpp"
+#include "evo/run/evolution_run.hpp"
 
 namespace bhm::evo::test {
 

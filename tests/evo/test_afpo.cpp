@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "evo/afpo.hpp"
-#include "evo/rng.hpp"
+#include "evo/genome/rng.hpp"
+#include "evo/search/afpo.hpp"
 
 using namespace bhm::evo;
 

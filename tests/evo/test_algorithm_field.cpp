@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "evo/experiment_io.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -1,4 +1,4 @@
-// Batches of runs (evo/batch.hpp): a 2-run batch equals the two runs made alone, batch.csv's
+// Batches of runs (evo/run/batch.hpp): a 2-run batch equals the two runs made alone, batch.csv's
 // statistics against numbers worked out by hand, resume of a stopped batch.
 #include <doctest/doctest.h>
 #include <unistd.h>
@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "evo/batch.hpp"
-#include "evo/checkpoint.hpp"
+#include "evo/run/batch.hpp"
+#include "evo/run/checkpoint.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -1,15 +1,15 @@
-// The behaviour descriptor (evo/behaviour.hpp): a trajectory given by formula, worked out by hand;
+// The behaviour descriptor (evo/evaluate/behaviour.hpp): a trajectory given by formula, worked out by hand;
 // a free fall against g t^2 / 2 and against the fitness measure computed on its own; a bimorph
 // whose tip swings while its passive twin's does not.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
-#include "evo/behaviour.hpp"
-#include "evo/checkpoint.hpp"
-#include "evo/fitness.hpp"
+#include "evo/evaluate/behaviour.hpp"
+#include "evo/evaluate/fitness.hpp"
+#include "evo/run/checkpoint.hpp"
 #include "evo_test_support.hpp"
-#include "relative_approx.hpp"
+#include "support/relative_approx.hpp"
 
 using namespace bhm::evo;
 

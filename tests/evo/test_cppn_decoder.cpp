@@ -3,10 +3,10 @@
 
 #include <cmath>
 
-#include "evo/body_ops.hpp"
-#include "evo/constraints.hpp"
-#include "evo/cppn_decoder.hpp"
-#include "evo/phenotype.hpp"
+#include "evo/evaluate/constraints.hpp"
+#include "evo/genome/body_ops.hpp"
+#include "evo/genome/cppn_decoder.hpp"
+#include "evo/genome/phenotype.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -1,13 +1,13 @@
-// AFPO crossover (evo/crossover.hpp): aligned genes, acyclic children, deterministic runs; more
+// AFPO crossover (evo/search/crossover.hpp): aligned genes, acyclic children, deterministic runs; more
 // than two materials (per-material CPPN outputs): a 3-material body decoded as worked out by hand.
 #include <doctest/doctest.h>
 
-#include "evo/cppn_decoder.hpp"
-#include "evo/crossover.hpp"
-#include "evo/evolution_run.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/mutation.hpp"
-#include "evo/phenotype.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/genome/cppn_decoder.hpp"
+#include "evo/genome/phenotype.hpp"
+#include "evo/run/evolution_run.hpp"
+#include "evo/search/crossover.hpp"
+#include "evo/search/mutation.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

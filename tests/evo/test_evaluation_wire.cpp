@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "evo/behaviour.hpp"
-#include "evo/evaluation_wire.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/evaluate/behaviour.hpp"
+#include "evo/evaluate/evaluation_wire.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -7,8 +7,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "evo/evaluator.hpp"
-#include "evo/evolution_run.hpp"
+#include "evo/evaluate/evaluator.hpp"
+#include "evo/run/evolution_run.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

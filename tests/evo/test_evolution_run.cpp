@@ -10,10 +10,10 @@
 #include <sstream>
 #include <thread>
 
-#include "evo/checkpoint.hpp"
-#include "evo/constraints.hpp"
-#include "evo/evolution_run.hpp"
-#include "evo/run_lock.hpp"
+#include "evo/evaluate/constraints.hpp"
+#include "evo/run/checkpoint.hpp"
+#include "evo/run/evolution_run.hpp"
+#include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
 #include "xml_check.hpp"
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <sstream>
 
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace bhm::evo;

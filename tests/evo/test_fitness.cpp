@@ -7,10 +7,10 @@
 #include <thread>
 
 #include "engine/world.hpp"
-#include "evo/fitness.hpp"
-#include "evo/scene.hpp"
+#include "evo/evaluate/fitness.hpp"
+#include "evo/experiment/scene.hpp"
 #include "evo_test_support.hpp"
-#include "relative_approx.hpp"
+#include "support/relative_approx.hpp"
 
 using namespace bhm::evo;
 

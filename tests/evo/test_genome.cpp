@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "evo/genome.hpp"
+#include "evo/genome/genome.hpp"
 
 using namespace bhm::evo;
 

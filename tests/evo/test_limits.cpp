@@ -9,8 +9,8 @@
 #include "engine/limits.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm;

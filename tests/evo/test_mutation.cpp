@@ -1,8 +1,8 @@
 // Mutation operators keep genomes well formed; the neutral retry always changes the phenotype.
 #include <doctest/doctest.h>
 
-#include "evo/constraints.hpp"
-#include "evo/mutation.hpp"
+#include "evo/evaluate/constraints.hpp"
+#include "evo/search/mutation.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <set>
 
-#include "evo/neat_crossover.hpp"
-#include "evo/neat_genes.hpp"
-#include "evo/neat_innovation.hpp"
-#include "evo/neat_mutation.hpp"
-#include "evo/neat_species.hpp"
+#include "evo/genome/neat_genes.hpp"
+#include "evo/genome/neat_innovation.hpp"
+#include "evo/search/neat_crossover.hpp"
+#include "evo/search/neat_mutation.hpp"
+#include "evo/search/neat_species.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -5,12 +5,12 @@
 
 #include <cmath>
 
-#include "evo/afpo.hpp"
-#include "evo/behaviour.hpp"
-#include "evo/experiment_io.hpp"
-#include "evo/novelty.hpp"
-#include "evo/novelty_archive.hpp"
-#include "evo/novelty_selection.hpp"
+#include "evo/evaluate/behaviour.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/search/afpo.hpp"
+#include "evo/search/novelty.hpp"
+#include "evo/search/novelty_archive.hpp"
+#include "evo/search/novelty_selection.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -11,10 +11,10 @@
 #include <memory>
 #include <sstream>
 
-#include "evo/behaviour.hpp"
-#include "evo/checkpoint.hpp"
-#include "evo/evolution_run.hpp"
-#include "evo/experiment_io.hpp"
+#include "evo/evaluate/behaviour.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/run/checkpoint.hpp"
+#include "evo/run/evolution_run.hpp"
 #include "evo_test_support.hpp"
 #include "run_test_support.hpp"
 

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "evo/checkpoint.hpp"
-#include "evo/crc32.hpp"
-#include "evo/evolution_run.hpp"
-#include "evo/run_lock.hpp"
+#include "evo/run/checkpoint.hpp"
+#include "evo/run/crc32.hpp"
+#include "evo/run/evolution_run.hpp"
+#include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

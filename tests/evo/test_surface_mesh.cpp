@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "evo/surface_mesh.hpp"
+#include "evo/formats/surface_mesh.hpp"
 #include "evo_test_support.hpp"
 #include "mesh_check.hpp"
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "evo/vtk_series.hpp"
+#include "evo/formats/vtk_series.hpp"
 #include "evo_test_support.hpp"
 #include "xml_check.hpp"
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "evo/vxa.hpp"
+#include "evo/formats/vxa.hpp"
 #include "evo_test_support.hpp"
 #include "xml_check.hpp"
 

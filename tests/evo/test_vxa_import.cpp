@@ -4,10 +4,10 @@
 
 #include <algorithm>
 
-#include "evo/experiment_io.hpp"
-#include "evo/scene.hpp"
-#include "evo/vxa.hpp"
-#include "evo/vxa_import.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/scene.hpp"
+#include "evo/formats/vxa.hpp"
+#include "evo/formats/vxa_import.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

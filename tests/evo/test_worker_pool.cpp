@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "evo/worker_pool.hpp"
+#include "evo/evaluate/worker_pool.hpp"
 
 using namespace bhm::evo;
 

@@ -1,7 +1,7 @@
 /* A write(2) that fails on purpose, for the reliability tests (LD_PRELOAD=libbhm_fault_inject.so).
  * Writes to any file whose path contains $BHM_FAULT_FILE fail with errno $BHM_FAULT_ERRNO
  * (default 28, ENOSPC: a full disk) once $BHM_FAULT_AFTER (default 0) such writes succeeded.
- * Every output of bhm goes through write(2) (engine/atomic_file.cpp), so this is a full disk or
+ * Every output of bhm goes through write(2) (engine/io/atomic_file.cpp), so this is a full disk or
  * a failing device as the program sees it, without needing one. */
 #define _GNU_SOURCE
 #include <dlfcn.h>

@@ -1,0 +1,157 @@
+// The Analysis tile (bottom right): the population table, every generation's champion (replay
+// any, or beside the one shown), the AFPO age-vs-fitness scatter of the population, and time
+// plots of the body shown (centre of mass, tip, bend angle) whose cursor is the replay clock.
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/panels/panels.hpp"
+#include "app/gui/session/champion_history.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/widgets/mini_plot.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+void champions_tab(Studio& s) {
+    // (the flags column: exploit_cell, panels.hpp)
+    const std::string dir = s.run ? s.run->run_dir : "";
+    s.champion_history.refresh(dir);
+    const auto& entries = s.champion_history.entries();
+    if (entries.empty()) {
+        ImGui::TextDisabled(dir.empty() ? "No run: champions appear here as a run finds them."
+                                        : "No champion saved yet.");
+        return;
+    }
+    ImGui::BeginDisabled(!s.compared);
+    if (tracked_button(s, "Clear beside")) clear_compared_body(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::TextDisabled("%zu champions; click to replay, 'beside' to compare", entries.size());
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
+    if (!ImGui::BeginTable("champions", 6, flags, ImGui::GetContentRegionAvail())) return;
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupColumn("gen");
+    ImGui::TableSetupColumn("id");
+    ImGui::TableSetupColumn("fitness");
+    ImGui::TableSetupColumn("voxels");
+    ImGui::TableSetupColumn("flags");
+    ImGui::TableSetupColumn("");
+    ImGui::TableHeadersRow();
+    for (auto it = entries.rbegin(); it != entries.rend(); ++it) {  // newest first
+        const auto& e = *it;
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        char label[48];
+        std::snprintf(label, sizeof label, "%d##champion", e.generation);
+        const bool shown = s.shown && s.shown->id == e.id;
+        if (ImGui::Selectable(label, shown, ImGuiSelectableFlags_AllowItemOverlap))
+            replay_champion(s, e, false);
+        record_widget(s, "champion gen " + std::to_string(e.generation));
+        ImGui::TableNextColumn();
+        ImGui::Text("#%lld", static_cast<long long>(e.id));
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(format_fitness(e.fitness, e.measure).c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", e.voxels);
+        ImGui::TableNextColumn();
+        exploit_cell(s, e.exploits, "champion flags gen " + std::to_string(e.generation));
+        ImGui::TableNextColumn();
+        ImGui::PushID(e.generation);
+        if (ImGui::SmallButton("beside")) replay_champion(s, e, true);
+        record_widget(s, "beside gen " + std::to_string(e.generation));
+        ImGui::PopID();
+    }
+    ImGui::EndTable();
+}
+
+void scatter_tab(Studio& s) {
+    if (!s.run || s.run->population.empty()) {
+        ImGui::TextDisabled("The population appears after the first generation.");
+        return;
+    }
+    const auto& run = *s.run;
+    std::vector<ScatterPoint> points;
+    std::vector<std::int64_t> ids;
+    for (const auto& m : run.population) {
+        if (!m.valid || m.fitness < 0.0) continue;  // invalid or diverged: no fitness to place
+        ScatterPoint p;
+        p.x = m.age;
+        p.y = m.fitness;
+        p.color = m.pareto_rank == 0 ? IM_COL32(214, 69, 56, 255) : IM_COL32(110, 120, 135, 220);
+        p.radius = m.pareto_rank == 0 ? 4.0f : 3.0f;
+        p.ring = run.has_champion && m.id == run.champion.id;
+        points.push_back(p);
+        ids.push_back(m.id);
+    }
+    ImGui::TextDisabled("AFPO: age (x) vs fitness (y); red = Pareto front, ring = champion");
+    int hovered = -1;
+    const auto clicked = draw_scatter_plot(
+        "age fitness", points, "age (generations)", fitness_unit(run.experiment.fitness.measure),
+        ImGui::GetContentRegionAvail(), &hovered, /*integer_x=*/true);
+    record_widget(s, "scatter plot");
+    if (hovered >= 0) {
+        const auto& p = points[static_cast<std::size_t>(hovered)];
+        ImGui::SetTooltip("#%lld\nage %.0f\nfitness %s",
+                          static_cast<long long>(ids[static_cast<std::size_t>(hovered)]), p.x,
+                          format_fitness(p.y, run.experiment.fitness.measure).c_str());
+    }
+    if (clicked) select_individual(s, ids[static_cast<std::size_t>(*clicked)]);
+}
+
+void time_plots_tab(Studio& s) {
+    if (!s.shown || s.shown->series.t_s.empty()) {
+        ImGui::TextDisabled("Select an individual or a champion: its simulation is plotted here.");
+        return;
+    }
+    const auto& series = s.shown->series;
+    const float each = std::max(
+        50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetStyle().ItemSpacing.y) / 3.0f);
+    const float width = ImGui::GetContentRegionAvail().x;
+    std::optional<double> seek;
+    auto take = [&](std::optional<double> t) {
+        if (t) seek = t;
+    };
+    take(draw_time_plot("com plot", series.t_s,
+                        {{&series.com_vox[0], IM_COL32(214, 69, 56, 255), "x"},
+                         {&series.com_vox[1], IM_COL32(46, 150, 70, 255), "y"},
+                         {&series.com_vox[2], IM_COL32(60, 110, 190, 255), "z"}},
+                        s.clock.time_s, "centre of mass", "voxels", ImVec2(width, each)));
+    record_widget(s, "time plot com");
+    take(draw_time_plot("tip plot", series.t_s, {{&series.tip_vox, IM_COL32(150, 90, 30, 255), ""}},
+                        s.clock.time_s, "tip displacement", "voxels", ImVec2(width, each)));
+    record_widget(s, "time plot tip");
+    take(draw_time_plot("bend plot", series.t_s,
+                        {{&series.bend_deg, IM_COL32(120, 60, 160, 255), ""}}, s.clock.time_s,
+                        "bend angle", "deg", ImVec2(width, each)));
+    record_widget(s, "time plot bend");
+    if (seek) {  // scrubbing in a plot moves the replay, as the timeline does
+        s.clock.seek(*seek);
+        s.clock.playing = false;
+    }
+}
+
+}  // namespace
+
+void draw_analysis_panel(Studio& s) {
+    if (!ImGui::BeginTabBar("analysis tabs")) return;
+    const std::pair<const char*, void (*)(Studio&)> tabs[] = {{"Population", draw_population_panel},
+                                                              {"Champions", champions_tab},
+                                                              {"Age vs fitness", scatter_tab},
+                                                              {"Time plots", time_plots_tab}};
+    for (const auto& [name, draw] : tabs) {
+        const bool open = ImGui::BeginTabItem(name);
+        record_widget(s, std::string("tab ") + name);
+        if (open) {
+            draw(s);
+            ImGui::EndTabItem();
+        }
+    }
+    ImGui::EndTabBar();
+}
+
+}  // namespace bhm::app::gui

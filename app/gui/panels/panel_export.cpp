@@ -1,0 +1,83 @@
+// The Export panel: screenshot of the 3D view at any size, a replay as a PNG sequence, and the
+// champion (or the body shown) as VXA and body JSON.
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/export_actions.hpp"
+#include "app/gui/panels/panels.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+void path_field(Studio& s, const char* id, std::string& value) {
+    char buffer[1024];
+    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
+    ImGui::SetNextItemWidth(-1.0f);
+    if (ImGui::InputText(id, buffer, sizeof buffer)) value = buffer;
+    record_widget(s, id + 2);
+}
+
+void hint(const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
+}
+
+void size_fields(const char* id, int& width, int& height) {
+    int size[2] = {width, height};
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 9.0f);
+    if (ImGui::InputInt2(id, size)) {
+        width = size[0];
+        height = size[1];
+    }
+    ImGui::SameLine();
+    ImGui::TextDisabled("px");
+}
+
+}  // namespace
+
+void draw_export_panel(Studio& s, ViewRenderer& renderer) {
+    auto& x = s.exports;
+    section_title("Screenshot of the 3D view (F12)");
+    path_field(s, "##screenshot path", x.screenshot_path);
+    size_fields("size##shot", x.screenshot_width, x.screenshot_height);
+    ImGui::SameLine();
+    if (tracked_button(s, "Save PNG"))
+        export_screenshot(s, renderer, x.screenshot_path, x.screenshot_width, x.screenshot_height);
+    hint("rendered off-screen at that size, with the view's camera");
+
+    section_title("Replay as a frame sequence");
+    path_field(s, "##frames folder", x.frames_folder);
+    size_fields("size##frames", x.frames_width, x.frames_height);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5.0f);
+    ImGui::InputDouble("frames/s", &x.frames_fps, 0.0, 0.0, "%.4g");
+    ImGui::SameLine();
+    if (x.frame_job.active) {
+        ImGui::ProgressBar(float(x.frame_job.next) / float(std::max(1, x.frame_job.total)),
+                           ImVec2(-ImGui::GetFontSize() * 5.0f, 0.0f));
+        ImGui::SameLine();
+        if (tracked_button(s, "Cancel")) x.frame_job.active = false;
+    } else {
+        ImGui::BeginDisabled(!s.shown);
+        if (tracked_button(s, "Write frames"))
+            start_frame_export(s, x.frames_folder, x.frames_width, x.frames_height, x.frames_fps);
+        ImGui::EndDisabled();
+    }
+    hint("frame_00000.png ... over the whole simulated time");
+
+    section_title("Champion (or the body shown)");
+    path_field(s, "##vxa path", x.champion_vxa_path);
+    if (tracked_button(s, "Save VXA")) export_champion_vxa(s, x.champion_vxa_path);
+    ImGui::SameLine();
+    ImGui::TextDisabled("VoxCAD / Voxelyze 1.0");
+    path_field(s, "##json path", x.champion_json_path);
+    if (tracked_button(s, "Save body JSON")) export_champion_json(s, x.champion_json_path);
+    ImGui::SameLine();
+    ImGui::TextDisabled("bhm body file");
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,143 @@
+// The Fitness panel (the plot) and the Population panel: the current population with the Pareto
+// front marked; a click on a row simulates that individual for the 3D view.
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "app/gui/panels/panels.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/widgets/fitness_plot.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+void draw_fitness_panel(Studio& s) {
+    // One plot per measure: after a change of rules, values in voxels and in degrees never share
+    // a line or an axis. Other runs (Compare) are overlaid thin on the plot of the same measure.
+    std::vector<MeasureSeries> plots;
+    if (s.run && !s.run->history.empty()) plots = split_by_measure(*s.run);
+    std::vector<std::vector<OverlayCurve>> overlays(plots.size());
+    for (const auto& other : s.compared_runs) {
+        if (!other.snapshot) continue;
+        for (auto& series : split_by_measure(*other.snapshot)) {
+            auto it = std::find_if(plots.begin(), plots.end(), [&](const MeasureSeries& m) {
+                return m.measure == series.measure;
+            });
+            if (it == plots.end()) {
+                plots.push_back({series.measure, {}});
+                overlays.emplace_back();
+                it = plots.end() - 1;
+            }
+            overlays[static_cast<std::size_t>(it - plots.begin())].push_back(
+                {other.label, std::move(series.records)});
+        }
+    }
+    if (plots.empty()) {
+        // Before a run has history, label the axis with the measure the next run will use.
+        plots.push_back({s.run && s.run->loaded ? s.run->experiment.fitness.measure
+                                                : s.document.experiment().fitness.measure,
+                         {}});
+        overlays.emplace_back();
+    }
+    const std::vector<RuleChange> no_changes;
+    const auto& changes = s.run ? s.run->rule_changes : no_changes;
+    const float line = ImGui::GetTextLineHeightWithSpacing();
+    const float each = (ImGui::GetContentRegionAvail().y - line * plots.size()) / plots.size();
+    s.fitness_plot_overlays = 0;
+    for (const auto& o : overlays)
+        s.fitness_plot_overlays += static_cast<int>(o.size());
+    for (std::size_t k = 0; k < plots.size(); ++k) {
+        const auto measure = plots[k].measure;
+        const char* name = evo::kFitnessNames[static_cast<std::size_t>(measure)];
+        ImGui::PushID(static_cast<int>(measure));
+        ImGui::TextDisabled("%s (%s)", name, fitness_unit(measure));
+        const float width = ImGui::GetContentRegionAvail().x;
+        s.fitness_plot.draw(plots[k].records, changes, ImVec2(width, std::max(60.0f, each)),
+                            fitness_unit(measure), overlays[k]);
+        record_widget(s, std::string("fitness plot ") + name);
+        ImGui::PopID();
+    }
+}
+
+void exploit_cell(Studio& s, const evo::ExploitReport& report, const std::string& widget) {
+    const std::string letters = exploit_letters(report);
+    if (letters.empty()) {
+        ImGui::TextDisabled(report.checked ? "-" : "?");
+        if (!report.checked && ImGui::IsItemHovered())
+            ImGui::SetTooltip("evaluated before exploit detection");
+        return;
+    }
+    ImGui::TextColored(ImVec4(0.80f, 0.15f, 0.10f, 1.0f), "%s", letters.c_str());
+    record_widget(s, widget);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", exploit_summary(report).c_str());
+}
+
+void draw_population_panel(Studio& s) {
+    if (!s.run || s.run->population.empty()) {
+        ImGui::TextDisabled("The population appears after the first generation.");
+        return;
+    }
+    const auto& run = *s.run;
+    const auto measure = run.experiment.fitness.measure;
+    ImGui::BeginDisabled(s.follow_champion);
+    if (tracked_button(s, "Follow champion")) follow_champion(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    // NEAT has species instead of a Pareto front: that column shows each member's species.
+    const bool neat = run.experiment.evolution.algorithm == evo::Algorithm::Neat;
+    int front = 0;
+    for (const auto& m : run.population)
+        front += m.pareto_rank == 0;
+    if (neat)
+        ImGui::TextDisabled("%zu individuals in %d species", run.population.size(), run.species);
+    else
+        ImGui::TextDisabled("%zu individuals, %d on the Pareto front (*)", run.population.size(),
+                            front);
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
+    if (!ImGui::BeginTable("population", 7, flags, ImGui::GetContentRegionAvail())) return;
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupColumn("id");
+    ImGui::TableSetupColumn(measure == evo::FitnessMeasure::BendAngleDeg ? "fitness (deg)"
+                                                                         : "fitness (vox)");
+    ImGui::TableSetupColumn("age");
+    ImGui::TableSetupColumn("voxels");
+    ImGui::TableSetupColumn("active");
+    ImGui::TableSetupColumn(neat ? "species" : "front");
+    ImGui::TableSetupColumn("flags");
+    ImGui::TableHeadersRow();
+    for (const auto& m : run.population) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        char id[48];
+        std::snprintf(id, sizeof id, "#%lld", static_cast<long long>(m.id));
+        const bool selected = s.shown && s.shown->id == m.id;
+        if (ImGui::Selectable(id, selected, ImGuiSelectableFlags_SpanAllColumns))
+            select_individual(s, m.id);
+        record_widget(s, std::string("individual ") + id);
+        ImGui::TableNextColumn();
+        if (!m.valid)
+            ImGui::TextDisabled("invalid");
+        else if (m.fitness < 0.0)
+            ImGui::TextDisabled("diverged");
+        else
+            ImGui::Text("%.3f", m.fitness);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", m.age);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", m.voxels);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.0f %%", 100.0 * m.active_fraction());
+        ImGui::TableNextColumn();
+        if (neat)
+            ImGui::Text("%d", m.species);
+        else
+            ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
+        ImGui::TableNextColumn();
+        exploit_cell(s, m.exploits, std::string("flags ") + id);
+    }
+    ImGui::EndTable();
+}
+
+}  // namespace bhm::app::gui

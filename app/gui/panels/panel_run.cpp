@@ -1,0 +1,216 @@
+// The Run panel: start / pause / resume / stop, the run's budgets, threads and seed, and where it
+// stands (generation, best fitness, simulations/s, elapsed, ETA). Also opens or resumes a run
+// directory written by `bhm evolve`.
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/panels/panels.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/studio_paths.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+void text_field(Studio& s, const char* id, const char* hint, std::string& value) {
+    char buffer[1024];
+    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
+    ImGui::SetNextItemWidth(-1.0f);
+    if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
+    record_widget(s, id + 2);
+}
+
+void controls(Studio& s) {
+    const RunPhase phase = s.evolution.phase();
+    const bool live = run_is_live(phase);
+    const float w = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4.0f;
+    ImGui::BeginDisabled(live);
+    if (tracked_button(s, "Start", ImVec2(w, 0))) start_run(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(phase != RunPhase::Running);
+    if (tracked_button(s, "Pause", ImVec2(w, 0))) pause_run(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(phase != RunPhase::Paused && phase != RunPhase::Pausing);
+    if (tracked_button(s, "Resume", ImVec2(w, 0))) resume_run(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!live || phase == RunPhase::Stopping);
+    if (tracked_button(s, "Stop", ImVec2(w, 0))) stop_run(s);
+    ImGui::EndDisabled();
+
+    if (!live) {
+        sync_draft(s);
+        auto& ev = s.draft.evolution;
+        ImGui::PushItemWidth(ImGui::GetFontSize() * 5.0f);
+        ImGui::InputInt("threads", &ev.threads, 0);
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "threads");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("worker threads; 0 = all hardware threads");
+        ImGui::SameLine();
+        ImGui::InputScalar("seed", ImGuiDataType_U64, &ev.seed);
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "seed");
+        ImGui::InputInt("generations", &ev.generations, 0);
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "generations");
+        ImGui::SameLine();
+        ImGui::InputDouble("h budget", &ev.wall_budget_h, 0.0, 0.0, "%.3g");
+        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
+        ImGui::PopItemWidth();
+        text_field(s, "##run dir", "run directory (empty: a new folder in the data folder)",
+                   s.run_dir_field);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("empty: %s/<name>-<time>", default_runs_root().c_str());
+    } else if (s.run && s.run->loaded && !s.showing_run_directory && !editing_run_document(s)) {
+        // The run owns its experiment: say so, so nobody expects these edits to reach it.
+        ImGui::TextDisabled(
+            "The editor shows another experiment than the run's: its edits "
+            "do not reach the run.");
+    } else if (rules_differ_from_run(s)) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.45f, 0.0f, 1.0f));
+        ImGui::TextWrapped(
+            "Edited rules (measure %s) will apply %s.",
+            evo::kFitnessNames[static_cast<std::size_t>(s.document.experiment().fitness.measure)],
+            phase == RunPhase::Paused ? "on Resume" : "after Apply (Constraints)");
+        ImGui::PopStyleColor();
+    }
+}
+
+void status(Studio& s) {
+    const auto& run = s.run;
+    if (!run || (run->phase == RunPhase::Idle && run->history.empty())) {
+        if (s.showing_run_directory && !s.run_directory.error().empty())
+            // e.g. a damaged run.json: say which file, rather than "No run yet".
+            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1.0f), "Cannot show the run: %s",
+                               s.run_directory.error().c_str());
+        else
+            ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
+        return;
+    }
+    if (!run->loaded) {  // a resumed run while its checkpoint loads: no defaults shown as its own
+        ImGui::TextUnformatted("state: loading the checkpoint");
+        if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
+        return;
+    }
+    const auto measure = run->experiment.fitness.measure;
+    // The session's phase is read live (an atomic), not from the last snapshot: Pause or Stop
+    // shows at once.
+    const RunPhase phase = s.showing_run_directory ? run->phase : s.evolution.phase();
+    const LiveProgress progress = s.evolution.progress();
+    if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
+        auto cell = [](const char* name, const std::string& value) {
+            ImGui::TableNextColumn();
+            ImGui::TextDisabled("%s", name);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(value.c_str());
+        };
+        char text[64];
+        // Live: the generation in progress counts (elapsed, simulations, rate, ETA move inside a
+        // generation); a watched directory has only its files.
+        const LiveFigures live =
+            s.showing_run_directory ? live_figures(*run, {}) : live_figures(*run, progress);
+        cell("state", s.showing_run_directory ? "viewing" : run_phase_name(phase));
+        std::snprintf(text, sizeof text, "%d / %d", run->generation, run->generation_budget);
+        cell("generation", text);
+        cell("best", run->has_champion ? format_fitness(run->best_fitness, measure) : "-");
+        std::snprintf(text, sizeof text, "%.2f", live.simulations_per_s);
+        cell("sims/s", text);
+        cell("elapsed", format_duration(live.elapsed_s));
+        cell("ETA",
+             live.eta_s >= 0.0 && phase != RunPhase::Paused ? format_duration(live.eta_s) : "-");
+        std::snprintf(text, sizeof text, "%lld", static_cast<long long>(live.simulations));
+        cell("simulations", text);
+        cell("measure", evo::kFitnessNames[static_cast<std::size_t>(measure)]);
+        cell("algorithm", evo::kAlgorithmNames[static_cast<std::size_t>(
+                              run->experiment.evolution.algorithm)]);
+        if (run->species > 0) {
+            std::snprintf(text, sizeof text, "%d", run->species);
+            cell("species", text);
+        }
+        if (run->novelty) {  // novelty search: how novel, how much remembered
+            std::snprintf(text, sizeof text, "%.4g", run->novelty->best_novelty);
+            cell("novelty", text);
+            std::snprintf(text, sizeof text, "%d", run->novelty->archive_size);
+            cell("archive", text);
+        }
+        ImGui::EndTable();
+    }
+    if (!s.showing_run_directory && progress.running && run_is_live(phase) &&
+        progress.generation >= run->generation) {
+        // Per-simulation progress of the generation in progress.
+        char text[96];
+        const int total = progress.simulations_total;
+        if (total > 0)
+            std::snprintf(text, sizeof text, "generation %d: simulation %d of %d%s",
+                          progress.generation, std::min(total, progress.simulations_done + 1),
+                          total, phase == RunPhase::Paused ? " (frozen)" : "");
+        else
+            std::snprintf(text, sizeof text, "generation %d: making its individuals",
+                          progress.generation);
+        ImGui::ProgressBar(total > 0 ? float(progress.simulations_done) / float(total) : 0.0f,
+                           ImVec2(-1.0f, 0.0f), text);
+        record_widget(s, "generation progress");
+    }
+    if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
+    // The message says what the run is doing now: the session's phase moves at once (Pause,
+    // Stop), the snapshot's message only when the run thread publishes.
+    std::string message = run->message;
+    if (!s.showing_run_directory && phase != run->phase) {
+        if (phase == RunPhase::Paused)
+            message = "paused: the simulations in flight are frozen and go on at Resume";
+        else if (phase == RunPhase::Pausing)
+            message = "pausing after this generation is saved";
+        else if (phase == RunPhase::Stopping)
+            message = "stopping: the simulations in flight are aborted";
+        else if (phase == RunPhase::Running && run->phase == RunPhase::Paused)
+            message = "resumed";
+    }
+    if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+}
+
+void run_directory(Studio& s) {
+    if (!ImGui::TreeNode("Run directory (bhm evolve)")) return;
+    text_field(s, "##open run", "run directory", s.open_run_field);
+    if (tracked_button(s, "View")) open_run_directory(s, s.open_run_field);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("inspect, plot and replay it; refreshed as it grows");
+    ImGui::SameLine();
+    if (tracked_button(s, "Resume run")) resume_run_directory(s, s.open_run_field);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("continue it from its last checkpoint");
+    ImGui::SameLine();
+    if (tracked_button(s, "Compare")) add_compared_run(s, s.open_run_field);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("overlay its fitness history, thin, on the plots of the same measure");
+    for (std::size_t k = 0; k < s.compared_runs.size(); ++k) {
+        ImGui::PushID(static_cast<int>(k));
+        if (ImGui::SmallButton("x")) {
+            remove_compared_run(s, k);
+            ImGui::PopID();
+            break;
+        }
+        ImGui::SameLine();
+        ImGui::TextDisabled("compared: %s", s.compared_runs[k].dir.c_str());
+        ImGui::PopID();
+    }
+    if (s.showing_run_directory) {
+        ImGui::SameLine();
+        if (tracked_button(s, "Close")) close_run_directory(s);
+        if (!s.run_directory.error().empty())
+            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1.0f), "%s",
+                               s.run_directory.error().c_str());
+    }
+    ImGui::TreePop();
+}
+
+}  // namespace
+
+void draw_run_panel(Studio& s) {
+    controls(s);
+    ImGui::Separator();
+    status(s);
+    run_directory(s);
+}
+
+}  // namespace bhm::app::gui

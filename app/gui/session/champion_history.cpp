@@ -1,0 +1,96 @@
+#include "app/gui/session/champion_history.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "evo/experiment/experiment_io.hpp"
+
+namespace bhm::app::gui {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json read_json(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path + ": cannot open");
+    std::ostringstream text;
+    text << in.rdbuf();
+    try {
+        return json::parse(text.str());
+    } catch (const json::exception& e) {
+        throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
+    }
+}
+
+evo::FitnessMeasure measure_named(const std::string& name) {
+    for (std::size_t k = 0; k < evo::kFitnessNames.size(); ++k)
+        if (name == evo::kFitnessNames[k]) return static_cast<evo::FitnessMeasure>(k);
+    return evo::FitnessMeasure::ComFinal3d;
+}
+
+}  // namespace
+
+bool ChampionHistory::refresh(const std::string& run_dir) {
+    if (run_dir != dir_) {
+        dir_ = run_dir;
+        entries_.clear();
+        seen_.clear();
+        checked_ = {};
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (dir_.empty() || now - checked_ < std::chrono::milliseconds(500)) return false;
+    checked_ = now;
+    std::error_code ec;
+    bool changed = false;
+    for (fs::directory_iterator it(fs::path(dir_) / "champions", ec), end; !ec && it != end;
+         it.increment(ec)) {
+        const auto& p = it->path();
+        if (p.extension() != ".json" || !p.filename().string().starts_with("gen-")) continue;
+        std::error_code time_ec;
+        const auto mtime = fs::last_write_time(p, time_ec);
+        const auto key = p.string();
+        if (auto s = seen_.find(key); s != seen_.end() && s->second == mtime) continue;
+        try {
+            const json j = read_json(key);
+            ChampionEntry e;
+            e.generation = j.at("generation_found").get<int>();
+            e.id = j.at("id").get<std::int64_t>();
+            e.fitness = j.at("fitness").get<double>();
+            e.measure = measure_named(j.value("measure", std::string()));
+            e.voxels = j.value("voxels", 0);
+            e.active_voxels = j.value("active_voxels", 0);
+            if (j.contains("report") && j.at("report").contains("exploits"))
+                e.exploits = evo::exploits_from_json(j.at("report").at("exploits"));
+            e.path = key;
+            std::erase_if(entries_, [&](const ChampionEntry& old) { return old.path == key; });
+            entries_.push_back(e);
+            seen_[key] = mtime;
+            changed = true;
+            error_.clear();
+        } catch (const std::exception& ex) {
+            error_ = ex.what();  // e.g. being written: tried again on the next scan
+        }
+    }
+    if (changed)
+        std::sort(entries_.begin(), entries_.end(),
+                  [](const ChampionEntry& a, const ChampionEntry& b) {
+                      return a.generation < b.generation;
+                  });
+    return changed;
+}
+
+std::shared_ptr<const evo::Body> load_champion_body(const std::string& path) {
+    const json j = read_json(path);
+    try {
+        return std::make_shared<const evo::Body>(evo::parse_body(j.at("phenotype"), path));
+    } catch (const json::exception& e) {
+        throw std::runtime_error(path + ": no phenotype (" + e.what() + ")");
+    }
+}
+
+}  // namespace bhm::app::gui

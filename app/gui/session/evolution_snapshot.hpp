@@ -1,0 +1,116 @@
+#pragma once
+// What the evolution worker publishes for the UI after every generation (and on every change of
+// state): immutable, taken by the UI thread at the start of a frame (latest_slot.hpp).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "evo/evaluate/exploit_flags.hpp"
+#include "evo/experiment/experiment.hpp"
+#include "evo/run/run_state.hpp"
+
+namespace bhm::app::gui {
+
+enum class RunPhase { Idle, Running, Pausing, Paused, Stopping, Finished, Stopped, Failed };
+const char* run_phase_name(RunPhase phase);
+//! A run thread exists (running, pausing, paused or stopping).
+inline bool run_is_live(RunPhase p) {
+    return p == RunPhase::Running || p == RunPhase::Pausing || p == RunPhase::Paused ||
+           p == RunPhase::Stopping;
+}
+
+struct GenerationRecord {
+    int generation = 0;
+    double best_fitness = 0.0;     //!< best of the population under the rules of that generation
+    double median_fitness = 0.0;   //!< over evaluated, valid members
+    double elapsed_s = 0.0;        //!< wall time since the run started
+    std::int64_t evaluations = 0;  //!< simulations so far
+};
+
+//! A change of rules (constraints, fitness measure, boundary) between generations: the population
+//! was re-evaluated under the new rules from `generation` on.
+struct RuleChange {
+    int generation = 0;
+    std::string description;
+    evo::FitnessMeasure measure = evo::FitnessMeasure::ComFinal3d;  //!< from `generation` on
+};
+
+struct PopulationMember {
+    std::int64_t id = 0;
+    double fitness = 0.0;
+    int age = 0;
+    int voxels = 0;
+    int active_voxels = 0;
+    int pareto_rank = 0;  //!< 0 = on the Pareto front of (fitness up, age down[, active down])
+    int species = 0;      //!< NEAT: its species id (0 for other algorithms)
+    bool valid = true;    //!< false: breaks the current constraints
+    evo::ExploitReport exploits;  //!< escaped / detached_motion / tentacle (evo/evaluate/exploit_flags.hpp)
+    std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)
+    double active_fraction() const { return voxels > 0 ? double(active_voxels) / voxels : 0.0; }
+};
+
+struct EvolutionSnapshot {
+    RunPhase phase = RunPhase::Idle;
+    std::string message;  //!< last event or error, one line
+    std::string run_dir;
+    //! The run is built (a resumed one has loaded its checkpoint): the fields below are its own.
+    //! False only while a checkpoint loads; the panels then say so instead of showing defaults.
+    bool loaded = false;
+    evo::Experiment experiment;  //!< the rules in force
+    int generation = 0;          //!< generations completed
+    int generation_budget = 0;
+    double best_fitness = 0.0;
+    double simulations_per_s = 0.0;
+    double elapsed_s = 0.0;
+    double eta_s = -1.0;  //!< negative while unknown
+    std::int64_t evaluations = 0;
+    int species = 0;  //!< NEAT: species in the population (0 for other algorithms)
+    std::optional<evo::NoveltyRow> novelty;  //!< novelty search: novelty and archive figures
+    std::vector<GenerationRecord> history;
+    std::vector<RuleChange> rule_changes;
+    evo::FitnessMeasure initial_measure = evo::FitnessMeasure::ComFinal3d;  //!< before any change
+    std::vector<PopulationMember> population;  //!< sorted by fitness, best first
+    bool has_champion = false;
+    PopulationMember champion;  //!< best so far under the current rules
+    int champion_generation = 0;
+};
+
+//! How far the generation in progress is, read live every frame (evo::EvolutionRun::progress,
+//! thread-safe): the Run panel's per-simulation progress, elapsed time, simulations/s and ETA
+//! move inside a generation instead of waiting for its end.
+struct LiveProgress {
+    bool running = false;       //!< a generation is being evaluated
+    int generation = -1;        //!< the one in progress
+    int simulations_done = 0;   //!< finished simulations of it
+    int simulations_total = 0;  //!< its simulations (0 until its individuals exist)
+    double generation_s = 0.0;  //!< wall time in it so far, paused time excluded
+};
+
+//! Live figures from the last completed generation's snapshot and the progress of the next.
+struct LiveFigures {
+    double elapsed_s = 0.0;          //!< completed generations + the one in progress
+    double simulations_per_s = 0.0;  //!< in the generation in progress once it has results
+    double eta_s = -1.0;             //!< to the generation budget; -1 unknown
+    std::int64_t simulations = 0;    //!< completed + finished in the generation in progress
+};
+LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progress);
+
+//! "escaped (12 % unanchored), tentacle (thin share 0.62)"; "" when nothing is flagged or the
+//! result predates exploit detection.
+std::string exploit_summary(const evo::ExploitReport& report);
+//! "E", "D", "T" letters of the flags set ("" when none), for tables.
+std::string exploit_letters(const evo::ExploitReport& report);
+
+//! The measure generation g was scored under: the last rule change at or before g, else the
+//! run's first measure. Fitness values of different measures have different units (voxels,
+//! degrees), so plots keep them apart.
+inline evo::FitnessMeasure measure_at(const EvolutionSnapshot& run, int generation) {
+    evo::FitnessMeasure measure = run.initial_measure;
+    for (const auto& change : run.rule_changes)
+        if (change.generation <= generation) measure = change.measure;
+    return measure;
+}
+
+}  // namespace bhm::app::gui

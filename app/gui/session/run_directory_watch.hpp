@@ -1,0 +1,37 @@
+#pragma once
+// Viewing a run directory written by `bhm evolve` (also one still growing elsewhere): the fitness
+// history and the champion are re-read when their files' modification times change, and turned
+// into the same EvolutionSnapshot the live session publishes, so every panel works on both.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/gui/session/evolution_snapshot.hpp"
+
+namespace bhm::app::gui {
+
+class RunDirectoryWatch {
+  public:
+    //! Opens a run directory; throws std::runtime_error naming the folder when it is not one.
+    void open(const std::string& run_dir);
+    void close();
+    bool is_open() const { return !dir_.empty(); }
+    const std::string& dir() const { return dir_; }
+
+    //! Stats the files (cheap) and re-reads those whose modification time changed. Returns true
+    //! when the snapshot changed. Errors (a file half-written by the other process) keep the last
+    //! good snapshot and set error().
+    bool refresh();
+    std::shared_ptr<const EvolutionSnapshot> snapshot() const { return snapshot_; }
+    const std::string& error() const { return error_; }
+    int reloads() const { return reloads_; }  //!< how many times files were re-read
+
+  private:
+    std::string dir_;
+    std::filesystem::file_time_type fitness_mtime_{}, champion_mtime_{}, experiment_mtime_{};
+    std::shared_ptr<const EvolutionSnapshot> snapshot_;
+    std::string error_;
+    int reloads_ = 0;
+};
+
+}  // namespace bhm::app::gui

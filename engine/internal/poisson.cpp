@@ -1,0 +1,593 @@
+// Poisson coupling (poisson.hpp): moduli, the model's constants, the per-step pass and its energy.
+#include "engine/internal/poisson.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/internal/kernel_dispatch.hpp"
+#include "engine/internal/link_kinematics.hpp"  // BHM_ENGINE_INLINE
+
+namespace bhm::engine {
+
+PoissonModuli poisson_moduli(double e, double nu, int linked_axes) {
+    if (linked_axes >= 3) {
+        const double scale = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        return {scale * (1.0 - nu), scale * nu};
+    }
+    if (linked_axes == 2) return {e / (1.0 - nu * nu), e * nu / (1.0 - nu * nu)};
+    return {e, 0.0};
+}
+
+double poisson_stiffness_factor(double nu) {
+    const double m = (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    return std::max({1.0, m, 1.0 / (1.0 - 2.0 * nu)});
+}
+
+double octant_volumetric_modulus(double e, double nu, int linked_axes) {
+    if (linked_axes <= 0) return 0.0;
+    return poisson_moduli(e, nu, linked_axes).m - e / (1.0 + nu);  // M_k - 2 G
+}
+
+namespace {
+
+constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half-link
+
+// 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp).
+constexpr float kInverseSaturation = 1.0f / 0.1f;
+
+// lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
+inline float octant_lambda(float hx, float hy, float hz, float lambda1, float lambda2,
+                           float lambda3) {
+    const float three = hx * hy * hz;
+    const float pairs = hx * hy + hy * hz + hz * hx;
+    const float two = pairs - 3.0f * three;
+    const float one = hx + hy + hz - 2.0f * pairs + 3.0f * three;
+    return one * lambda1 + two * lambda2 + three * lambda3;
+}
+
+int links_on_axis(const PoissonParams& pp, int a, int v) {
+    return static_cast<int>(pp.has_minus[a][v] + pp.has_plus[a][v]);
+}
+
+// dW/dd^2 of one end of an isolated link (per volume): G from the deviatoric term, lambda_o / 8
+// from each of the four octants on the linked side.
+double pair_curvature(const PoissonParams& pp, int a, int v, int side) {
+    (void)side;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    double sum = pp.shear[v];
+    for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
+        for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]}) {
+            const int k = 1 + static_cast<int>(hb) + static_cast<int>(hc);
+            const float lambda = k == 3 ? pp.lambda3[v] : k == 2 ? pp.lambda2[v] : pp.lambda1[v];
+            sum += 0.125 * lambda;
+        }
+    return sum;
+}
+
+}  // namespace
+
+std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
+    const BodySpec& spec = d.spec;
+    const int n = d.voxels;
+    PoissonParams& pp = d.poisson;
+    std::array<std::vector<double>, 3> octant_modulus;  // per axis: that mean / E, per voxel
+    for (auto* v : {&pp.shear, &pp.lambda1, &pp.lambda2, &pp.lambda3})
+        v->assign(d.stored, 0.0f);
+    for (auto& v : pp.octant_lambda8)
+        v.assign(d.stored, 0.0f);
+    for (int a = 0; a < 3; ++a) {
+        pp.has_plus[a].assign(d.stored, 0.0f);
+        pp.has_minus[a].assign(d.stored, 0.0f);
+        pp.rest_scale[a].assign(d.stored, 0.0f);
+        pp.pair_step[a].assign(d.stored, 0.0f);
+        for (int s = 0; s < kSides; ++s) {
+            for (auto* v : {&pp.mu_own[a][s], &pp.mu_other[a][s], &pp.mu_far[a][s],
+                            &pp.mu_pair[a][s], &pp.dev_scale[a][s]})
+                v->assign(d.stored, 0.0f);
+            pp.far_slot[a][s].assign(d.stored, kNoLink);
+        }
+        octant_modulus[a].assign(d.stored, 0.0);
+    }
+    std::vector<char> relaxed(d.stored, 0);
+    for (int v = 0; v < n; ++v) {
+        for (int a = 0; a < 3; ++a) {
+            pp.has_plus[a][v] = d.plus[a][v] != v ? 1.0f : 0.0f;
+            pp.has_minus[a][v] = d.minus[a][v] != kNoLink ? 1.0f : 0.0f;
+        }
+        const Material& mat = spec.materials[d.voxel_material[v] - 1];
+        // A held voxel is the clamp plane through its centre: it adds no lateral constraint of
+        // its own (a continuum clamp's constraint fades within a fraction of a voxel; measured
+        // against CalculiX in docs/physics.md), so its octants are uncoupled (nu = 0).
+        const double e = mat.youngs_modulus_pa, nu = d.voxel_fixed[v] ? 0.0 : mat.poisson_ratio;
+        pp.shear[v] = static_cast<float>(e / (2.0 * (1.0 + nu)));
+        pp.lambda1[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 1));
+        pp.lambda2[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 2));
+        pp.lambda3[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 3));
+        pp.active = pp.active || nu != 0.0;
+        // Auxetic voxels (lambda < 0) keep the half-link strains: the centre estimates below are
+        // not contractions, and only lambda >= 0 keeps their energy positive for any estimate.
+        relaxed[v] = nu > 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            double sum = 0.0;
+            for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
+                for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]})
+                    sum += poisson_moduli(e, nu, 1 + static_cast<int>(hb) + static_cast<int>(hc)).m;
+            octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
+        }
+    }
+    for (int v = 0; v < n; ++v)
+        for (int o = 0; o < 8; ++o)
+            pp.octant_lambda8[o][v] =
+                0.125f * octant_lambda(o & 4 ? pp.has_plus[0][v] : pp.has_minus[0][v],
+                                       o & 2 ? pp.has_plus[1][v] : pp.has_minus[1][v],
+                                       o & 1 ? pp.has_plus[2][v] : pp.has_minus[2][v],
+                                       pp.lambda1[v], pp.lambda2[v], pp.lambda3[v]);
+    // The centre strain of each voxel on each axis (poisson.hpp), in the voxel's own strain
+    // units: a link's strain times E_link / E_voxel (its stress over the voxel's modulus).
+    auto young = [&](int v) { return spec.materials[d.voxel_material[v] - 1].youngs_modulus_pa; };
+    std::vector<char> pair_voxel(d.stored, 0);
+    for (int v = 0; v < n; ++v)
+        for (int a = 0; a < 3; ++a) {
+            const float h[kSides] = {pp.has_minus[a][v], pp.has_plus[a][v]};
+            const int partner[kSides] = {d.minus[a][v], d.plus[a][v]};
+            float w[kSides] = {0.0f, 0.0f};
+            for (int s = 0; s < kSides; ++s)
+                if (h[s] != 0.0f) {
+                    const double ep = young(partner[s]), ev = young(v);
+                    w[s] = static_cast<float>(2.0 * ep / (ep + ev));  // series(E_v, E_p) / E_v
+                }
+            for (int s = 0; s < kSides; ++s)
+                pp.dev_scale[a][s][v] = w[s];
+            if (!relaxed[v]) {
+                for (int s = 0; s < kSides; ++s)
+                    pp.mu_own[a][s][v] = w[s];
+                continue;
+            }
+            const int count = links_on_axis(pp, a, v);
+            if (count == 2) {  // interior: the mean of the two half-links
+                for (int s = 0; s < kSides; ++s) {
+                    pp.mu_own[a][s][v] = 0.5f * w[s];
+                    pp.mu_other[a][s][v] = 0.5f * w[1 - s];
+                }
+                continue;
+            }
+            if (count == 0) continue;
+            const int s = h[1] != 0.0f ? 1 : 0;
+            const int p = partner[s];
+            const bool column = links_on_axis(pp, a, p) == 2;  // v ends a column of three or more
+            const int next = column ? (s == 1 ? d.plus[a][p] : d.minus[a][p]) : p;
+            // The end estimate extrapolates stresses. Through a partner or far link stiffer than
+            // v it divides their stress by v's smaller modulus: the far link's strain is weighted
+            // by up to E_far / E_v and gains a stiffness beyond its own, which the stable step
+            // and the damping cap do not know (4x4x4 random mixtures of E and 100 E at nu = 0.35
+            // diverged within 37-61 steps at the default step). There v keeps its half-link.
+            const bool extrapolate = column && young(p) <= young(v) && young(next) <= young(v);
+            if (extrapolate) {
+                // End of a column of three or more: the derivative at the end of the parabola
+                // through the last three centres, (3 e_link - e_next) / 2.
+                const double ep = young(p), en = young(next);
+                pp.mu_own[a][s][v] = 1.5f * w[s];
+                pp.mu_far[a][s][v] =
+                    static_cast<float>(-0.5 * (2.0 * ep * en / (ep + en)) / young(v));
+                pp.far_slot[a][s][v] = s == 1 ? p : d.minus[a][p];
+            } else if (!column && relaxed[p]) {
+                // An isolated link (a column of two): the two centres are e_link -+ d, d relaxed.
+                pp.mu_own[a][s][v] = w[s];
+                pp.mu_pair[a][s][v] = s == 1 ? -1.0f : 1.0f;
+                pair_voxel[v] = 1;
+            } else {
+                pp.mu_own[a][s][v] = w[s];
+            }
+        }
+    for (int a = 0; a < 3; ++a) {
+        pp.far_reads[a].clear();
+        pp.far_pos_links[a].clear();
+        pp.far_neg_links[a].clear();
+        for (int v = 0; v < n; ++v)
+            for (int s = 0; s < kSides; ++s) {
+                if (pp.mu_far[a][s][v] == 0.0f) continue;
+                const int slot = pp.far_slot[a][s][v];
+                if (a != 0) pp.far_reads[a].push_back({v, s, slot});
+                (s == 1 ? pp.far_pos_links : pp.far_neg_links)[a].push_back({slot, v});
+            }
+    }
+    pp.pair_voxels.clear();
+    for (int v = 0; v < n; ++v)
+        if (pair_voxel[v]) pp.pair_voxels.push_back(v);
+    return octant_modulus;
+}
+
+void finish_poisson_params(Model::Data& d) {
+    PoissonParams& pp = d.poisson;
+    // dW/(dd dd') / V between this link's d and the d of another isolated link at the same end
+    // voxel u (side s of axis a): lambda_o / 8 over the two octants both half-links span.
+    auto coupling = [&](int a, int u, int s) {
+        double sum = 0.0;
+        for (int a2 = 0; a2 < 3; ++a2) {
+            if (a2 == a) continue;
+            for (int s2 = 0; s2 < kSides; ++s2) {
+                if (pp.mu_pair[a2][s2][u] == 0.0f) continue;
+                const int c = 3 - a - a2;
+                (void)s;
+                for (float hc : {pp.has_minus[c][u], pp.has_plus[c][u]}) {
+                    const float lambda = hc != 0.0f ? pp.lambda3[u] : pp.lambda2[u];
+                    sum += 0.125 * std::fabs(lambda);
+                }
+            }
+        }
+        return sum;
+    };
+    // One Jacobi step per time step with the row-sum step 1 / (h + sum |coupling|): the
+    // iteration matrix then has eigenvalues in [0, 1), which keeps the time-extrapolated guess
+    // of poisson_pass stable (a negative eigenvalue would make it oscillate and grow).
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < d.voxels; ++c) {
+            if (pp.mu_pair[a][1][c] == 0.0f) continue;
+            const int b = d.plus[a][c];
+            const double h = pair_curvature(pp, a, c, 1) + pair_curvature(pp, a, b, 0);
+            const double off = coupling(a, c, 1) + coupling(a, b, 0);
+            pp.pair_step[a][c] = static_cast<float>(1.0 / (h + off));
+        }
+}
+
+namespace {
+
+// Strain of every link slot: (|d| - actuated rest) / L, exactly 0 for absent slots, over the
+// same runs as the link pass (whole vectors, empty vectors skipped, uniform runs without
+// gathers; model_data.hpp). Slots in no run keep the zero they were sized with. Each slot's chord
+// and length are kept for the link pass, as it would measure them (link axis first; an absent
+// link's is the straight rest chord), so it need not read the double positions again.
+template <bool kGather>
+BHM_ENGINE_INLINE void strain_loop(const Model::Data& d, const VoxelState& s, int axis, float sin_t,
+                                   float cos_t, const LinkRun& run, float* __restrict out,
+                                   LinkScratch& link) {
+    const LinkParams& lp = d.links[axis];
+    const float* __restrict exists = lp.exists.data();
+    const float* __restrict rest_base = lp.rest_base.data();
+    const float* __restrict rest_sin = lp.rest_sin.data();
+    const float* __restrict rest_cos = lp.rest_cos.data();
+    const float inv_l = static_cast<float>(1.0 / d.voxel_size_m);
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    const double* __restrict p0 = s.pos[axis].data();
+    const double* __restrict p1 = s.pos[a1].data();
+    const double* __restrict p2 = s.pos[a2].data();
+    float* __restrict chord0 = link.chord[0];
+    float* __restrict chord1 = link.chord[1];
+    float* __restrict chord2 = link.chord[2];
+    float* __restrict lengths = link.length;
+    const int* __restrict plus = d.plus[axis].data();
+    const int delta = run.delta;
+#pragma GCC ivdep
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
+        const float e = exists[c];
+        const Chord chord = link_chord(p0, p1, p2, c, b, e, rest_base[c]);
+        const float length = chord_length(chord.d0, chord.d1, chord.d2);
+        chord0[c] = chord.d0;
+        chord1[c] = chord.d1;
+        chord2[c] = chord.d2;
+        lengths[c] = length;
+        const float rest = rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c];
+        out[c] = e * (length - rest) * inv_l;
+    }
+}
+
+BHM_ENGINE_INLINE void link_strains(const Model::Data& d, const VoxelState& s, int axis,
+                                    float sin_t, float cos_t, float* __restrict out,
+                                    LinkScratch& link) {
+    for (const LinkRun& run : d.link_runs[axis])
+        if (run.delta == 0)
+            strain_loop<true>(d, s, axis, sin_t, cos_t, run, out, link);
+        else
+            strain_loop<false>(d, s, axis, sin_t, cos_t, run, out, link);
+}
+
+// lead: zero slots before slot 0 (uniform voxel runs read slot v - below, model_data.hpp).
+void ensure(PoissonScratch& p, int stored, int lead) {
+    constexpr int kFields = 13;
+    const std::size_t span = static_cast<std::size_t>(lead) + stored + kLanes;
+    if (p.storage[0].size() == kFields * span) return;
+    for (int a = 0; a < 3; ++a) {
+        p.storage[a].assign(kFields * span, 0.0f);
+        float* base = p.storage[a].data() + lead;
+        float** fields[kFields] = {&p.strain[a],         &p.pair_d[a],         &p.pair_last[a],
+                                   &p.grad_neg[a],       &p.grad_pos[a],       &p.far_neg[a],
+                                   &p.far_pos[a],        &p.dgrad_neg[a],      &p.dgrad_pos[a],
+                                   &p.far_strain_neg[a], &p.far_strain_pos[a], &p.far_from_below[a],
+                                   &p.far_from_above[a]};
+        for (float** f : fields) {
+            *f = base;
+            base += span;
+        }
+    }
+}
+
+// Raw views of every array the voxel kernel touches, taken once per pass ([axis][side]).
+struct Views {
+    const float *shear, *lambda8[8];
+    const float *own[3][kSides], *other[3][kSides], *far[3][kSides], *pair[3][kSides],
+        *dev[3][kSides];
+    const int *far_slot[3][kSides], *below[3];
+    const float *strain[3], *d[3], *far_strain[3][kSides];
+    float *grad_neg[3], *grad_pos[3], *far_neg[3], *far_pos[3], *dgrad_neg[3], *dgrad_pos[3];
+};
+
+Views views_of(const Model::Data& d, PoissonScratch& p) {
+    const PoissonParams& pp = d.poisson;
+    Views w{};
+    w.shear = pp.shear.data();
+    for (int o = 0; o < 8; ++o)
+        w.lambda8[o] = pp.octant_lambda8[o].data();
+    for (int a = 0; a < 3; ++a) {
+        for (int s = 0; s < kSides; ++s) {
+            w.own[a][s] = pp.mu_own[a][s].data();
+            w.other[a][s] = pp.mu_other[a][s].data();
+            w.far[a][s] = pp.mu_far[a][s].data();
+            w.pair[a][s] = pp.mu_pair[a][s].data();
+            w.dev[a][s] = pp.dev_scale[a][s].data();
+            w.far_slot[a][s] = pp.far_slot[a][s].data();
+        }
+        w.below[a] = d.minus[a].data();
+        w.strain[a] = p.strain[a];
+        w.d[a] = p.pair_d[a];
+        w.far_strain[a][0] = p.far_strain_neg[a];
+        w.far_strain[a][1] = p.far_strain_pos[a];
+        w.grad_neg[a] = p.grad_neg[a];
+        w.grad_pos[a] = p.grad_pos[a];
+        w.far_neg[a] = p.far_neg[a];
+        w.far_pos[a] = p.far_pos[a];
+        w.dgrad_neg[a] = p.dgrad_neg[a];
+        w.dgrad_pos[a] = p.dgrad_pos[a];
+    }
+    return w;
+}
+
+// Flags derived from the coefficients (one array stream less each, per axis and side): a
+// half-link exists exactly where its series weight dev_scale is set (> 0), and a side is a
+// column's end estimate exactly where it reads a far link (mu_far < 0). Exactly 1 or 0.
+BHM_ENGINE_INLINE float half_link_exists(const Views& w, int a, int s, int v) {
+    return static_cast<float>(w.dev[a][s][v] > 0.0f);
+}
+BHM_ENGINE_INLINE float at_column_end(const Views& w, int a, int s, int v) {
+    return static_cast<float>(w.far[a][s][v] < 0.0f);
+}
+
+// The strains one voxel's octants see: mu (volumetric term) and gamma (deviatoric term) of each
+// axis and side, h = 1 where that half-link exists.
+struct VoxelStrains {
+    float mu[3][kSides], gamma[3][kSides], h[3][kSides];
+};
+
+// below: per axis, the link slot whose + end is v (kNoLink reads the zero lead slot); far: per
+// axis and side, the strain of the partner's other link (only used where mu_far != 0).
+BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&below)[3],
+                                             const float (&far_strain)[3][kSides]) {
+    VoxelStrains out;
+#pragma GCC unroll 8
+    for (int a = 0; a < 3; ++a) {
+        const float e[kSides] = {w.strain[a][below[a]], w.strain[a][v]};
+        const float dd[kSides] = {w.d[a][below[a]], w.d[a][v]};
+#pragma GCC unroll 8
+        for (int s = 0; s < kSides; ++s) {
+            out.h[a][s] = half_link_exists(w, a, s, v);
+            const float far = far_strain[a][s];
+            const float pair = w.pair[a][s][v] * dd[s];
+            out.mu[a][s] =
+                w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] + w.far[a][s][v] * far + pair;
+            // The deviatoric term uses the half-link, except at a column's end, where it takes
+            // the same estimate as the volumetric one (so a uniform strain stays exact there).
+            const float half = w.dev[a][s][v] * e[s] + pair;
+            out.gamma[a][s] = half + at_column_end(w, a, s, v) * (out.mu[a][s] - half);
+        }
+    }
+    return out;
+}
+
+// The same through the tables (energy diagnostics).
+VoxelStrains voxel_strains(const Views& w, int v) {
+    const int below[3] = {w.below[0][v], w.below[1][v], w.below[2][v]};
+    float far[3][kSides];
+    for (int a = 0; a < 3; ++a)
+        for (int s = 0; s < kSides; ++s)
+            far[a][s] = w.strain[a][w.far_slot[a][s][v]];
+    return voxel_strains(w, v, below, far);
+}
+
+// Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
+// of its end estimates and to the relaxations d (all per unit volume).
+BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)[3],
+                                       const float (&far_strain)[3][kSides]) {
+    const VoxelStrains k = voxel_strains(w, v, below, far_strain);
+    float P[3][kSides] = {};
+#pragma GCC unroll 8
+    for (int sx = 0; sx < kSides; ++sx)
+#pragma GCC unroll 8
+        for (int sy = 0; sy < kSides; ++sy)
+#pragma GCC unroll 8
+            for (int sz = 0; sz < kSides; ++sz) {
+                const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
+                const float theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
+                // Volumetric stress lambda theta / sqrt(1 + (theta / theta_0)^2) (poisson.hpp).
+                // (Only where lambda > 0: an auxetic voxel's negative lambda stays linear, its
+                // energy is positive only with the deviatoric term's full weight.)
+                const float lambda8 = w.lambda8[4 * sx + 2 * sy + sz][v];  // lambda_o / 8
+                const float q = theta * kInverseSaturation * static_cast<float>(lambda8 > 0.0f);
+                const float t = lambda8 * theta / std::sqrt(1.0f + q * q);
+                P[0][sx] += hx * t;
+                P[1][sy] += hy * t;
+                P[2][sz] += hz * t;
+            }
+    const float g = w.shear[v];
+#pragma GCC unroll 8
+    for (int a = 0; a < 3; ++a) {
+        float grad[kSides], far[kSides], dgrad[kSides];
+#pragma GCC unroll 8
+        for (int s = 0; s < kSides; ++s) {
+            const float deviatoric = g * k.gamma[a][s];  // 4 octants x 2 G gamma / 8
+            const float end = at_column_end(w, a, s, v);
+            const float own = w.own[a][s][v];
+            const float dev = w.dev[a][s][v];
+            grad[s] = own * P[a][s] + w.other[a][1 - s][v] * P[a][1 - s] +
+                      (dev + end * (own - dev)) * deviatoric;
+            far[s] = w.far[a][s][v] * (P[a][s] + deviatoric);
+            dgrad[s] = w.pair[a][s][v] * (P[a][s] + deviatoric);
+        }
+        w.grad_neg[a][v] = grad[0];
+        w.grad_pos[a][v] = grad[1];
+        w.far_neg[a][v] = far[0];
+        w.far_pos[a][v] = far[1];
+        w.dgrad_neg[a][v] = dgrad[0];
+        w.dgrad_pos[a][v] = dgrad[1];
+    }
+}
+
+// The voxels of one run (dummy slots have all coefficients zero, so whole vectors run). Along x
+// the - link, the partner's other links and d are contiguous (lattice order: slots v - 1, v - 2
+// and v + 1); along y and z a uniform run reads them at a constant offset, a gathered one
+// through the tables, and the far links (nonzero only at column ends) from the far strains the
+// sparse copy filled (far_strain_copies).
+template <bool kGather>
+BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
+    const int below_y = run.below_y, below_z = run.below_z;
+    const float* __restrict ex = w.strain[0];
+#pragma GCC ivdep
+    for (int v = run.begin; v < run.end; ++v) {
+        const int below[3] = {v - 1, kGather ? w.below[1][v] : v - below_y,
+                              kGather ? w.below[2][v] : v - below_z};
+        const float far[3][kSides] = {{ex[v - 2], ex[v + 1]},
+                                      {w.far_strain[1][0][v], w.far_strain[1][1][v]},
+                                      {w.far_strain[2][0][v], w.far_strain[2][1][v]}};
+        voxel_gradients(w, v, below, far);
+    }
+}
+
+// The far links are a few per column (its two ends): copied through the model's sparse lists
+// instead of gathered on every slot of the dense loops (a gather is one scalar load per lane).
+void far_strain_copies(const PoissonParams& pp, PoissonScratch& p) {
+    for (int a = 1; a < 3; ++a) {
+        float* far[kSides] = {p.far_strain_neg[a], p.far_strain_pos[a]};
+        for (const PoissonParams::FarRead& r : pp.far_reads[a])
+            far[r.side][r.voxel] = p.strain[a][r.slot];
+    }
+}
+
+void far_gradient_copies(const PoissonParams& pp, PoissonScratch& p) {
+    for (int a = 0; a < 3; ++a) {
+        for (const PoissonParams::FarLink& f : pp.far_pos_links[a])
+            p.far_from_below[a][f.link] = p.far_pos[a][f.voxel];
+        for (const PoissonParams::FarLink& f : pp.far_neg_links[a])
+            p.far_from_above[a][f.link] = p.far_neg[a][f.voxel];
+    }
+}
+
+}  // namespace
+
+namespace {
+
+// The isolated links' d (the link pass applies the normal stresses, link_pass.cpp): the forces
+// used d extrapolated in time from the last two relaxed values (2 d_n-1 - d_n-2, an error of
+// order dt^2, an inertia-like term; a d one step behind would be an error of order dt, a damping
+// or, coupled across axes, an anti-damping of the bending modes); one Jacobi step from it is the
+// relaxed value, and the next step's guess is set here.
+template <bool kGather>
+BHM_ENGINE_INLINE void pair_loop(const Model::Data& d, PoissonScratch& p, int a,
+                                 const LinkRun& run) {
+    const float* __restrict step = d.poisson.pair_step[a].data();
+    const int* __restrict plus = d.plus[a].data();
+    const float* __restrict dgrad_pos = p.dgrad_pos[a];
+    const float* __restrict dgrad_neg = p.dgrad_neg[a];
+    float* __restrict pair_d = p.pair_d[a];
+    float* __restrict pair_last = p.pair_last[a];
+    const int delta = run.delta;
+#pragma GCC ivdep
+    for (int c = run.begin; c < run.end; ++c) {
+        const int b = kGather ? plus[c] : c + delta;
+        const float relaxed = pair_d[c] - step[c] * (dgrad_pos[c] + dgrad_neg[b]);
+        pair_d[c] = 2.0f * relaxed - pair_last[c];
+        pair_last[c] = relaxed;
+    }
+}
+
+}  // namespace
+
+void prepare_poisson_scratch(const Model::Data& d, PoissonScratch& p) {
+    ensure(p, d.stored, d.link_lead);
+}
+
+BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
+                                    std::array<LinkScratch, 3>& links, PoissonScratch& p,
+                                    float sin_t, float cos_t) {
+    ensure(p, d.stored, d.link_lead);  // (sized at World creation: allocates nothing here)
+    for (int a = 0; a < 3; ++a)
+        link_strains(d, s, a, sin_t, cos_t, p.strain[a], links[a]);
+    far_strain_copies(d.poisson, p);
+    const Views w = views_of(d, p);
+    for (const VoxelRun& run : d.voxel_runs)
+        if (run.below_y == 0)
+            voxel_loop<true>(w, run);
+        else
+            voxel_loop<false>(w, run);
+    far_gradient_copies(d.poisson, p);
+    if (d.poisson.pair_voxels.empty()) return;
+    for (int a = 0; a < 3; ++a)
+        for (const LinkRun& run : d.link_runs[a])
+            if (run.delta == 0)
+                pair_loop<true>(d, p, a, run);
+            else
+                pair_loop<false>(d, p, a, run);
+}
+
+double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const PoissonScratch& state,
+                            float sin_t, float cos_t) {
+    if (!d.poisson.active) return 0.0;
+    PoissonScratch p;
+    ensure(p, d.stored, d.link_lead);
+    const bool stepped = !state.storage[0].empty();
+    // The strain pass also keeps the chords for the link pass: give it somewhere to put them.
+    std::array<LinkScratch, 3> chords;
+    const std::size_t span = static_cast<std::size_t>(d.link_lead) + d.stored;
+    for (LinkScratch& l : chords) {
+        l.storage.assign(4 * span, 0.0f);
+        for (int i = 0; i < 3; ++i)
+            l.chord[i] = l.storage.data() + d.link_lead + i * span;
+        l.length = l.storage.data() + d.link_lead + 3 * span;
+    }
+    for (int a = 0; a < 3; ++a) {
+        link_strains(d, s, a, sin_t, cos_t, p.strain[a], chords[a]);
+        // The relaxed d of the last step (the forces used its extrapolation).
+        if (stepped) std::copy(state.pair_last[a], state.pair_last[a] + d.stored, p.pair_d[a]);
+    }
+    const Views w = views_of(d, p);
+    const double volume = std::pow(d.voxel_size_m, 3);
+    double energy = 0.0;
+    // W = sum over octants of V / 8 (G sum gamma^2 + lambda_o / 2 theta^2) ...
+    for (int v = 0; v < d.voxels; ++v) {
+        const VoxelStrains k = voxel_strains(w, v);
+        for (int sx = 0; sx < kSides; ++sx)
+            for (int sy = 0; sy < kSides; ++sy)
+                for (int sz = 0; sz < kSides; ++sz) {
+                    const float hx = k.h[0][sx], hy = k.h[1][sy], hz = k.h[2][sz];
+                    const double theta = hx * k.mu[0][sx] + hy * k.mu[1][sy] + hz * k.mu[2][sz];
+                    const double gx = k.gamma[0][sx], gy = k.gamma[1][sy], gz = k.gamma[2][sz];
+                    const double lambda = 8.0 * w.lambda8[4 * sx + 2 * sy + sz][v];
+                    const double q = theta * kInverseSaturation;
+                    const double theta0 = 1.0 / kInverseSaturation;
+                    const double volumetric =
+                        lambda > 0.0 ? lambda * theta0 * theta0 * (std::sqrt(1.0 + q * q) - 1.0)
+                                     : 0.5 * lambda * theta * theta;
+                    energy +=
+                        0.125 * volume *
+                        (w.shear[v] * (hx * gx * gx + hy * gy * gy + hz * gz * gz) + volumetric);
+                }
+    }
+    // ... less the links' own 1/2 M_link V e^2, which link_elastic_energy counts.
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < d.voxels; ++c) {
+            const double e = p.strain[a][c];
+            energy -= 0.5 * d.links[a].k_axial[c] * d.voxel_size_m * d.voxel_size_m * e * e;
+        }
+    return energy;
+}
+
+}  // namespace bhm::engine

@@ -1,0 +1,188 @@
+#pragma once
+// One experiment file = one whole design problem (docs/experiment-format.md documents each field).
+// Values are SI; voxel counts only where the field name says so.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/body_spec.hpp"
+
+namespace bhm::evo {
+
+enum class Face { XMin = 0, XMax, YMin, YMax, ZMin, ZMax };
+inline constexpr std::array<const char*, 6> kFaceNames = {"x-", "x+", "y-", "y+", "z-", "z+"};
+
+struct MaterialEntry {
+    std::string name;
+    engine::Material physics;
+    std::array<float, 3> color{0.8f, 0.8f, 0.8f};  //!< RGB in [0, 1]
+    bool has_color = false;
+    bool active() const { return physics.cte_per_c > 0.0; }
+    bool operator==(const MaterialEntry&) const = default;
+};
+
+enum class PhaseMode { Uniform, Random };
+
+struct Actuation {
+    double frequency_hz = 2.0;
+    double temperature_amplitude_c = 14.47;
+    PhaseMode phase = PhaseMode::Uniform;
+    bool operator==(const Actuation&) const = default;
+};
+
+enum class BoundaryKind { Free, Fixed };
+
+enum class OverrideKind { Fixed, Empty, Material };
+struct VoxelOverride {
+    std::array<int, 3> voxel{0, 0, 0};
+    OverrideKind kind = OverrideKind::Fixed;
+    int material = 0;  //!< 1-based, for OverrideKind::Material
+    bool operator==(const VoxelOverride&) const = default;
+};
+
+struct Boundary {
+    std::array<BoundaryKind, 6> faces{};       //!< indexed by Face
+    std::array<int, 6> enclosure_thickness{};  //!< voxels of passive frame per face
+    int enclosure_material = 0;                //!< 1-based material index; 0 = none
+    std::vector<VoxelOverride> voxel_overrides;
+    bool any_fixed_face() const {
+        for (auto f : faces)
+            if (f == BoundaryKind::Fixed) return true;
+        return false;
+    }
+    bool operator==(const Boundary&) const = default;
+};
+
+struct Simulation {
+    double settle_s = 1.0;
+    double evaluate_s = 10.0;
+    double dt_fraction = 0.9;
+    double bond_damping_ratio = 1.0;
+    double global_damping_ratio = 0.01;
+    double collision_damping_ratio = 0.8;
+    double record_fps = 30.0;
+    bool operator==(const Simulation&) const = default;
+};
+
+enum class FitnessMeasure { ComFinal3d, ComFinalYz, ComMax3d, ComMaxYz, BendAngleDeg };
+inline constexpr std::array<const char*, 5> kFitnessNames = {
+    "com_final_3d", "com_final_yz", "com_max_3d", "com_max_yz", "bend_angle_deg"};
+
+struct Constraints {
+    bool attached_to_fixed_face = false;
+    double min_fill_fraction = 0.0;
+    int min_active_voxels = 0;
+    //! Reject (fitness kInvalidFitness) bodies that raise an exploit flag (evo/evaluate/exploit_flags.hpp).
+    //! escaped is known before simulating, so such bodies are never simulated.
+    bool reject_escaped = false;
+    bool reject_detached_motion = false;
+    bool reject_tentacle = false;
+    bool operator==(const Constraints&) const = default;
+};
+
+struct Fitness {
+    FitnessMeasure measure = FitnessMeasure::ComFinal3d;
+    Constraints constraints;
+    bool minimize_active_voxels = false;  //!< optional third AFPO objective
+    bool operator==(const Fitness&) const = default;
+};
+
+//! How the CPPN's outputs pick a material: the paper's two outputs (present; active or passive,
+//! the first material of each kind) or presence plus one output per material (argmax).
+enum class MaterialOutputs { ActivePassive, PerMaterial };
+inline constexpr std::array<const char*, 2> kMaterialOutputsNames = {"active_passive",
+                                                                       "per_material"};
+
+struct CppnSettings {
+    int min_hidden_nodes = 4;  //!< paper Table 2: initial hidden nodes in [4, 10]
+    int max_hidden_nodes = 10;
+    double weight_range = 1.0;  //!< weights in [-range, range]
+    double mutation_weight_sigma = 0.5;
+    MaterialOutputs material_outputs = MaterialOutputs::ActivePassive;
+    bool operator==(const CppnSettings&) const = default;
+};
+
+//! The evolutionary method (docs/evolution.md): the paper's AFPO, NEAT (Stanley & Miikkulainen
+//! 2002) or novelty search (Lehman & Stanley 2011). EvolutionRun::run_generation dispatches on it.
+enum class Algorithm { Afpo, Neat, Novelty };
+inline constexpr std::array<const char*, 3> kAlgorithmNames = {"afpo", "neat", "novelty"};
+
+//! NEAT's parameters (evolution.neat; docs/evolution.md#neat). Defaults follow Stanley &
+//! Miikkulainen 2002 where the paper gives one.
+struct NeatSettings {
+    double c1 = 1.0;  //!< compatibility distance: weight of excess genes
+    double c2 = 1.0;  //!< ... of disjoint genes
+    double c3 = 0.4;  //!< ... of the mean weight difference of matching genes
+    //! Divide E and D by N, the larger genome's gene count, once either has 20 genes or more (the
+    //! paper's normalisation). Off by default (N = 1): the step from 1 to 20 at 20 genes makes
+    //! every large genome close to every other, so one species swallows the population.
+    bool normalize_by_size = false;
+    double compatibility_threshold = 3.0;  //!< delta below which a genome joins a species
+    //! > 0: the threshold moves toward this many species (0: fixed). On by default: with CPPNs of
+    //! 20 genes or more, N normalises E and D, and the paper's fixed 3 soon puts everyone in one
+    //! species.
+    int target_species = 5;
+    double threshold_step = 0.3;   //!< how far the threshold moves per generation
+    double survival_fraction = 0.2;  //!< best fraction of each species that may parent
+    int elitism = 1;               //!< best members of each species copied unchanged
+    int stagnation_generations = 15;  //!< no improvement for this long: the species breeds no more
+    double crossover_rate = 0.75;  //!< share of offspring made by crossover (then mutation)
+    bool operator==(const NeatSettings&) const = default;
+};
+
+//! Novelty search (Lehman & Stanley 2011; evo/search/novelty.hpp, docs/evolution.md): used when the
+//! algorithm is "novelty".
+struct NoveltySettings {
+    int k = 15;  //!< nearest behaviours averaged (Lehman & Stanley's 15)
+    //! Novelty a new individual needs to enter the archive at the start (voxel lengths of
+    //! behaviour distance); adapts every generation (evo/search/novelty_archive.hpp).
+    double archive_threshold = 1.0;
+    int archive_capacity = 1000;  //!< the oldest entries leave beyond this
+    bool with_fitness = false;    //!< fitness as a second AFPO objective beside novelty
+    bool operator==(const NoveltySettings&) const = default;
+};
+
+struct Evolution {
+    Algorithm algorithm = Algorithm::Afpo;
+    int population = 50;
+    int generations = 2000;
+    double wall_budget_h = 48.0;
+    int max_neutral_retries = 1500;
+    std::uint64_t seed = 1;
+    int threads = 0;  //!< 0 = all hardware threads
+    //! Probability that a member's child is the crossover of it and a random mate (evo/search/crossover.hpp)
+    //! before mutation is tried; 0 = the paper's mutation-only AFPO.
+    double crossover_rate = 0.0;
+    CppnSettings cppn;
+    NeatSettings neat;  //!< used when algorithm is Neat
+    NoveltySettings novelty;
+    bool operator==(const Evolution&) const = default;
+};
+
+struct Experiment {
+    std::string name;
+    std::string description;
+    std::array<int, 3> workspace_size{8, 8, 7};
+    double voxel_size_m = 0.01;
+    std::vector<MaterialEntry> materials;
+    Actuation actuation;
+    engine::Environment environment;
+    Boundary boundary;
+    Simulation simulation;
+    Fitness fitness;
+    Evolution evolution;
+    bool operator==(const Experiment&) const = default;
+};
+
+//! A body: material index per lattice cell, x fastest, then y, then z (VoxCAD's VXC layers).
+struct Body {
+    std::array<int, 3> size{0, 0, 0};
+    std::vector<std::uint8_t> cells;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
+    int cell_count() const { return size[0] * size[1] * size[2]; }
+    int index(int x, int y, int z) const { return x + size[0] * (y + size[1] * z); }
+    bool operator==(const Body&) const = default;
+};
+
+}  // namespace bhm::evo

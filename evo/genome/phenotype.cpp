@@ -1,0 +1,70 @@
+#include "evo/genome/phenotype.hpp"
+
+#include <stdexcept>
+
+#include "evo/experiment/scene.hpp"
+#include "evo/genome/body_ops.hpp"
+
+namespace bhm::evo {
+
+DesignSpace design_space(const Experiment& experiment) {
+    const auto& t = experiment.boundary.enclosure_thickness;
+    DesignSpace space;
+    for (int axis = 0; axis < 3; ++axis) {
+        space.origin[static_cast<std::size_t>(axis)] = t[static_cast<std::size_t>(2 * axis)];
+        space.size[static_cast<std::size_t>(axis)] =
+            experiment.workspace_size[static_cast<std::size_t>(axis)] -
+            t[static_cast<std::size_t>(2 * axis)] - t[static_cast<std::size_t>(2 * axis + 1)];
+    }
+    return space;
+}
+
+namespace {
+
+CppnMaterials checked_materials(const Experiment& experiment) {
+    const auto m = cppn_materials(experiment);
+    if (!m.palette.empty()) return m;  // per-material outputs can paint any material
+    if (m.passive == 0)
+        throw std::invalid_argument(
+            "experiment '" + experiment.name +
+            "': materials: the CPPN needs a passive material (cte_per_c == 0)");
+    if (m.active == 0)
+        throw std::invalid_argument(
+            "experiment '" + experiment.name +
+            "': materials: the CPPN needs an active material (cte_per_c > 0)");
+    return m;
+}
+
+std::array<int, 3> checked_size(const DesignSpace& space, const std::string& name) {
+    for (int s : space.size)
+        if (s <= 0)
+            throw std::invalid_argument("experiment '" + name +
+                                        "': boundary.enclosure: the frame leaves no design space");
+    return space.size;
+}
+
+}  // namespace
+
+Developer::Developer(const Experiment& experiment)
+    : experiment_(experiment),
+      space_(design_space(experiment)),
+      decoder_(checked_size(space_, experiment.name), checked_materials(experiment)),
+      output_count_(cppn_materials(experiment).output_count()) {}
+
+Phenotype Developer::develop(const Genome& genome) const {
+    const Body designed = largest_face_connected_component(decoder_.decode(genome));
+    Phenotype p;
+    p.body = apply_frame_and_overrides(experiment_, designed);
+    p.hash = hash_body(p.body);
+    p.voxels = count_filled(p.body);
+    p.active_voxels = count_active(p.body, experiment_.materials);
+    for (int z = 0; z < p.body.size[2]; ++z)
+        for (int y = 0; y < p.body.size[1]; ++y)
+            for (int x = 0; x < p.body.size[0]; ++x)
+                if (space_.contains(x, y, z) &&
+                    p.body.cells[static_cast<std::size_t>(p.body.index(x, y, z))])
+                    ++p.designed_voxels;
+    return p;
+}
+
+}  // namespace bhm::evo

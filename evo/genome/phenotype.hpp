@@ -1,0 +1,62 @@
+#pragma once
+// Genotype to phenotype (paper section 3): the CPPN paints the design space (the workspace minus
+// the enclosure frame), only the largest face-connected component is kept, then the lead's
+// apply_frame_and_overrides adds the frame and the voxel overrides. The result, the size of the
+// workspace, is what gets simulated and what identifies an individual.
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "evo/experiment/experiment.hpp"
+#include "evo/genome/cppn_decoder.hpp"
+#include "evo/genome/genome.hpp"
+
+namespace bhm::evo {
+
+//! The box of the workspace the CPPN designs: the workspace minus the frame thickness per face.
+struct DesignSpace {
+    std::array<int, 3> origin{0, 0, 0};  //!< first cell in the workspace
+    std::array<int, 3> size{0, 0, 0};
+    int cell_count() const { return size[0] * size[1] * size[2]; }
+    bool contains(int x, int y, int z) const {
+        return x >= origin[0] && x < origin[0] + size[0] && y >= origin[1] &&
+               y < origin[1] + size[1] && z >= origin[2] && z < origin[2] + size[2];
+    }
+};
+DesignSpace design_space(const Experiment& experiment);
+
+struct Phenotype {
+    Body body;                //!< framed, workspace-sized: what is simulated
+    std::uint64_t hash = 0;   //!< hash_body(body)
+    int voxels = 0;           //!< filled cells of body
+    int active_voxels = 0;    //!< cells of body with an active material
+    int designed_voxels = 0;  //!< filled cells of body inside the design space
+    bool operator==(const Phenotype& other) const {
+        return hash == other.hash && body.cells == other.body.cells;
+    }
+};
+
+//! Develops genomes for one experiment. Cheap to copy; decode is const and thread-safe.
+class Developer {
+  public:
+    //! Throws std::invalid_argument when the experiment lacks a passive or an active material
+    //! (the CPPN's two outputs need both) or its design space is empty.
+    explicit Developer(const Experiment& experiment);
+
+    Phenotype develop(const Genome& genome) const;
+    //! The lattice the CPPN paints, before the connectivity filter (for inspection and tests).
+    Body decode_raw(const Genome& genome) const { return decoder_.decode(genome); }
+
+    const DesignSpace& space() const { return space_; }
+    //! Outputs the experiment's CPPN has (Genome::output_count of every genome it develops).
+    int cppn_output_count() const { return output_count_; }
+    const Experiment& experiment() const { return experiment_; }
+
+  private:
+    Experiment experiment_;
+    DesignSpace space_;
+    CppnDecoder decoder_;
+    int output_count_ = kOutputCount;
+};
+
+}  // namespace bhm::evo

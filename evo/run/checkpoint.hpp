@@ -1,0 +1,55 @@
+#pragma once
+// Checkpoints: the whole RunState as JSON, written after every generation. The write goes to a
+// temporary file first (engine/io/atomic_file.hpp: every write, fsync and close checked); the
+// previous checkpoint is renamed checkpoint.prev.json, then the new one takes its place, so a
+// crash or a full disk at any moment leaves at least one complete checkpoint. Loading falls back
+// to checkpoint.prev.json when checkpoint.json is missing or damaged, with a warning naming it.
+//
+// Format 2 (docs/evolution.md) wraps the payload with its CRC-32 so that damage which still
+// parses as JSON (a flipped digit) is caught:
+//   {"checksum":"crc32:XXXXXXXX","payload":{...,"format_version":2,...}}\n
+// with the CRC over the exact bytes of the payload. Format 1 (the bare payload) is still read,
+// with a warning that it is not verified.
+//
+// Phenotypes are not stored: they are developed again from the genomes on load, and each one must
+// match its recorded hash (a check that the decoder and the experiment are unchanged).
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "evo/run/run_state.hpp"
+
+namespace bhm::evo {
+
+inline constexpr const char* kCheckpointFile = "checkpoint.json";
+inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
+
+nlohmann::json report_to_json(const FitnessReport& report);
+//! Throws std::runtime_error "LABEL.field: message" on anything missing or of the wrong type.
+FitnessReport report_from_json(const nlohmann::json& json, const std::string& label);
+nlohmann::json individual_to_json(const Individual& individual);
+nlohmann::json run_state_to_json(const RunState& state);
+
+//! Throws std::runtime_error "LABEL: field.path: message" on anything missing or inconsistent.
+RunState run_state_from_json(const nlohmann::json& json, const std::string& label);
+
+//! The file's text for a payload (format 2, above).
+std::string checkpoint_text(const nlohmann::json& payload);
+//! Verifies and parses a checkpoint file's text; notes get what the caller should warn about
+//! (format 1). Throws std::runtime_error saying what is damaged.
+nlohmann::json parse_checkpoint_text(const std::string& text, std::vector<std::string>& notes);
+
+//! Writes DIR/checkpoint.json, keeping the previous one as DIR/checkpoint.prev.json.
+void save_checkpoint(const std::string& dir, const RunState& state);
+
+struct LoadedCheckpoint {
+    RunState state;
+    std::string path;                   //!< the file actually used
+    std::vector<std::string> warnings;  //!< e.g. why checkpoint.json was skipped
+};
+//! Loads DIR/checkpoint.json, or DIR/checkpoint.prev.json when the first is missing or corrupt.
+//! Throws std::runtime_error naming both files and their problems when neither can be used.
+LoadedCheckpoint load_checkpoint(const std::string& dir);
+
+}  // namespace bhm::evo

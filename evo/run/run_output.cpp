@@ -1,0 +1,126 @@
+#include "evo/run/run_output.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <filesystem>
+
+#include "bhm_version.hpp"
+#include "engine/io/atomic_file.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/formats/vxa.hpp"
+#include "evo/run/checkpoint.hpp"
+
+namespace bhm::evo {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string fitness_csv(const std::vector<HistoryRow>& history) {
+    // NEAT runs add a species column; the others keep the header they always had.
+    const bool species = std::any_of(history.begin(), history.end(),
+                                     [](const HistoryRow& h) { return h.species > 0; });
+    // Novelty search runs add their novelty and archive figures (docs/evolution.md).
+    const bool novelty = std::any_of(history.begin(), history.end(),
+                                     [](const HistoryRow& h) { return h.novelty.has_value(); });
+    std::string out = std::string(kFitnessCsvHeader) + (species ? ",species" : "") +
+                      (novelty ? ",best_novelty,median_novelty,archive_size,archive_added,"
+                                 "archive_threshold,champion_fitness"
+                               : "") +
+                      "\n";
+    for (const auto& h : history) {
+        // Integers and the to_chars-based numbers never depend on the locale.
+        const long long wall_ms = static_cast<long long>(h.wall_s * 1000.0 + 0.5);
+        char wall[32];
+        std::snprintf(wall, sizeof wall, "%lld.%03lld", wall_ms / 1000, wall_ms % 1000);
+        out += std::to_string(h.generation) + "," + std::to_string(h.evaluations) + "," +
+               std::to_string(h.simulations) + "," + format_number(h.best_fitness) + "," +
+               format_number(h.median_fitness) + "," + std::to_string(h.best_age) + "," +
+               std::to_string(h.best_id) + "," + std::to_string(h.diverged) + "," + wall + "," +
+               (h.best_exploits.escaped ? "1," : "0,") +
+               (h.best_exploits.detached_motion ? "1," : "0,") +
+               (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) +
+               (species ? "," + std::to_string(h.species) : std::string());
+        if (novelty) {
+            const NoveltyRow n = h.novelty.value_or(NoveltyRow{});
+            out += "," + format_number(n.best_novelty) + "," + format_number(n.median_novelty) +
+                   "," + std::to_string(n.archive_size) + "," + std::to_string(n.archive_added) +
+                   "," + format_number(n.archive_threshold) + "," +
+                   format_number(n.champion_fitness);
+        }
+        out += "\n";
+    }
+    return out;
+}
+
+json champion_to_json(const Experiment& experiment, const ChampionRecord& c) {
+    const Individual& ind = c.individual;
+    return {{"experiment", experiment.name},
+            {"measure", kFitnessNames[static_cast<std::size_t>(experiment.fitness.measure)]},
+            {"generation_found", c.generation_found},
+            {"id", ind.id},
+            {"parent_id", ind.parent_id},
+            {"age", ind.age},
+            {"fitness", ind.report.fitness},
+            {"report", report_to_json(ind.report)},
+            {"voxels", ind.phenotype.voxels},
+            {"active_voxels", ind.phenotype.active_voxels},
+            {"phenotype", body_to_json(ind.phenotype.body)},
+            {"genome", genome_to_json(ind.genome)}};
+}
+
+json run_info_json(const Experiment& original, const RunState& state) {
+    json changes = json::array();
+    for (const auto& c : state.rule_changes) {
+        Experiment e = original;
+        e.fitness = c.fitness;
+        changes.push_back(
+            {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}});
+    }
+    return {{"bhm_version", BHM_VERSION_STRING},
+            {"seed", state.seed},
+            {"experiment", experiment_to_json(original)},
+            {"rule_changes", changes}};
+}
+
+RunOutput::RunOutput(std::string dir) : dir_(std::move(dir)) {
+    std::error_code ec;
+    fs::create_directories(fs::path(dir_) / "champions", ec);
+    if (ec)
+        throw std::runtime_error(dir_ + ": cannot create the run directory (" + ec.message() + ")");
+    // Refused now rather than after a generation of simulations.
+    if (::access(dir_.c_str(), W_OK | X_OK) != 0) {
+        const int error = errno;
+        throw std::runtime_error(dir_ + ": the run directory is not writable (" +
+                                 engine::error_text(error) + ")");
+    }
+}
+
+std::string RunOutput::path(const std::string& name) const {
+    return (fs::path(dir_) / name).string();
+}
+
+void RunOutput::write_run_info(const Experiment& original, const RunState& state) const {
+    write_file_atomically(path("run.json"), run_info_json(original, state).dump(2) + "\n");
+}
+
+void RunOutput::write_fitness_csv(const std::vector<HistoryRow>& history) const {
+    write_file_atomically(path("fitness.csv"), fitness_csv(history));
+}
+
+void RunOutput::write_champion(const Experiment& experiment, const ChampionRecord& champion) const {
+    const std::string text = champion_to_json(experiment, champion).dump(2) + "\n";
+    char name[48];
+    std::snprintf(name, sizeof name, "champions/gen-%05d.json", champion.generation_found);
+    write_file_atomically(path(name), text);
+    write_file_atomically(path("champion.json"), text);
+    save_vxa(path("champion.vxa"), experiment, champion.individual.phenotype.body);
+}
+
+void RunOutput::write_checkpoint(const RunState& state) const {
+    save_checkpoint(dir_, state);
+}
+
+}  // namespace bhm::evo
