@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/run/checkpoint.hpp"
 
 namespace bhm::evo {
 

@@ -11,7 +11,9 @@
 #include "bhm_version.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "evo/evaluate/behaviour.hpp"
+#include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_fields.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/crc32.hpp"
 
@@ -37,116 +39,6 @@ std::string hex(std::uint64_t v) {
     std::snprintf(buffer, sizeof buffer, "%016" PRIx64, v);
     return buffer;
 }
-
-struct FieldError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-//! Typed access that names the JSON path of whatever is missing or wrong.
-class Fields {
-  public:
-    Fields(const json& j, std::string path) : j_(j), path_(std::move(path)) {
-        if (!j_.is_object()) fail("", "expected an object");
-    }
-    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-        throw FieldError(join(key) + ": " + message);
-    }
-    std::string join(const std::string& key) const {
-        if (key.empty()) return path_.empty() ? "(root)" : path_;
-        return path_.empty() ? key : path_ + "." + key;
-    }
-    const json& at(const std::string& key) const {
-        const auto it = j_.find(key);
-        if (it == j_.end()) fail(key, "missing");
-        return *it;
-    }
-    double number(const std::string& key) const {
-        const auto& v = at(key);
-        if (!v.is_number()) fail(key, "expected a number");
-        return v.get<double>();
-    }
-    std::int64_t integer(const std::string& key) const {
-        const auto& v = at(key);
-        if (!v.is_number_integer()) fail(key, "expected an integer");
-        return v.get<std::int64_t>();
-    }
-    bool boolean(const std::string& key) const {
-        const auto& v = at(key);
-        if (!v.is_boolean()) fail(key, "expected true or false");
-        return v.get<bool>();
-    }
-    std::string string(const std::string& key) const {
-        const auto& v = at(key);
-        if (!v.is_string()) fail(key, "expected a string");
-        return v.get<std::string>();
-    }
-    std::uint64_t hex64(const std::string& key) const {
-        const std::string s = string(key);
-        return parse_hex(s, join(key));
-    }
-    const json& array(const std::string& key) const {
-        const auto& v = at(key);
-        if (!v.is_array()) fail(key, "expected an array");
-        return v;
-    }
-    static std::uint64_t parse_hex(const std::string& s, const std::string& where) {
-        if (s.empty() || s.size() > 16 ||
-            s.find_first_not_of("0123456789abcdef") != std::string::npos)
-            throw FieldError(where + ": expected up to 16 lowercase hex digits");
-        return std::stoull(s, nullptr, 16);
-    }
-
-  private:
-    const json& j_;
-    std::string path_;
-};
-
-std::string item(const std::string& path, std::size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-}
-
-//! A behaviour descriptor: empty (diverged, or written before descriptors) or kBehaviourLength
-//! numbers.
-std::vector<double> behaviour_from_json(const json& j, const std::string& where) {
-    if (!j.is_array() || (!j.empty() && j.size() != static_cast<std::size_t>(kBehaviourLength)))
-        throw FieldError(where + ": expected an empty array or " +
-                         std::to_string(kBehaviourLength) + " numbers");
-    std::vector<double> values;
-    values.reserve(j.size());
-    for (const auto& v : j) {
-        if (!v.is_number()) throw FieldError(where + ": expected numbers");
-        values.push_back(v.get<double>());
-    }
-    return values;
-}
-
-}  // namespace
-
-FitnessReport report_from_json(const json& j, const std::string& path) {
-    const Fields f(j, path);
-    FitnessReport r;
-    r.fitness = f.number("fitness");
-    const Fields m(f.at("measures"), f.join("measures"));
-    for (std::size_t k = 0; k < r.measures.size(); ++k)
-        r.measures[k] = m.number(kFitnessNames[k]);
-    r.diverged = f.boolean("diverged");
-    r.divergence_reason = f.string("divergence_reason");
-    r.simulated_s = f.number("simulated_s");
-    r.steps = f.integer("steps");
-    r.sim_wall_s = f.number("sim_wall_s");
-    if (j.contains("exploits")) {  // absent in checkpoints written before exploit detection
-        try {
-            r.exploits = exploits_from_json(j.at("exploits"));
-        } catch (const std::invalid_argument& e) {
-            throw FieldError(path + "." + e.what());
-        }
-    }
-    if (j.contains("behaviour"))  // absent in results written before behaviour descriptors
-        r.behaviour = behaviour_from_json(j.at("behaviour"), f.join("behaviour"));
-    return r;
-}
-
-namespace {
 
 Individual individual_from_json(const json& j, const std::string& path, const Developer& developer,
                                 double weight_range) {
@@ -326,17 +218,6 @@ std::string read_text(const std::string& path) {
 }
 
 }  // namespace
-
-json report_to_json(const FitnessReport& r) {
-    json measures = json::object();
-    for (std::size_t k = 0; k < r.measures.size(); ++k)
-        measures[kFitnessNames[k]] = r.measures[k];
-    return {{"fitness", r.fitness},         {"measures", measures},
-            {"diverged", r.diverged},       {"divergence_reason", r.divergence_reason},
-            {"simulated_s", r.simulated_s}, {"steps", r.steps},
-            {"sim_wall_s", r.sim_wall_s}, {"exploits", exploits_to_json(r.exploits)},
-            {"behaviour", r.behaviour}};
-}
 
 json individual_to_json(const Individual& ind) {
     return {{"id", ind.id},

@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "evo/evaluate/fitness_json.hpp"
 #include "evo/run/run_state.hpp"
 
 namespace bhm::evo {
@@ -25,9 +26,6 @@ namespace bhm::evo {
 inline constexpr const char* kCheckpointFile = "checkpoint.json";
 inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
 
-nlohmann::json report_to_json(const FitnessReport& report);
-//! Throws std::runtime_error "LABEL.field: message" on anything missing or of the wrong type.
-FitnessReport report_from_json(const nlohmann::json& json, const std::string& label);
 nlohmann::json individual_to_json(const Individual& individual);
 nlohmann::json run_state_to_json(const RunState& state);
 
