@@ -10,13 +10,10 @@
 #include "evo/evaluate/constraints.hpp"
 #include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/run/cached_evaluation.hpp"
 #include "evo/run/checkpoint.hpp"
 #include "evo/run/run_lock.hpp"
-#include "evo/search/afpo.hpp"
-#include "evo/search/crossover.hpp"
-#include "evo/search/mutation.hpp"
-#include "evo/search/neat_generation.hpp"
-#include "evo/search/novelty_selection.hpp"
+#include "evo/search/search_algorithm.hpp"
 
 namespace bhm::evo {
 
@@ -26,29 +23,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median_fitness(const std::vector<Individual>& population) {
-    if (population.empty()) return 0.0;
-    std::vector<double> f;
-    f.reserve(population.size());
-    for (const auto& m : population)
-        f.push_back(m.report.fitness);
-    std::sort(f.begin(), f.end());
-    const std::size_t n = f.size();
-    return n % 2 == 1 ? f[n / 2] : 0.5 * (f[n / 2 - 1] + f[n / 2]);
-}
-
-//! The best member: valid first, then fitness desc, age asc, id asc.
-const Individual& best_member(const std::vector<Individual>& population) {
-    return *std::min_element(population.begin(), population.end(),
-                             [](const Individual& a, const Individual& b) {
-                                 if (a.valid != b.valid) return a.valid;
-                                 if (a.report.fitness != b.report.fitness)
-                                     return a.report.fitness > b.report.fitness;
-                                 if (a.age != b.age) return a.age < b.age;
-                                 return a.id < b.id;
-                             });
 }
 
 Experiment read_original_experiment(const std::string& dir) {
@@ -233,25 +207,6 @@ void EvolutionRun::publish(std::shared_ptr<const GenerationReport> report) {
     if (callback_) callback_(std::move(report));
 }
 
-bool EvolutionRun::draw_random_individual(Individual& out, Rng& rng, std::int64_t id,
-                                          int generation, const Constraints& constraints) const {
-    const auto& e = state_.experiment;
-    const int attempts = std::max(100, e.evolution.max_neutral_retries);
-    for (int attempt = 0; attempt < attempts; ++attempt) {
-        Genome genome = random_genome(e.evolution.cppn, rng, developer_.cppn_output_count());
-        Phenotype phenotype = developer_.develop(genome);
-        if (!constraint_violation(constraints, e.boundary, developer_.space(), phenotype).empty())
-            continue;
-        out = Individual{};
-        out.id = id;
-        out.born_generation = generation;
-        out.genome = std::move(genome);
-        out.phenotype = std::move(phenotype);
-        return true;
-    }
-    return false;
-}
-
 StopReason EvolutionRun::run() {
     if (session_generations_ == 0) session_start_ = std::chrono::steady_clock::now();
     for (;;) {
@@ -280,215 +235,109 @@ bool EvolutionRun::run_generation() {
 
     // Everything below works on copies; state_ changes only once the generation is complete, so
     // an abandoned generation leaves the last checkpoint's state intact.
-    Experiment rules = state_.experiment;
-    bool rules_changed = false;
     std::uint64_t applied_serial = 0;
-    {
-        std::lock_guard lock(control_mutex_);
-        if (pending_fitness_) {
-            rules.fitness = *pending_fitness_;
-            applied_serial = pending_serial_;
-            rules_changed = true;
-        }
-    }
-    std::vector<Individual> population = state_.population;
-    std::optional<ChampionRecord> champion = state_.champion;
-    int rules_version = state_.rules_version;
-    if (rules_changed) {
-        ++rules_version;
-        for (auto& m : population) {
-            m.valid = constraint_violation(rules.fitness.constraints, rules.boundary,
-                                           developer_.space(), m.phenotype)
-                          .empty();
-            m.report.fitness = m.valid ? fitness_under(m.report, rules.fitness) : kInvalidFitness;
-            m.valid = m.valid && !rejected_by_exploit(m.report.exploits, rules.fitness.constraints);
-        }
-        champion.reset();  // re-established from the re-scored population below
-    }
+    Rescored rescored = rescore_for_pending_rules(applied_serial);
+    const Experiment& rules = rescored.rules;
+    const auto algorithm = make_search_algorithm(rules.evolution.algorithm);
+    const GenerationContext context{rules, developer_, g};
+    SearchState search{state_.neat, state_.novelty_archive};
+    if (rescored.changed) algorithm->rules_changed(context, rescored.population, search);
 
     Rng rng;
     rng.set_state(state_.rng);
     std::int64_t next_id = state_.next_id;
-    const auto& constraints = rules.fitness.constraints;
+    Brood brood = algorithm->breed(context, std::move(rescored.population), search, rng, next_id);
 
-    // The algorithm's breeding step (evolution.algorithm): which members carry over into the pool
-    // and which new individuals are evaluated below.
-    Brood brood;
-    NeatState neat = state_.neat;
-    if (rules_changed && rules.evolution.algorithm == Algorithm::Neat)
-        restart_species_records(population, g - 1, neat);
-    switch (rules.evolution.algorithm) {
-        case Algorithm::Afpo:
-        case Algorithm::Novelty:  // novelty search breeds as AFPO; only its selection differs
-            if (g == 0)
-                breed_random(rules, g, rng, next_id, brood);
-            else
-                breed_afpo(rules, g, std::move(population), rng, next_id, brood);
-            break;
-        case Algorithm::Neat: {
-            NeatBrood made;
-            neat_breed(rules, developer_, g, population, neat, rng, next_id, made);
-            brood.carried = std::move(made.carried);
-            brood.fresh = std::move(made.fresh);
-            brood.clones = made.clones;
-            break;
-        }
-        default:
-            throw std::invalid_argument(
-                std::string("evolution.algorithm \"") +
-                kAlgorithmNames[static_cast<int>(rules.evolution.algorithm)] +
-                "\" is not built yet");
-    }
-    std::vector<Individual>& fresh = brood.fresh;
-    const int clones = brood.clones, newcomers_skipped = brood.newcomers_skipped;
-
-    // Results: a clone's from its parent, then the cache, then one simulation per new phenotype.
-    int cache_hits = 0;
-    std::vector<int> job_of(fresh.size(), -1);
-    std::vector<std::size_t> jobs;
-    std::vector<std::uint64_t> job_hashes;
-    std::unordered_map<std::uint64_t, int> job_by_hash;
-    for (std::size_t i = 0; i < fresh.size(); ++i) {
-        auto& ind = fresh[i];
-        if (ind.evaluated) {
-            ++cache_hits;
-            continue;
-        }
-        if (const FitnessReport* hit = state_.cache.find(ind.phenotype.hash)) {
-            ind.report = *hit;
-            ind.report.fitness = fitness_under(*hit, rules.fitness);
-            ind.valid = !rejected_by_exploit(hit->exploits, constraints);
-            ind.evaluated = true;
-            ++cache_hits;
-            continue;
-        }
-        const auto [it, inserted] =
-            job_by_hash.emplace(ind.phenotype.hash, static_cast<int>(jobs.size()));
-        if (inserted) {
-            jobs.push_back(i);
-            job_hashes.push_back(ind.phenotype.hash);
-        } else {
-            ++cache_hits;  // a twin of an earlier new individual this generation
-        }
-        job_of[i] = it->second;
-    }
-    std::vector<FitnessReport> results;
-    EvaluationBatch batch;
-    batch.rules = &rules;
-    batch.cancel = &stop_;
-    batch.pause = &paused_;
-    batch.on_result = [this](std::size_t) { progress_count_one(); };
-    for (const std::size_t i : jobs)
-        batch.bodies.push_back(&fresh[i].phenotype.body);
-    progress_set_total(static_cast<int>(jobs.size()));
+    EvaluationBatch controls;
+    controls.cancel = &stop_;
+    controls.pause = &paused_;
+    controls.on_result = [this](std::size_t) { progress_count_one(); };
+    CachedEvaluation evaluation;
     try {
-        evaluator_->evaluate(batch, results);
+        evaluation = evaluate_fresh(brood.fresh, rules, state_.cache, *evaluator_, controls,
+                                    [this](int total) { progress_set_total(total); });
     } catch (const EvaluationCancelled&) {
         return false;
     }
-    int diverged = 0;
-    for (const auto& r : results)
-        diverged += r.diverged ? 1 : 0;
-    for (std::size_t i = 0; i < fresh.size(); ++i) {
-        if (job_of[i] < 0) continue;
-        fresh[i].report = results[static_cast<std::size_t>(job_of[i])];
-        fresh[i].evaluated = true;
-        fresh[i].valid = !rejected_by_exploit(fresh[i].report.exploits, constraints);
-    }
 
-    // The algorithm's selection step: the next population, in selection order, from the carried
-    // members plus the new individuals.
+    const int evaluations = static_cast<int>(brood.fresh.size());
     std::vector<Individual> pool = std::move(brood.carried);
     const std::size_t first_new = pool.size();
-    for (auto& f : fresh)
+    for (auto& f : brood.fresh)
         pool.push_back(std::move(f));
-    std::vector<Individual> next_population;
-    std::vector<int> next_ranks;
-    std::optional<NoveltySelection> novelty;
-    std::vector<double> next_novelty;
-    switch (rules.evolution.algorithm) {
-        case Algorithm::Novelty: {
-            const NoveltyArchive archive =
-                g == 0 ? NoveltyArchive{{}, rules.evolution.novelty.archive_threshold}
-                       : state_.novelty_archive;
-            novelty = select_by_novelty(pool, first_new, archive, rules);
-            for (int index : novelty->survivors) {
-                const auto i = static_cast<std::size_t>(index);
-                next_population.push_back(pool[i]);
-                next_ranks.push_back(novelty->ranks[i]);
-                next_novelty.push_back(novelty->novelty[i]);
-            }
-            break;
+    std::optional<Individual> pool_best;
+    if (algorithm->champion_from_pool()) pool_best = best_member(pool);
+    Selection selection = algorithm->select(context, std::move(pool), first_new, search);
+
+    std::optional<ChampionRecord> champion = rescored.champion;
+    const Individual& contender = pool_best ? *pool_best : best_member(selection.population);
+    const bool new_champion =
+        !champion || contender.report.fitness > champion->individual.report.fitness;
+    if (new_champion) champion = ChampionRecord{contender, g};
+
+    GenerationTally tally;
+    tally.generation = g;
+    tally.rules_version = rescored.rules_version;
+    tally.evaluations = evaluations;
+    tally.evaluation = &evaluation;
+    tally.clones = brood.clones;
+    tally.newcomers_skipped = brood.newcomers_skipped;
+    tally.generation_wall_s = progress().elapsed_s;  // paused time excluded
+    tally.wall_s = state_.elapsed_s + tally.generation_wall_s;
+    commit_generation(rules, rescored.changed, applied_serial, next_id, rng, std::move(selection),
+                      std::move(search), std::move(*champion), tally, new_champion);
+    return true;
+}
+
+EvolutionRun::Rescored EvolutionRun::rescore_for_pending_rules(
+    std::uint64_t& applied_serial) const {
+    Rescored out{state_.experiment, state_.population, state_.champion, state_.rules_version,
+                 false};
+    {
+        std::lock_guard lock(control_mutex_);
+        if (pending_fitness_) {
+            out.rules.fitness = *pending_fitness_;
+            applied_serial = pending_serial_;
+            out.changed = true;
         }
-        case Algorithm::Neat:
-            next_population = neat_select(rules, g, std::move(pool), neat);
-            next_ranks.assign(next_population.size(), 0);  // no Pareto layers in NEAT
-            break;
-        case Algorithm::Afpo:
-        default:
-            select_afpo(rules, std::move(pool), next_population, next_ranks);
-            break;
     }
-
-    const Individual& best = best_member(next_population);
-    // Novelty selection may drop the fittest new individual, so its champion comes from the whole
-    // pool (AFPO's and NEAT's populations keep the pool's best anyway).
-    const Individual& contender = novelty ? best_member(pool) : best;
-    bool new_champion = false;
-    if (!champion || contender.report.fitness > champion->individual.report.fitness) {
-        champion = ChampionRecord{contender, g};
-        new_champion = true;
+    if (!out.changed) return out;
+    ++out.rules_version;
+    const Experiment& rules = out.rules;
+    for (auto& m : out.population) {
+        m.valid = constraint_violation(rules.fitness.constraints, rules.boundary,
+                                       developer_.space(), m.phenotype)
+                      .empty();
+        m.report.fitness = m.valid ? fitness_under(m.report, rules.fitness) : kInvalidFitness;
+        m.valid = m.valid && !rejected_by_exploit(m.report.exploits, rules.fitness.constraints);
     }
-    const double generation_wall_s = progress().elapsed_s;  // paused time excluded
+    out.champion.reset();  // re-established from the re-scored population
+    return out;
+}
 
-    HistoryRow row;
-    row.generation = g;
-    row.evaluations = static_cast<int>(fresh.size());
-    row.simulations = static_cast<int>(jobs.size());
-    row.best_fitness = best.report.fitness;
-    row.median_fitness = median_fitness(next_population);
-    row.best_age = best.age;
-    row.best_id = best.id;
-    row.diverged = diverged;
-    row.wall_s = state_.elapsed_s + generation_wall_s;
-    row.rules_version = rules_version;
-    row.best_exploits = best.report.exploits;
-    for (const auto& m : next_population)
-        row.flagged_members += m.report.exploits.any() ? 1 : 0;
-    if (rules.evolution.algorithm == Algorithm::Neat)
-        row.species = static_cast<int>(neat.species.size());
-    if (novelty) {
-        NoveltyRow n;
-        std::vector<double> sorted = next_novelty;
-        std::sort(sorted.begin(), sorted.end());
-        if (!sorted.empty()) {
-            const std::size_t m = sorted.size();
-            n.best_novelty = sorted.back();
-            n.median_novelty = m % 2 == 1 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
-        }
-        n.archive_size = static_cast<int>(novelty->archive.entries.size());
-        n.archive_added = novelty->added;
-        n.archive_threshold = novelty->archive.threshold;
-        n.champion_fitness = champion->individual.report.fitness;
-        row.novelty = n;
-    }
-
-    // Commit.
+void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed,
+                                     std::uint64_t applied_serial, std::int64_t next_id,
+                                     const Rng& rng, Selection selection, SearchState search,
+                                     ChampionRecord champion, const GenerationTally& tally,
+                                     bool new_champion) {
+    const HistoryRow row =
+        make_history_row(tally, selection, search, champion.individual.report.fitness);
     state_.experiment = rules;
-    state_.generation = g;
+    state_.generation = tally.generation;
     state_.next_id = next_id;
     state_.rng = rng.state();
-    state_.rules_version = rules_version;
-    state_.elapsed_s = row.wall_s;
-    state_.population = std::move(next_population);
-    state_.pareto_rank = std::move(next_ranks);
-    state_.champion = champion;
-    state_.neat = std::move(neat);
-    if (novelty) state_.novelty_archive = std::move(novelty->archive);
+    state_.rules_version = tally.rules_version;
+    state_.elapsed_s = tally.wall_s;
+    state_.population = selection.population;
+    state_.pareto_rank = selection.ranks;
+    state_.champion = std::move(champion);
+    state_.neat = std::move(search.neat);
+    state_.novelty_archive = std::move(search.novelty_archive);
     state_.history.push_back(row);
-    if (rules_changed) state_.rule_changes.push_back({g, rules.fitness});
-    for (std::size_t j = 0; j < jobs.size(); ++j)
-        state_.cache.insert(job_hashes[j], results[j]);
+    if (rules_changed) state_.rule_changes.push_back({tally.generation, rules.fitness});
+    const CachedEvaluation& evaluation = *tally.evaluation;
+    for (std::size_t j = 0; j < evaluation.simulated_hashes.size(); ++j)
+        state_.cache.insert(evaluation.simulated_hashes[j], evaluation.simulated_reports[j]);
     {
         std::lock_guard lock(control_mutex_);
         if (rules_changed && pending_serial_ == applied_serial) pending_fitness_.reset();
@@ -503,124 +352,17 @@ bool EvolutionRun::run_generation() {
         checkpoint_path_ = output_->path(kCheckpointFile);
     }
 
-    auto report = std::make_shared<GenerationReport>();
-    report->generation = g;
+    auto report = std::make_shared<GenerationReport>(
+        make_generation_report(state_, selection, tally, rules_changed, new_champion));
+    const double generation_wall_s = tally.generation_wall_s;
     report->generation_budget = generation_budget_;
-    report->measure = rules.fitness.measure;
-    report->rules_version = rules_version;
-    report->rules_changed = rules_changed;
-    report->best_fitness = row.best_fitness;
-    report->median_fitness = row.median_fitness;
-    report->champion = *state_.champion;
-    report->new_champion = new_champion;
-    report->species = row.species;
-    report->novelty = row.novelty;
-    const auto species_of = species_of_members(state_.neat, state_.population.size());
-    for (std::size_t k = 0; k < state_.population.size(); ++k) {
-        const auto& m = state_.population[k];
-        report->population.push_back(
-            {m.id, m.report.fitness, m.age, m.phenotype.voxels,
-             m.phenotype.voxels > 0
-                 ? static_cast<double>(m.phenotype.active_voxels) / m.phenotype.voxels
-                 : 0.0,
-             state_.pareto_rank[k], m.report.diverged, m.valid, m.report.exploits,
-             species_of[k] >= 0 ? state_.neat.species[static_cast<std::size_t>(species_of[k])].id
-                                : 0});
-        if (k < next_novelty.size()) report->population.back().novelty = next_novelty[k];
-    }
-    report->evaluations = row.evaluations;
-    report->simulations = row.simulations;
-    report->cache_hits = cache_hits;
-    report->clones = clones;
-    report->diverged = diverged;
-    report->newcomers_skipped = newcomers_skipped;
     report->generation_wall_s = generation_wall_s;
     report->elapsed_s = state_.elapsed_s;
     report->simulations_per_s = generation_wall_s > 0.0 ? row.simulations / generation_wall_s : 0.0;
     const double per_generation = seconds_since(session_start_) / session_generations_;
-    const double by_generations = (generation_budget_ - 1 - g) * per_generation;
+    const double by_generations = (generation_budget_ - 1 - tally.generation) * per_generation;
     report->eta_s = std::max(0.0, std::min(by_generations, wall_budget_s_ - state_.elapsed_s));
     publish(std::move(report));
-    return true;
-}
-
-void EvolutionRun::breed_random(const Experiment& rules, int g, Rng& rng, std::int64_t& next_id,
-                                Brood& out) const {
-    for (int i = 0; i < rules.evolution.population; ++i) {
-        Individual ind;
-        if (!draw_random_individual(ind, rng, next_id, g, rules.fitness.constraints))
-            throw std::runtime_error(
-                "no valid random individual in " +
-                std::to_string(std::max(100, rules.evolution.max_neutral_retries)) +
-                " draws: the constraints may be too strict for this workspace");
-        ++next_id;
-        out.fresh.push_back(std::move(ind));
-    }
-}
-
-void EvolutionRun::breed_afpo(const Experiment& rules, int g, std::vector<Individual> population,
-                              Rng& rng, std::int64_t& next_id, Brood& brood) const {
-    const auto& constraints = rules.fitness.constraints;
-    std::vector<Individual>& fresh = brood.fresh;
-    int& clones = brood.clones;
-    for (auto& m : population)
-        ++m.age;
-    const double crossover_rate = rules.evolution.crossover_rate;
-    for (std::size_t p = 0; p < population.size(); ++p) {
-        const Individual& parent = population[p];
-        // Rate 0 draws nothing, so mutation-only runs keep the paper's random stream.
-        const Individual* mate = nullptr;
-        if (crossover_rate > 0.0 && population.size() > 1 && rng.uniform() < crossover_rate) {
-            auto m = static_cast<std::size_t>(rng.index(static_cast<int>(population.size()) - 1));
-            mate = &population[m >= p ? m + 1 : m];  // any member but the parent
-        }
-        auto out = mate ? cross_then_mutate(parent.genome, mate->genome, parent.phenotype,
-                                            developer_, constraints, rules.evolution.cppn,
-                                            rules.evolution.max_neutral_retries, rng)
-                        : mutate_until_new(parent.genome, parent.phenotype, developer_,
-                                           constraints, rules.evolution.cppn,
-                                           rules.evolution.max_neutral_retries, rng);
-        Individual child;
-        child.id = next_id++;
-        child.parent_id = parent.id;
-        // AFPO: an offspring is as old as its oldest parent.
-        child.age = mate && !out.cloned ? std::max(parent.age, mate->age) : parent.age;
-        child.born_generation = g;
-        child.genome = std::move(out.genome);
-        child.phenotype = std::move(out.phenotype);
-        if (out.cloned) {  // same phenotype as the parent: same result
-            child.report = parent.report;
-            child.evaluated = parent.evaluated;
-            child.valid = parent.valid;
-            ++clones;
-        }
-        fresh.push_back(std::move(child));
-    }
-    Individual newcomer;
-    if (draw_random_individual(newcomer, rng, next_id, g, constraints)) {
-        ++next_id;
-        fresh.push_back(std::move(newcomer));
-    } else {
-        ++brood.newcomers_skipped;
-    }
-    // AFPO's pool is the whole aged population plus its new individuals.
-    brood.carried = std::move(population);
-}
-
-void EvolutionRun::select_afpo(const Experiment& rules, std::vector<Individual> pool,
-                               std::vector<Individual>& next_population,
-                               std::vector<int>& next_ranks) const {
-    std::vector<AfpoObjectives> objectives;
-    objectives.reserve(pool.size());
-    for (const auto& m : pool)
-        objectives.push_back({m.report.fitness, m.age, m.phenotype.active_voxels, m.id});
-    const bool third_objective = rules.fitness.minimize_active_voxels;
-    const auto survivors = select_survivors(objectives, rules.evolution.population, third_objective);
-    const auto ranks = pareto_ranks(objectives, third_objective);
-    for (int index : survivors) {
-        next_population.push_back(pool[static_cast<std::size_t>(index)]);
-        next_ranks.push_back(ranks[static_cast<std::size_t>(index)]);
-    }
 }
 
 }  // namespace bhm::evo

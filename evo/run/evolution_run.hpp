@@ -1,12 +1,10 @@
 #pragma once
-// The AFPO run loop (paper section 3; Schmidt & Lipson 2010), shared by `bhm evolve` and the
-// studio.
-//
-// Generation 0: P random valid individuals. Generation g > 0: every member ages by one; each makes
-// one mutant (mutate_until_new) that inherits its age; one random newcomer of age 0 joins
-// (2P + 1 in the pool); the new ones are evaluated (cache first, then simulations on the
-// evaluator: the worker pool, or MPI ranks, evo/evaluate/evaluator.hpp); Pareto selection on (fitness up,
-// age down[, active voxels down]) cuts the pool back to P.
+// The run loop, shared by `bhm evolve`, MPI and the studio, whatever the algorithm
+// (evolution.algorithm: AFPO, NEAT, novelty search; evo/search/search_algorithm.hpp). A
+// generation is a list of stages: apply pending rule changes (re-score), breed (the algorithm),
+// evaluate the new individuals (evo/run/cached_evaluation.hpp: cache first, then simulations on
+// the evaluator: the worker pool or MPI ranks), select (the algorithm), commit (state, history,
+// files, checkpoint) and publish the report (evo/run/generation_report.hpp).
 //
 // Determinism: all random draws happen on the calling thread in a fixed order; workers only run
 // pure evaluations into pre-sized slots. The same seed gives the same history and champion
@@ -37,6 +35,7 @@
 
 #include "evo/evaluate/evaluator.hpp"
 #include "evo/genome/phenotype.hpp"
+#include "evo/run/generation_report.hpp"
 #include "evo/run/run_output.hpp"
 #include "evo/run/run_state.hpp"
 
@@ -54,46 +53,6 @@ struct RunOptions {
     std::string writer = "bhm";
     //! Where simulations run; null: a ThreadEvaluator with `threads` threads in this process.
     std::shared_ptr<Evaluator> evaluator;
-};
-
-struct PopulationEntry {
-    std::int64_t id = 0;
-    double fitness = 0.0;
-    int age = 0;
-    int voxels = 0;
-    double active_fraction = 0.0;
-    int pareto_rank = 0;
-    bool diverged = false;
-    bool valid = true;
-    ExploitReport exploits;  //!< escaped / detached_motion / tentacle and their measures
-    int species = 0;         //!< NEAT: the member's species id (0 for other algorithms)
-    double novelty = 0.0;    //!< novelty search: the member's novelty (0 for other algorithms)
-};
-
-//! An immutable snapshot of one completed generation.
-struct GenerationReport {
-    int generation = 0;
-    int generation_budget = 0;
-    FitnessMeasure measure = FitnessMeasure::ComFinal3d;
-    int rules_version = 0;
-    bool rules_changed = false;  //!< the rules changed just before this generation
-    double best_fitness = 0.0;
-    double median_fitness = 0.0;
-    ChampionRecord champion;  //!< champion.individual.report.exploits: the champion's flags
-    bool new_champion = false;
-    std::vector<PopulationEntry> population;  //!< in selection order
-    int evaluations = 0;
-    int simulations = 0;
-    int cache_hits = 0;  //!< evaluations served by the cache, a clone's parent or a twin
-    int clones = 0;      //!< mutants that found no new valid phenotype in max_neutral_retries
-    int diverged = 0;
-    int newcomers_skipped = 0;  //!< no valid random newcomer found (over-strict constraints)
-    int species = 0;            //!< NEAT: species in the population (0 for other algorithms)
-    std::optional<NoveltyRow> novelty;  //!< novelty search: novelty and archive figures
-    double generation_wall_s = 0.0;
-    double elapsed_s = 0.0;          //!< across resumes
-    double simulations_per_s = 0.0;  //!< this generation
-    double eta_s = -1.0;             //!< to the generation or wall budget; -1 unknown
 };
 
 //! How far the generation in progress is: a consistent snapshot, cheap enough to poll every frame.
@@ -172,29 +131,22 @@ class EvolutionRun {
     };
     static Start fresh_start(const Experiment& experiment, const RunOptions& options);
     EvolutionRun(Start start, RunOptions options);
-    bool draw_random_individual(Individual& out, Rng& rng, std::int64_t id, int generation,
-                                const Constraints& constraints) const;
-
-    // The algorithm-specific steps of run_generation (evolution.algorithm). A generation is:
-    // breed (which members carry over into the pool, which new individuals to make), evaluate the
-    // new ones (shared by every algorithm: cache, then the evaluator), select (the next
-    // population, in selection order, from the pool). A new algorithm adds its breed_* and
-    // select_* and one case in each of run_generation's two switches.
-    struct Brood {
-        std::vector<Individual> carried;  //!< members kept into the pool, already evaluated
-        std::vector<Individual> fresh;    //!< new individuals, evaluated by run_generation
-        int clones = 0;                   //!< fresh members that copy a parent's result
-        int newcomers_skipped = 0;
+    //! The rules of the next generation (a pending fitness change applied) and the population and
+    //! champion re-scored under them; copies, so an abandoned generation changes nothing.
+    struct Rescored {
+        Experiment rules;
+        std::vector<Individual> population;
+        std::optional<ChampionRecord> champion;
+        int rules_version = 0;
+        bool changed = false;
     };
-    //! Generation 0 of AFPO: population-many random valid individuals.
-    void breed_random(const Experiment& rules, int g, Rng& rng, std::int64_t& next_id,
-                      Brood& brood) const;
-    //! AFPO (paper section 3): every member ages and makes one child; one random newcomer.
-    void breed_afpo(const Experiment& rules, int g, std::vector<Individual> population, Rng& rng,
-                    std::int64_t& next_id, Brood& brood) const;
-    //! AFPO's Pareto selection on (fitness, age[, active voxels]) back to population-many.
-    void select_afpo(const Experiment& rules, std::vector<Individual> pool,
-                     std::vector<Individual>& next_population, std::vector<int>& next_ranks) const;
+    Rescored rescore_for_pending_rules(std::uint64_t& applied_serial) const;
+    //! The generation's results become the run's state: history, cache, checkpoint and files,
+    //! then the report is published.
+    void commit_generation(const Experiment& rules, bool rules_changed, std::uint64_t applied_serial,
+                           std::int64_t next_id, const Rng& rng, Selection selection,
+                           SearchState search, ChampionRecord champion,
+                           const GenerationTally& tally, bool new_champion);
     void publish(std::shared_ptr<const GenerationReport> report);
     //! Seconds spent paused since the run was made (the current pause included).
     double paused_seconds() const;
