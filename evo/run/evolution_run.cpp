@@ -129,8 +129,17 @@ EvolutionRun::EvolutionRun(Start start, RunOptions options)
 
 EvolutionRun::~EvolutionRun() = default;
 
+void EvolutionRun::pause_between_generations(bool hold) {
+    {
+        std::lock_guard lock(control_mutex_);
+        hold_.store(hold);
+    }
+    control_changed_.notify_all();
+}
+
 void EvolutionRun::set_paused(bool paused) {
     {
+        if (!paused) hold_.store(false);
         std::lock_guard lock(control_mutex_);
         const auto now = std::chrono::steady_clock::now();
         if (paused && !paused_.load()) pause_began_ = now;
@@ -194,6 +203,12 @@ void EvolutionRun::request_fitness_change(const Fitness& fitness) {
     ++pending_serial_;
 }
 
+void EvolutionRun::change_fitness_now(const Fitness& fitness) {
+    request_fitness_change(fitness);
+    restart_.store(true);
+    stop_.store(true);  // abandons the simulations in flight within milliseconds
+}
+
 std::shared_ptr<const GenerationReport> EvolutionRun::latest_report() const {
     std::lock_guard lock(report_mutex_);
     return latest_;
@@ -209,17 +224,34 @@ void EvolutionRun::publish(std::shared_ptr<const GenerationReport> report) {
 
 StopReason EvolutionRun::run() {
     if (session_generations_ == 0) session_start_ = std::chrono::steady_clock::now();
+    auto tell = [&](RunEvent event, bool restarted) {
+        if (events_) events_(event, state_.generation + 1, restarted);
+    };
+    bool restarted = false;
     for (;;) {
-        {
-            // A signal handler cannot notify, so poll the stop flag while paused.
-            std::unique_lock lock(control_mutex_);
-            while (paused_.load() && !stop_.load())
-                control_changed_.wait_for(lock, std::chrono::milliseconds(100));
+        // A restart asked for after the generation had ended has nothing left to abandon.
+        if (restart_.exchange(false) && !user_stop_.load()) stop_.store(false);
+        const bool holding = paused_.load() || hold_.load();
+        if (holding && !stop_.load()) {
+            tell(RunEvent::Paused, restarted);
+            {
+                // A signal handler cannot notify, so poll the stop flag while paused.
+                std::unique_lock lock(control_mutex_);
+                while ((paused_.load() || hold_.load()) && !stop_.load())
+                    control_changed_.wait_for(lock, std::chrono::milliseconds(100));
+            }
+            if (!stop_.load()) tell(RunEvent::Resumed, false);
         }
         if (stop_.load()) return StopReason::StopRequested;
         if (state_.generation + 1 >= generation_budget_) return StopReason::GenerationBudget;
         if (state_.elapsed_s >= wall_budget_s_) return StopReason::WallBudget;
-        if (!run_generation()) return StopReason::StopRequested;
+        restarted = false;
+        if (run_generation()) continue;
+        // Abandoned: for new rules (computed again at once) or a stop.
+        if (!restart_.exchange(false) || user_stop_.load()) return StopReason::StopRequested;
+        stop_.store(false);
+        restarted = true;
+        tell(RunEvent::Restarted, false);
     }
 }
 

@@ -17,11 +17,14 @@
 // empty when no generation has completed); an abandoned generation is simply computed again on
 // resume, so stop + resume == an uninterrupted run. set_paused(true) freezes the simulations in
 // flight where they are and holds the loop between generations; paused time does not count
-// against the wall-time budget. request_fitness_change() swaps the fitness rules before the next
-// generation and re-scores the population under them (all measures are kept, so no new
-// simulation is needed; members that now break a constraint get kInvalidFitness). Reports are
-// immutable snapshots handed to a callback and kept as latest_report(); progress() says how far
-// the generation in progress is.
+// against the wall-time budget; pause_between_generations(true) lets the generation finish first.
+// request_fitness_change() swaps the fitness rules before the next generation and re-scores the
+// population under them (all measures are kept, so no new simulation is needed; members that now
+// break a constraint get kInvalidFitness); change_fitness_now() also abandons the generation in
+// flight, which run() computes again under the new rules. Reports are immutable snapshots handed
+// to a callback and kept as latest_report(); run() also tells an event callback when it holds,
+// goes on and restarts a generation, so a UI follows the run's own loop instead of a copy of it;
+// progress() says how far the generation in progress is.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -69,6 +72,16 @@ using ReportCallback = std::function<void(std::shared_ptr<const GenerationReport
 
 enum class StopReason { GenerationBudget, WallBudget, StopRequested };
 
+//! What run() tells an observer between generations (the studio draws its phase from these).
+enum class RunEvent {
+    Paused,     //!< the loop holds between generations (set_paused or pause_between_generations)
+    Resumed,    //!< it goes on after a pause
+    Restarted,  //!< the generation in progress was abandoned for new rules; it is run again
+};
+//! generation: the one that runs next; restarted: a pause began right after a restart, so that
+//! generation is computed again when the run goes on.
+using EventCallback = std::function<void(RunEvent event, int generation, bool restarted)>;
+
 class EvolutionRun {
   public:
     //! A new run. With an out_dir: creates it, takes its lock for the run's lifetime (a directory
@@ -89,20 +102,35 @@ class EvolutionRun {
     bool run_generation();
 
     void set_report_callback(ReportCallback callback) { callback_ = std::move(callback); }
+    //! Called on run()'s thread; the state is committed and may be read from the callback.
+    void set_event_callback(EventCallback callback) { events_ = std::move(callback); }
     //! Replaces where simulations run (RunOptions::evaluator; null: this process's threads).
     //! Only while run() is not executing.
     void set_evaluator(std::shared_ptr<Evaluator> evaluator) {
         evaluator_ = evaluator ? std::move(evaluator) : std::make_shared<ThreadEvaluator>(threads_);
     }
-    void request_stop() { stop_.store(true); }
+    void request_stop() {
+        user_stop_.store(true);
+        stop_.store(true);
+    }
     //! Lets run() go on after a stop request was honoured (the studio's "continue").
-    void clear_stop() { stop_.store(false); }
+    void clear_stop() {
+        user_stop_.store(false);
+        stop_.store(false);
+    }
     bool stop_requested() const { return stop_.load(); }
     //! The flag itself, for an async-signal-safe store from a signal handler.
     std::atomic<bool>& stop_flag() { return stop_; }
     void set_paused(bool paused);
+    //! Lets the generation in progress finish, then holds run() until lowered (set_paused(false)
+    //! lowers it too). The simulations in flight are not frozen.
+    void pause_between_generations(bool hold);
     bool paused() const { return paused_.load(); }
     void request_fitness_change(const Fitness& fitness);
+    //! As request_fitness_change, and a generation in progress is abandoned at once and run()
+    //! computes it again under the new rules (its state is untouched, so the run stays what an
+    //! uninterrupted run with the change at that generation would be).
+    void change_fitness_now(const Fitness& fitness);
 
     std::shared_ptr<const GenerationReport> latest_report() const;
     //! Thread-safe: from any thread at any time, also while run() executes.
@@ -168,7 +196,13 @@ class EvolutionRun {
     std::vector<std::string> resume_warnings_;
     std::string checkpoint_path_;
 
+    //! Raised to abandon the generation in flight: by a stop (user_stop_), a signal handler
+    //! (stop_flag) or a restart for new rules (restart_).
     std::atomic<bool> stop_{false};
+    std::atomic<bool> user_stop_{false};
+    std::atomic<bool> restart_{false};
+    std::atomic<bool> hold_{false};
+    EventCallback events_;
     std::atomic<bool> paused_{false};
     mutable std::mutex control_mutex_;
     std::condition_variable control_changed_;

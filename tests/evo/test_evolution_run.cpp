@@ -339,3 +339,66 @@ TEST_CASE("a change of rules between generations re-scores the population and is
     CHECK_FALSE(report->rules_changed);
     CHECK(report->rules_version == 1);
 }
+
+namespace {
+
+//! Simulates on this process's threads; while the batch of generation `at` is in flight, asks
+//! its run for a rule change (once), as the studio's Apply does.
+class ChangeRulesMidBatch final : public Evaluator {
+  public:
+    ChangeRulesMidBatch(int at, Fitness rules) : at_(at), rules_(std::move(rules)) {}
+    EvolutionRun* run = nullptr;
+    bool changed = false;
+    void evaluate(const EvaluationBatch& batch, std::vector<FitnessReport>& results) override {
+        if (run->progress().generation == at_ && !changed && !batch.bodies.empty()) {
+            changed = true;
+            run->change_fitness_now(rules_);
+        }
+        inner_.evaluate(batch, results);
+    }
+    int concurrency() const override { return inner_.concurrency(); }
+
+  private:
+    int at_;
+    Fitness rules_;
+    ThreadEvaluator inner_{2};
+};
+
+}  // namespace
+
+TEST_CASE("run(): a rule change mid-generation restarts that generation and equals the change made "
+          "between generations; a pause between generations is reported with the next generation") {
+    const Experiment e = test::tiny_experiment();
+    Fitness rules = e.fitness;
+    rules.measure = FitnessMeasure::ComFinalYz;
+
+    // Twin: the change requested before generation 2 starts.
+    EvolutionRun twin(e, options(4, 2));
+    twin.set_report_callback([&](auto r) {
+        if (r->generation == 1) twin.request_fitness_change(rules);
+    });
+    REQUIRE(twin.run() == StopReason::GenerationBudget);
+
+    // The same change made while generation 2 is being simulated: abandoned, then run again.
+    auto evaluator = std::make_shared<ChangeRulesMidBatch>(2, rules);
+    RunOptions o = options(4, 2);
+    o.evaluator = evaluator;
+    EvolutionRun run(e, o);
+    evaluator->run = &run;
+    std::vector<std::string> events;
+    run.set_event_callback([&](RunEvent event, int next, bool restarted) {
+        events.push_back(std::to_string(static_cast<int>(event)) + ":" + std::to_string(next) +
+                         (restarted ? "r" : ""));
+        if (event == RunEvent::Paused) run.set_paused(false);
+    });
+    run.set_report_callback([&](auto r) {
+        if (r->generation == 2) run.pause_between_generations(true);
+    });
+    REQUIRE(run.run() == StopReason::GenerationBudget);
+    REQUIRE(evaluator->changed);
+    CHECK(without_wall(run.state().history) == without_wall(twin.state().history));
+    REQUIRE(run.state().rule_changes.size() == 1);
+    CHECK(run.state().rule_changes.front().generation == 2);
+    // Restarted (2) once for generation 2, then paused (0) and resumed (1) before generation 3.
+    CHECK(events == std::vector<std::string>{"2:2", "0:3", "1:3"});
+}

@@ -66,7 +66,6 @@ struct EvolutionSession::Shared {
     std::string resume_dir;  //!< set: the thread resumes this directory first
     std::string run_dir;
     std::mutex mutex;
-    std::condition_variable wake;
     bool paused = false;
     bool freeze = false;  //!< the pause froze the simulations in flight (set_paused)
     bool stop = false;
@@ -238,6 +237,7 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                 // A stop or pause asked for while the checkpoint loaded reaches the run now.
                 if (shared->stop) shared->run->request_stop();
                 if (shared->paused && shared->freeze) shared->run->set_paused(true);
+                if (shared->paused && !shared->freeze) shared->run->pause_between_generations(true);
             }
             evo::EvolutionRun& run = *shared->run;
             // Shown at once (the history, the rules, the budget): nothing waits for a generation.
@@ -262,44 +262,29 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                 phase_ = now;
                 slot_.publish(snapshot_of(*shared, now, text));
             });
-            // Our own loop over run_generation (rather than run()) so the UI knows exactly when
-            // the run is paused. Pause freezes the simulations in flight (set_paused) and the
-            // loop waits here when the pause comes between generations. A generation abandoned
-            // by a change of rules (or a stop) leaves the run's state untouched, so it is
-            // computed again from the same random state and the run stays identical to an
-            // uninterrupted one.
-            bool interrupted = false;
-            for (;;) {
-                {
-                    std::unique_lock lock(shared->mutex);
-                    if (shared->paused && !shared->stop) {
-                        phase_ = RunPhase::Paused;
-                        const int next = run.state().generation + 1;
-                        slot_.publish(
-                            snapshot_of(*shared, RunPhase::Paused,
-                                        interrupted ? "paused: generation " + std::to_string(next) +
-                                                          " is computed again on resume"
-                                                    : std::string("paused between generations")));
-                        shared->wake.wait(lock, [&] { return !shared->paused || shared->stop; });
-                        if (!shared->stop) {
-                            phase_ = RunPhase::Running;
-                            slot_.publish(snapshot_of(*shared, RunPhase::Running, "resumed"));
-                        }
-                    }
-                    if (shared->stop) break;
-                    run.clear_stop();  // a pause already honoured (or asked after the generation)
+            // The run's own loop drives the studio: its events say when it holds between
+            // generations and when it goes on. A pause freezes the simulations in flight
+            // (set_paused) or lets the generation finish first (pause_between_generations). A
+            // change of rules abandons the generation in progress, which the run computes again
+            // from the same random state, so the run stays identical to an uninterrupted one.
+            run.set_event_callback([&](evo::RunEvent event, int next, bool restarted) {
+                if (event == evo::RunEvent::Paused) {
+                    publish(RunPhase::Paused, restarted ? "paused: generation " +
+                                                              std::to_string(next) +
+                                                              " is computed again on resume"
+                                                        : std::string("paused between generations"));
+                } else if (event == evo::RunEvent::Resumed) {
+                    publish(RunPhase::Running, "resumed");
                 }
-                interrupted = false;
-                const auto& state = run.state();
-                if (state.generation + 1 >= run.generation_budget()) {
+            });
+            switch (run.run()) {
+                case evo::StopReason::GenerationBudget:
                     publish(RunPhase::Finished, "finished: generation budget reached");
                     return;
-                }
-                if (state.elapsed_s >= run.wall_budget_s()) {
+                case evo::StopReason::WallBudget:
                     publish(RunPhase::Finished, "finished: wall-time budget reached");
                     return;
-                }
-                if (!run.run_generation()) interrupted = true;  // new rules or a stop
+                case evo::StopReason::StopRequested: break;
             }
             const int done = run.state().generation;
             publish(RunPhase::Stopped,
@@ -320,7 +305,10 @@ void EvolutionSession::pause(bool between_generations) {
         // Unfreeze (a pause of the other kind may hold the simulations) and stop after this one.
         shared_->paused = true;
         shared_->freeze = false;
-        if (shared_->run) shared_->run->set_paused(false);
+        if (shared_->run) {
+            shared_->run->set_paused(false);
+            shared_->run->pause_between_generations(true);
+        }
         if (phase_ == RunPhase::Running || phase_ == RunPhase::Paused) phase_ = RunPhase::Pausing;
         return;
     }
@@ -382,7 +370,6 @@ void EvolutionSession::resume() {
         if (phase_ == RunPhase::Pausing || (frozen && phase_ == RunPhase::Paused))
             phase_ = RunPhase::Running;
     }
-    shared_->wake.notify_all();
 }
 
 void EvolutionSession::stop() {
@@ -396,18 +383,18 @@ void EvolutionSession::stop() {
             shared_->run->set_paused(false);
         }
     }
-    shared_->wake.notify_all();
 }
 
 void EvolutionSession::change_rules(const evo::Experiment& experiment) {
     if (!shared_ || !run_is_live(phase_.load())) return;
     std::lock_guard lock(shared_->mutex);
     if (!shared_->run) return;
-    shared_->run->request_fitness_change(experiment.fitness);  // thread-safe
-    // A generation in progress (or frozen by a pause) would finish under the old rules: abandon
-    // it, and the loop computes it again under the new ones (the run's state is untouched by an
-    // abandoned generation, so nothing else changes).
-    if (shared_->run->progress().running && !shared_->stop) shared_->run->request_stop();
+    // A generation in progress (or frozen by a pause) would finish under the old rules: the run
+    // abandons it and computes it again under the new ones (thread-safe).
+    if (shared_->stop)
+        shared_->run->request_fitness_change(experiment.fitness);
+    else
+        shared_->run->change_fitness_now(experiment.fitness);
 }
 
 std::string exploit_summary(const evo::ExploitReport& r) {
