@@ -30,7 +30,7 @@ inline constexpr double kMaxStepsPerSimulation = 1e8;
 inline constexpr double kMinStepsPerSimulation = 100.0;
 inline constexpr double kMinStepsPerActuationPeriod = 20.0;
 //! Nominal single-thread engine throughput, only for the "about N h" of a refusal message
-//! (README benchmarks: 43-49 M voxel-steps/s on the 2-core CI machine class).
+//! (docs/benchmarks.md: 43-49 M voxel-steps/s on the 2-core CI machine class).
 inline constexpr double kNominalVoxelStepsPerS = 4e7;
 
 //! One input the engine cannot run: the field (relative to the object checked, as in BodySpec,

@@ -20,7 +20,7 @@
 //              fitness both AFPO objectives)
 // An algorithm this build refuses (not built) is reported on stderr and skipped.
 // CSV on stdout (one row per algorithm and seed); the summary table (mean, standard deviation,
-// min, max, per seed) on stderr in Markdown, as the README shows it.
+// min, max, per seed) on stderr in Markdown, as docs/benchmarks.md shows it.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -219,7 +219,7 @@ int run(int argc, char** argv) {
         }
     }
 
-    // The README's table.
+    // docs/benchmarks.md's table.
     std::cerr << "\n| algorithm | mean | sd | min | max | per seed (" << first_seed << ".."
               << first_seed + static_cast<std::uint64_t>(seeds) - 1
               << ") |\n|---|---|---|---|---|---|\n";

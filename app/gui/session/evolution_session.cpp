@@ -1,7 +1,6 @@
 #include "app/gui/session/evolution_session.hpp"
 
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <functional>
 
