@@ -3,6 +3,7 @@
 #include "engine/replay.hpp"
 
 #include <unistd.h>
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -242,6 +243,74 @@ Replay read_replay(const std::string& path) {
         d.f32_array(p.size_m, 3 * n);
     }
     return r;
+}
+
+VoxelPoses pose_at(const Replay& replay, double time_s, PoseSampling sampling) {
+    const auto& frames = replay.frames;
+    if (frames.empty()) throw std::invalid_argument("replay has no frames");
+    // First frame strictly after time_s; the one before it is at or before time_s.
+    const auto after = std::upper_bound(frames.begin(), frames.end(), time_s,
+                                        [](double t, const VoxelPoses& f) { return t < f.time_s; });
+    if (after == frames.begin()) return frames.front();
+    const VoxelPoses& a = *(after - 1);
+    if (after == frames.end() || sampling == PoseSampling::NearestBefore || a.time_s == time_s)
+        return a;
+    const VoxelPoses& b = *after;
+    if (a.position_m.size() != b.position_m.size() ||
+        a.orientation.size() != b.orientation.size() || a.size_m.size() != b.size_m.size())
+        throw std::invalid_argument("replay frames differ in voxel count");
+    const float f = static_cast<float>((time_s - a.time_s) / (b.time_s - a.time_s));
+    VoxelPoses out = a;
+    out.time_s = time_s;
+    for (std::size_t i = 0; i < out.position_m.size(); ++i)
+        out.position_m[i] = a.position_m[i] + f * (b.position_m[i] - a.position_m[i]);
+    for (std::size_t i = 0; i < out.size_m.size(); ++i)
+        out.size_m[i] = a.size_m[i] + f * (b.size_m[i] - a.size_m[i]);
+    for (std::size_t i = 0; i + 3 < out.orientation.size(); i += 4) {
+        const float* qa = &a.orientation[i];
+        float qb[4] = {b.orientation[i], b.orientation[i + 1], b.orientation[i + 2],
+                       b.orientation[i + 3]};
+        const float dot = qa[0] * qb[0] + qa[1] * qb[1] + qa[2] * qb[2] + qa[3] * qb[3];
+        if (dot < 0.0f)  // q and -q are the same rotation: blend along the shorter arc
+            for (float& c : qb)
+                c = -c;
+        float q[4];
+        float norm2 = 0.0f;
+        for (int k = 0; k < 4; ++k) {
+            q[k] = qa[k] + f * (qb[k] - qa[k]);
+            norm2 += q[k] * q[k];
+        }
+        const float norm = std::sqrt(norm2);
+        for (int k = 0; k < 4; ++k)
+            out.orientation[i + static_cast<std::size_t>(k)] = norm > 1e-8f ? q[k] / norm : qa[k];
+    }
+    return out;
+}
+
+std::vector<double> voxel_mass_weights(const Replay& replay,
+                                       const std::vector<double>& material_density) {
+    std::vector<double> mass;
+    mass.reserve(replay.voxel_material.size());
+    for (const std::uint8_t m : replay.voxel_material)
+        mass.push_back(m >= 1 && m <= material_density.size() ? material_density[m - 1] : 1.0);
+    return mass;
+}
+
+std::array<double, 3> centre_of_mass(const VoxelPoses& poses,
+                                     const std::vector<double>& voxel_mass) {
+    const std::size_t n = static_cast<std::size_t>(poses.voxel_count());
+    const bool weighted = voxel_mass.size() == n;
+    std::array<double, 3> sum{0.0, 0.0, 0.0};
+    double total = 0.0;
+    for (std::size_t v = 0; v < n; ++v) {
+        const double w = weighted ? voxel_mass[v] : 1.0;
+        for (std::size_t k = 0; k < 3; ++k)
+            sum[k] += w * poses.position_m[3 * v + k];
+        total += w;
+    }
+    for (double& s : sum)
+        s = total > 0.0 ? s / total : 0.0;
+    return sum;
 }
 
 }  // namespace bhm::engine

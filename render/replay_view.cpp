@@ -19,66 +19,13 @@ BodyView body_view_from_replay(const engine::Replay& replay) {
     return body;
 }
 
-engine::VoxelPoses poses_at_time(const engine::Replay& replay, double time_s,
-                                 PoseSampling sampling) {
-    const auto& frames = replay.frames;
-    if (frames.empty()) throw std::invalid_argument("replay has no frames");
-    // First frame strictly after time_s; the one before it is at or before time_s.
-    const auto after =
-        std::upper_bound(frames.begin(), frames.end(), time_s,
-                         [](double t, const engine::VoxelPoses& f) { return t < f.time_s; });
-    if (after == frames.begin()) return frames.front();
-    const auto& a = *(after - 1);
-    if (after == frames.end() || sampling == PoseSampling::NearestBefore || a.time_s == time_s) {
-        engine::VoxelPoses out = a;
-        return out;
-    }
-    const auto& b = *after;
-    if (a.position_m.size() != b.position_m.size() ||
-        a.orientation.size() != b.orientation.size() || a.size_m.size() != b.size_m.size())
-        throw std::invalid_argument("replay frames differ in voxel count");
-    const float f = static_cast<float>((time_s - a.time_s) / (b.time_s - a.time_s));
-    engine::VoxelPoses out = a;
-    out.time_s = time_s;
-    for (std::size_t i = 0; i < out.position_m.size(); ++i)
-        out.position_m[i] = a.position_m[i] + f * (b.position_m[i] - a.position_m[i]);
-    for (std::size_t i = 0; i < out.size_m.size(); ++i)
-        out.size_m[i] = a.size_m[i] + f * (b.size_m[i] - a.size_m[i]);
-    for (std::size_t i = 0; i + 3 < out.orientation.size(); i += 4) {
-        glm::vec4 qa{a.orientation[i], a.orientation[i + 1], a.orientation[i + 2],
-                     a.orientation[i + 3]};
-        glm::vec4 qb{b.orientation[i], b.orientation[i + 1], b.orientation[i + 2],
-                     b.orientation[i + 3]};
-        if (glm::dot(qa, qb) < 0.0f) qb = -qb;  // q and -q are the same rotation
-        glm::vec4 q = qa + f * (qb - qa);
-        const float n = glm::length(q);
-        q = n > 1e-8f ? q / n : qa;
-        for (int k = 0; k < 4; ++k)
-            out.orientation[i + static_cast<std::size_t>(k)] = q[k];
-    }
-    return out;
-}
-
-glm::vec3 center_of_mass(const engine::VoxelPoses& poses, const std::vector<float>& voxel_weight) {
-    const int n = poses.voxel_count();
-    glm::dvec3 sum(0.0);
-    double total = 0.0;
-    for (int v = 0; v < n; ++v) {
-        const std::size_t i = static_cast<std::size_t>(v);
-        const double w = voxel_weight.size() == static_cast<std::size_t>(n) ? voxel_weight[i] : 1.0;
-        sum += w * glm::dvec3(poses.position_m[3 * i], poses.position_m[3 * i + 1],
-                              poses.position_m[3 * i + 2]);
-        total += w;
-    }
-    return total > 0.0 ? glm::vec3(sum / total) : glm::vec3(0.0f);
-}
-
 std::vector<glm::vec3> center_of_mass_trail(const engine::Replay& replay, double time_s,
-                                            const std::vector<float>& voxel_weight) {
+                                            const std::vector<double>& voxel_mass) {
     std::vector<glm::vec3> trail;
     for (const auto& frame : replay.frames) {
         if (frame.time_s > time_s) break;
-        trail.push_back(center_of_mass(frame, voxel_weight));
+        const auto com = engine::centre_of_mass(frame, voxel_mass);
+        trail.emplace_back(com[0], com[1], com[2]);
     }
     return trail;
 }

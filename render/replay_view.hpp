@@ -15,20 +15,10 @@ namespace bhm::render {
 //! The replay's body with the poses of frame 0 (rest poses when it has no frames).
 BodyView body_view_from_replay(const engine::Replay& replay);
 
-enum class PoseSampling { NearestBefore, Interpolate };
-
-//! Poses at time_s, clamped to the recorded span: the last frame at or before time_s, or a blend
-//! of the two frames around it (positions and sizes linearly, orientations by normalised lerp
-//! along the shorter arc). Throws std::invalid_argument when the replay has no frames.
-engine::VoxelPoses poses_at_time(const engine::Replay& replay, double time_s,
-                                 PoseSampling sampling = PoseSampling::Interpolate);
-
-//! Mean of voxel centres weighted by voxel_weight (empty = all equal), one point per frame up
-//! to and including time_s.
+//! Centre of mass of each frame up to and including time_s (engine::centre_of_mass; voxel_mass
+//! from engine::voxel_mass_weights, empty = all equal).
 std::vector<glm::vec3> center_of_mass_trail(const engine::Replay& replay, double time_s,
-                                            const std::vector<float>& voxel_weight = {});
-glm::vec3 center_of_mass(const engine::VoxelPoses& poses,
-                         const std::vector<float>& voxel_weight = {});
+                                            const std::vector<double>& voxel_mass = {});
 
 //! Bounds of every voxel over every frame (for framing a whole sequence without jumps).
 Bounds replay_bounds(const engine::Replay& replay);

@@ -50,7 +50,7 @@ void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo:
     std::string when = "at rest";
     if (replay) {
         const double t = parser.get_double("--time", replay->frames.back().time_s);
-        mesh = evo::deformed_surface(*replay, evo::poses_at(*replay, t));
+        mesh = evo::deformed_surface(*replay, engine::pose_at(*replay, t));
         when = "at t = " + evo::format_number(t) + " s";
     } else {
         mesh = evo::rest_surface(framed.size, framed.cells, experiment.voxel_size_m);

@@ -99,9 +99,9 @@ render::Scene replay_scene(const evo::Experiment& experiment, const engine::Repl
     scene.body = render::body_view_from_replay(replay);
     mark_enclosure_voxels(experiment, scene.body);
     if (replay.frames.empty()) return scene;
-    const auto sampling = options.interpolate ? render::PoseSampling::Interpolate
-                                              : render::PoseSampling::NearestBefore;
-    scene.body.poses = render::poses_at_time(replay, time_s, sampling);
+    const auto sampling = options.interpolate ? engine::PoseSampling::Interpolate
+                                              : engine::PoseSampling::NearestBefore;
+    scene.body.poses = engine::pose_at(replay, time_s, sampling);
     if (options.ghost) {
         scene.ghost_poses = replay.frames.front();
         scene.options.show_ghost = true;
@@ -113,16 +113,11 @@ render::Scene replay_scene(const evo::Experiment& experiment, const engine::Repl
         }
     }
     if (options.trail) {
-        // Weighted by density: voxels of one size weigh what their material weighs.
-        std::vector<float> weight;
-        for (auto m : replay.voxel_material) {
-            const std::size_t k = static_cast<std::size_t>(m);
-            weight.push_back(
-                k >= 1 && k <= experiment.materials.size()
-                    ? static_cast<float>(experiment.materials[k - 1].physics.density_kg_m3)
-                    : 1.0f);
-        }
-        scene.options.com_trail_m = render::center_of_mass_trail(replay, time_s, weight);
+        std::vector<double> density;
+        for (const auto& material : experiment.materials)
+            density.push_back(material.physics.density_kg_m3);
+        scene.options.com_trail_m = render::center_of_mass_trail(
+            replay, time_s, engine::voxel_mass_weights(replay, density));
     }
     return scene;
 }

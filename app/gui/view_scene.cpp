@@ -169,7 +169,7 @@ render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const
     if (replay.frames.empty()) {
         body.poses = render::rest_poses(body);
     } else {
-        const auto poses = poses_at(replay, t_s);
+        const auto poses = engine::pose_at(replay, t_s);
         body.poses = all ? poses : subset_poses(poses, simulated.surface_voxels);
     }
     scene.workspace = e.workspace_size;

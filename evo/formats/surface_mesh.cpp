@@ -263,42 +263,6 @@ SurfaceMesh deformed_surface(const engine::Replay& replay, const engine::VoxelPo
     });
 }
 
-engine::VoxelPoses poses_at(const engine::Replay& replay, double t) {
-    const auto& frames = replay.frames;
-    if (frames.empty()) throw std::invalid_argument("the replay has no frames");
-    if (t <= frames.front().time_s) return frames.front();
-    if (t >= frames.back().time_s) return frames.back();
-    const auto after = std::upper_bound(frames.begin(), frames.end(), t,
-                                        [](double time, const auto& f) { return time < f.time_s; });
-    const engine::VoxelPoses& b = *after;
-    const engine::VoxelPoses& a = *(after - 1);
-    const double span = b.time_s - a.time_s;
-    const float s = span > 0.0 ? static_cast<float>((t - a.time_s) / span) : 0.0f;
-    engine::VoxelPoses out = a;
-    out.time_s = t;
-    for (std::size_t i = 0; i < out.position_m.size(); ++i)
-        out.position_m[i] += s * (b.position_m[i] - a.position_m[i]);
-    for (std::size_t i = 0; i < out.size_m.size(); ++i)
-        out.size_m[i] += s * (b.size_m[i] - a.size_m[i]);
-    for (std::size_t v = 0; 4 * v < out.orientation.size(); ++v) {
-        float* q = &out.orientation[4 * v];
-        const float* qb = &b.orientation[4 * v];
-        // q and -q are one rotation: blend toward the nearer sign.
-        const float dot = q[0] * qb[0] + q[1] * qb[1] + q[2] * qb[2] + q[3] * qb[3];
-        const float sign = dot < 0.0f ? -1.0f : 1.0f;
-        float norm = 0.0f;
-        for (int i = 0; i < 4; ++i) {
-            q[i] += s * (sign * qb[i] - q[i]);
-            norm += q[i] * q[i];
-        }
-        norm = std::sqrt(norm);
-        if (norm > 0.0f)
-            for (int i = 0; i < 4; ++i)
-                q[i] /= norm;
-    }
-    return out;
-}
-
 double enclosed_volume(const SurfaceMesh& mesh) {
     double six_v = 0.0;
     for (const auto& t : mesh.triangles) {

@@ -37,10 +37,6 @@ SurfaceMesh rest_surface(const std::array<int, 3>& size, const std::vector<std::
 //! The surface of a replay's voxels in one pose (frame from the same replay).
 SurfaceMesh deformed_surface(const engine::Replay& replay, const engine::VoxelPoses& frame);
 
-//! The replay's poses at time t: linear between the two frames around t (orientation by
-//! normalized linear blend), clamped to the first and last frame.
-engine::VoxelPoses poses_at(const engine::Replay& replay, double t_s);
-
 //! Enclosed volume by the divergence theorem (positive for outward-wound closed meshes), m^3.
 double enclosed_volume(const SurfaceMesh& mesh);
 

@@ -134,21 +134,14 @@ std::array<double, 3> frame_centre_of_mass(const engine::Replay& replay,
                                            const engine::VoxelPoses& frame,
                                            const std::vector<MaterialEntry>& materials) {
     check_frame(replay, frame);
-    std::array<double, 3> sum{0.0, 0.0, 0.0};
-    double mass = 0.0;
-    for (std::size_t v = 0; v < replay.voxel_cell.size(); ++v) {
-        const std::size_t m = replay.voxel_material[v];
+    std::vector<double> density;
+    for (const auto& material : materials)
+        density.push_back(material.physics.density_kg_m3);
+    for (const std::uint8_t m : replay.voxel_material)
         if (m < 1 || m > materials.size())
             throw std::invalid_argument("VTK export: voxel material " + std::to_string(m) +
                                         " is not in the palette");
-        const double density = materials[m - 1].physics.density_kg_m3;
-        for (int a = 0; a < 3; ++a)
-            sum[a] += density * frame.position_m[3 * v + a];
-        mass += density;
-    }
-    for (auto& s : sum)
-        s = mass > 0.0 ? s / mass : 0.0;
-    return sum;
+    return engine::centre_of_mass(frame, engine::voxel_mass_weights(replay, density));
 }
 
 std::string com_path_vtp(const std::vector<std::array<double, 3>>& com,

@@ -70,27 +70,28 @@ TEST_CASE("studio replay: frame lookup and linear interpolation of poses") {
     CHECK(frame_index_at(replay, 7.0) == 2);
     CHECK(frame_index_at(engine::Replay{}, 1.0) == -1);
 
-    const auto mid = poses_at(replay, 0.25);
+    const auto mid = engine::pose_at(replay, 0.25);
     CHECK(mid.time_s == 0.25);
     CHECK(mid.position_m[0] == doctest::Approx(0.010f));  // halfway between 0.005 and 0.015
     CHECK(mid.position_m[3] == doctest::Approx(0.015f));
     // Half of a 90-degree turn about z is 45 degrees: w = cos(22.5), z = sin(22.5).
-    const auto turning = poses_at(replay, 0.75);
+    const auto turning = engine::pose_at(replay, 0.75);
     CHECK(turning.orientation[4] == doctest::Approx(std::cos(M_PI / 8)).epsilon(1e-5));
     CHECK(turning.orientation[7] == doctest::Approx(std::sin(M_PI / 8)).epsilon(1e-5));
-    const auto end = poses_at(replay, 9.0);
+    const auto end = engine::pose_at(replay, 9.0);
     CHECK(end.position_m[0] == doctest::Approx(0.025f));
 }
 
-TEST_CASE("studio replay: the centre of mass weights voxels by density and volume") {
+TEST_CASE("studio replay: the centre of mass weights voxels by density, as the engine does") {
     auto replay = two_voxel_replay();
     // Material 2 is three times as dense: the COM sits 3/4 of the way toward voxel 1.
     const auto com = centre_of_mass_per_frame(replay, {1000.0, 3000.0});
     REQUIRE(com.size() == 3);
     CHECK(com[0].x == doctest::Approx(0.25f * 0.005f + 0.75f * 0.015f));
     CHECK(com[1].x == doctest::Approx(0.25f * 0.015f + 0.75f * 0.015f));
-    // Equal densities: the midpoint. A voxel twice as long weighs twice as much.
+    // Equal densities: the midpoint, also when one voxel is actuated to twice its length (its
+    // mass stays, so the COM agrees with World::center_of_mass_m, which the fitness uses).
     replay.frames[0].size_m[0] = 0.02f;
     const auto equal = centre_of_mass_per_frame(replay, {});
-    CHECK(equal[0].x == doctest::Approx((2.0f * 0.005f + 0.015f) / 3.0f));
+    CHECK(equal[0].x == doctest::Approx(0.5f * (0.005f + 0.015f)));
 }

@@ -201,18 +201,6 @@ TEST_CASE("neighbours' corners are averaged, so a gap between voxels closes") {
     CHECK(enclosed_volume(mesh) == doctest::Approx(2.2e-6).epsilon(1e-5));
 }
 
-TEST_CASE("poses_at blends between frames and clamps at the ends") {
-    auto replay = replay_of({1, 1, 1}, {1}, 0.01);
-    replay.frames[0].time_s = 1.0;
-    auto later = replay.frames[0];
-    later.time_s = 2.0;
-    later.position_m[2] += 0.01f;
-    replay.frames.push_back(later);
-    CHECK(poses_at(replay, 1.5).position_m[2] == doctest::Approx(0.01));
-    CHECK(poses_at(replay, 0.0).position_m[2] == doctest::Approx(0.005));
-    CHECK(poses_at(replay, 9.0).position_m[2] == doctest::Approx(0.015));
-}
-
 TEST_CASE("STL: 84-byte header + 50 bytes per facet, unit outward normals") {
     const auto mesh = rest_surface({2, 1, 1}, {1, 1}, 0.01);
     const std::string stl = stl_binary(mesh);

@@ -9,6 +9,8 @@
 using namespace bhm::render;
 using bhm::engine::Replay;
 using bhm::engine::VoxelPoses;
+using bhm::engine::pose_at;
+using bhm::engine::PoseSampling;
 
 namespace {
 
@@ -51,10 +53,10 @@ TEST_CASE("the body view of a replay carries its lattice, materials, fixed flags
 
 TEST_CASE("poses at a time: the frame at or before it, or a blend of the two around it") {
     const Replay r = two_voxel_replay();
-    const VoxelPoses before = poses_at_time(r, 0.15, PoseSampling::NearestBefore);
+    const VoxelPoses before = pose_at(r, 0.15, PoseSampling::NearestBefore);
     CHECK(before.time_s == doctest::Approx(0.1));
     CHECK(before.position_m[3] == doctest::Approx(0.025f));
-    const VoxelPoses blend = poses_at_time(r, 0.15, PoseSampling::Interpolate);
+    const VoxelPoses blend = pose_at(r, 0.15, PoseSampling::Interpolate);
     CHECK(blend.position_m[3] == doctest::Approx(0.030f));
     CHECK(blend.time_s == doctest::Approx(0.15));
     // Half way between a 0.4 rad turn and none: 0.2 rad, still a unit quaternion.
@@ -63,12 +65,12 @@ TEST_CASE("poses at a time: the frame at or before it, or a blend of the two aro
     const float norm = std::hypot(blend.orientation[0], blend.orientation[3]);
     CHECK(norm == doctest::Approx(1.0f));
     // Exact frame times and times outside the recording.
-    CHECK(poses_at_time(r, 0.1).position_m[3] == doctest::Approx(0.025f));
-    CHECK(poses_at_time(r, -5.0).position_m[3] == doctest::Approx(0.015f));
-    CHECK(poses_at_time(r, 99.0).position_m[3] == doctest::Approx(0.035f));
+    CHECK(pose_at(r, 0.1).position_m[3] == doctest::Approx(0.025f));
+    CHECK(pose_at(r, -5.0).position_m[3] == doctest::Approx(0.015f));
+    CHECK(pose_at(r, 99.0).position_m[3] == doctest::Approx(0.035f));
     Replay empty = r;
     empty.frames.clear();
-    CHECK_THROWS_AS(poses_at_time(empty, 0.0), std::invalid_argument);
+    CHECK_THROWS_AS(pose_at(empty, 0.0), std::invalid_argument);
 }
 
 TEST_CASE("interpolation takes the short way between q and -q") {
@@ -77,7 +79,7 @@ TEST_CASE("interpolation takes the short way between q and -q") {
     for (float& q : r.frames[2].orientation)
         q = -q;
     r.frames[1] = frame(0.1, {0.005f, 0.025f});
-    const VoxelPoses blend = poses_at_time(r, 0.15);
+    const VoxelPoses blend = pose_at(r, 0.15);
     CHECK(std::fabs(blend.orientation[0]) == doctest::Approx(1.0f));
 }
 
@@ -88,7 +90,7 @@ TEST_CASE("centre-of-mass trail: one weighted mean per frame up to the time") {
     CHECK(trail[0].x == doctest::Approx(0.010f));
     CHECK(trail[1].x == doctest::Approx(0.015f));
     // Weights 3 : 1 pull the mean toward the first voxel.
-    const auto weighted = center_of_mass_trail(r, 1.0, {3.0f, 1.0f});
+    const auto weighted = center_of_mass_trail(r, 1.0, {3.0, 1.0});
     REQUIRE(weighted.size() == 3);
     CHECK(weighted[2].x == doctest::Approx((3 * 0.005 + 0.035) / 4));
 }

@@ -44,65 +44,14 @@ int frame_index_at(const engine::Replay& replay, double t_s) {
     return std::max(0, static_cast<int>(it - frames.begin()) - 1);
 }
 
-engine::VoxelPoses poses_at(const engine::Replay& replay, double t_s) {
-    const int i = frame_index_at(replay, t_s);
-    if (i < 0) return {};
-    const auto& a = replay.frames[static_cast<std::size_t>(i)];
-    if (i + 1 >= static_cast<int>(replay.frames.size()) || t_s <= a.time_s) return a;
-    const auto& b = replay.frames[static_cast<std::size_t>(i) + 1];
-    const double span = b.time_s - a.time_s;
-    const float w =
-        span > 0.0 ? static_cast<float>(std::clamp((t_s - a.time_s) / span, 0.0, 1.0)) : 0.0f;
-    engine::VoxelPoses out = a;
-    out.time_s = t_s;
-    for (std::size_t k = 0; k < out.position_m.size(); ++k)
-        out.position_m[k] = a.position_m[k] + w * (b.position_m[k] - a.position_m[k]);
-    for (std::size_t k = 0; k < out.size_m.size(); ++k)
-        out.size_m[k] = a.size_m[k] + w * (b.size_m[k] - a.size_m[k]);
-    for (std::size_t v = 0; v + 3 < out.orientation.size(); v += 4) {
-        float dot = 0.0f;
-        for (int c = 0; c < 4; ++c)
-            dot += a.orientation[v + c] * b.orientation[v + c];
-        const float sign = dot < 0.0f ? -1.0f : 1.0f;  // q and -q are the same rotation
-        float norm = 0.0f;
-        for (int c = 0; c < 4; ++c) {
-            const float q =
-                a.orientation[v + c] + w * (sign * b.orientation[v + c] - a.orientation[v + c]);
-            out.orientation[v + c] = q;
-            norm += q * q;
-        }
-        norm = std::sqrt(norm);
-        if (norm > 0.0f)
-            for (int c = 0; c < 4; ++c)
-                out.orientation[v + c] /= norm;
-    }
-    return out;
-}
-
 std::vector<glm::vec3> centre_of_mass_per_frame(const engine::Replay& replay,
                                                 const std::vector<double>& material_density) {
+    const std::vector<double> mass = engine::voxel_mass_weights(replay, material_density);
     std::vector<glm::vec3> com;
     com.reserve(replay.frames.size());
     for (const auto& frame : replay.frames) {
-        const int n = frame.voxel_count();
-        double mass = 0.0, sum[3] = {0.0, 0.0, 0.0};
-        for (int v = 0; v < n; ++v) {
-            const std::size_t m = v < static_cast<int>(replay.voxel_material.size())
-                                      ? replay.voxel_material[static_cast<std::size_t>(v)]
-                                      : 0;
-            const double density =
-                (m >= 1 && m <= material_density.size()) ? material_density[m - 1] : 1.0;
-            double volume = 1.0;
-            if (frame.size_m.size() >= 3 * static_cast<std::size_t>(n))
-                for (int c = 0; c < 3; ++c)
-                    volume *= frame.size_m[3 * static_cast<std::size_t>(v) + c];
-            const double w = density * volume;
-            mass += w;
-            for (int c = 0; c < 3; ++c)
-                sum[c] += w * frame.position_m[3 * static_cast<std::size_t>(v) + c];
-        }
-        if (mass <= 0.0) mass = 1.0;
-        com.emplace_back(sum[0] / mass, sum[1] / mass, sum[2] / mass);
+        const auto c = engine::centre_of_mass(frame, mass);
+        com.emplace_back(c[0], c[1], c[2]);
     }
     return com;
 }

@@ -28,12 +28,9 @@ struct ReplayClock {
 //! Index of the last frame at or before t (0 before the first frame); -1 for an empty replay.
 int frame_index_at(const engine::Replay& replay, double t_s);
 
-//! Poses at t: linear between the two frames around t (positions, sizes; quaternions normalised
-//! after the blend, sign-aligned). Clamped to the first and last frame.
-engine::VoxelPoses poses_at(const engine::Replay& replay, double t_s);
-
-//! Centre of mass of each frame: voxels weighted by density x current volume. material_density
-//! holds the density of material k at index k-1; empty means equal densities.
+//! Centre of mass of each frame (engine::centre_of_mass): voxels weighted by their mass, i.e. by
+//! density (an actuated voxel keeps its mass). material_density holds the density of material k
+//! at index k-1; empty means equal densities.
 std::vector<glm::vec3> centre_of_mass_per_frame(const engine::Replay& replay,
                                                 const std::vector<double>& material_density);
 
