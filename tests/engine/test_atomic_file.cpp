@@ -8,41 +8,27 @@
 #include <sstream>
 
 #include "engine/io/atomic_file.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::engine;
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-atomic-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 }  // namespace
 
 TEST_CASE("an atomic write replaces the file and leaves no temporary behind") {
-    const fs::path dir = scratch("replace");
+    const fs::path dir = bhm::test::scratch_dir("atomic-replace");
     const fs::path file = dir / "a.txt";
     write_file_atomically(file.string(), "old");
     write_file_atomically(file.string(), std::string(100000, 'x'));
-    CHECK(slurp(file) == std::string(100000, 'x'));
+    CHECK(bhm::test::read_file(file) == std::string(100000, 'x'));
     CHECK_FALSE(fs::exists(dir / "a.txt.tmp"));
     fs::remove_all(dir);
 }
 
 TEST_CASE("an abandoned streamed write leaves the old file as it was") {
-    const fs::path dir = scratch("abandon");
+    const fs::path dir = bhm::test::scratch_dir("atomic-abandon");
     const fs::path file = dir / "a.txt";
     write_file_atomically(file.string(), "old");
     {
@@ -50,7 +36,7 @@ TEST_CASE("an abandoned streamed write leaves the old file as it was") {
         f.write("half of the new");
         CHECK(fs::exists(f.temp_path()));
     }  // no commit: as when an exception leaves the writer half way
-    CHECK(slurp(file) == "old");
+    CHECK(bhm::test::read_file(file) == "old");
     CHECK_FALSE(fs::exists(dir / "a.txt.tmp"));
     fs::remove_all(dir);
 }
@@ -58,7 +44,7 @@ TEST_CASE("an abandoned streamed write leaves the old file as it was") {
 TEST_CASE("a failing rename says why with the system's reason, not the clean-up's") {
     // The target is a non-empty folder: rename(2) fails (EISDIR or ENOTEMPTY). The old message
     // read "cannot replace the file (Success)" because removing the temporary reset errno.
-    const fs::path dir = scratch("rename");
+    const fs::path dir = bhm::test::scratch_dir("atomic-rename");
     const fs::path target = dir / "taken";
     fs::create_directories(target / "inside");
     try {
@@ -78,7 +64,7 @@ TEST_CASE("a failing rename says why with the system's reason, not the clean-up'
 }
 
 TEST_CASE("a write into a missing folder names the file and the reason") {
-    const fs::path dir = scratch("missing");
+    const fs::path dir = bhm::test::scratch_dir("atomic-missing");
     const std::string path = (dir / "no" / "such" / "a.txt").string();
     const std::string expected = path + ": cannot write (No such file or directory)";
     CHECK_THROWS_WITH_AS(write_file_atomically(path, "x"), doctest::Contains(expected.c_str()),
@@ -88,13 +74,13 @@ TEST_CASE("a write into a missing folder names the file and the reason") {
 }
 
 TEST_CASE("a hook that fails before the rename leaves the target untouched") {
-    const fs::path dir = scratch("hook");
+    const fs::path dir = bhm::test::scratch_dir("atomic-hook");
     const fs::path file = dir / "a.txt";
     write_file_atomically(file.string(), "old");
     AtomicFile f(file.string());
     f.write("new");
     CHECK_THROWS_AS(f.commit([] { throw std::runtime_error("no"); }), std::runtime_error);
-    CHECK(slurp(file) == "old");
+    CHECK(bhm::test::read_file(file) == "old");
     CHECK_FALSE(fs::exists(dir / "a.txt.tmp"));
     fs::remove_all(dir);
 }

@@ -2,8 +2,6 @@
 // Shared fixtures for the tests that drive whole EvolutionRuns: options, a per-process temporary
 // folder, histories compared without their wall-clock column, and the stop-then-resume half of
 // the "a resumed run equals its uninterrupted twin" tests.
-#include <unistd.h>
-
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -11,6 +9,7 @@
 
 #include "evo/evaluate/evaluator.hpp"
 #include "evo/run/evolution_run.hpp"
+#include "support/scratch.hpp"
 
 namespace bhm::evo::test {
 
@@ -33,11 +32,7 @@ inline std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
 
 //! An empty path under the temporary folder, unique to this suite (`suite`) and process.
 inline std::filesystem::path fresh_dir(const std::string& suite, const std::string& name) {
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() /
-        ("bhm-test-" + suite + "-" + name + "-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    return dir;
+    return bhm::test::scratch_dir(suite + "-" + name, false);
 }
 
 //! Runs `experiment` in `dir` with one thread until generation `stop_at` is reported, stops it as

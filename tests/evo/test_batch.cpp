@@ -12,30 +12,17 @@
 #include "evo/run/batch.hpp"
 #include "evo/run/checkpoint.hpp"
 #include "evo_test_support.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-batch-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
-}
-
 std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
     for (auto& r : rows)
         r.wall_s = 0.0;
     return rows;
-}
-
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 }  // namespace
@@ -75,7 +62,7 @@ TEST_CASE("batch.csv: each run's best, the mean and Student's 95 % interval") {
 
 TEST_CASE("a 2-run batch equals the two runs made alone, and resumes to the same result") {
     const auto e = test::tiny_experiment();
-    const fs::path dir = fresh_dir("two");
+    const fs::path dir = bhm::test::scratch_dir("batch-two", false);
     BatchOptions b;
     b.out_dir = dir.string();
     b.runs = 2;
@@ -97,11 +84,11 @@ TEST_CASE("a 2-run batch equals the two runs made alone, and resumes to the same
         CHECK(without_wall(loaded.state.history) == without_wall(run.state().history));
         CHECK(loaded.state.champion->individual.genome == run.state().champion->individual.genome);
     }
-    const std::string csv = read_file(dir / kBatchCsvFile);
+    const std::string csv = bhm::test::read_file(dir / kBatchCsvFile);
     CHECK(std::count(csv.begin(), csv.end(), '\n') == 4);  // header + generations 0..2
 
     // A batch stopped before its second run, then resumed, ends with the same batch.csv.
-    const fs::path part = fresh_dir("resume");
+    const fs::path part = bhm::test::scratch_dir("batch-resume", false);
     b.out_dir = part.string();
     {
         BatchRun first(e, b, false);
@@ -112,7 +99,7 @@ TEST_CASE("a 2-run batch equals the two runs made alone, and resumes to the same
     }
     CHECK_FALSE(fs::exists(fs::path(batch_run_dir(part.string(), 2)) / kCheckpointFile));
     BatchRun(e, b, true).run();
-    CHECK(read_file(part / kBatchCsvFile) == csv);
+    CHECK(bhm::test::read_file(part / kBatchCsvFile) == csv);
     fs::remove_all(dir);
     fs::remove_all(part);
 }

@@ -16,26 +16,12 @@
 #include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
 #include "xml_check.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-    // The process id keeps concurrent test runs on one machine apart.
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-evo-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
-}
-
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 //! fitness.csv without its wall_s column (the only one that depends on the machine's speed).
 std::string csv_without_wall(const std::string& csv) {
@@ -152,7 +138,8 @@ TEST_CASE("the same seed gives the same run with 1 and 2 threads") {
 
 TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
     const auto e = test::tiny_experiment();
-    const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
+    const fs::path whole = bhm::test::scratch_dir("evo-whole", false),
+                   parts = bhm::test::scratch_dir("evo-parts", false);
     EvolutionRun uninterrupted(e, options(4, 2, whole.string()));
     uninterrupted.run();
 
@@ -169,8 +156,8 @@ TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
     CHECK(resumed->state().generation == 1);
     CHECK(resumed->run() == StopReason::GenerationBudget);
 
-    CHECK(csv_without_wall(read_file(parts / "fitness.csv")) ==
-          csv_without_wall(read_file(whole / "fitness.csv")));
+    CHECK(csv_without_wall(bhm::test::read_file(parts / "fitness.csv")) ==
+          csv_without_wall(bhm::test::read_file(whole / "fitness.csv")));
     CHECK(resumed->state().champion->individual.genome ==
           uninterrupted.state().champion->individual.genome);
     CHECK(resumed->state().rng == uninterrupted.state().rng);
@@ -183,19 +170,19 @@ TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
     for (const char* name : {"run.json", "fitness.csv", "champion.json", "champion.vxa",
                              "checkpoint.json", "checkpoint.prev.json", "champions/gen-00000.json"})
         CHECK_MESSAGE(fs::exists(whole / name), name);
-    CHECK(read_file(whole / "fitness.csv").rfind(kFitnessCsvHeader, 0) == 0);
-    const auto run_json = nlohmann::json::parse(read_file(whole / "run.json"));
+    CHECK(bhm::test::read_file(whole / "fitness.csv").rfind(kFitnessCsvHeader, 0) == 0);
+    const auto run_json = nlohmann::json::parse(bhm::test::read_file(whole / "run.json"));
     CHECK(run_json.at("seed") == e.evolution.seed);
     CHECK(run_json.at("experiment").at("name") == "tiny");
-    const auto champion = nlohmann::json::parse(read_file(whole / "champion.json"));
+    const auto champion = nlohmann::json::parse(bhm::test::read_file(whole / "champion.json"));
     CHECK(champion.at("fitness").get<double>() ==
           uninterrupted.state().champion->individual.report.fitness);
     CHECK(champion.at("phenotype").at("layers").size() == 3);
-    CHECK_NOTHROW(bhm::test::XmlReader::parse(read_file(whole / "champion.vxa")));
+    CHECK_NOTHROW(bhm::test::XmlReader::parse(bhm::test::read_file(whole / "champion.vxa")));
     // While a run object lives it owns its directory; a new run elsewhere refuses a directory
     // that already holds a run (here a copy without the owner).
     CHECK_THROWS_AS(EvolutionRun(e, options(4, 1, whole.string())), RunDirectoryBusy);
-    const fs::path copy = fresh_dir("whole-copy");
+    const fs::path copy = bhm::test::scratch_dir("evo-whole-copy", false);
     fs::copy(whole, copy, fs::copy_options::recursive);
     fs::remove(copy / kRunLockFile);
     CHECK_THROWS_WITH_AS(EvolutionRun(e, options(4, 1, copy.string())),
@@ -224,7 +211,8 @@ TEST_CASE("pause and stop reach into the simulations of a generation; resume re-
     e.evolution.population = 4;
     e.simulation.evaluate_s = 0.6;
     e.simulation.record_fps = 0.5;  // one sample in the window: only the in-between checks remain
-    const fs::path whole = fresh_dir("cancel-whole"), parts = fresh_dir("cancel-parts");
+    const fs::path whole = bhm::test::scratch_dir("evo-cancel-whole", false),
+                   parts = bhm::test::scratch_dir("evo-cancel-parts", false);
 
     auto owned = std::make_unique<EvolutionRun>(e, options(3, 2, parts.string()));
     EvolutionRun& run = *owned;
@@ -270,8 +258,8 @@ TEST_CASE("pause and stop reach into the simulations of a generation; resume re-
     CHECK(resumed->run() == StopReason::GenerationBudget);
     EvolutionRun uninterrupted(e, options(3, 2, whole.string()));
     uninterrupted.run();
-    CHECK(csv_without_wall(read_file(parts / "fitness.csv")) ==
-          csv_without_wall(read_file(whole / "fitness.csv")));
+    CHECK(csv_without_wall(bhm::test::read_file(parts / "fitness.csv")) ==
+          csv_without_wall(bhm::test::read_file(whole / "fitness.csv")));
     CHECK(resumed->state().rng == uninterrupted.state().rng);
     CHECK(resumed->state().champion->individual.genome ==
           uninterrupted.state().champion->individual.genome);
@@ -285,7 +273,7 @@ TEST_CASE("pause and stop reach into the simulations of a generation; resume re-
 
 TEST_CASE("a corrupt checkpoint falls back to the previous one; both corrupt is a clear error") {
     const auto e = test::tiny_experiment();
-    const fs::path dir = fresh_dir("corrupt");
+    const fs::path dir = bhm::test::scratch_dir("evo-corrupt", false);
     EvolutionRun(e, options(2, 2, dir.string())).run();
     std::ofstream(dir / "checkpoint.json") << "{\"format\": \"bhm-evolution-checkpoint\", trunc";
     auto resumed = EvolutionRun::resume(options(3, 2, dir.string()));

@@ -13,25 +13,12 @@
 #include "evo/run/evolution_run.hpp"
 #include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-rel-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
-}
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 void spit(const fs::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
@@ -55,10 +42,10 @@ TEST_CASE("CRC-32 gives the standard check value") {
 
 TEST_CASE("a checkpoint whose contents changed but still parse is caught by its checksum") {
     const auto e = test::tiny_experiment();
-    const fs::path dir = fresh_dir("crc");
+    const fs::path dir = bhm::test::scratch_dir("rel-crc", false);
     EvolutionRun(e, options(2, dir.string())).run();
     const fs::path current = dir / kCheckpointFile;
-    std::string text = slurp(current);
+    std::string text = bhm::test::read_file(current);
     REQUIRE(text.rfind("{\"checksum\":\"crc32:", 0) == 0);
     std::vector<std::string> notes;
     const auto payload = parse_checkpoint_text(text, notes);
@@ -98,10 +85,10 @@ TEST_CASE("a checkpoint whose contents changed but still parse is caught by its 
 
 TEST_CASE("a format 1 checkpoint (no checksum) is still read, with a warning that names it") {
     const auto e = test::tiny_experiment();
-    const fs::path dir = fresh_dir("v1");
+    const fs::path dir = bhm::test::scratch_dir("rel-v1", false);
     EvolutionRun(e, options(2, dir.string())).run();
     std::vector<std::string> notes;
-    auto payload = parse_checkpoint_text(slurp(dir / kCheckpointFile), notes);
+    auto payload = parse_checkpoint_text(bhm::test::read_file(dir / kCheckpointFile), notes);
     payload["format_version"] = 1;
     spit(dir / kCheckpointFile, payload.dump(1) + "\n");
     auto resumed = EvolutionRun::resume(options(3, dir.string()));
@@ -114,7 +101,7 @@ TEST_CASE("a format 1 checkpoint (no checksum) is still read, with a warning tha
 
 TEST_CASE("a run directory has one writer: a second is refused with the owner's name") {
     const auto e = test::tiny_experiment();
-    const fs::path dir = fresh_dir("lock");
+    const fs::path dir = bhm::test::scratch_dir("rel-lock", false);
     {
         EvolutionRun first(e, options(2, dir.string()));
         const std::string owner = run_lock_owner(dir.string());
@@ -134,7 +121,7 @@ TEST_CASE("a run directory has one writer: a second is refused with the owner's 
 }
 
 TEST_CASE("a lock left by a killed process is stale and taken over") {
-    const fs::path dir = fresh_dir("stale");
+    const fs::path dir = bhm::test::scratch_dir("rel-stale", false);
     fs::create_directories(dir);
     const pid_t child = ::fork();
     REQUIRE(child >= 0);
@@ -154,14 +141,15 @@ TEST_CASE("a lock left by a killed process is stale and taken over") {
 
 TEST_CASE("a damaged run.json is named, repaired from the checkpoint, and the run goes on") {
     const auto e = test::tiny_experiment();
-    const fs::path dir = fresh_dir("runjson");
+    const fs::path dir = bhm::test::scratch_dir("rel-runjson", false);
     EvolutionRun(e, options(2, dir.string())).run();
     spit(dir / "run.json", "{\"bhm_version\": \"0.1\", \"seed\": 7, \"experi");
     auto resumed = EvolutionRun::resume(options(3, dir.string()));
     REQUIRE(resumed->resume_warnings().size() == 1);
     CHECK(resumed->resume_warnings()[0].find((dir / "run.json").string()) == 0);
     CHECK(resumed->resume_warnings()[0].find("rewritten") != std::string::npos);
-    const auto run_json = nlohmann::json::parse(slurp(dir / "run.json"));  // really rewritten
+    const auto run_json =
+        nlohmann::json::parse(bhm::test::read_file(dir / "run.json"));  // really rewritten
     CHECK(run_json.at("experiment").at("name") == "tiny");
     CHECK(resumed->run() == StopReason::GenerationBudget);
     fs::remove_all(dir);
