@@ -9,13 +9,13 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
-#include "app/cli/run_directory.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/scene.hpp"
 #include "evo/formats/surface_mesh.hpp"
 #include "evo/formats/vtk_series.hpp"
 #include "evo/formats/vxa.hpp"
+#include "evo/run/run_directory.hpp"
 
 namespace bhm::app {
 
@@ -77,9 +77,9 @@ int export_body(ArgParser& parser) {
     if (fs::is_directory(source)) {
         if (parser.has("--body"))
             throw UsageError("--body is for an experiment file; a run directory has its champion");
-        auto run = load_run_champion(source);
-        experiment = run.experiment;
-        body = run.body;
+        // The champion was judged under the rules in force at the end (the last rule change).
+        experiment = evo::read_run_info(source).current();
+        body = evo::read_champion_file(source, experiment).body;
     } else {
         if (!parser.has("--body")) throw UsageError("an experiment file needs --body BODY.json");
         experiment = evo::load_experiment(source);

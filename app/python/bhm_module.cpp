@@ -17,7 +17,6 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/file_kind.hpp"
-#include "app/cli/run_directory.hpp"
 #include "app/cli/simulation_report.hpp"
 #include "bhm_version.hpp"
 #include "engine/model.hpp"

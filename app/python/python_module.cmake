@@ -25,7 +25,6 @@ if(Python3_FOUND AND pybind11_FOUND)
   # NO_EXTRAS: no link-time optimisation (slow on two cores) and no stripping.
   pybind11_add_module(bhm_python MODULE NO_EXTRAS ${CMAKE_CURRENT_SOURCE_DIR}/python/bhm_module.cpp
                       ${CMAKE_CURRENT_SOURCE_DIR}/cli/simulation_report.cpp
-                      ${CMAKE_CURRENT_SOURCE_DIR}/cli/run_directory.cpp
                       ${CMAKE_CURRENT_SOURCE_DIR}/cli/file_kind.cpp)
   target_include_directories(bhm_python PRIVATE ${BHM_ROOT} ${CMAKE_BINARY_DIR}/generated)
   target_link_libraries(bhm_python PRIVATE evo engine bhm_warnings)

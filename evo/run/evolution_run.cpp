@@ -12,6 +12,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/cached_evaluation.hpp"
 #include "evo/run/checkpoint.hpp"
+#include "evo/run/run_directory.hpp"
 #include "evo/run/run_lock.hpp"
 #include "evo/search/search_algorithm.hpp"
 
@@ -23,23 +24,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-Experiment read_original_experiment(const std::string& dir) {
-    const std::string path = (fs::path(dir) / "run.json").string();
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": missing");
-    std::stringstream text;
-    text << in.rdbuf();
-    nlohmann::json json;
-    try {
-        json = nlohmann::json::parse(text.str());
-    } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(path + ": damaged, not valid JSON (" + e.what() + ")");
-    }
-    if (!json.is_object() || !json.contains("experiment"))
-        throw std::runtime_error(path + ":experiment: missing");
-    return parse_experiment(json.at("experiment"), path + ":experiment");
 }
 
 //! Creates DIR if needed and takes its lock: before anything in it is read or written.
@@ -92,7 +76,7 @@ std::unique_ptr<EvolutionRun> EvolutionRun::resume(RunOptions options) {
     s.resumed = true;
     s.lock = std::move(lock);
     try {
-        s.original = read_original_experiment(options.out_dir);
+        s.original = read_run_info(options.out_dir).started;
     } catch (const std::exception& e) {
         s.warnings.push_back(std::string(e.what()) +
                              "; rewritten from the checkpoint's experiment (its current rules)");

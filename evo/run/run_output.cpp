@@ -12,6 +12,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
+#include "evo/run/run_directory.hpp"
 
 namespace bhm::evo {
 
@@ -103,11 +104,11 @@ std::string RunOutput::path(const std::string& name) const {
 }
 
 void RunOutput::write_run_info(const Experiment& original, const RunState& state) const {
-    write_file_atomically(path("run.json"), run_info_json(original, state).dump(2) + "\n");
+    write_file_atomically(path(kRunInfoFile), run_info_json(original, state).dump(2) + "\n");
 }
 
 void RunOutput::write_fitness_csv(const std::vector<HistoryRow>& history) const {
-    write_file_atomically(path("fitness.csv"), fitness_csv(history));
+    write_file_atomically(path(kFitnessCsvFile), fitness_csv(history));
 }
 
 void RunOutput::write_champion(const Experiment& experiment, const ChampionRecord& champion) const {
@@ -115,7 +116,7 @@ void RunOutput::write_champion(const Experiment& experiment, const ChampionRecor
     char name[48];
     std::snprintf(name, sizeof name, "champions/gen-%05d.json", champion.generation_found);
     write_file_atomically(path(name), text);
-    write_file_atomically(path("champion.json"), text);
+    write_file_atomically(path(kChampionFile), text);
     save_vxa(path("champion.vxa"), experiment, champion.individual.phenotype.body);
 }
 

@@ -31,6 +31,7 @@ class RunDirectoryWatch {
     std::filesystem::file_time_type fitness_mtime_{}, champion_mtime_{}, experiment_mtime_{};
     std::shared_ptr<const EvolutionSnapshot> snapshot_;
     std::string error_;
+    std::string fitness_problem_;  //!< a row of fitness.csv that could not be read
     int reloads_ = 0;
 };
 

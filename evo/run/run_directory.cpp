@@ -1,0 +1,153 @@
+#include "evo/run/run_directory.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "evo/experiment/experiment_io.hpp"
+
+namespace bhm::evo {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string path_in(const std::string& dir, const char* name) {
+    return (fs::path(dir) / name).string();
+}
+
+std::string read_whole(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw std::runtime_error(
+            path + ": cannot be read (is this a run directory written by 'bhm evolve'?)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+json read_json_object(const std::string& path) {
+    json j = json::parse(read_whole(path), nullptr, false);
+    if (j.is_discarded() || !j.is_object())
+        throw std::runtime_error(path + ": not valid JSON (the file is damaged)");
+    return j;
+}
+
+//! The experiment with its fitness section replaced by `fitness` (a rule change's JSON).
+Experiment with_fitness(const Experiment& experiment, const json& fitness,
+                        const std::string& label) {
+    json j = experiment_to_json(experiment);
+    j["fitness"] = fitness;
+    return parse_experiment(j, label);
+}
+
+}  // namespace
+
+Experiment RunInfo::current() const {
+    Experiment e = started;
+    if (!rule_changes.empty()) e.fitness = rule_changes.back().fitness;
+    return e;
+}
+
+RunInfo read_run_info(const std::string& run_dir) {
+    const std::string path = path_in(run_dir, kRunInfoFile);
+    const json run = read_json_object(path);
+    if (!run.contains("experiment")) throw std::runtime_error(path + ":experiment: missing");
+    RunInfo info;
+    info.started = parse_experiment(run["experiment"], path + ":experiment");
+    const auto changes = run.find("rule_changes");
+    if (changes == run.end()) return info;
+    if (!changes->is_array()) throw std::runtime_error(path + ":rule_changes: expected an array");
+    for (std::size_t i = 0; i < changes->size(); ++i) {
+        const json& c = (*changes)[i];
+        const std::string where = path + ":rule_changes[" + std::to_string(i) + "]";
+        if (!c.is_object() || !c.contains("fitness") || !c.contains("generation") ||
+            !c["generation"].is_number_integer())
+            throw std::runtime_error(where + ": expected {generation, fitness}");
+        info.rule_changes.push_back(
+            {c["generation"].get<int>(), with_fitness(info.started, c["fitness"], where).fitness});
+    }
+    return info;
+}
+
+ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment) {
+    const std::string path = path_in(run_dir, kChampionFile);
+    const json c = read_json_object(path);
+    if (!c.contains("phenotype")) throw std::runtime_error(path + ":phenotype: missing");
+    ChampionFile out;
+    out.body = parse_body(c["phenotype"], path + " (phenotype)");
+    // A champion from another experiment (files mixed up, a damaged run.json) would export
+    // materials and cells that experiment does not define: refuse it, naming both files.
+    const auto problems = validate_body_against(out.body, experiment, path + " (phenotype)");
+    if (!problems.empty())
+        throw std::runtime_error(problems.front().to_string() + " (the champion does not fit " +
+                                 path_in(run_dir, kRunInfoFile) + "'s experiment)");
+    try {
+        out.id = c.value("id", std::int64_t{0});
+        out.fitness = c.value("fitness", 0.0);
+        out.age = c.value("age", 0);
+        out.voxels = c.value("voxels", 0);
+        out.active_voxels = c.value("active_voxels", 0);
+        out.generation_found = c.value("generation_found", 0);
+        if (c.contains("report") && c["report"].is_object() && c["report"].contains("exploits"))
+            out.exploits = exploits_from_json(c["report"]["exploits"]);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": a field has the wrong type (" + e.what() + ")");
+    }
+    return out;
+}
+
+std::size_t FitnessTable::column(const std::string& name) const {
+    for (std::size_t i = 0; i < header.size(); ++i)
+        if (header[i] == name) return i;
+    throw std::runtime_error(path + ": no '" + name + "' column");
+}
+
+FitnessTable read_fitness_table(const std::string& run_dir) {
+    FitnessTable table;
+    table.path = path_in(run_dir, kFitnessCsvFile);
+    std::istringstream in(read_whole(table.path));
+    std::string line;
+    if (!std::getline(in, line) || line.empty())
+        throw std::runtime_error(table.path + ": empty, no header");
+    {
+        std::istringstream h(line);
+        std::string cell;
+        while (std::getline(h, cell, ','))
+            table.header.push_back(cell);
+    }
+    int row = 1;
+    while (std::getline(in, line)) {
+        ++row;
+        if (line.empty()) continue;
+        std::vector<double> values;
+        std::istringstream r(line);
+        std::string cell;
+        bool numeric = true;
+        while (std::getline(r, cell, ',')) {
+            double v = 0.0;
+            const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+            numeric = numeric && ec == std::errc() && end == cell.data() + cell.size();
+            values.push_back(v);
+        }
+        if (values.size() != table.header.size() || !numeric) {
+            table.problem =
+                table.path + ": row " + std::to_string(row) +
+                (values.size() != table.header.size()
+                     ? " has " + std::to_string(values.size()) + " cells, expected " +
+                           std::to_string(table.header.size())
+                     : std::string(" is not numeric")) +
+                " (cut short by a crash or being written?); the rows before it are shown";
+            break;
+        }
+        table.rows.push_back(std::move(values));
+    }
+    return table;
+}
+
+}  // namespace bhm::evo

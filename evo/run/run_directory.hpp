@@ -1,0 +1,59 @@
+#pragma once
+// Every reader of what a run leaves in its directory (run.json, fitness.csv, champion.json), beside
+// the writer (run_output.hpp) and the checkpoint (checkpoint.hpp): the CLI's exports, the studio's
+// view of a run directory and the Python module all read through here. Each reader names the
+// file, and the field or row, in what it throws.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "evo/evaluate/exploit_flags.hpp"
+#include "evo/experiment/experiment.hpp"
+#include "evo/run/run_state.hpp"
+
+namespace bhm::evo {
+
+inline constexpr const char* kRunInfoFile = "run.json";
+inline constexpr const char* kFitnessCsvFile = "fitness.csv";
+inline constexpr const char* kChampionFile = "champion.json";
+
+//! run.json: the experiment as the run was started and every change of fitness rules since.
+struct RunInfo {
+    Experiment started;
+    std::vector<RuleChange> rule_changes;  //!< in order
+    //! The rules in force now: the started experiment with the last change's fitness section.
+    Experiment current() const;
+};
+//! Throws std::runtime_error "PATH: field: message" when run.json is missing or malformed.
+RunInfo read_run_info(const std::string& run_dir);
+
+//! champion.json: the best individual found so far, under the rules in force when it was found.
+struct ChampionFile {
+    std::int64_t id = 0;
+    double fitness = 0.0;
+    int age = 0;
+    int voxels = 0;
+    int active_voxels = 0;
+    int generation_found = 0;
+    Body body;  //!< framed, workspace-sized phenotype
+    ExploitReport exploits;
+};
+//! Reads champion.json and checks its body against the experiment (a champion of another
+//! experiment would name materials it does not define). Throws std::runtime_error naming the file.
+ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment);
+
+//! fitness.csv with its columns found by name (columns added later do not break a reader). A
+//! row that cannot be read (a partial last line after a crash, or one being appended) ends the
+//! table: the rows before it are kept and `problem` names it.
+struct FitnessTable {
+    std::vector<std::string> header;
+    std::vector<std::vector<double>> rows;
+    std::string problem;  //!< "" when every row was read
+    //! The column's index; throws std::runtime_error naming the file when it is absent.
+    std::size_t column(const std::string& name) const;
+    std::string path;
+};
+//! Throws std::runtime_error when the file cannot be read or has no header.
+FitnessTable read_fitness_table(const std::string& run_dir);
+
+}  // namespace bhm::evo
