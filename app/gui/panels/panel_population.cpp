@@ -40,7 +40,7 @@ void draw_fitness_panel(Studio& s) {
                          {}});
         overlays.emplace_back();
     }
-    const std::vector<RuleChange> no_changes;
+    const std::vector<RuleChangeNote> no_changes;
     const auto& changes = s.run ? s.run->rule_changes : no_changes;
     const float line = ImGui::GetTextLineHeightWithSpacing();
     const float each = (ImGui::GetContentRegionAvail().y - line * plots.size()) / plots.size();

@@ -70,7 +70,7 @@ struct EvolutionSession::Shared {
     bool stop = false;
     // Built on the run thread only.
     std::vector<GenerationRecord> history;
-    std::vector<RuleChange> changes;
+    std::vector<RuleChangeNote> changes;
     std::int64_t simulations = 0;
     evo::Fitness initial_fitness;  //!< the rules before the first change (for the markers' text)
 };

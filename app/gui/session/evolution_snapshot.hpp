@@ -31,7 +31,7 @@ struct GenerationRecord {
 
 //! A change of rules (constraints, fitness measure, boundary) between generations: the population
 //! was re-evaluated under the new rules from `generation` on.
-struct RuleChange {
+struct RuleChangeNote {
     int generation = 0;
     std::string description;
     evo::FitnessMeasure measure = evo::FitnessMeasure::ComFinal3d;  //!< from `generation` on
@@ -69,7 +69,7 @@ struct EvolutionSnapshot {
     int species = 0;  //!< NEAT: species in the population (0 for other algorithms)
     std::optional<evo::NoveltyRow> novelty;  //!< novelty search: novelty and archive figures
     std::vector<GenerationRecord> history;
-    std::vector<RuleChange> rule_changes;
+    std::vector<RuleChangeNote> rule_changes;
     evo::FitnessMeasure initial_measure = evo::FitnessMeasure::ComFinal3d;  //!< before any change
     std::vector<PopulationMember> population;  //!< sorted by fitness, best first
     bool has_champion = false;

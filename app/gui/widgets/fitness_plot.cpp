@@ -51,7 +51,7 @@ std::vector<MeasureSeries> split_by_measure(const EvolutionSnapshot& run) {
 }
 
 void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
-                       const std::vector<RuleChange>& changes, ImVec2 size, const char* y_unit,
+                       const std::vector<RuleChangeNote>& changes, ImVec2 size, const char* y_unit,
                        const std::vector<OverlayCurve>& overlays) {
     hovered_generation.reset();
     ImDrawList* dl = ImGui::GetWindowDrawList();

@@ -24,7 +24,7 @@ struct FitnessPlot {
 
     //! Draws into a size x height area at the cursor; y_unit labels the axis ("deg", "voxels").
     //! Overlays (other runs, same measure) are drawn thin; the axes fit all curves.
-    void draw(const std::vector<GenerationRecord>& history, const std::vector<RuleChange>& changes,
+    void draw(const std::vector<GenerationRecord>& history, const std::vector<RuleChangeNote>& changes,
               ImVec2 size, const char* y_unit, const std::vector<OverlayCurve>& overlays = {});
 };
 
