@@ -161,14 +161,18 @@ double voxel_omega2(const Material& m, double L, double temperature_amplitude_c)
     return std::max(scale * k_axial / mass, scale * scale * k_rot / inertia);
 }
 
-double link_omega2(const Material& a, const Material& b, double L, double temperature_amplitude_c) {
+namespace {
+// The stiffest mode of the link between materials a and b on its lighter end, at the largest
+// actuated size of either end; its axial stiffness is E times axial_factor(nu) of each material,
+// in series.
+double link_mode_omega2(const Material& a, const Material& b, double L,
+                        double temperature_amplitude_c, double (*axial_factor)(double)) {
     const double e = series(a.youngs_modulus_pa, b.youngs_modulus_pa);
     const double g = series(shear_modulus(a), shear_modulus(b));
     const double m_min = std::min(a.density_kg_m3, b.density_kg_m3) * (L * L * L);
     const double inertia = m_min * L * L / 6.0;
-    // The Poisson coupling stiffens normal modes up to the bulk (or uniaxial-strain) modulus.
-    const double k_axial = series(a.youngs_modulus_pa * poisson_stiffness_factor(a.poisson_ratio),
-                                  b.youngs_modulus_pa * poisson_stiffness_factor(b.poisson_ratio)) *
+    const double k_axial = series(a.youngs_modulus_pa * axial_factor(a.poisson_ratio),
+                                  b.youngs_modulus_pa * axial_factor(b.poisson_ratio)) *
                            L;
     const double k_bend4 = 4.0 * e * (std::pow(L, 4) / 12.0 / L);  // 4 E I / L
     // Twisting both ends against each other: 2 G J / L on each.
@@ -177,6 +181,18 @@ double link_omega2(const Material& a, const Material& b, double L, double temper
                                   largest_scale(b, temperature_amplitude_c));
     return std::max({scale * k_axial / m_min, scale * scale * k_bend4 / inertia,
                      scale * scale * k_twist2 / inertia});
+}
+}  // namespace
+
+double link_omega2(const Material& a, const Material& b, double L, double temperature_amplitude_c) {
+    // The Poisson coupling stiffens the axial modes up to the P-wave modulus M = lambda + 2 G.
+    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_wave_factor);
+}
+
+double link_damping_omega2(const Material& a, const Material& b, double L,
+                           double temperature_amplitude_c) {
+    // With the volumetric 3 K where it is stiffer than M (nu > 0.25).
+    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_stiffness_factor);
 }
 
 double stable_step_for(double omega2) {

@@ -52,10 +52,15 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec);
 //! its largest actuated size s = 1 + |cte A| (axial stiffness ~ s, bending and torsion ~ s^2).
 double voxel_omega2(const Material& m, double voxel_size_m, double temperature_amplitude_c);
 //! Squared angular frequency of the stiffest mode of the link between materials a and b, on the
-//! lighter end: axial, bending, torsion and the Poisson (volumetric) coupling, at the largest
-//! actuated size of either end.
+//! lighter end: axial (stiffened by the Poisson coupling up to the P-wave modulus M), bending and
+//! torsion, at the largest actuated size of either end. Sets the stable step.
 double link_omega2(const Material& a, const Material& b, double voxel_size_m,
                    double temperature_amplitude_c);
+//! The same with the volumetric modulus 3 K where it is stiffer than M (nu > 0.25): bounds the
+//! modes the explicit bond damping acts on (Model::build's damping cap). Capping with M instead
+//! let bodies of two stiffnesses diverge (docs/physics.md, "Known limits").
+double link_damping_omega2(const Material& a, const Material& b, double voxel_size_m,
+                           double temperature_amplitude_c);
 //! Voxelyze's recommended step 1 / (2 pi sqrt(omega2)).
 double stable_step_for(double omega2);
 

@@ -271,7 +271,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     PoissonParams& pp = d.poisson;
 
     // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
-    std::array<std::vector<double>, 3> link_omega2;                // per link: max(k/m, k_rot/I)
+    std::array<std::vector<double>, 3> link_omega2;  // per link, for the damping cap (3 K)
     const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
     const double torsion_over_l = kSquareTorsionFactor * std::pow(L, 4) / L;
     for (int axis = 0; axis < 3; ++axis) {
@@ -310,10 +310,9 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
             p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
-            const double omega2 =
-                limits::link_omega2(ma, mb, L, spec.actuation.temperature_amplitude_c);
-            link_omega2[axis][v] = omega2;
-            max_omega2 = std::max(max_omega2, omega2);
+            const double amplitude_c = spec.actuation.temperature_amplitude_c;
+            link_omega2[axis][v] = limits::link_damping_omega2(ma, mb, L, amplitude_c);
+            max_omega2 = std::max(max_omega2, limits::link_omega2(ma, mb, L, amplitude_c));
         }
     }
 
@@ -330,9 +329,13 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     // below ~0.92 (omega^2: the link's max(k/m, k_rot/I); measured on kicked solid blocks up to
     // 10^3, the stiffest lattice modes go first). Cap beta at 0.8 of that: with uniform material
     // at nu = 0 this is bond_ratio * dt_fraction <= 1.13, so the paper's 1.0 at 0.9 would be
-    // untouched and a larger ratio cannot make the integration unstable. With the Poisson
-    // coupling at the paper's nu = 0.35 and actuation, links with an active end are capped to
-    // 91 % of it (pi beta omega^2 dt = 0.88: the bulk stiffness sets both omega^2 and dt).
+    // untouched and a larger ratio cannot make the integration unstable (at the default step: the
+    // bound falls as the step grows, 1.4x already lets a pulled 16x4x4 bar at nu = 0.25 blow up,
+    // docs/physics.md "Damping and the step"). The cap's omega^2 takes
+    // the Poisson coupling's bulk stiffness 3 K (link_damping_omega2), the step only the P-wave
+    // modulus M: at the paper's nu = 0.35 links with an active end keep 75 % of the paper's
+    // zeta = 1 (pi beta omega^2 dt = 1.06 uncapped), the passive links of an actuated body 86 %.
+    // (With the step from 3 K as well: 91 % and 100 %, for 1.21x the steps; docs/physics.md.)
     constexpr double kStableDampingProduct = 0.8 / std::numbers::pi;
     for (int axis = 0; axis < 3; ++axis) {
         LinkParams& p = d.links[axis];

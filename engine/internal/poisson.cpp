@@ -19,8 +19,11 @@ PoissonModuli poisson_moduli(double e, double nu, int linked_axes) {
 }
 
 double poisson_stiffness_factor(double nu) {
-    const double m = (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    return std::max({1.0, m, 1.0 / (1.0 - 2.0 * nu)});
+    return std::max(poisson_wave_factor(nu), 1.0 / (1.0 - 2.0 * nu));
+}
+
+double poisson_wave_factor(double nu) {
+    return std::max(1.0, (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)));
 }
 
 double octant_volumetric_modulus(double e, double nu, int linked_axes) {

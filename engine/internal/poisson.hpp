@@ -56,8 +56,12 @@ void finish_poisson_params(Model::Data& model);
 PoissonModuli poisson_moduli(double youngs_modulus, double nu, int linked_axes);
 
 //! Largest stiffness of a voxel's normal modes relative to E (the uniaxial-strain M or the
-//! volumetric 3K = E / (1 - 2 nu), whichever is larger; 1 at nu = 0): scales the stable step.
+//! volumetric 3K = E / (1 - 2 nu), whichever is larger; 1 at nu = 0): bounds the modes the
+//! explicit bond damping acts on (Model::build's damping cap).
 double poisson_stiffness_factor(double nu);
+//! The P-wave modulus M = lambda + 2 G over E, at least 1: the stiffest wave of the continuum,
+//! which scales the stable step.
+double poisson_wave_factor(double nu);
 
 //! Sizes the Poisson scratch of a World (once, so a step allocates nothing).
 void prepare_poisson_scratch(const Model::Data& model, PoissonScratch& scratch);

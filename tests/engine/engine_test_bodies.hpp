@@ -31,6 +31,36 @@ inline void fix_x_min_layer(BodySpec& s) {
             s.fixed[s.cell_index(0, y, z)] = 1;
 }
 
+//! The paper's actuation scenes (docs/physics.md, "Actuation"): the all-active 8x8x7 block,
+//! 4-voxel active/passive bands on 20x8x7 and the framed paper-exp3 body (a passive 1-voxel frame
+//! around active voxels), held at x-, on the floor under gravity, 2 Hz from t = 0.05 s.
+enum class Scene { AllActive, Banded, Framed };
+
+inline BodySpec paper_scene(Scene scene, double amplitude_c) {
+    Material passive;  // paper Table 1
+    Material active = passive;
+    active.cte_per_c = 0.01;
+    const int nx = scene == Scene::AllActive ? 8 : 20;
+    BodySpec s = solid_box(nx, 8, 7, passive);
+    s.materials.push_back(active);
+    for (int z = 0; z < 7; ++z)
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < nx; ++x) {
+                const bool frame = x == 0 || x == nx - 1 || y == 0 || y == 7 || z == 0 || z == 6;
+                const bool is_active = scene == Scene::AllActive ? true
+                                       : scene == Scene::Banded  ? (x / 4) % 2 == 0
+                                                                 : !frame;
+                s.material[s.cell_index(x, y, z)] = is_active ? 2 : 1;
+            }
+    fix_x_min_layer(s);
+    s.environment.floor = true;
+    s.environment.gravity_m_s2 = -9.81;
+    s.actuation.frequency_hz = 2.0;
+    s.actuation.temperature_amplitude_c = amplitude_c;
+    s.actuation.start_s = 0.05;
+    return s;  // default damping (1.0 / 0.01 / 0.8) and dt_fraction
+}
+
 //! Mean displacement (m) along `axis` of the voxels of the layer x = layer, from the lattice.
 inline double layer_displacement(const World& w, int layer, int axis) {
     const Model& m = w.model();

@@ -94,7 +94,7 @@ TEST_CASE("an absurd load is reported as diverged, not a crash, and hands out no
 
 TEST_CASE("the time step is dt_fraction of the rotational stable step") {
     BodySpec spec = solid_box(3, 1, 1);
-    spec.materials[0].poisson_ratio = 0.0;  // (nu > 0 shortens it by the bulk stiffness)
+    spec.materials[0].poisson_ratio = 0.0;  // (past nu = 0.39 the P-wave modulus shortens it)
     spec.dt_fraction = 0.5;
     auto model = Model::build(spec);
     const double m = 1000.0 * 1e-6, k = 5e6 * 0.01;
