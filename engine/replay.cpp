@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 
 namespace bhm::engine {
 
@@ -118,18 +119,6 @@ void check_replay_for_writing(const std::string& path, const Replay& r) {
     }
 }
 
-std::string read_whole_file(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
-    if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a replay file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open for reading");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) fail(path, "read error");
-    return buffer.str();
-}
-
 }  // namespace
 
 void write_replay(const std::string& path, const Replay& replay) {
@@ -163,7 +152,7 @@ void write_replay(const std::string& path, const Replay& replay) {
 }
 
 Replay read_replay(const std::string& path) {
-    const std::string data = read_whole_file(path);
+    const std::string data = read_text(path, kLargeFileCap);
     const std::uint64_t length = data.size();
     const auto truncated = [&](std::uint64_t expected, const char* where) {
         fail(path, "truncated replay: " + std::string(where) + " needs " +

@@ -10,6 +10,7 @@
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/run_directory.hpp"
+#include "engine/io/text_file.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/scene.hpp"
@@ -51,7 +52,7 @@ void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo:
     if (replay) {
         const double t = parser.get_double("--time", replay->frames.back().time_s);
         mesh = evo::deformed_surface(*replay, evo::poses_at(*replay, t));
-        when = "at t = " + evo::format_number(t) + " s";
+        when = "at t = " + engine::format_number(t) + " s";
     } else {
         mesh = evo::rest_surface(framed.size, framed.cells, experiment.voxel_size_m);
     }
@@ -66,7 +67,7 @@ void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo:
     }
     std::cout << "wrote " << path << " (" << mesh.triangles.size() << " triangles, "
               << mesh.vertices.size() << " vertices, enclosed volume "
-              << evo::format_number(evo::enclosed_volume(mesh)) << " m^3, " << when << ")\n";
+              << engine::format_number(evo::enclosed_volume(mesh)) << " m^3, " << when << ")\n";
 }
 
 int export_body(ArgParser& parser) {
@@ -110,8 +111,8 @@ int export_body(ArgParser& parser) {
         const double last = replay->frames.back().time_s;
         if (parser.get_double("--time", 0.0) > last + 1e-9)
             throw std::runtime_error(parser.get("--replay") + ": --time " + parser.get("--time") +
-                                     " is after the replay's end at " + evo::format_number(last) +
-                                     " s");
+                                     " is after the replay's end at " +
+                                     engine::format_number(last) + " s");
     }
     if (parser.has("--vxa")) {
         evo::save_vxa(parser.get("--vxa"), experiment, body);

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app {
@@ -13,11 +14,14 @@ namespace bhm::app {
 namespace {
 
 nlohmann::json read_json(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    std::string text;
+    try {
+        text = engine::read_text(path, engine::kTextFileCap);
+    } catch (const engine::FileReadError& e) {
         throw std::runtime_error(
-            path + ": cannot be read (is this a run directory written by 'bhm evolve'?)");
-    auto json = nlohmann::json::parse(in, nullptr, false);
+            e.what() + std::string(" (is this a run directory written by 'bhm evolve'?)"));
+    }
+    auto json = nlohmann::json::parse(text, nullptr, false);
     if (json.is_discarded() || !json.is_object())
         throw std::runtime_error(path + ": not valid JSON (the file is damaged)");
     return json;

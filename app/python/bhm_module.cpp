@@ -20,6 +20,7 @@
 #include "app/cli/run_directory.hpp"
 #include "app/cli/simulation_report.hpp"
 #include "bhm_version.hpp"
+#include "engine/io/text_file.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -117,16 +118,8 @@ py::array_t<T> array(const std::vector<T>& values, std::vector<py::ssize_t> shap
     return out;
 }
 
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path.string() + ": cannot read the file");
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 json read_json_file(const std::filesystem::path& path) {
-    json j = json::parse(read_text(path), nullptr, false);
+    json j = json::parse(engine::read_text(path.string(), engine::kLargeFileCap), nullptr, false);
     if (j.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
     return j;
 }
@@ -252,7 +245,7 @@ py::object decode(const py::handle& experiment_in, const py::handle& genome_in) 
 
 // fitness.csv as one numpy column per header field.
 py::dict fitness_columns(const std::filesystem::path& path) {
-    std::istringstream in(read_text(path));
+    std::istringstream in(engine::read_text(path.string(), engine::kLargeFileCap));
     std::string line;
     if (!std::getline(in, line)) throw std::runtime_error(path.string() + ": empty file");
     std::vector<std::string> names;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::evo {
@@ -13,9 +14,7 @@ namespace {
 
 // Shortest text that reads back as the same float, locale-independent.
 void put(std::string& out, float value) {
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    out.append(buffer, result.ptr);
+    out += engine::format_number(value);
     out += ' ';
 }
 void put(std::string& out, long long value) {
@@ -187,9 +186,7 @@ std::string pvd_document(const std::vector<std::pair<double, std::string>>& fram
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
         "byte_order=\"LittleEndian\">\n<Collection>\n";
     for (const auto& [t, file] : frames) {
-        char time[40];
-        const auto result = std::to_chars(time, time + sizeof time, t);
-        out += "<DataSet timestep=\"" + std::string(time, result.ptr) +
+        out += "<DataSet timestep=\"" + engine::format_number(t) +
                "\" group=\"\" part=\"0\" file=\"" + file + "\"/>\n";
     }
     out += "</Collection>\n</VTKFile>\n";

@@ -10,6 +10,7 @@
 
 #include "bhm_version.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 #include "evo/evaluate/behaviour.hpp"
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -207,14 +208,6 @@ Fitness fitness_from_json(const json& fitness_json, const Experiment& base,
     } catch (const std::exception& ex) {
         throw FieldError(where + ": " + ex.what());
     }
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("missing or unreadable");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 }  // namespace
@@ -477,7 +470,8 @@ LoadedCheckpoint load_checkpoint(const std::string& dir) {
         const std::string path = (fs::path(dir) / name).string();
         try {
             std::vector<std::string> notes;
-            const json j = parse_checkpoint_text(read_text(path), notes);
+            const json j =
+                parse_checkpoint_text(engine::read_text(path, engine::kLargeFileCap), notes);
             out.state = run_state_from_json(j, path);
             out.path = path;
             for (const auto& p : problems)

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "engine/io/text_file.hpp"
 #include "evo/evaluate/constraints.hpp"
 #include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -53,13 +54,10 @@ const Individual& best_member(const std::vector<Individual>& population) {
 
 Experiment read_original_experiment(const std::string& dir) {
     const std::string path = (fs::path(dir) / "run.json").string();
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": missing");
-    std::stringstream text;
-    text << in.rdbuf();
+    const std::string text = engine::read_text(path, engine::kTextFileCap);
     nlohmann::json json;
     try {
-        json = nlohmann::json::parse(text.str());
+        json = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(path + ": damaged, not valid JSON (" + e.what() + ")");
     }

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app::gui {
@@ -16,12 +17,9 @@ using nlohmann::json;
 namespace {
 
 json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
+    const std::string text = engine::read_text(path, engine::kTextFileCap);
     try {
-        return json::parse(text.str());
+        return json::parse(text);
     } catch (const json::exception& e) {
         throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
     }

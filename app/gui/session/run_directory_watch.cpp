@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app::gui {
@@ -14,14 +15,6 @@ using nlohmann::json;
 
 namespace {
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path.string() + ": cannot be read");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 fs::file_time_type mtime_or_zero(const fs::path& path) {
     std::error_code ec;
     const auto t = fs::last_write_time(path, ec);
@@ -30,7 +23,7 @@ fs::file_time_type mtime_or_zero(const fs::path& path) {
 
 // fitness.csv (evo/run/run_output.hpp): columns found by name, so added columns do not break us.
 std::vector<GenerationRecord> read_fitness_csv(const fs::path& path) {
-    std::istringstream in(read_text(path));
+    std::istringstream in(engine::read_text(path.string(), engine::kLargeFileCap));
     std::string line;
     if (!std::getline(in, line)) return {};
     std::vector<std::string> header;
@@ -82,7 +75,7 @@ std::vector<GenerationRecord> read_fitness_csv(const fs::path& path) {
 
 json parse_json_file(const fs::path& path) {
     try {
-        return json::parse(read_text(path));
+        return json::parse(engine::read_text(path.string(), engine::kLargeFileCap));
     } catch (const json::exception& e) {
         throw std::runtime_error(path.string() + ": damaged, not valid JSON (" + e.what() + ")");
     }
