@@ -119,6 +119,19 @@ void check_replay_for_writing(const std::string& path, const Replay& r) {
     }
 }
 
+void require_finite(const std::string& path, std::uint64_t frame,
+                    const std::vector<std::int32_t>& cells, const std::vector<float>& values,
+                    std::size_t per_voxel, const char* what) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (std::isfinite(values[i])) continue;
+        const std::size_t voxel = i / per_voxel;
+        fail(path, "corrupt replay: frame " + std::to_string(frame) + " voxel " +
+                       std::to_string(voxel) + " (cell " + std::to_string(cells[voxel]) + ") " +
+                       what + " is " + format_number(values[i]) +
+                       ", not a finite number; record the replay again");
+    }
+}
+
 }  // namespace
 
 void write_replay(const std::string& path, const Replay& replay) {
@@ -229,6 +242,11 @@ Replay read_replay(const std::string& path) {
         d.f32_array(p.position_m, 3 * n);
         d.f32_array(p.orientation, 4 * n);
         d.f32_array(p.size_m, 3 * n);
+        // Every consumer (colour scales, meshes, VTK, measures) assumes finite poses: refuse
+        // inf/NaN here, once, naming where, rather than print "-inf to inf" or write it out.
+        require_finite(path, f, r.voxel_cell, p.position_m, 3, "position");
+        require_finite(path, f, r.voxel_cell, p.orientation, 4, "orientation");
+        require_finite(path, f, r.voxel_cell, p.size_m, 3, "size");
     }
     return r;
 }
