@@ -7,8 +7,9 @@ Cases (each a ctest entry, "reliability: CASE"):
   kill9         kill -9 at random moments, resume until done: the same run as an uninterrupted one
   busy          a second writer of a run directory is refused naming the owner; SIGINT stops the
                 first within a second with its checkpoint named; then the second may resume
-  enospc        a full disk (or EIO) injected into write(2) for PNG, frames, replay, VXA, checkpoint
-                and screenshot: exit 1, the system's reason, the old file untouched, no "wrote"
+  enospc        a full disk (or EIO) injected into write(2) for PNG, frames, replay, VXA, checkpoint,
+                video, GIF (inside ffmpeg) and screenshot: exit 1, the system's reason, the old
+                file untouched, no "wrote"
   unwritable    --resume into a run directory the user cannot write fails before any simulation
   checkpoint    random byte flips in checkpoint.json: always noticed, the previous one used, and
                 the resumed run equals the uninterrupted one
@@ -249,13 +250,33 @@ def case_enospc(bhm, rng):
     bhm.run(evolve_args(reference, 4))
     check(run_files(run) == run_files(reference), "the run after a full disk differs")
 
+    # ffmpeg fails in the trailer on a full disk but exits 0 (issue 26 N1): the video is verified
+    # before it replaces anything; with --video and --gif together neither is replaced.
+    videos = ["render", EXPERIMENT, "--replay", replay, "--size", "64x48", "--samples", "1",
+              "--video", os.path.join(w, "good.mp4"), "--gif", os.path.join(w, "good.gif")]
+    rc, _, err = bhm.run(videos)
+    if check(rc == 0, "render --video --gif failed: " + err):
+        old = {n: open(os.path.join(w, n), "rb").read() for n in ("good.mp4", "good.gif")}
+        for name, after in (("good.mp4", 0), ("good.mp4", 1), ("good.mp4", 3), ("good.gif", 0)):
+            label = "render --video --gif, %s full after %d writes" % (name, after)
+            rc, out, err = bhm.run(videos, {"BHM_FAULT_FILE": name, "BHM_FAULT_AFTER": after})
+            expect_enospc(label, (rc, out, err), old[name], os.path.join(w, name))
+            check(name + ": " in err and "the previous file is unchanged" in err,
+                  "%s: the message does not name the file: %s" % (label, err))
+            for other in old:
+                check(open(os.path.join(w, other), "rb").read() == old[other],
+                      "%s: %s was replaced" % (label, other))
+                check(not os.path.exists(os.path.join(w, other + ".tmp" + other[-4:])),
+                      "%s: a temporary video was left behind" % label)
+
     shot = os.path.join(w, "shot.png")
     shutil.copy(png, shot)
     expect_enospc("studio --screenshot",
                   bhm.run(["studio", "--headless", "--frames", "1", "--size", "160x120",
                            "--screenshot", shot], {"BHM_FAULT_FILE": "shot.png"}, timeout=120),
                   good, shot)
-    print("enospc: render, frames, simulate, export, evolve and studio keep the old file and exit 1")
+    print("enospc: render, frames, video, GIF, simulate, export, evolve and studio keep the old "
+          "file and exit 1")
 
 
 def run_as_other_user():
