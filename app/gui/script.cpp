@@ -12,6 +12,7 @@
 #include "app/gui/viewport.hpp"
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 
 namespace bhm::app::gui {
 
@@ -135,7 +136,7 @@ json load_script(const std::string& path) {
     try {
         steps = json::parse(text);
     } catch (const json::exception& e) {
-        throw ScriptError(path + ": not valid JSON: " + e.what());
+        throw ScriptError(path + ": not valid JSON: " + evo::without_json_tags(e.what()));
     }
     if (!steps.is_array()) throw ScriptError(path + ": a script is a JSON array of steps");
     return steps;

@@ -62,9 +62,7 @@ json parse_json_text(const std::string& text, const std::string& path) {
     } catch (const json::exception& e) {
         // nlohmann's message starts with "[json.exception.parse_error.101] parse error at ...";
         // numbers beyond double's range (1e999) arrive as out_of_range.406.
-        std::string what = e.what();
-        if (auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);
-        throw ValidationError({{path, "(json)", what}});
+        throw ValidationError({{path, "(json)", without_json_tags(e.what())}});
     }
 }
 

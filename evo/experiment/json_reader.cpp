@@ -8,6 +8,17 @@
 
 namespace bhm::evo {
 
+std::string without_json_tags(std::string text) {
+    static constexpr std::string_view kTag = "[json.exception.";
+    for (auto at = text.find(kTag); at != std::string::npos; at = text.find(kTag, at)) {
+        auto end = text.find(']', at);
+        if (end == std::string::npos) break;
+        if (end + 1 < text.size() && text[end + 1] == ' ') ++end;
+        text.erase(at, end + 1 - at);
+    }
+    return text;
+}
+
 int edit_distance(const std::string& a, const std::string& b) {
     std::vector<int> row(b.size() + 1);
     for (size_t j = 0; j <= b.size(); ++j)

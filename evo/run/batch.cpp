@@ -11,6 +11,7 @@
 
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
 
@@ -81,7 +82,8 @@ nlohmann::json read_json(const fs::path& path) {
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(path.string() + ": not valid JSON (" + e.what() + ")");
+        throw std::runtime_error(path.string() + ": not valid JSON (" +
+                                 without_json_tags(e.what()) + ")");
     }
 }
 

@@ -15,6 +15,7 @@
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_fields.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/crc32.hpp"
 
@@ -442,7 +443,7 @@ json parse_checkpoint_text(const std::string& text, std::vector<std::string>& no
     try {
         return json::parse(payload);
     } catch (const json::parse_error& e) {
-        throw std::runtime_error(std::string("not valid JSON (") + e.what() + ")");
+        throw std::runtime_error("not valid JSON (" + without_json_tags(e.what()) + ")");
     }
 }
 

@@ -11,6 +11,7 @@
 #include "evo/evaluate/constraints.hpp"
 #include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/run/checkpoint.hpp"
 #include "evo/run/run_lock.hpp"
 #include "evo/search/afpo.hpp"
@@ -59,7 +60,8 @@ Experiment read_original_experiment(const std::string& dir) {
     try {
         json = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(path + ": damaged, not valid JSON (" + e.what() + ")");
+        throw std::runtime_error(path + ": damaged, not valid JSON (" +
+                                 without_json_tags(e.what()) + ")");
     }
     if (!json.is_object() || !json.contains("experiment"))
         throw std::runtime_error(path + ":experiment: missing");

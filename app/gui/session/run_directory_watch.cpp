@@ -7,6 +7,7 @@
 
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 
 namespace bhm::app::gui {
 
@@ -77,7 +78,8 @@ json parse_json_file(const fs::path& path) {
     try {
         return json::parse(engine::read_text(path.string(), engine::kLargeFileCap));
     } catch (const json::exception& e) {
-        throw std::runtime_error(path.string() + ": damaged, not valid JSON (" + e.what() + ")");
+        throw std::runtime_error(path.string() + ": damaged, not valid JSON (" +
+                                 evo::without_json_tags(e.what()) + ")");
     }
 }
 
@@ -169,7 +171,8 @@ bool RunDirectoryWatch::refresh() {
         error_.clear();
     } catch (const json::exception& e) {
         // A field missing or of the wrong type (nlohmann's messages name no file).
-        error_ = dir_ + ": run.json or champion.json is damaged (" + std::string(e.what()) + ")";
+        error_ = dir_ + ": run.json or champion.json is damaged (" +
+                 evo::without_json_tags(e.what()) + ")";
         return false;
     } catch (const std::exception& e) {
         error_ = e.what();  // e.g. a file replaced mid-read: keep the last good view

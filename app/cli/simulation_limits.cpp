@@ -1,0 +1,24 @@
+#include "app/cli/simulation_limits.hpp"
+
+#include <cmath>
+
+#include "engine/io/text_file.hpp"
+#include "engine/limits.hpp"
+
+namespace bhm::app {
+
+std::string simulation_seconds_problem(const engine::Model& model,
+                                       const evo::Experiment& experiment, double total_s) {
+    if (!std::isfinite(total_s) || !(total_s > 0.0))
+        return "the simulated time must be a positive finite number of seconds, got " +
+               engine::format_number(total_s);
+    // The experiment passed the envelope for its own duration; other durations and this body's
+    // actual step are checked by the same rule.
+    const std::string budget = engine::limits::step_budget_problem(
+        {model.dt_s(), model.dt_s()}, total_s, experiment.actuation.frequency_hz,
+        experiment.actuation.temperature_amplitude_c > 0, model.voxel_count());
+    if (budget.empty()) return "";
+    return "cannot simulate " + engine::format_number(total_s) + " s: " + budget;
+}
+
+}  // namespace bhm::app
