@@ -10,6 +10,7 @@
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/run_directory.hpp"
+#include "engine/io/atomic_file.hpp"
 #include "engine/io/text_file.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -41,6 +42,33 @@ engine::Replay load_matching_replay(const std::string& path, const evo::Experime
             throw std::runtime_error(path + ": voxel material " + std::to_string(m) +
                                      " is not in the experiment's palette");
     return replay;
+}
+
+// Every file of the command is tried before the first one is written (issue 26 N5): a later
+// output that cannot be written (a folder in its place, a read-only file system, the .mtl beside
+// an .obj) must not leave the earlier ones replaced and the command half done. Trying means
+// creating and removing the very temporary the atomic writer will use.
+void require_all_writable(ArgParser& parser) {
+    std::vector<std::string> files;
+    for (const char* option : {"--vxa", "--body-out", "--experiment-out", "--mesh"})
+        if (parser.has(option)) files.push_back(parser.get(option));
+    if (parser.has("--mesh") && !ends_with(parser.get("--mesh"), ".stl") &&
+        !ends_with(parser.get("--mesh"), ".STL"))
+        files.push_back(
+            std::filesystem::path(parser.get("--mesh")).replace_extension(".mtl").string());
+    if (parser.has("--vtk") && std::filesystem::is_directory(parser.get("--vtk")))
+        files.push_back((std::filesystem::path(parser.get("--vtk")) / "series.pvd").string());
+    for (const auto& file : files) {
+        if (std::filesystem::is_directory(file))
+            throw std::runtime_error(file +
+                                     ": is a folder, cannot write a file there; nothing "
+                                     "was written");
+        try {
+            engine::AtomicFile probe(file);  // removed again when it goes out of scope
+        } catch (const std::exception& e) {
+            throw std::runtime_error(std::string(e.what()) + "; nothing was written");
+        }
+    }
 }
 
 // The surface at rest, or deformed at --time (default: the replay's last frame).
@@ -114,6 +142,7 @@ int export_body(ArgParser& parser) {
                                      " is after the replay's end at " +
                                      engine::format_number(last) + " s");
     }
+    require_all_writable(parser);
     if (parser.has("--vxa")) {
         evo::save_vxa(parser.get("--vxa"), experiment, body);
         std::cout << "wrote " << parser.get("--vxa") << "\n";

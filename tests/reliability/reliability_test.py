@@ -235,6 +235,19 @@ def case_enospc(bhm, rng):
     expect_enospc("export --vxa", bhm.run(["export", EXPERIMENT, "--body", BODY, "--vxa", vxa],
                                           {"BHM_FAULT_FILE": "body.vxa"}), old_vxa, vxa)
 
+    # A VTK series replaced by a longer one, the disk full at its third frame (issue 26 N4): the
+    # old series stays whole, with no new frame 0 beside it and no staging folder.
+    vtk = fresh(w, "vtk")
+    rc, _, err = bhm.run(["export", EXPERIMENT, "--body", BODY, "--vtk", vtk])
+    if check(rc == 0, "export --vtk failed: " + err):
+        old_series = {n: open(os.path.join(vtk, n), "rb").read() for n in os.listdir(vtk)}
+        result = bhm.run(["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--vtk", vtk],
+                         {"BHM_FAULT_FILE": "frame-00002"})
+        expect_enospc("export --vtk", result, None, os.path.join(vtk, "frame-00002.vtu"))
+        check("the previous series is unchanged" in result[2], "export --vtk: " + result[2])
+        now = {n: open(os.path.join(vtk, n), "rb").read() for n in os.listdir(vtk)}
+        check(now == old_series, "export --vtk: the old series was changed: %s" % sorted(now))
+
     run = fresh(w, "run-enospc")
     rc, _, err = bhm.run(evolve_args(run, 2))
     check(rc == 0, "evolve failed: " + err)
