@@ -17,8 +17,17 @@ std::string simulation_seconds_problem(const engine::Model& model,
     const std::string budget = engine::limits::step_budget_problem(
         {model.dt_s(), model.dt_s()}, total_s, experiment.actuation.frequency_hz,
         experiment.actuation.temperature_amplitude_c > 0, model.voxel_count());
-    if (budget.empty()) return "";
-    return "cannot simulate " + engine::format_number(total_s) + " s: " + budget;
+    if (!budget.empty())
+        return "cannot simulate " + engine::format_number(total_s) + " s: " + budget;
+    // A sampling period longer than the whole simulation records only its two ends, and the
+    // summary then reports a maximum displacement of 0 as if the body had not moved (issue 26).
+    const double fps = experiment.simulation.record_fps;
+    if (fps * total_s < 1.0)
+        return "simulation.record_fps " + engine::format_number(fps) +
+               " records no sample between the start and the end of the " +
+               engine::format_number(total_s) + " s simulation; raise it to at least " +
+               engine::format_number(1.0 / total_s);
+    return "";
 }
 
 }  // namespace bhm::app

@@ -10,7 +10,8 @@
 namespace bhm::app {
 
 //! Empty when total_s can be simulated for this model under this experiment; otherwise one line
-//! saying why: not a positive finite number, or out of engine::limits' step budget.
+//! saying why: not a positive finite number, out of engine::limits' step budget, or shorter than
+//! one sampling period of record_fps.
 std::string simulation_seconds_problem(const engine::Model& model,
                                        const evo::Experiment& experiment, double total_s);
 

@@ -487,7 +487,9 @@ LoadedCheckpoint load_checkpoint(const std::string& dir) {
         }
     }
     throw std::runtime_error("no usable checkpoint in " + dir + ": " + problems[0] + "; " +
-                             problems[1]);
+                             problems[1] +
+                             ". Nothing can be resumed; a plain start (without --resume) into a "
+                             "new --out folder runs the experiment from generation 0");
 }
 
 }  // namespace bhm::evo

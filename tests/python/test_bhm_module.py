@@ -246,6 +246,14 @@ class Limits(unittest.TestCase):
             bhm.decode(QUICK_DEMO, "{\"nodes\": [1, 2")
         self.assertNotIn("json.exception", str(caught.exception))
 
+    def test_too_few_samples_are_refused(self):
+        e = small_experiment()
+        e["simulation"]["record_fps"] = 0.001  # gave 2 samples and "max displacement 0"
+        with self.assertRaises(ValueError) as caught:
+            bhm.simulate(e, BODY)
+        self.assertIn("simulation.record_fps 0.001 records no sample between the start and the end",
+                      str(caught.exception))
+
     def test_endless_files_are_refused_by_name(self):
         problems = bhm.validate("/dev/zero")
         self.assertEqual(len(problems), 1)
@@ -258,7 +266,7 @@ class Limits(unittest.TestCase):
         # The longest simulation the budget allows (half of it): minutes to hours of wall time.
         dt = float(re.search(r"steps of ([0-9.e+-]+) s", str(caught.exception)).group(1))
         seconds = 0.5 * 1e8 * dt
-        e["simulation"]["record_fps"] = 1  # one sample a simulated second: polling must not wait
+        e["simulation"]["record_fps"] = 25  # few samples: polling must not wait for them
         sent = []
 
         def interrupt():

@@ -12,7 +12,8 @@ Cases (each a ctest entry, "reliability: CASE"):
                 file untouched, no "wrote"
   unwritable    --resume into a run directory the user cannot write fails before any simulation
   checkpoint    random byte flips in checkpoint.json: always noticed, the previous one used, and
-                the resumed run equals the uninterrupted one
+                the resumed run equals the uninterrupted one; no usable checkpoint says what to
+                do; a checkpoint replaced by a folder is refused before any simulation
   replay-fuzz   damaged replays (non-finite and huge sizes, flipped bytes, truncation) through
                 bhm render --color strain|displacement: exit 0/1/2/3 only
   mutation-fuzz >= 1000 mutated experiment, body, replay and VXA files through every subcommand:
@@ -347,6 +348,25 @@ def case_checkpoint(bhm, rng):
         if full:
             check(run_files(d) == expected, "flip at byte %d: the resumed run differs" % at)
     print("checkpoint: %d/24 single-bit flips noticed, the previous checkpoint used" % noticed)
+
+    # Both checkpoints unusable: the message says what still works (issue 26).
+    d = fresh(bhm.work, "ck-none")
+    shutil.copytree(base, d)
+    for name in ("checkpoint.json", "checkpoint.prev.json"):
+        open(os.path.join(d, name), "w").write("{")
+    rc, _, err = bhm.run(evolve_args(d, 5) + ["--resume"])
+    check(rc == 1, "no usable checkpoint: exit %s: %s" % (rc, err))
+    check("a plain start (without --resume)" in err, "no usable checkpoint: " + err)
+    check("json.exception" not in err, "a library's tag reached the user: " + err)
+    # checkpoint.json replaced by a folder: refused before any simulation, not a generation later.
+    d = fresh(bhm.work, "ck-folder")
+    shutil.copytree(base, d)
+    os.remove(os.path.join(d, "checkpoint.json"))
+    os.mkdir(os.path.join(d, "checkpoint.json"))
+    rc, _, err = bhm.run(evolve_args(d, 5) + ["--resume"])
+    check(rc == 1, "checkpoint folder: exit %s: %s" % (rc, err))
+    check("checkpoint.json: is not a regular file" in err, "checkpoint folder: " + err)
+    check("gen " not in err, "checkpoint folder: it simulated before failing: " + err)
 
 
 # --- fuzzing -----------------------------------------------------------------------------------
