@@ -13,6 +13,7 @@
 
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/formats/xml_tree.hpp"
 
@@ -491,7 +492,8 @@ VxaImport parse_vxa(const std::string& text, const std::string& label) {
                 "BHM_Experiment: the file was changed after BHM wrote it; its VoxCAD fields "
                 "were read over the embedded experiment");
         } catch (const std::exception& ex) {
-            r.lost(std::string("BHM_Experiment: unreadable (") + ex.what() + "); ignored");
+            r.lost(std::string("BHM_Experiment: unreadable (") + without_json_tags(ex.what()) +
+                   "); ignored");
         }
     } else {
         e.name = std::filesystem::path(label).stem().string();

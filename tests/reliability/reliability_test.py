@@ -16,8 +16,10 @@ Cases (each a ctest entry, "reliability: CASE"):
                 do; a checkpoint replaced by a folder is refused before any simulation
   replay-fuzz   damaged replays (non-finite and huge sizes, flipped bytes, truncation) through
                 bhm render --color strain|displacement: exit 0/1/2/3 only
-  mutation-fuzz >= 1000 mutated experiment, body, replay and VXA files through every subcommand:
-                exit 0/1/2/3 only, no signal, no sanitizer report
+  mutation-fuzz >= 1000 mutated experiment, body, replay and VXA files through every subcommand
+                (import, mesh and VTK export of mutated replays included) and, with
+                --python-module, the Python module's entry points: exit 0/1/2/3 only, no
+                signal, no sanitizer report, no '[json.exception...]' text
 
 Timings are never asserted except the documented bound of the stop (1 s, with margin for load).
 """
@@ -55,8 +57,10 @@ def check(condition, message):
 
 
 class Bhm:
-    def __init__(self, path, shim, work):
+    def __init__(self, path, shim, work, python_module=None):
         self.path, self.shim, self.work = path, shim, work
+        self.python_module = python_module  # build/python, where the bhm module is (optional)
+        self.python = sys.executable
         self.env = dict(os.environ)
         self.env.setdefault("GALLIUM_DRIVER", "llvmpipe")
         self.env.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
@@ -70,6 +74,17 @@ class Bhm:
             env.update({k: str(v) for k, v in fault.items()})
         try:
             p = subprocess.run(list(prefix) + [self.path] + args, env=env, cwd=self.work,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout)
+            return p.returncode, p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
+        except subprocess.TimeoutExpired:
+            return None, "", "timeout"
+
+    def run_python(self, args, timeout=60):
+        """The Python module's entry points on the same files (PYTHON_CASE below)."""
+        env = dict(self.env)
+        env["PYTHONPATH"] = self.python_module
+        try:
+            p = subprocess.run([self.python, "-c", PYTHON_CASE] + args, env=env, cwd=self.work,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout)
             return p.returncode, p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
         except subprocess.TimeoutExpired:
@@ -460,10 +475,41 @@ def mutate_replay(data, rng):
     return mutate_bytes(bytes(data), rng)
 
 
+# One fuzz case of the Python module: every entry point on the (mutated) files, and on the same
+# documents as dicts. A clean refusal is a ValueError or TypeError; anything else (another
+# exception, a crash) exits with another status and fails the case.
+PYTHON_CASE = r"""
+import json, sys
+import bhm
+exp, body, run_dir = sys.argv[1:4]
+def doc(path):
+    try:
+        return json.load(open(path, encoding="latin-1"))
+    except ValueError:
+        return None
+clean = 0
+for call in (lambda: bhm.validate(exp), lambda: bhm.validate(body, exp),
+             lambda: bhm.simulate(exp, body, seconds=0.02),
+             lambda: bhm.simulate(doc(exp), doc(body), seconds=0.02),
+             lambda: bhm.decode(exp, doc(body)), lambda: bhm.load_run(run_dir)):
+    try:
+        call()
+    except (ValueError, TypeError) as e:
+        if "json.exception" in str(e):
+            print("library tag in: %s" % e, file=sys.stderr)
+            sys.exit(3)
+        clean += 1
+print("%d clean refusals" % clean)
+"""
+
+
 def classify(result, label, sanitizer_seen):
     rc, out, err = result
     if rc is None:
         return "timeout"
+    if "[json.exception." in err:
+        fail("%s: a library's message reached the user: %s" % (label, err[-300:]))
+        return "bad"
     if rc not in (0, 1, 2, 3):
         fail("%s: exit status %s (a signal or an unexpected code): %s" % (label, rc, err[-500:]))
         return "bad"
@@ -497,14 +543,14 @@ def fuzz(bhm, rng, cases, plan, label):
         os.makedirs(d, exist_ok=True)
         exp, body, replay, vxa = EXPERIMENT, BODY, os.path.join(d, "r.bin"), os.path.join(d, "b.vxa")
         case_rng = random.Random(rng.getrandbits(64))
-        if kind in ("validate", "simulate", "evolve", "export", "render-body"):
+        if kind in ("validate", "simulate", "evolve", "export", "render-body", "python"):
             if case_rng.random() < 0.6:
                 exp = os.path.join(d, "e.json")
                 open(exp, "w", encoding="latin-1").write(mutate_json(seeds["experiment"], case_rng))
             if kind != "evolve" and (exp == EXPERIMENT or case_rng.random() < 0.4):
                 body = os.path.join(d, "b.json")
                 open(body, "w", encoding="latin-1").write(mutate_json(seeds["body"], case_rng))
-        if kind in ("render-replay", "export-replay"):
+        if kind in ("render-replay", "export-replay", "export-vtk"):
             open(replay, "wb").write(mutate_replay(seeds["replay"], case_rng))
         if kind == "import":
             open(vxa, "wb").write(mutate_bytes(seeds["vxa"], case_rng))
@@ -517,6 +563,9 @@ def fuzz(bhm, rng, cases, plan, label):
                        out + ".json", "--mesh", out + ".stl"],
             "export-replay": ["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--mesh",
                               out + ".obj"],
+            "export-vtk": ["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--vtk",
+                           out + "-vtk", "--mesh", out + ".stl"],
+            "python": [exp, body, d],
             "import": ["import", vxa, "--experiment-out", out + "-e.json", "--body-out",
                        out + "-b.json"],
             "render-body": ["render", exp, "--body", body, "--out", out + ".png", "--size", "48x36",
@@ -530,7 +579,8 @@ def fuzz(bhm, rng, cases, plan, label):
     counts = {}
     started = time.time()
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        futures = {pool.submit(bhm.run, args, None, 60): (i, kind, args) for i, kind, args in jobs}
+        futures = {pool.submit(bhm.run_python if kind == "python" else bhm.run, args, timeout=60):
+                   (i, kind, args) for i, kind, args in jobs}
         for future in concurrent.futures.as_completed(futures):
             i, kind, args = futures[future]
             verdict = classify(future.result(), "case %d (%s: bhm %s)" % (i, kind, " ".join(args)),
@@ -551,7 +601,8 @@ def case_replay_fuzz(bhm, rng):
 def case_mutation_fuzz(bhm, rng):
     # Weighted by cost: the GL renders and evolutions take longest.
     kinds = ["validate"] * 30 + ["simulate"] * 22 + ["export"] * 14 + ["import"] * 10 + \
-            ["export-replay"] * 8 + ["evolve"] * 8 + ["render-body"] * 4 + ["render-replay"] * 4
+            ["export-replay"] * 8 + ["export-vtk"] * 6 + ["evolve"] * 8 + ["render-body"] * 4 + \
+            ["render-replay"] * 4 + (["python"] * 6 if bhm.python_module else [])
     fuzz(bhm, rng, 1000, lambda i, r: r.choice(kinds), "mutation-fuzz")
 
 
@@ -567,10 +618,15 @@ def main():
     parser.add_argument("--shim", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("--seed", type=int, default=11)
+    parser.add_argument("--python-module", help="folder of the bhm Python module (fuzzed too)")
+    parser.add_argument("--python", default=sys.executable,
+                        help="the interpreter the module was built for (default: this one)")
     a = parser.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     os.makedirs(a.work)
-    bhm = Bhm(os.path.abspath(a.bhm), os.path.abspath(a.shim), os.path.abspath(a.work))
+    bhm = Bhm(os.path.abspath(a.bhm), os.path.abspath(a.shim), os.path.abspath(a.work),
+              os.path.abspath(a.python_module) if a.python_module else None)
+    bhm.python = a.python
     CASES[a.case](bhm, random.Random(a.seed))
     if failures:
         print("%d failure(s)" % len(failures), file=sys.stderr)
