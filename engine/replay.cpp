@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 
 namespace bhm::engine {
 
@@ -119,16 +120,17 @@ void check_replay_for_writing(const std::string& path, const Replay& r) {
     }
 }
 
-std::string read_whole_file(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
-    if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a replay file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open for reading");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) fail(path, "read error");
-    return buffer.str();
+void require_finite(const std::string& path, std::uint64_t frame,
+                    const std::vector<std::int32_t>& cells, const std::vector<float>& values,
+                    std::size_t per_voxel, const char* what) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (std::isfinite(values[i])) continue;
+        const std::size_t voxel = i / per_voxel;
+        fail(path, "corrupt replay: frame " + std::to_string(frame) + " voxel " +
+                       std::to_string(voxel) + " (cell " + std::to_string(cells[voxel]) + ") " +
+                       what + " is " + format_number(values[i]) +
+                       ", not a finite number; record the replay again");
+    }
 }
 
 }  // namespace
@@ -164,7 +166,7 @@ void write_replay(const std::string& path, const Replay& replay) {
 }
 
 Replay read_replay(const std::string& path) {
-    const std::string data = read_whole_file(path);
+    const std::string data = read_text(path, kLargeFileCap);
     const std::uint64_t length = data.size();
     const auto truncated = [&](std::uint64_t expected, const char* where) {
         fail(path, "truncated replay: " + std::string(where) + " needs " +
@@ -241,6 +243,11 @@ Replay read_replay(const std::string& path) {
         d.f32_array(p.position_m, 3 * n);
         d.f32_array(p.orientation, 4 * n);
         d.f32_array(p.size_m, 3 * n);
+        // Every consumer (colour scales, meshes, VTK, measures) assumes finite poses: refuse
+        // inf/NaN here, once, naming where, rather than print "-inf to inf" or write it out.
+        require_finite(path, f, r.voxel_cell, p.position_m, 3, "position");
+        require_finite(path, f, r.voxel_cell, p.orientation, 4, "orientation");
+        require_finite(path, f, r.voxel_cell, p.size_m, 3, "size");
     }
     return r;
 }

@@ -1,6 +1,7 @@
 // World: one simulation of one Model. A step = three link passes (x, y, z) + one voxel pass.
 #include "engine/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -300,6 +301,11 @@ std::array<double, 4> World::voxel_orientation(int v) const {
 
 void run(World& world, double total_s, double sample_hz,
          const std::function<void(const World&)>& observe) {
+    run(world, total_s, sample_hz, observe, {});
+}
+
+void run(World& world, double total_s, double sample_hz,
+         const std::function<void(const World&)>& observe, const std::function<void()>& poll) {
     if (!(sample_hz > 0.0) || !std::isfinite(sample_hz))
         throw std::invalid_argument("run: sample_hz must be positive");
     const double period = 1.0 / sample_hz;
@@ -320,7 +326,16 @@ void run(World& world, double total_s, double sample_hz,
         double due = static_cast<double>(k) * period;
         const bool last = due >= total_s - half_step;
         if (last) due = total_s;
-        if (!world.advance_to(due)) return;  // diverged: stop, the caller reads the reason
+        if (poll) {
+            while (world.time_s() < due) {
+                const double slice_end =
+                    static_cast<double>(world.steps() + kPollSteps) * world.model().dt_s();
+                if (!world.advance_to(std::min(due, slice_end))) return;  // diverged
+                poll();
+            }
+        } else if (!world.advance_to(due)) {
+            return;  // diverged: stop, the caller reads the reason
+        }
         if (observe) observe(world);
         if (last) return;
     }

@@ -58,4 +58,14 @@ private:
 void run(World& world, double total_s, double sample_hz,
          const std::function<void(const World&)>& observe);
 
+//! Steps between two calls of run's poll hook: milliseconds even for large bodies.
+inline constexpr int kPollSteps = 64;
+
+//! The same, calling poll() every kPollSteps steps and at every sample, from the stepping thread,
+//! independent of sample_hz (one sample can span the whole run). poll may throw to abandon the
+//! run (e.g. a KeyboardInterrupt in the Python module). Slicing changes nothing: dt is fixed and
+//! advance_to stops at the first step at or past its target, so the same steps are taken.
+void run(World& world, double total_s, double sample_hz,
+         const std::function<void(const World&)>& observe, const std::function<void()>& poll);
+
 }  // namespace bhm::engine

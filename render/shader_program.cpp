@@ -10,6 +10,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "render/embedded_shaders.hpp"
 
 namespace bhm::render {
@@ -54,11 +55,11 @@ GLuint compile(GLenum stage, const std::string& file_name) {
 std::string shader_source(const std::string& file_name) {
     if (const char* dir = std::getenv("BHM_SHADER_DIR"); dir && *dir) {
         const std::string path = std::string(dir) + "/" + file_name;
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw std::runtime_error(path + ": cannot read shader (BHM_SHADER_DIR is set)");
-        std::ostringstream text;
-        text << in.rdbuf();
-        return text.str();
+        try {
+            return engine::read_text(path, engine::kTextFileCap);
+        } catch (const engine::FileReadError& e) {
+            throw std::runtime_error(e.what() + std::string(" (BHM_SHADER_DIR is set)"));
+        }
     }
     for (const auto& shader : embedded_shaders())
         if (file_name == shader.file_name) return shader.source;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/cli/path_checks.hpp"
+#include "evo/experiment/json_reader.hpp"
 
 namespace bhm::app {
 
@@ -151,7 +152,8 @@ int run_command(ArgParser& parser, const std::vector<std::string>& args, int (*b
                   << "usage: bhm " << parser.command() << " --help\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "bhm " << parser.command() << ": " << e.what() << "\n";
+        // The last line of defence: a library's internal tags never reach the user.
+        std::cerr << "bhm " << parser.command() << ": " << evo::without_json_tags(e.what()) << "\n";
         return 1;
     }
 }

@@ -14,6 +14,7 @@
 #include "app/cli/path_checks.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/batch.hpp"
+#include "evo/run/checkpoint.hpp"
 #include "evo/run/evolution_run.hpp"
 
 namespace bhm::app {
@@ -148,7 +149,21 @@ int evolve(ArgParser& args) {
     evo::RunOptions options;
     options.out_dir = args.get("--out");
     options.writer = "bhm evolve";
-    if (args.has("--resume")) check_existing_dir("--out", options.out_dir);
+    if (args.has("--resume")) {
+        check_existing_dir("--out", options.out_dir);
+        // A run file replaced by a folder would fail only when first rewritten, a whole
+        // generation later: refuse it now.
+        for (const char* name : {evo::kCheckpointFile, evo::kPreviousCheckpointFile, "fitness.csv",
+                                 "champion.json", "run.json"}) {
+            const auto file = std::filesystem::path(options.out_dir) / name;
+            std::error_code ec;
+            const auto status = std::filesystem::symlink_status(file, ec);
+            if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+                throw std::runtime_error(file.string() +
+                                         ": is not a regular file (a folder?); the run rewrites "
+                                         "it each generation: move it away, then --resume");
+        }
+    }
     if (args.has("--generations")) {
         const long long n = args.get_int("--generations", 0);
         if (n < 1 || n > 100000000) throw UsageError("--generations must be in [1, 1e8]");

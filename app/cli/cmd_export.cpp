@@ -9,6 +9,8 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/scene.hpp"
@@ -42,6 +44,33 @@ engine::Replay load_matching_replay(const std::string& path, const evo::Experime
     return replay;
 }
 
+// Every file of the command is tried before the first one is written (issue 26 N5): a later
+// output that cannot be written (a folder in its place, a read-only file system, the .mtl beside
+// an .obj) must not leave the earlier ones replaced and the command half done. Trying means
+// creating and removing the very temporary the atomic writer will use.
+void require_all_writable(ArgParser& parser) {
+    std::vector<std::string> files;
+    for (const char* option : {"--vxa", "--body-out", "--experiment-out", "--mesh"})
+        if (parser.has(option)) files.push_back(parser.get(option));
+    if (parser.has("--mesh") && !ends_with(parser.get("--mesh"), ".stl") &&
+        !ends_with(parser.get("--mesh"), ".STL"))
+        files.push_back(
+            std::filesystem::path(parser.get("--mesh")).replace_extension(".mtl").string());
+    if (parser.has("--vtk") && std::filesystem::is_directory(parser.get("--vtk")))
+        files.push_back((std::filesystem::path(parser.get("--vtk")) / "series.pvd").string());
+    for (const auto& file : files) {
+        if (std::filesystem::is_directory(file))
+            throw std::runtime_error(file +
+                                     ": is a folder, cannot write a file there; nothing "
+                                     "was written");
+        try {
+            engine::AtomicFile probe(file);  // removed again when it goes out of scope
+        } catch (const std::exception& e) {
+            throw std::runtime_error(std::string(e.what()) + "; nothing was written");
+        }
+    }
+}
+
 // The surface at rest, or deformed at --time (default: the replay's last frame).
 void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo::Body& framed,
                 const engine::Replay* replay) {
@@ -51,7 +80,7 @@ void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo:
     if (replay) {
         const double t = parser.get_double("--time", replay->frames.back().time_s);
         mesh = evo::deformed_surface(*replay, engine::pose_at(*replay, t));
-        when = "at t = " + evo::format_number(t) + " s";
+        when = "at t = " + engine::format_number(t) + " s";
     } else {
         mesh = evo::rest_surface(framed.size, framed.cells, experiment.voxel_size_m);
     }
@@ -66,7 +95,7 @@ void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo:
     }
     std::cout << "wrote " << path << " (" << mesh.triangles.size() << " triangles, "
               << mesh.vertices.size() << " vertices, enclosed volume "
-              << evo::format_number(evo::enclosed_volume(mesh)) << " m^3, " << when << ")\n";
+              << engine::format_number(evo::enclosed_volume(mesh)) << " m^3, " << when << ")\n";
 }
 
 int export_body(ArgParser& parser) {
@@ -110,9 +139,10 @@ int export_body(ArgParser& parser) {
         const double last = replay->frames.back().time_s;
         if (parser.get_double("--time", 0.0) > last + 1e-9)
             throw std::runtime_error(parser.get("--replay") + ": --time " + parser.get("--time") +
-                                     " is after the replay's end at " + evo::format_number(last) +
-                                     " s");
+                                     " is after the replay's end at " +
+                                     engine::format_number(last) + " s");
     }
+    require_all_writable(parser);
     if (parser.has("--vxa")) {
         evo::save_vxa(parser.get("--vxa"), experiment, body);
         std::cout << "wrote " << parser.get("--vxa") << "\n";

@@ -300,8 +300,12 @@ int render_command(ArgParser& args) {
             for (auto& w : writers)
                 w->write(image);
         }
+        // Every video verified before the first replaces anything: --video and --gif together
+        // give both new files or neither.
+        for (auto& w : writers)
+            w->finish();
         for (std::size_t w = 0; w < writers.size(); ++w) {
-            writers[w]->finish();
+            writers[w]->commit();
             std::cout << "wrote " << paths[w] << " (" << n << " frames at " << fps << " fps)\n";
         }
     }

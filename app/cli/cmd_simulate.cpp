@@ -12,6 +12,7 @@
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/simulate_progress.hpp"
+#include "app/cli/simulation_limits.hpp"
 #include "app/cli/simulation_report.hpp"
 #include "engine/limits.hpp"
 #include "engine/model.hpp"
@@ -93,14 +94,8 @@ int simulate(ArgParser& args) {
     } catch (const std::invalid_argument& e) {
         throw std::runtime_error(body_path + ": cannot simulate: " + e.what());
     }
-    // The experiment passed the envelope for its own duration; --seconds and this body's actual
-    // step are checked by the same rule.
-    const std::string budget = engine::limits::step_budget_problem(
-        {model->dt_s(), model->dt_s()}, total_s, experiment.actuation.frequency_hz,
-        experiment.actuation.temperature_amplitude_c > 0, model->voxel_count());
-    if (!budget.empty())
-        throw std::runtime_error(experiment_path + ": cannot simulate " + std::to_string(total_s) +
-                                 " s: " + budget);
+    const std::string budget = simulation_seconds_problem(*model, experiment, total_s);
+    if (!budget.empty()) throw std::runtime_error(experiment_path + ": " + budget);
     create_output_dir(out_dir);
 
     engine::World world(model);

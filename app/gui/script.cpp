@@ -10,7 +10,9 @@
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/view_scene.hpp"
 #include "app/gui/viewport.hpp"
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 
 namespace bhm::app::gui {
 
@@ -124,15 +126,17 @@ void click_cell(HeadlessStudio& session, const json& step) {
 }  // namespace
 
 json load_script(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw ScriptError(path + ": cannot open the script");
-    std::ostringstream text;
-    text << in.rdbuf();
+    std::string text;
+    try {
+        text = engine::read_text(path, engine::kTextFileCap);
+    } catch (const engine::FileReadError& e) {
+        throw ScriptError(e.what());
+    }
     json steps;
     try {
-        steps = json::parse(text.str());
+        steps = json::parse(text);
     } catch (const json::exception& e) {
-        throw ScriptError(path + ": not valid JSON: " + e.what());
+        throw ScriptError(path + ": not valid JSON: " + evo::without_json_tags(e.what()));
     }
     if (!steps.is_array()) throw ScriptError(path + ": a script is a JSON array of steps");
     return steps;

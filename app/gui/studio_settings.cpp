@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/gui/studio_paths.hpp"
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app::gui {
@@ -94,11 +95,9 @@ StudioSettings settings_from_json(const nlohmann::json& j) {
 StudioSettings load_settings(const std::string& path, std::string* warning) {
     std::error_code ec;
     if (path.empty() || !std::filesystem::exists(path, ec)) return {};
-    std::ifstream in(path);
-    std::ostringstream text;
-    text << in.rdbuf();
     try {
-        return settings_from_json(nlohmann::json::parse(text.str()));
+        const std::string text = engine::read_text(path, engine::kTextFileCap);
+        return settings_from_json(nlohmann::json::parse(text));
     } catch (const std::exception& e) {
         if (warning) *warning = path + ": ignoring damaged settings file (" + e.what() + ")";
         return {};

@@ -6,6 +6,8 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -17,11 +19,14 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli/file_kind.hpp"
+#include "app/cli/simulation_limits.hpp"
 #include "app/cli/simulation_report.hpp"
 #include "bhm_version.hpp"
+#include "engine/io/text_file.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/experiment/scene.hpp"
 #include "evo/genome/genome.hpp"
 #include "evo/genome/phenotype.hpp"
@@ -68,9 +73,38 @@ py::object to_python_ordered(const Json& j) {
     return to_python(json::parse(j.dump()));
 }
 
-json from_python(const py::handle& object) {
-    const std::string text = py::module_::import("json").attr("dumps")(object).cast<std::string>();
-    return json::parse(text);
+// A dict given for a file: through Python's json so that any mapping works, but strict JSON
+// (allow_nan=False), so NaN or inf fail here with the argument's name instead of as a raw
+// parser error further on (issue 26 N7).
+json from_python(const py::handle& object, const std::string& label) {
+    std::string text;
+    try {
+        text = py::module_::import("json")
+                   .attr("dumps")(object, py::arg("allow_nan") = false)
+                   .cast<std::string>();
+    } catch (py::error_already_set& e) {
+        const std::string why = e.value() ? py::str(e.value()).cast<std::string>() : e.what();
+        if (e.matches(PyExc_TypeError)) throw py::type_error(label + ": " + why);
+        throw py::value_error(label + ": not valid JSON: " + why);
+    }
+    try {
+        return json::parse(text);
+    } catch (const json::exception& e) {
+        throw py::value_error(label + ": not valid JSON: " + evo::without_json_tags(e.what()));
+    }
+}
+
+// A file argument: str or os.PathLike; anything else is a TypeError naming the argument, not a
+// file named after the object's repr (issue 26 N7).
+std::string path_arg(const py::handle& arg, const char* name, bool dict_allowed) {
+    if (py::isinstance<py::str>(arg)) return arg.cast<std::string>();
+    if (py::hasattr(arg, "__fspath__")) {
+        const py::object path = py::module_::import("os").attr("fsdecode")(arg);
+        return path.cast<std::string>();
+    }
+    throw py::type_error(std::string(name) + " must be a path (str or os.PathLike)" +
+                         (dict_allowed ? " or a dict" : "") + ", got " +
+                         py::str(py::type::handle_of(arg).attr("__name__")).cast<std::string>());
 }
 
 [[noreturn]] void raise_problems(const std::vector<evo::Problem>& problems) {
@@ -84,8 +118,9 @@ json from_python(const py::handle& object) {
 evo::Experiment experiment_arg(const py::handle& arg) {
     try {
         if (py::isinstance<py::dict>(arg))
-            return evo::parse_experiment(from_python(arg), "<experiment dict>");
-        return evo::load_experiment(py::str(arg).cast<std::string>());
+            return evo::parse_experiment(from_python(arg, "<experiment dict>"),
+                                         "<experiment dict>");
+        return evo::load_experiment(path_arg(arg, "experiment", true));
     } catch (const evo::ValidationError& e) {
         raise_problems(e.problems);
     }
@@ -96,9 +131,9 @@ evo::Body body_arg(const py::handle& arg, const evo::Experiment& experiment) {
         std::string label = "<body dict>";
         evo::Body body;
         if (py::isinstance<py::dict>(arg)) {
-            body = evo::parse_body(from_python(arg), label);
+            body = evo::parse_body(from_python(arg, label), label);
         } else {
-            label = py::str(arg).cast<std::string>();
+            label = path_arg(arg, "body", true);
             body = evo::load_body(label);
         }
         const auto problems = evo::validate_body_against(body, experiment, label);
@@ -116,24 +151,19 @@ py::array_t<T> array(const std::vector<T>& values, std::vector<py::ssize_t> shap
     return out;
 }
 
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path.string() + ": cannot read the file");
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 json read_json_file(const std::filesystem::path& path) {
-    json j = json::parse(read_text(path), nullptr, false);
+    json j = json::parse(engine::read_text(path.string(), engine::kLargeFileCap), nullptr, false);
     if (j.is_discarded()) throw std::runtime_error(path.string() + ": not valid JSON");
     return j;
 }
 
 // ---- the API --------------------------------------------------------------------------------
 
+constexpr auto kSignalCheckInterval = std::chrono::milliseconds(50);
+struct SimulationInterrupted {};
+
 std::vector<std::string> validate(const py::handle& path_arg, const py::handle& experiment_arg_) {
-    const std::string path = py::str(path_arg).cast<std::string>();
+    const std::string path = ::path_arg(path_arg, "path", false);
     std::vector<evo::Problem> problems;
     try {
         if (app::detect_file_kind(path) == app::FileKind::Body) {
@@ -159,7 +189,9 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
     const evo::Experiment experiment = experiment_arg(experiment_in);
     const evo::Body body = body_arg(body_in, experiment);
     const double total_s = seconds.value_or(evo::evaluation_seconds(experiment));
-    if (!(total_s > 0.0)) throw py::value_error("seconds must be positive");
+    if (!std::isfinite(total_s) || !(total_s > 0.0))
+        throw py::value_error("seconds must be a positive finite number, got " +
+                              engine::format_number(total_s));
     std::shared_ptr<const engine::Model> model;
     try {
         model = engine::Model::build(evo::make_body_spec(
@@ -167,19 +199,39 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
     } catch (const std::invalid_argument& e) {
         throw py::value_error(std::string("cannot simulate the body: ") + e.what());
     }
+    // The same limit as bhm simulate: a duration that would run for hours is refused up front.
+    if (const auto problem = app::simulation_seconds_problem(*model, experiment, total_s);
+        !problem.empty())
+        throw py::value_error("seconds: " + problem);
     const double settle_s = experiment.simulation.settle_s;
     const double record_fps = experiment.simulation.record_fps;
     engine::World world(model);
     app::SimulationRecorder recorder(*model, settle_s);
     double wall_s = 0.0;
+    bool interrupted = false;
     {
-        // Physics touches no Python object: other Python threads run meanwhile.
+        // Physics touches no Python object: other Python threads run meanwhile. Every 50 ms the
+        // GIL is taken back for a moment to run Python's signal handlers, so Ctrl-C (or any
+        // handler that raises) stops the simulation within a fraction of a second.
         py::gil_scoped_release release;
         const auto start = std::chrono::steady_clock::now();
-        engine::run(world, total_s, record_fps,
-                    [&](const engine::World& w) { recorder.observe(w); });
+        auto next_check = start + kSignalCheckInterval;
+        try {
+            engine::run(
+                world, total_s, record_fps, [&](const engine::World& w) { recorder.observe(w); },
+                [&] {
+                    const auto now = std::chrono::steady_clock::now();
+                    if (now < next_check) return;
+                    next_check = now + kSignalCheckInterval;
+                    py::gil_scoped_acquire acquire;
+                    if (PyErr_CheckSignals() != 0) throw SimulationInterrupted{};
+                });
+        } catch (const SimulationInterrupted&) {
+            interrupted = true;  // the Python error (KeyboardInterrupt) is set on this thread
+        }
         wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+    if (interrupted) throw py::error_already_set();
     const app::RunStats stats = app::run_stats_of(*model, world, wall_s);
     const auto& samples = recorder.samples();
     auto summary = app::summary_json(
@@ -232,7 +284,7 @@ py::object decode(const py::handle& experiment_in, const py::handle& genome_in) 
         genome_json = json::parse(genome_in.cast<std::string>(), nullptr, false);
         if (genome_json.is_discarded()) throw py::value_error("genome_json is not valid JSON");
     } else {
-        genome_json = from_python(genome_in);
+        genome_json = from_python(genome_in, "genome_json");
     }
     // A whole champion file holds the genome under "genome".
     if (genome_json.is_object() && genome_json.contains("genome"))
@@ -245,13 +297,14 @@ py::object decode(const py::handle& experiment_in, const py::handle& genome_in) 
     } catch (const std::invalid_argument& e) {
         throw py::value_error(std::string("cannot decode the genome: ") + e.what());
     } catch (const json::exception& e) {
-        throw py::value_error(std::string("cannot decode the genome: ") + e.what());
+        throw py::value_error(std::string("cannot decode the genome: ") +
+                              evo::without_json_tags(e.what()));
     }
 }
 
 // fitness.csv as one numpy column per header field.
 py::dict fitness_columns(const std::filesystem::path& path) {
-    std::istringstream in(read_text(path));
+    std::istringstream in(engine::read_text(path.string(), engine::kLargeFileCap));
     std::string line;
     if (!std::getline(in, line)) throw std::runtime_error(path.string() + ": empty file");
     std::vector<std::string> names;
@@ -298,7 +351,7 @@ py::dict fitness_columns(const std::filesystem::path& path) {
 
 py::dict load_run(const py::handle& dir_arg) {
     namespace fs = std::filesystem;
-    const fs::path dir(py::str(dir_arg).cast<std::string>());
+    const fs::path dir(path_arg(dir_arg, "run_dir", false));
     if (!fs::is_directory(dir)) throw py::value_error(dir.string() + ": not a run directory");
     const json run = read_json_file(dir / "run.json");
     py::dict out;
@@ -330,6 +383,14 @@ PYBIND11_MODULE(bhm, m) {
         "BHM Studio: validate experiment and body files, simulate bodies, decode genomes "
         "and read evolution run directories (docs: README, 'Python module').";
     m.attr("__version__") = BHM_VERSION_STRING;
+    // Anything else that escapes (a damaged run directory, say) reads without library tags.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const nlohmann::json::exception& e) {
+            PyErr_SetString(PyExc_ValueError, evo::without_json_tags(e.what()).c_str());
+        }
+    });
     m.def("validate", &validate, py::arg("path"), py::arg("experiment") = py::none(),
           "Problems of an experiment or body file as 'file:field: message' strings (empty when "
           "valid). A body is also checked against `experiment` (path or dict) when given.");

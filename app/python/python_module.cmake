@@ -1,7 +1,7 @@
 # The `bhm` Python module, only when Python 3 (with its headers) and pybind11 are found:
 # Debian's python3-dev, pybind11-dev / python3-pybind11 (numpy is needed at run time only).
 # Built into build/python/ so that PYTHONPATH=build/python python3 -c "import bhm" works.
-# It links engine + evo (compiled position-independent for it) and the two app/ files it wires;
+# It links engine + evo (compiled position-independent for it) and the few app/cli files it wires;
 # nothing of the renderer or the studio.
 if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
   # The system interpreter, whose headers and numpy the Debian packages provide (a pyenv or
@@ -25,6 +25,7 @@ if(Python3_FOUND AND pybind11_FOUND)
   # NO_EXTRAS: no link-time optimisation (slow on two cores) and no stripping.
   pybind11_add_module(bhm_python MODULE NO_EXTRAS ${CMAKE_CURRENT_SOURCE_DIR}/python/bhm_module.cpp
                       ${CMAKE_CURRENT_SOURCE_DIR}/cli/simulation_report.cpp
+                      ${CMAKE_CURRENT_SOURCE_DIR}/cli/simulation_limits.cpp
                       ${CMAKE_CURRENT_SOURCE_DIR}/cli/file_kind.cpp)
   target_include_directories(bhm_python PRIVATE ${BHM_ROOT} ${CMAKE_BINARY_DIR}/generated)
   target_link_libraries(bhm_python PRIVATE evo engine bhm_warnings)

@@ -13,6 +13,7 @@
 #include <system_error>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 #include "engine/limits.hpp"
 #include "evo/experiment/json_reader.hpp"
 #include "evo/experiment/scene.hpp"
@@ -48,16 +49,11 @@ std::vector<std::string> face_names() {
 }
 
 std::string read_text(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-        throw ValidationError({{path, "(file)", "no such file"}});
-    if (std::filesystem::is_directory(path, ec))
-        throw ValidationError({{path, "(file)", "is a directory, expected a JSON file"}});
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ValidationError({{path, "(file)", "cannot be opened for reading"}});
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    return buffer.str();
+    try {
+        return engine::read_text(path, engine::kTextFileCap);
+    } catch (const engine::FileReadError& e) {
+        throw ValidationError({{path, "(file)", e.reason()}});
+    }
 }
 
 json parse_json_text(const std::string& text, const std::string& path) {
@@ -66,9 +62,7 @@ json parse_json_text(const std::string& text, const std::string& path) {
     } catch (const json::exception& e) {
         // nlohmann's message starts with "[json.exception.parse_error.101] parse error at ...";
         // numbers beyond double's range (1e999) arrive as out_of_range.406.
-        std::string what = e.what();
-        if (auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);
-        throw ValidationError({{path, "(json)", what}});
+        throw ValidationError({{path, "(json)", without_json_tags(e.what())}});
     }
 }
 

@@ -4,7 +4,20 @@
 #include <cmath>
 #include <sstream>
 
+#include "engine/io/text_file.hpp"
+
 namespace bhm::evo {
+
+std::string without_json_tags(std::string text) {
+    static constexpr std::string_view kTag = "[json.exception.";
+    for (auto at = text.find(kTag); at != std::string::npos; at = text.find(kTag, at)) {
+        auto end = text.find(']', at);
+        if (end == std::string::npos) break;
+        if (end + 1 < text.size() && text[end + 1] == ' ') ++end;
+        text.erase(at, end + 1 - at);
+    }
+    return text;
+}
 
 int edit_distance(const std::string& a, const std::string& b) {
     std::vector<int> row(b.size() + 1);
@@ -67,15 +80,6 @@ const nlohmann::json* JsonReader::object(const nlohmann::json& obj, const std::s
     return &*it;
 }
 
-namespace {
-std::string format_number(double v) {
-    std::ostringstream out;
-    out.imbue(std::locale::classic());
-    out << v;
-    return out.str();
-}
-}  // namespace
-
 double JsonReader::number(const nlohmann::json& obj, const std::string& key,
                           const std::string& path, double fallback, std::optional<double> min,
                           std::optional<double> max, bool min_exclusive, bool max_exclusive) {
@@ -96,13 +100,13 @@ double JsonReader::number(const nlohmann::json& obj, const std::string& key,
     if (below || above) {
         std::string range;
         if (min && max)
-            range = std::string("in ") + (min_exclusive ? "(" : "[") + format_number(*min) + ", " +
-                    format_number(*max) + (max_exclusive ? ")" : "]");
+            range = std::string("in ") + (min_exclusive ? "(" : "[") + engine::format_number(*min) +
+                    ", " + engine::format_number(*max) + (max_exclusive ? ")" : "]");
         else if (min)
-            range = (min_exclusive ? "> " : ">= ") + format_number(*min);
+            range = (min_exclusive ? "> " : ">= ") + engine::format_number(*min);
         else
-            range = (max_exclusive ? "< " : "<= ") + format_number(*max);
-        problem(field, "must be " + range + ", got " + format_number(v));
+            range = (max_exclusive ? "< " : "<= ") + engine::format_number(*max);
+        problem(field, "must be " + range + ", got " + engine::format_number(v));
         return fallback;
     }
     return v;
@@ -121,7 +125,7 @@ long long JsonReader::integer(const nlohmann::json& obj, const std::string& key,
     if (it->is_number_float()) {
         double d = it->get<double>();
         if (!std::isfinite(d) || d != std::floor(d) || std::fabs(d) > 9e15) {
-            problem(field, "expected an integer, got " + format_number(d));
+            problem(field, "expected an integer, got " + engine::format_number(d));
             return fallback;
         }
     }

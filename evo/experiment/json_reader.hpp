@@ -13,6 +13,10 @@
 
 namespace bhm::evo {
 
+//! A message without nlohmann's "[json.exception.type_error.302] " tags, wherever they sit (a
+//! wrapped message carries them inside): no library's internal codes reach a user.
+std::string without_json_tags(std::string text);
+
 //! Levenshtein distance, for "did you mean" suggestions.
 int edit_distance(const std::string& a, const std::string& b);
 //! The closest candidate within a small edit distance, or "".

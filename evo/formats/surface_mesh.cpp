@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "evo/formats/vxa.hpp"
+#include "engine/io/text_file.hpp"
 
 namespace bhm::evo {
 
@@ -315,8 +315,8 @@ std::string obj_document(const SurfaceMesh& mesh, const std::vector<MaterialEntr
     const auto names = obj_material_names(materials);
     std::string out = "# BHM Studio voxel body surface, metres\nmtllib " + mtl_file_name + "\n";
     for (const auto& v : mesh.vertices)
-        out += "v " + format_number(v[0]) + " " + format_number(v[1]) + " " + format_number(v[2]) +
-               "\n";
+        out += "v " + engine::format_number(v[0]) + " " + engine::format_number(v[1]) + " " +
+               engine::format_number(v[2]) + "\n";
     for (std::size_t m = 1; m <= materials.size(); ++m) {
         bool started = false;
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -343,8 +343,8 @@ std::string mtl_document(const std::vector<MaterialEntry>& materials) {
     std::string out = "# BHM Studio materials\n";
     for (std::size_t i = 0; i < materials.size(); ++i) {
         const auto& c = materials[i].color;
-        out += "newmtl " + names[i] + "\nKd " + format_number(c[0]) + " " + format_number(c[1]) +
-               " " + format_number(c[2]) + "\n";
+        out += "newmtl " + names[i] + "\nKd " + engine::format_number(c[0]) + " " +
+               engine::format_number(c[1]) + " " + engine::format_number(c[2]) + "\n";
     }
     return out;
 }

@@ -1,10 +1,13 @@
 #include "evo/formats/vtk_series.hpp"
 
-#include <charconv>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::evo {
@@ -13,9 +16,7 @@ namespace {
 
 // Shortest text that reads back as the same float, locale-independent.
 void put(std::string& out, float value) {
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    out.append(buffer, result.ptr);
+    out += engine::format_number(value);
     out += ' ';
 }
 void put(std::string& out, long long value) {
@@ -180,25 +181,91 @@ std::string pvd_document(const std::vector<std::pair<double, std::string>>& fram
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
         "byte_order=\"LittleEndian\">\n<Collection>\n";
     for (const auto& [t, file] : frames) {
-        char time[40];
-        const auto result = std::to_chars(time, time + sizeof time, t);
-        out += "<DataSet timestep=\"" + std::string(time, result.ptr) +
+        out += "<DataSet timestep=\"" + engine::format_number(t) +
                "\" group=\"\" part=\"0\" file=\"" + file + "\"/>\n";
     }
     out += "</Collection>\n</VTKFile>\n";
     return out;
 }
 
+namespace fs = std::filesystem;
+
+// The files of a series, written straight into dir (the staging folder).
+static VtkSeriesSummary write_series_files(const std::string& dir, const engine::Replay& replay,
+                                           const std::vector<MaterialEntry>& materials, int every);
+
+namespace {
+
+bool is_series_file(const std::string& name) {
+    return name == "series.pvd" || name == "com_path.vtp" ||
+           (name.rfind("frame-", 0) == 0 && name.size() > 4 &&
+            name.compare(name.size() - 4, 4, ".vtu") == 0);
+}
+
+// Moves the complete new series from staging into dir. The old collection goes first, so from
+// then on the folder holds either no series.pvd or the new one: ParaView never loads a mix of
+// old and new frames. Files of dir that are not part of a series are left alone.
+void swap_in(const fs::path& staging, const fs::path& dir) {
+    std::error_code ec;
+    fs::remove(dir / "series.pvd", ec);
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.is_regular_file() && is_series_file(entry.path().filename().string()))
+            fs::remove(entry.path());
+    std::vector<fs::path> staged;
+    for (const auto& entry : fs::directory_iterator(staging))
+        staged.push_back(entry.path());
+    std::sort(staged.begin(), staged.end(), [](const fs::path& a, const fs::path& b) {
+        // series.pvd last: its presence means the frames it lists are in place.
+        return (a.filename() == "series.pvd") < (b.filename() == "series.pvd") ||
+               ((a.filename() == "series.pvd") == (b.filename() == "series.pvd") && a < b);
+    });
+    for (const auto& file : staged)
+        fs::rename(file, dir / file.filename());
+    fs::remove(staging);
+}
+
+}  // namespace
+
 VtkSeriesSummary write_vtk_series(const std::string& dir, const engine::Replay& replay,
                                   const std::vector<MaterialEntry>& materials, int every) {
-    namespace fs = std::filesystem;
     if (replay.frames.empty()) throw std::runtime_error(dir + ": the replay has no frames");
     if (every < 1) throw std::invalid_argument("VTK export: every must be >= 1");
     std::error_code ec;
+    const bool existed = fs::is_directory(dir, ec);
     fs::create_directories(dir, ec);
     if (!fs::is_directory(dir))
         throw std::runtime_error(dir + ": cannot create directory" +
                                  (ec ? " (" + ec.message() + ")" : std::string()));
+    // Every file is written into a staging folder first and swapped in whole at the end, so a
+    // failure part way (a full disk after frame 0, issue 26 N4) leaves the old series as it was.
+    const fs::path staging = fs::path(dir) / (".vtk-staging-" + std::to_string(::getpid()));
+    fs::remove_all(staging, ec);
+    if (!fs::create_directory(staging, ec))
+        throw std::runtime_error(staging.string() + ": cannot create the staging folder (" +
+                                 ec.message() + ")");
+    try {
+        VtkSeriesSummary summary = write_series_files(staging.string(), replay, materials, every);
+        swap_in(staging, dir);
+        summary.com_path = (fs::path(dir) / "com_path.vtp").string();
+        summary.pvd_path = (fs::path(dir) / "series.pvd").string();
+        return summary;
+    } catch (const std::exception& e) {
+        fs::remove_all(staging, ec);
+        if (!existed) fs::remove(dir, ec);  // only when empty: it was ours
+        const std::string message = e.what();
+        // Name the file the user asked for, not the staging copy.
+        const std::string staged = staging.string() + "/";
+        const auto at = message.find(staged);
+        throw std::runtime_error(at == std::string::npos
+                                     ? message
+                                     : message.substr(0, at) + dir + "/" +
+                                           message.substr(at + staged.size()) +
+                                           "; the previous series is unchanged");
+    }
+}
+
+static VtkSeriesSummary write_series_files(const std::string& dir, const engine::Replay& replay,
+                                           const std::vector<MaterialEntry>& materials, int every) {
     const fs::path root(dir);
     std::vector<std::pair<double, std::string>> written;
     std::vector<std::array<double, 3>> com;

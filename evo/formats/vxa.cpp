@@ -4,15 +4,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::evo {
-
-std::string format_number(double value) {
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, result.ptr);
-}
 
 namespace {
 
@@ -47,7 +42,7 @@ std::string element(const char* tag, const std::string& value) {
     return std::string("<") + tag + ">" + value + "</" + tag + ">";
 }
 std::string element(const char* tag, double value) {
-    return element(tag, format_number(value));
+    return element(tag, engine::format_number(value));
 }
 
 std::string fixed_region(const Experiment& e, int face) {
@@ -85,7 +80,7 @@ std::string vxa_document(const Experiment& e, const Body& body) {
         name.replace(at, 2, "- ");
     o << "<!-- Written by BHM Studio for experiment '" << escape_xml(name)
       << "'. VXA 1.0 has no settle delay: BHM starts actuation at t = "
-      << format_number(e.simulation.settle_s) << " s. -->\n";
+      << engine::format_number(e.simulation.settle_s) << " s. -->\n";
     o << "<Simulator>\n"
       << "<Integration>" << element("Integrator", "0")
       << element("DtFrac", e.simulation.dt_fraction) << "</Integration>\n"

@@ -11,7 +11,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/formats/xml_tree.hpp"
 
@@ -110,7 +112,7 @@ void read_simulator(VxaReader& r, const XmlNode* sim, Experiment& e, double& sto
     if (type == 2.0) {
         stop_s = r.number(stop, "StopConditionValue", "Simulator/StopCondition", -1.0);
     } else {
-        r.lost("Simulator/StopCondition/StopConditionType = " + format_number(type) +
+        r.lost("Simulator/StopCondition/StopConditionType = " + engine::format_number(type) +
                ": only a simulated-time stop (2) maps; BHM's evaluation time used");
     }
     init_cm_s = r.number(stop, "InitCmTime", "Simulator/StopCondition", 0.0);
@@ -152,12 +154,12 @@ void read_region(VxaReader& r, const XmlNode* region, const std::string& path, b
             r.lost(path + "/" + tag + ": prescribed forces and displacements are not simulated");
     if (dof == 0.0) return;
     if (dof != 63.0) {
-        r.lost(path + "/DofFixed = " + format_number(dof) +
+        r.lost(path + "/DofFixed = " + engine::format_number(dof) +
                ": only fully fixed regions (63) map; region ignored");
         return;
     }
     if (prim != 0.0) {
-        r.lost(path + "/PrimType = " + format_number(prim) +
+        r.lost(path + "/PrimType = " + engine::format_number(prim) +
                ": only box regions (0) map; region ignored");
         return;
     }
@@ -490,7 +492,8 @@ VxaImport parse_vxa(const std::string& text, const std::string& label) {
                 "BHM_Experiment: the file was changed after BHM wrote it; its VoxCAD fields "
                 "were read over the embedded experiment");
         } catch (const std::exception& ex) {
-            r.lost(std::string("BHM_Experiment: unreadable (") + ex.what() + "); ignored");
+            r.lost(std::string("BHM_Experiment: unreadable (") + without_json_tags(ex.what()) +
+                   "); ignored");
         }
     } else {
         e.name = std::filesystem::path(label).stem().string();
@@ -528,12 +531,9 @@ VxaImport parse_vxa(const std::string& text, const std::string& label) {
 }
 
 VxaImport load_vxa(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path + ": cannot read the file");
-    std::stringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw std::runtime_error(path + ": read failed");
-    return parse_vxa(text.str(), path);
+    // A VXA is a few kB to a few MB; the cap keeps a wrong file (a disk image, a 200 MB log)
+    // from being parsed into a DOM several times its size.
+    return parse_vxa(engine::read_text(path, engine::kTextFileCap), path);
 }
 
 }  // namespace bhm::evo

@@ -9,7 +9,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
 
@@ -50,7 +52,7 @@ std::string batch_csv(const std::vector<std::vector<HistoryRow>>& histories) {
         for (const auto& h : histories) {
             out += ",";
             if (g < h.size()) {
-                out += format_number(h[g].best_fitness);
+                out += engine::format_number(h[g].best_fitness);
                 best.push_back(h[g].best_fitness);
             }
         }
@@ -66,8 +68,9 @@ std::string batch_csv(const std::vector<std::vector<HistoryRow>>& histories) {
             half_width = student_t_975(static_cast<int>(best.size()) - 1) *
                          std::sqrt(ss / (n - 1.0)) / std::sqrt(n);
         }
-        out += "," + std::to_string(best.size()) + "," + format_number(mean) + "," +
-               format_number(mean - half_width) + "," + format_number(mean + half_width) + "\n";
+        out += "," + std::to_string(best.size()) + "," + engine::format_number(mean) + "," +
+               engine::format_number(mean - half_width) + "," +
+               engine::format_number(mean + half_width) + "\n";
     }
     return out;
 }
@@ -75,12 +78,12 @@ std::string batch_csv(const std::vector<std::vector<HistoryRow>>& histories) {
 namespace {
 
 nlohmann::json read_json(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path.string() + ": missing or unreadable");
+    const std::string text = engine::read_text(path.string(), engine::kTextFileCap);
     try {
-        return nlohmann::json::parse(in);
+        return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error(path.string() + ": not valid JSON (" + e.what() + ")");
+        throw std::runtime_error(path.string() + ": not valid JSON (" +
+                                 without_json_tags(e.what()) + ")");
     }
 }
 

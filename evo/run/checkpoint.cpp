@@ -10,10 +10,12 @@
 
 #include "bhm_version.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 #include "evo/evaluate/behaviour.hpp"
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_fields.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/crc32.hpp"
 
@@ -207,14 +209,6 @@ Fitness fitness_from_json(const json& fitness_json, const Experiment& base,
     } catch (const std::exception& ex) {
         throw FieldError(where + ": " + ex.what());
     }
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("missing or unreadable");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 }  // namespace
@@ -449,7 +443,7 @@ json parse_checkpoint_text(const std::string& text, std::vector<std::string>& no
     try {
         return json::parse(payload);
     } catch (const json::parse_error& e) {
-        throw std::runtime_error(std::string("not valid JSON (") + e.what() + ")");
+        throw std::runtime_error("not valid JSON (" + without_json_tags(e.what()) + ")");
     }
 }
 
@@ -477,7 +471,8 @@ LoadedCheckpoint load_checkpoint(const std::string& dir) {
         const std::string path = (fs::path(dir) / name).string();
         try {
             std::vector<std::string> notes;
-            const json j = parse_checkpoint_text(read_text(path), notes);
+            const json j =
+                parse_checkpoint_text(engine::read_text(path, engine::kLargeFileCap), notes);
             out.state = run_state_from_json(j, path);
             out.path = path;
             for (const auto& p : problems)
@@ -492,7 +487,9 @@ LoadedCheckpoint load_checkpoint(const std::string& dir) {
         }
     }
     throw std::runtime_error("no usable checkpoint in " + dir + ": " + problems[0] + "; " +
-                             problems[1]);
+                             problems[1] +
+                             ". Nothing can be resumed; a plain start (without --resume) into a "
+                             "new --out folder runs the experiment from generation 0");
 }
 
 }  // namespace bhm::evo

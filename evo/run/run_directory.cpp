@@ -2,12 +2,12 @@
 
 #include <charconv>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::evo {
@@ -21,18 +21,17 @@ std::string path_in(const std::string& dir, const char* name) {
     return (fs::path(dir) / name).string();
 }
 
-std::string read_whole(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw std::runtime_error(
-            path + ": cannot be read (is this a run directory written by 'bhm evolve'?)");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+std::string read_whole(const std::string& path, std::uint64_t cap) {
+    try {
+        return engine::read_text(path, cap);
+    } catch (const engine::FileReadError& e) {
+        throw std::runtime_error(e.what() +
+                                 std::string(" (is this a run directory written by 'bhm evolve'?)"));
+    }
 }
 
 json read_json_object(const std::string& path) {
-    json j = json::parse(read_whole(path), nullptr, false);
+    json j = json::parse(read_whole(path, engine::kTextFileCap), nullptr, false);
     if (j.is_discarded() || !j.is_object())
         throw std::runtime_error(path + ": not valid JSON (the file is damaged)");
     return j;
@@ -111,7 +110,7 @@ std::size_t FitnessTable::column(const std::string& name) const {
 FitnessTable read_fitness_table(const std::string& run_dir) {
     FitnessTable table;
     table.path = path_in(run_dir, kFitnessCsvFile);
-    std::istringstream in(read_whole(table.path));
+    std::istringstream in(read_whole(table.path, engine::kLargeFileCap));
     std::string line;
     if (!std::getline(in, line) || line.empty())
         throw std::runtime_error(table.path + ": empty, no header");

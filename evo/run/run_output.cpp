@@ -9,6 +9,7 @@
 
 #include "bhm_version.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
@@ -37,8 +38,8 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
         char wall[32];
         std::snprintf(wall, sizeof wall, "%lld.%03lld", wall_ms / 1000, wall_ms % 1000);
         out += std::to_string(h.generation) + "," + std::to_string(h.evaluations) + "," +
-               std::to_string(h.simulations) + "," + format_number(h.best_fitness) + "," +
-               format_number(h.median_fitness) + "," + std::to_string(h.best_age) + "," +
+               std::to_string(h.simulations) + "," + engine::format_number(h.best_fitness) + "," +
+               engine::format_number(h.median_fitness) + "," + std::to_string(h.best_age) + "," +
                std::to_string(h.best_id) + "," + std::to_string(h.diverged) + "," + wall + "," +
                (h.best_exploits.escaped ? "1," : "0,") +
                (h.best_exploits.detached_motion ? "1," : "0,") +
@@ -46,10 +47,11 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
                (species ? "," + std::to_string(h.species) : std::string());
         if (novelty) {
             const NoveltyRow n = h.novelty.value_or(NoveltyRow{});
-            out += "," + format_number(n.best_novelty) + "," + format_number(n.median_novelty) +
-                   "," + std::to_string(n.archive_size) + "," + std::to_string(n.archive_added) +
-                   "," + format_number(n.archive_threshold) + "," +
-                   format_number(n.champion_fitness);
+            out += "," + engine::format_number(n.best_novelty) + "," +
+                   engine::format_number(n.median_novelty) + "," + std::to_string(n.archive_size) +
+                   "," + std::to_string(n.archive_added) + "," +
+                   engine::format_number(n.archive_threshold) + "," +
+                   engine::format_number(n.champion_fitness);
         }
         out += "\n";
     }

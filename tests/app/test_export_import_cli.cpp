@@ -5,11 +5,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "../evo/mesh_check.hpp"
 #include "app/shell_run.hpp"
@@ -201,6 +203,42 @@ TEST_CASE("bhm export with a replay: deformed mesh at --time, VTK series with ev
                   " --time 99 --mesh " + f.path("late.stl"))
               .status == 1);
     CHECK_FALSE(fs::exists(f.path("late.stl")));
+}
+
+TEST_CASE("bhm export writes every output or none, and a VTK series is replaced whole") {
+    const Fixture f;
+    // The .mtl beside an .obj cannot be written (a folder holds its name): before the pre-check,
+    // out.vxa and body-out were written first, then the command failed half done (issue 26 N5).
+    fs::create_directories(f.path("m.mtl"));
+    const auto r =
+        bhm_run("export " + kExperiment + " --body " + f.body_path + " --vxa " + f.path("out.vxa") +
+                " --body-out " + f.path("b.json") + " --mesh " + f.path("m.obj"));
+    CHECK(r.status == 1);
+    CHECK(r.output.find(f.path("m.mtl") + ": is a folder") != std::string::npos);
+    CHECK(r.output.find("nothing was written") != std::string::npos);
+    CHECK_FALSE(fs::exists(f.path("out.vxa")));
+    CHECK_FALSE(fs::exists(f.path("b.json")));
+    CHECK_FALSE(fs::exists(f.path("m.obj")));
+
+    // A long series, then a one-frame series (the body at rest) into the same folder: none of
+    // the old frames is left beside the new ones, and no staging folder either. A user's own
+    // file in the folder stays.
+    const auto sim = bhm_run("simulate " + kExperiment + " --body " + f.body_path + " --out " +
+                             f.path("sim") + " --seconds 0.05");
+    REQUIRE_MESSAGE(sim.status == 0, sim.output);
+    REQUIRE(bhm_run("export " + kExperiment + " --body " + f.body_path + " --replay " +
+                    f.path("sim/replay.bin") + " --vtk " + f.path("vtk"))
+                .status == 0);
+    REQUIRE(fs::exists(f.path("vtk/frame-00001.vtu")));
+    std::ofstream(f.path("vtk/notes.txt")) << "mine";
+    REQUIRE(bhm_run("export " + kExperiment + " --body " + f.body_path + " --vtk " + f.path("vtk"))
+                .status == 0);
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(f.path("vtk")))
+        names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    CHECK(names ==
+          std::vector<std::string>{"com_path.vtp", "frame-00000.vtu", "notes.txt", "series.pvd"});
 }
 
 TEST_CASE("bhm import: our export round-trips exactly through the command line") {

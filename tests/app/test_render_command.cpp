@@ -163,6 +163,13 @@ TEST_CASE("bhm render --video pipes raw frames to ffmpeg and moves the file into
         return "PATH=" + path.parent_path().string() + ":/usr/bin:/bin";
     };
     const std::string good = script("good", "for a; do out=\"$a\"; done\ncat > \"$out\"\n");
+    // Its ffprobe counts the 4 frames sent: the file is then checked, not decoded.
+    const fs::path probe = bin / "good" / "ffprobe";
+    std::FILE* probe_file = std::fopen(probe.c_str(), "w");
+    REQUIRE(probe_file != nullptr);
+    std::fputs("#!/bin/sh\necho 4\n", probe_file);
+    std::fclose(probe_file);
+    fs::permissions(probe, fs::perms::owner_all);
     auto r = run(kExperiment + " --replay " + f.replay_path + " --video " + f.out("v.mp4") +
                      " --frames 4 --size 64x48 --fps 12",
                  good);

@@ -131,3 +131,44 @@ TEST_CASE("real ffmpeg: MP4 and GIF have every frame at the asked rate, with the
     REQUIRE_MESSAGE(g.status == 0, g.output);
     CHECK(probe(f.out("w.gif"), "stream=nb_read_frames", "nb_read_frames") == 6);
 }
+
+TEST_CASE("a video that ffmpeg claims to have written is verified before it replaces the old one") {
+    // A stand-in ffmpeg that drains the frames, says nothing and exits 0, leaving a file it
+    // cut short (what a full disk did to the real one in the trailer, issue 26 N1) or a whole
+    // video of other frames. Only the decode by ffprobe can tell.
+    const Fixture f;
+    const auto good = shell(kBhm + " render " + kExperiment + " --replay " + f.replay_path +
+                            " --video " + f.out("v.mp4") + " --size 64x48 --samples 1");
+    REQUIRE_MESSAGE(good.status == 0, good.output);
+    const auto six = shell(kBhm + " render " + kExperiment + " --replay " + f.replay_path +
+                           " --video " + f.out("six.mp4") + " --frames 6 --size 64x48 --samples 1");
+    REQUIRE_MESSAGE(six.status == 0, six.output);
+    const auto bytes = fs::file_size(f.out("v.mp4"));
+    const fs::path fake_dir = f.dir / "fake-bin";
+    fs::create_directories(fake_dir);
+    struct Case {
+        std::string what_it_leaves, expected;
+    } cases[] = {
+        {"head -c " + std::to_string(bytes * 2 / 3) + " " + f.out("v.mp4"),
+         "is damaged (ffprobe: "},
+        {"cat " + f.out("six.mp4"), "holds 6 frames, not the 11 sent"},
+        {"true", "ffmpeg left an empty file"},
+    };
+    for (const auto& c : cases) {
+        CAPTURE(c.what_it_leaves);
+        shell("printf '#!/bin/sh\\ncat >/dev/null\\nfor last; do :; done\\n" + c.what_it_leaves +
+              " > \"$last\"\\nexit 0\\n' > " + (fake_dir / "ffmpeg").string() + " && chmod +x " +
+              (fake_dir / "ffmpeg").string());
+        fs::copy_file(f.out("v.mp4"), f.out("old.mp4"), fs::copy_options::overwrite_existing);
+        const auto r = shell("PATH=" + fake_dir.string() + ":$PATH " + kBhm + " render " +
+                             kExperiment + " --replay " + f.replay_path + " --video " +
+                             f.out("v.mp4") + " --size 64x48 --samples 1");
+        CHECK(r.status == 1);
+        CHECK(r.output.find(f.out("v.mp4") + ": ") != std::string::npos);
+        CHECK(r.output.find(c.expected) != std::string::npos);
+        CHECK(r.output.find("the previous file is unchanged") != std::string::npos);
+        CHECK(r.output.find("wrote") == std::string::npos);
+        CHECK(shell("cmp " + f.out("v.mp4") + " " + f.out("old.mp4")).status == 0);
+        CHECK_FALSE(fs::exists(f.out("v.mp4.tmp.mp4")));
+    }
+}

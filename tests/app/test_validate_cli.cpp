@@ -110,3 +110,26 @@ TEST_CASE("mutated presets through the real binary never crash it") {
     CHECK(r.output.find("does-not-exist.json:(file): no such file") != std::string::npos);
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("bhm validate refuses endless files and folders by name instead of reading them") {
+    // Before the capped reader, /dev/zero was read into memory until the machine ran out.
+    auto r = run("validate /dev/zero");
+    CHECK(r.status == 1);
+    CHECK(r.output ==
+          "/dev/zero:(file): is not a regular file (a device, pipe or socket); give a "
+          "file\n");
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("bhm-validate-folder-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    r = run("validate " + dir.string());
+    CHECK(r.status == 1);
+    CHECK(r.output == dir.string() + ":(file): is a directory, not a file\n");
+    // Over the 64 MiB cap of a JSON file: refused before parsing, naming the cap.
+    const auto big = dir / "big.json";
+    std::ofstream(big).close();
+    std::filesystem::resize_file(big, 64 * 1024 * 1024 + 1);  // sparse: no disk used
+    r = run("validate " + big.string());
+    CHECK(r.status == 1);
+    CHECK(r.output.find("big.json:(file): is larger than the 64 MiB") != std::string::npos);
+    std::filesystem::remove_all(dir);
+}

@@ -221,3 +221,32 @@ TEST_CASE("writing into a missing directory fails with the path") {
     CHECK_THROWS_WITH_AS(bhm::engine::write_replay(file.string(), sample_replay()),
                          doctest::Contains(file.string().c_str()), std::runtime_error);
 }
+
+TEST_CASE("non-finite poses are refused at the reader, naming the frame and the voxel") {
+    const fs::path dir = fresh_dir("non-finite");
+    const float inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    SUBCASE("a position") {
+        Replay r = sample_replay();
+        r.frames[1].position_m[3 * 2 + 1] = nan;  // frame 1, voxel 2 (cell 3), y
+        bhm::engine::write_replay((dir / "p.bin").string(), r);
+        CHECK(error_of(dir / "p.bin") ==
+              (dir / "p.bin").string() +
+                  ": corrupt replay: frame 1 voxel 2 (cell 3) position is nan, not a finite "
+                  "number; record the replay again");
+    }
+    SUBCASE("a size") {
+        Replay r = sample_replay();
+        r.frames[0].size_m[3 * 1] = -inf;
+        bhm::engine::write_replay((dir / "s.bin").string(), r);
+        CHECK(error_of(dir / "s.bin").find("frame 0 voxel 1 (cell 1) size is -inf") !=
+              std::string::npos);
+    }
+    SUBCASE("an orientation") {
+        Replay r = sample_replay();
+        r.frames[1].orientation[4 * 0 + 3] = inf;
+        bhm::engine::write_replay((dir / "q.bin").string(), r);
+        CHECK(error_of(dir / "q.bin").find("frame 1 voxel 0 (cell 0) orientation is inf") !=
+              std::string::npos);
+    }
+}

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/io/text_file.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo_test_support.hpp"
 #include "xml_check.hpp"
@@ -87,10 +88,10 @@ TEST_CASE("VXA numbers ignore the process locale") {
     const std::string saved = previous ? previous : "C";
     // A comma-decimal locale, when the machine has one; the output must not change.
     const bool switched = std::setlocale(LC_NUMERIC, "de_DE.UTF-8") != nullptr;
-    CHECK(format_number(0.35) == "0.35");
-    CHECK(format_number(5e6) == "5e+06");
-    CHECK(format_number(1234.5) == "1234.5");
-    CHECK(format_number(-9.81) == "-9.81");
+    CHECK(bhm::engine::format_number(0.35) == "0.35");
+    CHECK(bhm::engine::format_number(5e6) == "5e+06");
+    CHECK(bhm::engine::format_number(1234.5) == "1234.5");
+    CHECK(bhm::engine::format_number(-9.81) == "-9.81");
     std::setlocale(LC_NUMERIC, saved.c_str());
     if (!switched) MESSAGE("no de_DE locale installed: checked in the C locale only");
 }

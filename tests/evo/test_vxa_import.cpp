@@ -2,7 +2,11 @@
 // exactly, the VoxCAD fields of our export alone, and clear errors for broken files.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/scene.hpp"
@@ -276,4 +280,20 @@ TEST_CASE("broken VXA files fail with the file and the field") {
                "names no palette material");
     fails_with("<VXC><Lattice><Lattice_Dim>abc</Lattice_Dim></Lattice>" + palette + "</VXC>",
                "Lattice_Dim");
+}
+
+TEST_CASE("a VXA over the 64 MiB cap, a folder or a device is refused by name before parsing") {
+    // Before the cap, a 200 MB file was parsed with 887 MB of memory (issue 26 N3).
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("bhm-test-vxa-cap-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto big = (dir / "huge.vxa").string();
+    std::ofstream(big).close();
+    std::filesystem::resize_file(big, 64 * 1024 * 1024 + 1);  // sparse: no disk used
+    CHECK_THROWS_WITH(load_vxa(big),
+                      doctest::Contains((big + ": is larger than the 64 MiB").c_str()));
+    CHECK_THROWS_WITH(load_vxa(dir.string()),
+                      (dir.string() + ": is a directory, not a file").c_str());
+    CHECK_THROWS_WITH(load_vxa("/dev/zero"), doctest::Contains("/dev/zero: is not a regular file"));
+    std::filesystem::remove_all(dir);
 }

@@ -7,6 +7,9 @@ import copy
 import csv
 import json
 import os
+import pathlib
+import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -194,6 +197,88 @@ class Runs(Fixture):
         self.assertEqual(bhm.decode(run["experiment"], champion), body)
         with self.assertRaises(ValueError):
             bhm.decode(run["experiment"], {"nodes": "nonsense"})
+
+
+class Limits(unittest.TestCase):
+    """The module applies the command line's limits, checks its arguments and can be interrupted
+    (issue 26 N2, N3, N7)."""
+
+    def test_endless_durations_are_refused_as_the_command_line_refuses_them(self):
+        e = small_experiment()
+        for seconds in (math_inf := float("inf"), -math_inf, float("nan"), 1e300, 1e6, 0.0, -1.0):
+            with self.assertRaises(ValueError, msg=str(seconds)) as caught:
+                bhm.simulate(e, BODY, seconds=seconds)
+            self.assertIn("seconds", str(caught.exception))
+        with self.assertRaises(ValueError) as caught:
+            bhm.simulate(e, BODY, seconds=1e6)
+        budget = str(caught.exception)
+        self.assertIn("cannot simulate 1e+06 s: needs ", budget)
+        with tempfile.TemporaryDirectory() as d:
+            for name, doc in (("e.json", e), ("b.json", BODY)):
+                with open(os.path.join(d, name), "w") as f:
+                    json.dump(doc, f)
+            code, out = run_cli("simulate", os.path.join(d, "e.json"), "--body",
+                                os.path.join(d, "b.json"), "--seconds", "1e6", "--out",
+                                os.path.join(d, "out"))
+        self.assertEqual(code, 1)
+        self.assertIn(budget[budget.index("cannot simulate"):], out)
+
+    def test_arguments_of_the_wrong_type_are_type_errors(self):
+        e = small_experiment()
+        for call in (lambda: bhm.validate({"size": [1, 1, 1]}), lambda: bhm.validate(42),
+                     lambda: bhm.simulate(e, 3.5), lambda: bhm.simulate(None, BODY),
+                     lambda: bhm.load_run(["run"]), lambda: bhm.simulate(e, BODY, seconds={})):
+            with self.assertRaises(TypeError):
+                call()
+        self.assertEqual(bhm.validate(pathlib.Path(QUICK_DEMO)), [])
+        with self.assertRaises(TypeError) as caught:
+            bhm.simulate({"simulation": {1, 2}}, BODY)
+        self.assertIn("<experiment dict>", str(caught.exception))
+
+    def test_json_problems_read_as_messages_not_library_codes(self):
+        e = small_experiment()
+        e["simulation"]["settle_s"] = float("nan")
+        with self.assertRaises(ValueError) as caught:
+            bhm.simulate(e, BODY)
+        self.assertIn("<experiment dict>: not valid JSON", str(caught.exception))
+        self.assertNotIn("json.exception", str(caught.exception))
+        with self.assertRaises(ValueError) as caught:
+            bhm.decode(QUICK_DEMO, "{\"nodes\": [1, 2")
+        self.assertNotIn("json.exception", str(caught.exception))
+
+    def test_too_few_samples_are_refused(self):
+        e = small_experiment()
+        e["simulation"]["record_fps"] = 0.001  # gave 2 samples and "max displacement 0"
+        with self.assertRaises(ValueError) as caught:
+            bhm.simulate(e, BODY)
+        self.assertIn("simulation.record_fps 0.001 records no sample between the start and the end",
+                      str(caught.exception))
+
+    def test_endless_files_are_refused_by_name(self):
+        problems = bhm.validate("/dev/zero")
+        self.assertEqual(len(problems), 1)
+        self.assertIn("/dev/zero:(file): is not a regular file", problems[0])
+
+    def test_ctrl_c_interrupts_a_long_simulation_within_a_second(self):
+        e = small_experiment()
+        with self.assertRaises(ValueError) as caught:
+            bhm.simulate(e, BODY, seconds=1e6)
+        # The longest simulation the budget allows (half of it): minutes to hours of wall time.
+        dt = float(re.search(r"steps of ([0-9.e+-]+) s", str(caught.exception)).group(1))
+        seconds = 0.5 * 1e8 * dt
+        e["simulation"]["record_fps"] = 25  # few samples: polling must not wait for them
+        sent = []
+
+        def interrupt():
+            time.sleep(0.5)
+            sent.append(time.monotonic())
+            os.kill(os.getpid(), signal.SIGINT)
+
+        threading.Thread(target=interrupt, daemon=True).start()
+        with self.assertRaises(KeyboardInterrupt):
+            bhm.simulate(e, BODY, seconds=seconds)
+        self.assertTrue(sent, "the simulation ended before the interrupt")
+        self.assertLess(time.monotonic() - sent[0], 1.0)
 
 
 if __name__ == "__main__":

@@ -7,15 +7,19 @@ Cases (each a ctest entry, "reliability: CASE"):
   kill9         kill -9 at random moments, resume until done: the same run as an uninterrupted one
   busy          a second writer of a run directory is refused naming the owner; SIGINT stops the
                 first within a second with its checkpoint named; then the second may resume
-  enospc        a full disk (or EIO) injected into write(2) for PNG, frames, replay, VXA, checkpoint
-                and screenshot: exit 1, the system's reason, the old file untouched, no "wrote"
+  enospc        a full disk (or EIO) injected into write(2) for PNG, frames, replay, VXA, checkpoint,
+                video, GIF (inside ffmpeg) and screenshot: exit 1, the system's reason, the old
+                file untouched, no "wrote"
   unwritable    --resume into a run directory the user cannot write fails before any simulation
   checkpoint    random byte flips in checkpoint.json: always noticed, the previous one used, and
-                the resumed run equals the uninterrupted one
+                the resumed run equals the uninterrupted one; no usable checkpoint says what to
+                do; a checkpoint replaced by a folder is refused before any simulation
   replay-fuzz   damaged replays (non-finite and huge sizes, flipped bytes, truncation) through
                 bhm render --color strain|displacement: exit 0/1/2/3 only
-  mutation-fuzz >= 1000 mutated experiment, body, replay and VXA files through every subcommand:
-                exit 0/1/2/3 only, no signal, no sanitizer report
+  mutation-fuzz >= 1000 mutated experiment, body, replay and VXA files through every subcommand
+                (import, mesh and VTK export of mutated replays included) and, with
+                --python-module, the Python module's entry points: exit 0/1/2/3 only, no
+                signal, no sanitizer report, no '[json.exception...]' text
 
 Timings are never asserted except the documented bound of the stop (1 s, with margin for load).
 """
@@ -53,8 +57,10 @@ def check(condition, message):
 
 
 class Bhm:
-    def __init__(self, path, shim, work):
+    def __init__(self, path, shim, work, python_module=None):
         self.path, self.shim, self.work = path, shim, work
+        self.python_module = python_module  # build/python, where the bhm module is (optional)
+        self.python = sys.executable
         self.env = dict(os.environ)
         self.env.setdefault("GALLIUM_DRIVER", "llvmpipe")
         self.env.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
@@ -68,6 +74,17 @@ class Bhm:
             env.update({k: str(v) for k, v in fault.items()})
         try:
             p = subprocess.run(list(prefix) + [self.path] + args, env=env, cwd=self.work,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout)
+            return p.returncode, p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
+        except subprocess.TimeoutExpired:
+            return None, "", "timeout"
+
+    def run_python(self, args, timeout=60):
+        """The Python module's entry points on the same files (PYTHON_CASE below)."""
+        env = dict(self.env)
+        env["PYTHONPATH"] = self.python_module
+        try:
+            p = subprocess.run([self.python, "-c", PYTHON_CASE] + args, env=env, cwd=self.work,
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout)
             return p.returncode, p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
         except subprocess.TimeoutExpired:
@@ -234,6 +251,19 @@ def case_enospc(bhm, rng):
     expect_enospc("export --vxa", bhm.run(["export", EXPERIMENT, "--body", BODY, "--vxa", vxa],
                                           {"BHM_FAULT_FILE": "body.vxa"}), old_vxa, vxa)
 
+    # A VTK series replaced by a longer one, the disk full at its third frame (issue 26 N4): the
+    # old series stays whole, with no new frame 0 beside it and no staging folder.
+    vtk = fresh(w, "vtk")
+    rc, _, err = bhm.run(["export", EXPERIMENT, "--body", BODY, "--vtk", vtk])
+    if check(rc == 0, "export --vtk failed: " + err):
+        old_series = {n: open(os.path.join(vtk, n), "rb").read() for n in os.listdir(vtk)}
+        result = bhm.run(["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--vtk", vtk],
+                         {"BHM_FAULT_FILE": "frame-00002"})
+        expect_enospc("export --vtk", result, None, os.path.join(vtk, "frame-00002.vtu"))
+        check("the previous series is unchanged" in result[2], "export --vtk: " + result[2])
+        now = {n: open(os.path.join(vtk, n), "rb").read() for n in os.listdir(vtk)}
+        check(now == old_series, "export --vtk: the old series was changed: %s" % sorted(now))
+
     run = fresh(w, "run-enospc")
     rc, _, err = bhm.run(evolve_args(run, 2))
     check(rc == 0, "evolve failed: " + err)
@@ -249,13 +279,33 @@ def case_enospc(bhm, rng):
     bhm.run(evolve_args(reference, 4))
     check(run_files(run) == run_files(reference), "the run after a full disk differs")
 
+    # ffmpeg fails in the trailer on a full disk but exits 0 (issue 26 N1): the video is verified
+    # before it replaces anything; with --video and --gif together neither is replaced.
+    videos = ["render", EXPERIMENT, "--replay", replay, "--size", "64x48", "--samples", "1",
+              "--video", os.path.join(w, "good.mp4"), "--gif", os.path.join(w, "good.gif")]
+    rc, _, err = bhm.run(videos)
+    if check(rc == 0, "render --video --gif failed: " + err):
+        old = {n: open(os.path.join(w, n), "rb").read() for n in ("good.mp4", "good.gif")}
+        for name, after in (("good.mp4", 0), ("good.mp4", 1), ("good.mp4", 3), ("good.gif", 0)):
+            label = "render --video --gif, %s full after %d writes" % (name, after)
+            rc, out, err = bhm.run(videos, {"BHM_FAULT_FILE": name, "BHM_FAULT_AFTER": after})
+            expect_enospc(label, (rc, out, err), old[name], os.path.join(w, name))
+            check(name + ": " in err and "the previous file is unchanged" in err,
+                  "%s: the message does not name the file: %s" % (label, err))
+            for other in old:
+                check(open(os.path.join(w, other), "rb").read() == old[other],
+                      "%s: %s was replaced" % (label, other))
+                check(not os.path.exists(os.path.join(w, other + ".tmp" + other[-4:])),
+                      "%s: a temporary video was left behind" % label)
+
     shot = os.path.join(w, "shot.png")
     shutil.copy(png, shot)
     expect_enospc("studio --screenshot",
                   bhm.run(["studio", "--headless", "--frames", "1", "--size", "160x120",
                            "--screenshot", shot], {"BHM_FAULT_FILE": "shot.png"}, timeout=120),
                   good, shot)
-    print("enospc: render, frames, simulate, export, evolve and studio keep the old file and exit 1")
+    print("enospc: render, frames, video, GIF, simulate, export, evolve and studio keep the old "
+          "file and exit 1")
 
 
 def run_as_other_user():
@@ -313,6 +363,25 @@ def case_checkpoint(bhm, rng):
         if full:
             check(run_files(d) == expected, "flip at byte %d: the resumed run differs" % at)
     print("checkpoint: %d/24 single-bit flips noticed, the previous checkpoint used" % noticed)
+
+    # Both checkpoints unusable: the message says what still works (issue 26).
+    d = fresh(bhm.work, "ck-none")
+    shutil.copytree(base, d)
+    for name in ("checkpoint.json", "checkpoint.prev.json"):
+        open(os.path.join(d, name), "w").write("{")
+    rc, _, err = bhm.run(evolve_args(d, 5) + ["--resume"])
+    check(rc == 1, "no usable checkpoint: exit %s: %s" % (rc, err))
+    check("a plain start (without --resume)" in err, "no usable checkpoint: " + err)
+    check("json.exception" not in err, "a library's tag reached the user: " + err)
+    # checkpoint.json replaced by a folder: refused before any simulation, not a generation later.
+    d = fresh(bhm.work, "ck-folder")
+    shutil.copytree(base, d)
+    os.remove(os.path.join(d, "checkpoint.json"))
+    os.mkdir(os.path.join(d, "checkpoint.json"))
+    rc, _, err = bhm.run(evolve_args(d, 5) + ["--resume"])
+    check(rc == 1, "checkpoint folder: exit %s: %s" % (rc, err))
+    check("checkpoint.json: is not a regular file" in err, "checkpoint folder: " + err)
+    check("gen " not in err, "checkpoint folder: it simulated before failing: " + err)
 
 
 # --- fuzzing -----------------------------------------------------------------------------------
@@ -406,10 +475,41 @@ def mutate_replay(data, rng):
     return mutate_bytes(bytes(data), rng)
 
 
+# One fuzz case of the Python module: every entry point on the (mutated) files, and on the same
+# documents as dicts. A clean refusal is a ValueError or TypeError; anything else (another
+# exception, a crash) exits with another status and fails the case.
+PYTHON_CASE = r"""
+import json, sys
+import bhm
+exp, body, run_dir = sys.argv[1:4]
+def doc(path):
+    try:
+        return json.load(open(path, encoding="latin-1"))
+    except ValueError:
+        return None
+clean = 0
+for call in (lambda: bhm.validate(exp), lambda: bhm.validate(body, exp),
+             lambda: bhm.simulate(exp, body, seconds=0.02),
+             lambda: bhm.simulate(doc(exp), doc(body), seconds=0.02),
+             lambda: bhm.decode(exp, doc(body)), lambda: bhm.load_run(run_dir)):
+    try:
+        call()
+    except (ValueError, TypeError) as e:
+        if "json.exception" in str(e):
+            print("library tag in: %s" % e, file=sys.stderr)
+            sys.exit(3)
+        clean += 1
+print("%d clean refusals" % clean)
+"""
+
+
 def classify(result, label, sanitizer_seen):
     rc, out, err = result
     if rc is None:
         return "timeout"
+    if "[json.exception." in err:
+        fail("%s: a library's message reached the user: %s" % (label, err[-300:]))
+        return "bad"
     if rc not in (0, 1, 2, 3):
         fail("%s: exit status %s (a signal or an unexpected code): %s" % (label, rc, err[-500:]))
         return "bad"
@@ -443,14 +543,14 @@ def fuzz(bhm, rng, cases, plan, label):
         os.makedirs(d, exist_ok=True)
         exp, body, replay, vxa = EXPERIMENT, BODY, os.path.join(d, "r.bin"), os.path.join(d, "b.vxa")
         case_rng = random.Random(rng.getrandbits(64))
-        if kind in ("validate", "simulate", "evolve", "export", "render-body"):
+        if kind in ("validate", "simulate", "evolve", "export", "render-body", "python"):
             if case_rng.random() < 0.6:
                 exp = os.path.join(d, "e.json")
                 open(exp, "w", encoding="latin-1").write(mutate_json(seeds["experiment"], case_rng))
             if kind != "evolve" and (exp == EXPERIMENT or case_rng.random() < 0.4):
                 body = os.path.join(d, "b.json")
                 open(body, "w", encoding="latin-1").write(mutate_json(seeds["body"], case_rng))
-        if kind in ("render-replay", "export-replay"):
+        if kind in ("render-replay", "export-replay", "export-vtk"):
             open(replay, "wb").write(mutate_replay(seeds["replay"], case_rng))
         if kind == "import":
             open(vxa, "wb").write(mutate_bytes(seeds["vxa"], case_rng))
@@ -463,6 +563,9 @@ def fuzz(bhm, rng, cases, plan, label):
                        out + ".json", "--mesh", out + ".stl"],
             "export-replay": ["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--mesh",
                               out + ".obj"],
+            "export-vtk": ["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--vtk",
+                           out + "-vtk", "--mesh", out + ".stl"],
+            "python": [exp, body, d],
             "import": ["import", vxa, "--experiment-out", out + "-e.json", "--body-out",
                        out + "-b.json"],
             "render-body": ["render", exp, "--body", body, "--out", out + ".png", "--size", "48x36",
@@ -476,7 +579,8 @@ def fuzz(bhm, rng, cases, plan, label):
     counts = {}
     started = time.time()
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        futures = {pool.submit(bhm.run, args, None, 60): (i, kind, args) for i, kind, args in jobs}
+        futures = {pool.submit(bhm.run_python if kind == "python" else bhm.run, args, timeout=60):
+                   (i, kind, args) for i, kind, args in jobs}
         for future in concurrent.futures.as_completed(futures):
             i, kind, args = futures[future]
             verdict = classify(future.result(), "case %d (%s: bhm %s)" % (i, kind, " ".join(args)),
@@ -497,7 +601,8 @@ def case_replay_fuzz(bhm, rng):
 def case_mutation_fuzz(bhm, rng):
     # Weighted by cost: the GL renders and evolutions take longest.
     kinds = ["validate"] * 30 + ["simulate"] * 22 + ["export"] * 14 + ["import"] * 10 + \
-            ["export-replay"] * 8 + ["evolve"] * 8 + ["render-body"] * 4 + ["render-replay"] * 4
+            ["export-replay"] * 8 + ["export-vtk"] * 6 + ["evolve"] * 8 + ["render-body"] * 4 + \
+            ["render-replay"] * 4 + (["python"] * 6 if bhm.python_module else [])
     fuzz(bhm, rng, 1000, lambda i, r: r.choice(kinds), "mutation-fuzz")
 
 
@@ -513,10 +618,15 @@ def main():
     parser.add_argument("--shim", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("--seed", type=int, default=11)
+    parser.add_argument("--python-module", help="folder of the bhm Python module (fuzzed too)")
+    parser.add_argument("--python", default=sys.executable,
+                        help="the interpreter the module was built for (default: this one)")
     a = parser.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
     os.makedirs(a.work)
-    bhm = Bhm(os.path.abspath(a.bhm), os.path.abspath(a.shim), os.path.abspath(a.work))
+    bhm = Bhm(os.path.abspath(a.bhm), os.path.abspath(a.shim), os.path.abspath(a.work),
+              os.path.abspath(a.python_module) if a.python_module else None)
+    bhm.python = a.python
     CASES[a.case](bhm, random.Random(a.seed))
     if failures:
         print("%d failure(s)" % len(failures), file=sys.stderr)

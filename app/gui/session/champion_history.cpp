@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 
 namespace bhm::app::gui {
 
@@ -16,14 +18,12 @@ using nlohmann::json;
 namespace {
 
 json read_json(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
+    const std::string text = engine::read_text(path, engine::kTextFileCap);
     try {
-        return json::parse(text.str());
+        return json::parse(text);
     } catch (const json::exception& e) {
-        throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
+        throw std::runtime_error(path + ": not valid JSON (" + evo::without_json_tags(e.what()) +
+                                 ")");
     }
 }
 
@@ -89,7 +89,8 @@ std::shared_ptr<const evo::Body> load_champion_body(const std::string& path) {
     try {
         return std::make_shared<const evo::Body>(evo::parse_body(j.at("phenotype"), path));
     } catch (const json::exception& e) {
-        throw std::runtime_error(path + ": no phenotype (" + e.what() + ")");
+        throw std::runtime_error(path + ": no phenotype (" + evo::without_json_tags(e.what()) +
+                                 ")");
     }
 }
 
