@@ -53,8 +53,24 @@ private:
     std::unique_ptr<State> state_;
 };
 
-//! Runs a world from t = 0 to total_s, calling observe(world) at t = 0 and every 1/sample_hz
-//! seconds of simulated time (and at the end). Stops early on divergence.
+//! What a run's poll hook tells it: go on, or end here (the world keeps the state reached).
+enum class RunVerdict { Continue, Stop };
+
+//! The callbacks of run(); each may be empty.
+struct RunHooks {
+    //! At t = 0, every 1/sample_hz seconds of simulated time and at the end.
+    std::function<void(const World&)> observe;
+    //! Every poll_steps steps and right after each observe: a caller pauses here (by waiting),
+    //! cancels (by throwing) or ends the run early (Stop). It never changes the steps taken.
+    std::function<RunVerdict(const World&)> poll;
+    int poll_steps = 64;  //!< a few milliseconds even for large bodies
+};
+
+//! Runs a world from t = 0 to total_s, calling hooks.observe(world) at t = 0 and every
+//! 1/sample_hz seconds of simulated time (and at the end). Stops early on divergence or when
+//! hooks.poll says Stop. Polling slices the advance without changing it: dt is fixed and
+//! advance_to stops at the first step at or past its target, so the same steps are taken.
+void run(World& world, double total_s, double sample_hz, const RunHooks& hooks);
 void run(World& world, double total_s, double sample_hz,
          const std::function<void(const World&)>& observe);
 

@@ -386,9 +386,13 @@ bool EvolutionRun::run_generation() {
     } catch (const EvaluationCancelled&) {
         return false;
     }
-    int diverged = 0;
-    for (const auto& r : results)
+    int diverged = 0, ended_early = 0;
+    double simulated_s = 0.0;
+    for (const auto& r : results) {
         diverged += r.diverged ? 1 : 0;
+        ended_early += r.ended_early ? 1 : 0;
+        simulated_s += r.simulated_s;
+    }
     for (std::size_t i = 0; i < fresh.size(); ++i) {
         if (job_of[i] < 0) continue;
         fresh[i].report = results[static_cast<std::size_t>(job_of[i])];
@@ -450,6 +454,11 @@ bool EvolutionRun::run_generation() {
     row.best_age = best.age;
     row.best_id = best.id;
     row.diverged = diverged;
+    row.ended_early = ended_early;
+    row.mean_simulated_s =
+        results.empty() ? 0.0 : simulated_s / static_cast<double>(results.size());
+    row.best_simulated_s = best.report.simulated_s;
+    row.best_periodic_residual = best.report.periodic_residual;
     row.wall_s = state_.elapsed_s + generation_wall_s;
     row.rules_version = rules_version;
     row.best_exploits = best.report.exploits;

@@ -111,8 +111,8 @@ TEST_CASE("studio run directory: a folder that is not a run, or a damaged file, 
     evo::RunState state;
     state.experiment = testing::tiny_experiment();
     out.write_run_info(state.experiment, state);
-    std::ofstream(dir / "fitness.csv") << evo::kFitnessCsvHeader
-                                     << "\n0,4,4,abc,1,0,3,0,1.0,0,0,0,0\n";
+    std::ofstream(dir / "fitness.csv")
+        << evo::kFitnessCsvHeader << "\n0,4,4,abc,1,0,3,0,1.0,0,0,0,0,0,11,11,0\n";
     watch.open(dir.string());
     CHECK_FALSE(watch.refresh());
     CHECK(watch.error().find("fitness.csv: row 2 is not numeric") != std::string::npos);
