@@ -131,8 +131,8 @@ int simulate(ArgParser& args) {
             if (periodic.observe(sample)) {
                 repeated = true;
                 would_stop_s = w.time_s();
-                for (const evo::TrackSample& later : periodic.remaining_samples())
-                    extrapolated.observe(later);
+                periodic.extrapolate(
+                    [&](const evo::TrackSample& later) { extrapolated.observe(later); });
             }
         }
         progress.update(w.time_s(), w.steps());

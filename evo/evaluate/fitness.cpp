@@ -138,9 +138,7 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     hooks.poll_steps = kControlCheckSteps;
     engine::run(world, evaluation_seconds(experiment), sample_hz, hooks);
     const bool ended_early = repeats && !world.diverged();
-    if (ended_early)
-        for (const TrackSample& sample : periodic.remaining_samples())
-            observe(sample);
+    if (ended_early) periodic.extrapolate(observe);
 
     FitnessReport report;
     report.measures = tracker.measures();

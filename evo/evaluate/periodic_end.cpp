@@ -70,10 +70,12 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
     if (!enabled() || !settled(sample.t_s, settle_s_)) return false;
     if (first_settled_ < 0) {
         first_settled_ = k;
+        reference_ = sample;
         can_bend_ = norm(minus(sample.bend_tip_m, sample.bend_base_m)) > 0.0;
     }
     settled_.push_back(sample);
     const int S = samples_per_period_;
+    if (settled_.size() > static_cast<std::size_t>(2 * S + 1)) settled_.pop_front();
     const auto n = static_cast<std::int64_t>(settled_.size());
     if (n < 2 * S + 1 || k >= last_sample_) return false;
     const std::int64_t periods_left = (last_sample_ - k + S - 1) / S;
@@ -85,7 +87,7 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
         return settled_[static_cast<std::size_t>(i)];
     };
     const TrackSample& now = at(n - 1);
-    const TrackSample& ref = at(0);  // the settled state
+    const TrackSample& ref = reference_;
     bool repeats = true;
     double worst = 0.0;
     for (int t = 0; t < TrackSample::kTracks; ++t) {
@@ -124,11 +126,10 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
     return repeats;
 }
 
-std::vector<TrackSample> PeriodicEnd::remaining_samples() const {
-    std::vector<TrackSample> out;
+void PeriodicEnd::extrapolate(const std::function<void(const TrackSample&)>& observe) const {
     const int S = samples_per_period_;
     const auto n = static_cast<std::int64_t>(settled_.size());
-    if (!enabled() || n < S + 1) return out;
+    if (!enabled() || n < S + 1) return;
     const std::int64_t last = observed_ - 1;  // index of the last observed sample
     const TrackSample& now = settled_.back();
     const TrackSample& before = settled_[static_cast<std::size_t>(n - 1 - S)];
@@ -140,9 +141,8 @@ std::vector<TrackSample> PeriodicEnd::remaining_samples() const {
         for (int t = 0; t < TrackSample::kTracks; ++t)
             for (std::size_t c = 0; c < 3; ++c)
                 s.track(t)[c] += static_cast<double>(q) * (now.track(t)[c] - before.track(t)[c]);
-        out.push_back(s);
+        observe(s);
     }
-    return out;
 }
 
 double periodic_end_error(const FitnessReport& early, const FitnessReport& full) {

@@ -17,6 +17,8 @@
 // descriptor) is what the full run would have measured, within the tolerance.
 // It applies only when a period and the whole run are each a whole number of samples; otherwise
 // (and when switched off) the evaluation runs the full time.
+#include <deque>
+#include <functional>
 #include <vector>
 
 #include "evo/evaluate/fitness.hpp"
@@ -35,8 +37,9 @@ class PeriodicEnd {
     //! Adds the next simulated sample (every scheduled one, in order). True when the tracks
     //! repeat closely enough that the rest of the run can be extrapolated.
     bool observe(const TrackSample& sample);
-    //! The samples the full run would take after the last observed one, extrapolated.
-    std::vector<TrackSample> remaining_samples() const;
+    //! Hands each sample the full run would take after the last observed one, extrapolated, to
+    //! observe (one at a time: a long run's remainder is never held in memory).
+    void extrapolate(const std::function<void(const TrackSample&)>& observe) const;
     //! The residual of the last comparison (voxel lengths), 0 before any.
     double residual_voxels() const { return residual_voxels_; }
 
@@ -49,7 +52,10 @@ class PeriodicEnd {
     std::int64_t observed_ = 0;     //!< samples observed so far
     std::int64_t first_settled_ = -1;
     bool can_bend_ = false;
-    std::vector<TrackSample> settled_;  //!< every sample from the first settled one on
+    TrackSample reference_;  //!< the first settled sample
+    //! The last 2S + 1 settled samples (all a comparison and the extrapolation read): memory stays
+    //! bounded however long the evaluation.
+    std::deque<TrackSample> settled_;
     double residual_voxels_ = 0.0;
 };
 

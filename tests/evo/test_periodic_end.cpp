@@ -62,13 +62,14 @@ int run_signal(const Experiment& e, const Signal& x, double* worst_error = nullp
     for (int k = 0; k <= last; ++k) {
         const double t = k / 30.0;
         if (!end.observe(sample_of(t, x(t), e.voxel_size_m))) continue;
-        const auto rest = end.remaining_samples();
-        CHECK(rest.size() == static_cast<std::size_t>(last - k));
+        int rest = 0;
         double worst = 0.0;
-        for (const auto& s : rest) {
+        end.extrapolate([&](const TrackSample& s) {
+            ++rest;
             const double truth = x(s.t_s) * e.voxel_size_m;
             worst = std::max(worst, std::abs(s.com_m[0] - truth) / e.voxel_size_m);
-        }
+        });
+        CHECK(rest == last - k);
         if (worst_error) *worst_error = worst;
         return k;
     }
