@@ -299,46 +299,48 @@ std::array<double, 4> World::voxel_orientation(int v) const {
     return {s.quat[0][v], s.quat[1][v], s.quat[2][v], s.quat[3][v]};
 }
 
-void run(World& world, double total_s, double sample_hz,
-         const std::function<void(const World&)>& observe) {
-    run(world, total_s, sample_hz, observe, {});
-}
-
-void run(World& world, double total_s, double sample_hz,
-         const std::function<void(const World&)>& observe, const std::function<void()>& poll) {
+void run(World& world, double total_s, double sample_hz, const RunHooks& hooks) {
     if (!(sample_hz > 0.0) || !std::isfinite(sample_hz))
         throw std::invalid_argument("run: sample_hz must be positive");
+    if (hooks.poll && hooks.poll_steps < 1)
+        throw std::invalid_argument("run: poll_steps must be at least 1");
     const double period = 1.0 / sample_hz;
-    const double half_step = 0.5 * world.model().dt_s();
+    const double dt = world.model().dt_s();
+    const double half_step = 0.5 * dt;
     // Sample k is due at k / sample_hz; the last one at total_s. A world handed over part way
     // (time_s() > 0) is observed once now, then from the next due sample on.
     if (world.diverged()) return;
     // A simulation never silently runs zero steps: a step longer than twice the whole duration
     // is a spec out of the envelope (limits::step_budget_problem refuses it up front).
-    if (world.steps() == 0 && total_s > 0.0 &&
-        limits::steps_for(total_s, world.model().dt_s()) == 0)
-        throw std::invalid_argument("run: a step of " + std::to_string(world.model().dt_s()) +
+    if (world.steps() == 0 && total_s > 0.0 && limits::steps_for(total_s, dt) == 0)
+        throw std::invalid_argument("run: a step of " + std::to_string(dt) +
                                     " s is longer than twice the " + std::to_string(total_s) +
                                     " s to simulate: zero steps would run");
-    if (observe) observe(world);
+    auto poll = [&] { return hooks.poll && hooks.poll(world) == RunVerdict::Stop; };
+    if (hooks.observe) hooks.observe(world);
+    if (poll()) return;
     if (world.time_s() >= total_s - half_step) return;
     for (auto k = static_cast<std::int64_t>(std::floor(world.time_s() / period)) + 1;; ++k) {
         double due = static_cast<double>(k) * period;
         const bool last = due >= total_s - half_step;
         if (last) due = total_s;
-        if (poll) {
+        if (hooks.poll) {
             while (world.time_s() < due) {
-                const double slice_end =
-                    static_cast<double>(world.steps() + kPollSteps) * world.model().dt_s();
+                const double slice_end = static_cast<double>(world.steps() + hooks.poll_steps) * dt;
                 if (!world.advance_to(std::min(due, slice_end))) return;  // diverged
-                poll();
+                if (world.time_s() < due && poll()) return;
             }
         } else if (!world.advance_to(due)) {
             return;  // diverged: stop, the caller reads the reason
         }
-        if (observe) observe(world);
-        if (last) return;
+        if (hooks.observe) hooks.observe(world);
+        if (poll() || last) return;
     }
+}
+
+void run(World& world, double total_s, double sample_hz,
+         const std::function<void(const World&)>& observe) {
+    run(world, total_s, sample_hz, RunHooks{observe, nullptr});
 }
 
 }  // namespace bhm::engine

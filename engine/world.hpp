@@ -53,19 +53,25 @@ private:
     std::unique_ptr<State> state_;
 };
 
-//! Runs a world from t = 0 to total_s, calling observe(world) at t = 0 and every 1/sample_hz
-//! seconds of simulated time (and at the end). Stops early on divergence.
+//! What a run's poll hook tells it: go on, or end here (the world keeps the state reached).
+enum class RunVerdict { Continue, Stop };
+
+//! The callbacks of run(); each may be empty.
+struct RunHooks {
+    //! At t = 0, every 1/sample_hz seconds of simulated time and at the end.
+    std::function<void(const World&)> observe;
+    //! Every poll_steps steps and right after each observe: a caller pauses here (by waiting),
+    //! cancels (by throwing) or ends the run early (Stop). It never changes the steps taken.
+    std::function<RunVerdict(const World&)> poll;
+    int poll_steps = 64;  //!< a few milliseconds even for large bodies
+};
+
+//! Runs a world from t = 0 to total_s, calling hooks.observe(world) at t = 0 and every
+//! 1/sample_hz seconds of simulated time (and at the end). Stops early on divergence or when
+//! hooks.poll says Stop. Polling slices the advance without changing it: dt is fixed and
+//! advance_to stops at the first step at or past its target, so the same steps are taken.
+void run(World& world, double total_s, double sample_hz, const RunHooks& hooks);
 void run(World& world, double total_s, double sample_hz,
          const std::function<void(const World&)>& observe);
-
-//! Steps between two calls of run's poll hook: milliseconds even for large bodies.
-inline constexpr int kPollSteps = 64;
-
-//! The same, calling poll() every kPollSteps steps and at every sample, from the stepping thread,
-//! independent of sample_hz (one sample can span the whole run). poll may throw to abandon the
-//! run (e.g. a KeyboardInterrupt in the Python module). Slicing changes nothing: dt is fixed and
-//! advance_to stops at the first step at or past its target, so the same steps are taken.
-void run(World& world, double total_s, double sample_hz,
-         const std::function<void(const World&)>& observe, const std::function<void()>& poll);
 
 }  // namespace bhm::engine

@@ -19,6 +19,9 @@
 #include "engine/replay.hpp"
 #include "engine/world.hpp"
 #include "evo/evaluate/exploit_flags.hpp"
+#include "evo/evaluate/fitness.hpp"
+#include "evo/evaluate/periodic_end.hpp"
+#include "evo/evaluate/tracks.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/scene.hpp"
 
@@ -103,9 +106,30 @@ int simulate(ArgParser& args) {
     evo::ExploitTracker exploits(experiment, world);
     ProgressLine progress(stderr, total_s, model->voxel_count(), ::isatty(STDERR_FILENO) != 0);
     const auto start = std::chrono::steady_clock::now();
+    // The whole run is recorded (a replay shows every second); beside it, where an evaluation of
+    // this body would have ended because the motion repeats (evo/evaluate/periodic_end.hpp) and
+    // how far its extrapolated measures are from the ones measured here.
+    evo::Experiment timed = experiment;
+    if (total_s > settle_s) timed.simulation.evaluate_s = total_s - settle_s;
+    evo::TrackSampler sampler(timed, world);
+    evo::MeasureTracker measured(timed, world), extrapolated(timed, world);
+    evo::PeriodicEnd periodic(timed, model->dt_s(), sampler.groups());
+    bool repeated = false;
+    double would_stop_s = total_s;
     engine::run(world, total_s, record_fps, [&](const engine::World& w) {
         recorder.observe(w);
         exploits.observe(w);
+        const evo::TrackSample sample = sampler.sample(w);
+        measured.observe(sample);
+        if (!repeated) {
+            extrapolated.observe(sample);
+            if (periodic.observe(sample)) {
+                repeated = true;
+                would_stop_s = w.time_s();
+                periodic.extrapolate(
+                    [&](const evo::TrackSample& later) { extrapolated.observe(later); });
+            }
+        }
         progress.update(w.time_s(), w.steps());
     });
     const double wall_s =
@@ -127,6 +151,20 @@ int simulate(ArgParser& args) {
     // Through text: exploits_to_json builds the unordered json type.
     summary["exploits"] =
         nlohmann::ordered_json::parse(evo::exploits_to_json(exploits.report(stats.diverged)).dump());
+
+    evo::FitnessReport full_report, early_report;
+    full_report.measures = measured.measures();
+    early_report.measures = extrapolated.measures();
+    nlohmann::ordered_json early = {{"applies", periodic.enabled()},
+                                    {"ends_early", repeated && !stats.diverged},
+                                    {"stop_s", would_stop_s},
+                                    {"periodic_residual", periodic.residual_voxels()}};
+    if (repeated && !stats.diverged) {
+        for (std::size_t m = 0; m < full_report.measures.size(); ++m)
+            early["extrapolated"][evo::kFitnessNames[m]] = early_report.measures[m];
+        early["gate_error"] = evo::periodic_end_error(early_report, full_report);
+    }
+    summary["periodic_end"] = early;
 
     const std::filesystem::path dir(out_dir);
     engine::write_replay((dir / "replay.bin").string(), recorder.replay());

@@ -217,15 +217,17 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
         const auto start = std::chrono::steady_clock::now();
         auto next_check = start + kSignalCheckInterval;
         try {
-            engine::run(
-                world, total_s, record_fps, [&](const engine::World& w) { recorder.observe(w); },
-                [&] {
-                    const auto now = std::chrono::steady_clock::now();
-                    if (now < next_check) return;
-                    next_check = now + kSignalCheckInterval;
-                    py::gil_scoped_acquire acquire;
-                    if (PyErr_CheckSignals() != 0) throw SimulationInterrupted{};
-                });
+            engine::RunHooks hooks;
+            hooks.observe = [&](const engine::World& w) { recorder.observe(w); };
+            hooks.poll = [&](const engine::World&) {
+                const auto now = std::chrono::steady_clock::now();
+                if (now < next_check) return engine::RunVerdict::Continue;
+                next_check = now + kSignalCheckInterval;
+                py::gil_scoped_acquire acquire;
+                if (PyErr_CheckSignals() != 0) throw SimulationInterrupted{};
+                return engine::RunVerdict::Continue;
+            };
+            engine::run(world, total_s, record_fps, hooks);
         } catch (const SimulationInterrupted&) {
             interrupted = true;  // the Python error (KeyboardInterrupt) is set on this thread
         }

@@ -1,7 +1,5 @@
 #include "evo/evaluate/behaviour.hpp"
 
-#include <numeric>
-
 #include "engine/world.hpp"
 #include "evo/evaluate/fitness.hpp"
 
@@ -45,25 +43,15 @@ std::vector<double> BehaviourRecorder::descriptor() const {
 
 BehaviourTracker::BehaviourTracker(const Experiment& experiment, const engine::World& world)
     : recorder_(experiment.simulation.settle_s, experiment.simulation.evaluate_s,
-                experiment.voxel_size_m) {
-    tip_voxels_ = bend_layers(experiment, world).tip;
-    if (tip_voxels_.empty()) {
-        tip_voxels_.resize(static_cast<std::size_t>(world.model().voxel_count()));
-        std::iota(tip_voxels_.begin(), tip_voxels_.end(), 0);
-    }
-}
+                experiment.voxel_size_m),
+      own_sampler_(std::make_unique<TrackSampler>(experiment, world)) {}
 
 void BehaviourTracker::observe(const engine::World& world) {
-    std::array<double, 3> tip{0.0, 0.0, 0.0};
-    for (int v : tip_voxels_) {
-        const auto p = world.voxel_position_m(v);
-        for (std::size_t k = 0; k < 3; ++k)
-            tip[k] += p[k];
-    }
-    if (!tip_voxels_.empty())
-        for (auto& c : tip)
-            c /= static_cast<double>(tip_voxels_.size());
-    recorder_.observe(world.time_s(), world.center_of_mass_m(), tip);
+    observe(own_sampler_->sample(world));
+}
+
+void BehaviourTracker::observe(const TrackSample& sample) {
+    recorder_.observe(sample.t_s, sample.com_m, sample.behaviour_tip_m);
 }
 
 }  // namespace bhm::evo

@@ -13,8 +13,10 @@
 // The descriptor is [com_1, tip_1, com_2, tip_2, ...]: kBehaviourLength numbers. It is empty for a
 // simulation that diverged (or never reached the end), and in results written before it existed.
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "evo/evaluate/tracks.hpp"
 #include "evo/experiment/experiment.hpp"
 
 namespace bhm::engine {
@@ -49,12 +51,15 @@ class BehaviourRecorder {
 class BehaviourTracker {
   public:
     BehaviourTracker(const Experiment& experiment, const engine::World& world);
+    //! Samples the world itself (a TrackSampler of its own).
     void observe(const engine::World& world);
+    //! A sample of a TrackSampler of the same world (simulated or extrapolated).
+    void observe(const TrackSample& sample);
     std::vector<double> descriptor() const { return recorder_.descriptor(); }
 
   private:
     BehaviourRecorder recorder_;
-    std::vector<int> tip_voxels_;  //!< model voxel indices; every voxel for a one-layer body
+    std::unique_ptr<TrackSampler> own_sampler_;
 };
 
 }  // namespace bhm::evo

@@ -6,16 +6,14 @@
 #include <numbers>
 #include <thread>
 
-#include "engine/limits.hpp"
 #include "engine/world.hpp"
 #include "evo/evaluate/behaviour.hpp"
+#include "evo/evaluate/periodic_end.hpp"
 #include "evo/experiment/scene.hpp"
 
 namespace bhm::evo {
 
 namespace {
-
-using Vec3 = std::array<double, 3>;
 
 double norm(const Vec3& v) {
     return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -23,14 +21,6 @@ double norm(const Vec3& v) {
 
 std::size_t measure_index(FitnessMeasure m) {
     return static_cast<std::size_t>(m);
-}
-
-//! The face whose layer is the base of the bend: the first fixed face, x- if none is fixed.
-Face bend_base_face(const Boundary& boundary) {
-    for (int f = 0; f < 6; ++f)
-        if (boundary.faces[static_cast<std::size_t>(f)] == BoundaryKind::Fixed)
-            return static_cast<Face>(f);
-    return Face::XMin;
 }
 
 }  // namespace
@@ -44,58 +34,25 @@ double fitness_under(const FitnessReport& report, const Fitness& rules) {
     return fitness_under(report, rules.measure);
 }
 
-BendLayers bend_layers(const Experiment& experiment, const engine::World& world) {
-    BendLayers layers;
-    const auto& model = world.model();
-    const Face face = bend_base_face(experiment.boundary);
-    const auto axis = static_cast<std::size_t>(face) / 2;
-    const bool base_on_high_side = static_cast<int>(face) % 2 == 1;
-    const int n = model.voxel_count();
-    if (n == 0) return layers;
-    int lo = model.voxel_coords(0)[axis], hi = lo;
-    for (int v = 1; v < n; ++v) {
-        lo = std::min(lo, model.voxel_coords(v)[axis]);
-        hi = std::max(hi, model.voxel_coords(v)[axis]);
-    }
-    if (lo == hi) return layers;  // one layer: no line to bend
-    const int base_layer = base_on_high_side ? hi : lo;
-    const int tip_layer = base_on_high_side ? lo : hi;
-    for (int v = 0; v < n; ++v) {
-        const int c = model.voxel_coords(v)[axis];
-        if (c == base_layer) layers.base.push_back(v);
-        if (c == tip_layer) layers.tip.push_back(v);
-    }
-    return layers;
-}
-
 MeasureTracker::MeasureTracker(const Experiment& experiment, const engine::World& world)
-    : settle_s_(experiment.simulation.settle_s), voxel_size_m_(experiment.voxel_size_m) {
-    auto layers = bend_layers(experiment, world);
-    base_voxels_ = std::move(layers.base);
-    tip_voxels_ = std::move(layers.tip);
-}
-
-std::array<double, 3> MeasureTracker::centroid(const engine::World& world,
-                                               const std::vector<int>& voxels) const {
-    Vec3 sum{0.0, 0.0, 0.0};
-    for (int v : voxels) {
-        const auto p = world.voxel_position_m(v);
-        for (int k = 0; k < 3; ++k)
-            sum[static_cast<std::size_t>(k)] += p[static_cast<std::size_t>(k)];
-    }
-    for (auto& s : sum)
-        s /= static_cast<double>(voxels.size());
-    return sum;
+    : settle_s_(experiment.simulation.settle_s),
+      voxel_size_m_(experiment.voxel_size_m),
+      own_sampler_(std::make_unique<TrackSampler>(experiment, world)) {
+    can_bend_ = !own_sampler_->layers().base.empty() && !own_sampler_->layers().tip.empty();
 }
 
 void MeasureTracker::observe(const engine::World& world) {
-    // Samples land on or just after their nominal time; the tolerance keeps t = settle_s itself.
-    if (world.time_s() < settle_s_ - 1e-9) return;
-    const Vec3 com = world.center_of_mass_m();
-    const bool can_bend = !base_voxels_.empty() && !tip_voxels_.empty();
+    observe(own_sampler_->sample(world));
+}
+
+void MeasureTracker::observe(const TrackSample& sample) {
+    if (!settled(sample.t_s, settle_s_)) return;
+    const Vec3& com = sample.com_m;
+    const bool can_bend = can_bend_;
     Vec3 direction{0.0, 0.0, 0.0};
     if (can_bend) {
-        const Vec3 base = centroid(world, base_voxels_), tip = centroid(world, tip_voxels_);
+        const Vec3& base = sample.bend_base_m;
+        const Vec3& tip = sample.bend_tip_m;
         for (std::size_t k = 0; k < 3; ++k)
             direction[k] = tip[k] - base[k];
     }
@@ -141,43 +98,6 @@ void honour(const EvaluationControl& control) {
     if (cancelled()) throw EvaluationCancelled();
 }
 
-//! engine::run's schedule (observe at t = 0, every 1 / sample_hz and at total_s; stop on
-//! divergence), advanced in slices of kControlCheckSteps steps so the controls are seen often.
-//! Slicing changes nothing: dt is fixed and advance_to stops at the first step at or past its
-//! target, so the same steps are taken (tests/evo/test_fitness.cpp checks against engine::run).
-void run_controlled(engine::World& world, double total_s, double sample_hz,
-                    const EvaluationControl& control, MeasureTracker& tracker,
-                    ExploitTracker& exploits, BehaviourTracker& behaviour) {
-    const double period = 1.0 / sample_hz;
-    const double dt = world.model().dt_s();
-    const double half_step = 0.5 * dt;
-    if (world.diverged()) return;
-    // As engine::run: never silently zero steps (limits::step_budget_problem refuses it up front).
-    if (world.steps() == 0 && total_s > 0.0 && engine::limits::steps_for(total_s, dt) == 0)
-        throw std::invalid_argument("evaluation: a step of " + std::to_string(dt) +
-                                    " s is longer than twice the " + std::to_string(total_s) +
-                                    " s to simulate: zero steps would run");
-    honour(control);
-    tracker.observe(world);
-    exploits.observe(world);
-    behaviour.observe(world);
-    if (world.time_s() >= total_s - half_step) return;
-    for (std::int64_t k = 1;; ++k) {
-        double due = static_cast<double>(k) * period;
-        const bool last = due >= total_s - half_step;
-        if (last) due = total_s;
-        while (world.time_s() < due) {
-            const double slice_end = static_cast<double>(world.steps() + kControlCheckSteps) * dt;
-            if (!world.advance_to(std::min(due, slice_end))) return;  // diverged
-            honour(control);
-        }
-        tracker.observe(world);
-        exploits.observe(world);
-        behaviour.observe(world);
-        if (last) return;
-    }
-}
-
 }  // namespace
 
 FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
@@ -192,18 +112,40 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     // holds.
     const auto spec = make_body_spec(experiment, framed_body, experiment.evolution.seed);
     engine::World world(engine::Model::build(spec));
+    TrackSampler sampler(experiment, world);
     MeasureTracker tracker(experiment, world);
     ExploitTracker exploits(experiment, world);
     BehaviourTracker behaviour(experiment, world);
+    PeriodicEnd periodic(experiment, world.model().dt_s(), sampler.groups());
+    auto observe = [&](const TrackSample& sample) {
+        tracker.observe(sample);
+        exploits.observe(sample);
+        behaviour.observe(sample);
+    };
     const double sample_hz =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    run_controlled(world, evaluation_seconds(experiment), sample_hz, control, tracker, exploits,
-                   behaviour);
+    bool repeats = false;
+    engine::RunHooks hooks;
+    hooks.observe = [&](const engine::World& w) {
+        const TrackSample sample = sampler.sample(w);
+        observe(sample);
+        repeats = periodic.observe(sample);
+    };
+    hooks.poll = [&](const engine::World&) {
+        honour(control);
+        return repeats ? engine::RunVerdict::Stop : engine::RunVerdict::Continue;
+    };
+    hooks.poll_steps = kControlCheckSteps;
+    engine::run(world, evaluation_seconds(experiment), sample_hz, hooks);
+    const bool ended_early = repeats && !world.diverged();
+    if (ended_early) periodic.extrapolate(observe);
 
     FitnessReport report;
     report.measures = tracker.measures();
     report.simulated_s = world.time_s();
     report.steps = world.steps();
+    report.ended_early = ended_early;
+    report.periodic_residual = periodic.residual_voxels();
     report.diverged = world.diverged();
     if (report.diverged) report.divergence_reason = world.divergence_reason();
     const bool finite = std::all_of(report.measures.begin(), report.measures.end(),

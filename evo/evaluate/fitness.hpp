@@ -14,11 +14,13 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "evo/evaluate/exploit_flags.hpp"
+#include "evo/evaluate/tracks.hpp"
 #include "evo/experiment/experiment.hpp"
 
 namespace bhm::engine {
@@ -40,7 +42,12 @@ struct FitnessReport {
     std::array<double, kMeasureCount> measures{};  //!< indexed by FitnessMeasure
     bool diverged = false;
     std::string divergence_reason;
-    double simulated_s = 0.0;  //!< simulated time reached
+    double simulated_s = 0.0;  //!< simulated time reached (where the simulation stopped)
+    //! The simulation stopped before the requested end because the motion repeated, and the rest
+    //! was extrapolated (evo/evaluate/periodic_end.hpp).
+    bool ended_early = false;
+    //! The period-to-period residual of the last comparison (voxel lengths; 0 when none was made).
+    double periodic_residual = 0.0;
     std::int64_t steps = 0;
     double sim_wall_s = 0.0;  //!< wall-clock time of the simulation (not deterministic)
     ExploitReport exploits;   //!< escaped / detached_motion / tentacle with their measures
@@ -80,29 +87,23 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
 FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
                             const std::atomic<bool>* cancel = nullptr);
 
-//! The voxels (model indices) at the two ends of the bend line: the base layer (the first fixed
-//! face's, x- when none is fixed) and the filled layer farthest from it. Both empty for a body of
-//! a single layer along that axis.
-struct BendLayers {
-    std::vector<int> base, tip;
-};
-BendLayers bend_layers(const Experiment& experiment, const engine::World& world);
-
 //! The observer that computes the measures from the samples; public for tests and the studio.
 class MeasureTracker {
   public:
     MeasureTracker(const Experiment& experiment, const engine::World& world);
+    //! Samples the world itself (a TrackSampler of its own).
     void observe(const engine::World& world);
+    //! A sample of a TrackSampler of the same world (simulated or extrapolated).
+    void observe(const TrackSample& sample);
     //! The measures so far (all zero until t reaches settle_s).
     std::array<double, kMeasureCount> measures() const { return measures_; }
     bool reference_taken() const { return has_reference_; }
 
   private:
-    std::array<double, 3> centroid(const engine::World& world,
-                                   const std::vector<int>& voxels) const;
     double settle_s_;
     double voxel_size_m_;
-    std::vector<int> base_voxels_, tip_voxels_;
+    bool can_bend_ = false;
+    std::unique_ptr<TrackSampler> own_sampler_;
     bool has_reference_ = false;
     std::array<double, 3> com0_{}, direction0_{};
     std::array<double, kMeasureCount> measures_{};

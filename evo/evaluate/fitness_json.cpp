@@ -45,6 +45,9 @@ FitnessReport report_from_json(const json& j, const std::string& path) {
     }
     if (j.contains("behaviour"))  // absent in results written before behaviour descriptors
         r.behaviour = behaviour_from_json(j.at("behaviour"), f.join("behaviour"));
+    // Absent in results written before evaluations could end early (they ran the full time).
+    if (j.contains("ended_early")) r.ended_early = f.boolean("ended_early");
+    if (j.contains("periodic_residual")) r.periodic_residual = f.number("periodic_residual");
     return r;
 }
 
@@ -52,11 +55,17 @@ json report_to_json(const FitnessReport& r) {
     json measures = json::object();
     for (std::size_t k = 0; k < r.measures.size(); ++k)
         measures[kFitnessNames[k]] = r.measures[k];
-    return {{"fitness", r.fitness},         {"measures", measures},
-            {"diverged", r.diverged},       {"divergence_reason", r.divergence_reason},
-            {"simulated_s", r.simulated_s}, {"steps", r.steps},
-            {"sim_wall_s", r.sim_wall_s}, {"exploits", exploits_to_json(r.exploits)},
-            {"behaviour", r.behaviour}};
+    return {{"fitness", r.fitness},
+            {"measures", measures},
+            {"diverged", r.diverged},
+            {"divergence_reason", r.divergence_reason},
+            {"simulated_s", r.simulated_s},
+            {"steps", r.steps},
+            {"sim_wall_s", r.sim_wall_s},
+            {"exploits", exploits_to_json(r.exploits)},
+            {"behaviour", r.behaviour},
+            {"ended_early", r.ended_early},
+            {"periodic_residual", r.periodic_residual}};
 }
 
 }  // namespace bhm::evo

@@ -63,6 +63,12 @@ struct Simulation {
     double global_damping_ratio = 0.01;
     double collision_damping_ratio = 0.8;
     double record_fps = 30.0;
+    //! End an evaluation once the motion repeats period by period and extrapolate the rest
+    //! (evo/evaluate/periodic_end.hpp; docs/experiment-format.md).
+    bool end_when_periodic = true;
+    //! Allowed extrapolation error, relative to 1 voxel length (1 degree for the bend angle) plus
+    //! the displacement the track reaches.
+    double periodic_tolerance = 1e-3;
     bool operator==(const Simulation&) const = default;
 };
 

@@ -239,9 +239,10 @@ Experiment parse_experiment(const json& root, const std::string& file) {
 
     if (const json* s = r.object(root, "simulation", "")) {
         auto& sim = e.simulation;
-        r.check_keys(*s, "simulation",
-                     {"settle_s", "evaluate_s", "dt_fraction", "bond_damping_ratio",
-                      "global_damping_ratio", "collision_damping_ratio", "record_fps"});
+        r.check_keys(
+            *s, "simulation",
+            {"settle_s", "evaluate_s", "dt_fraction", "bond_damping_ratio", "global_damping_ratio",
+             "collision_damping_ratio", "record_fps", "end_when_periodic", "periodic_tolerance"});
         sim.settle_s = r.number(*s, "settle_s", "simulation", sim.settle_s);
         sim.evaluate_s = r.number(*s, "evaluate_s", "simulation", sim.evaluate_s);
         sim.dt_fraction = r.number(*s, "dt_fraction", "simulation", sim.dt_fraction);
@@ -252,6 +253,10 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         sim.collision_damping_ratio =
             r.number(*s, "collision_damping_ratio", "simulation", sim.collision_damping_ratio);
         sim.record_fps = r.number(*s, "record_fps", "simulation", sim.record_fps);
+        sim.end_when_periodic =
+            r.boolean(*s, "end_when_periodic", "simulation", sim.end_when_periodic);
+        sim.periodic_tolerance =
+            r.number(*s, "periodic_tolerance", "simulation", sim.periodic_tolerance);
     }
 
     if (const json* f = r.object(root, "fitness", "")) {
@@ -469,6 +474,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         bad("simulation.evaluate_s", "must be in (0, 100000] seconds");
     if (!finite(s.record_fps) || s.record_fps <= 0 || s.record_fps > 1000)
         bad("simulation.record_fps", "must be in (0, 1000]");
+    if (!finite(s.periodic_tolerance) || s.periodic_tolerance <= 0 || s.periodic_tolerance > 1)
+        bad("simulation.periodic_tolerance", "must be in (0, 1]");
     // The step budget, only once every input it depends on is valid (else it would mislead).
     if (problems.empty() && size_ok) {
         std::vector<engine::Material> physics;
@@ -599,7 +606,9 @@ json experiment_to_json(const Experiment& e) {
                        {"bond_damping_ratio", s.bond_damping_ratio},
                        {"global_damping_ratio", s.global_damping_ratio},
                        {"collision_damping_ratio", s.collision_damping_ratio},
-                       {"record_fps", s.record_fps}};
+                       {"record_fps", s.record_fps},
+                       {"end_when_periodic", s.end_when_periodic},
+                       {"periodic_tolerance", s.periodic_tolerance}};
     const auto& c = e.fitness.constraints;
     j["fitness"] = {{"measure", kFitnessNames[static_cast<int>(e.fitness.measure)]},
                     {"minimize_active_voxels", e.fitness.minimize_active_voxels},

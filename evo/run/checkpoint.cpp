@@ -67,18 +67,22 @@ Individual individual_from_json(const json& j, const std::string& path, const De
 
 json history_row_to_json(const HistoryRow& h) {
     json j = {{"generation", h.generation},
-            {"evaluations", h.evaluations},
-            {"simulations", h.simulations},
-            {"best_fitness", h.best_fitness},
-            {"median_fitness", h.median_fitness},
-            {"best_age", h.best_age},
-            {"best_id", h.best_id},
-            {"diverged", h.diverged},
-            {"wall_s", h.wall_s},
-            {"rules_version", h.rules_version},
-            {"best_exploits", exploits_to_json(h.best_exploits)},
-            {"flagged_members", h.flagged_members},
-            {"species", h.species}};
+              {"evaluations", h.evaluations},
+              {"simulations", h.simulations},
+              {"best_fitness", h.best_fitness},
+              {"median_fitness", h.median_fitness},
+              {"best_age", h.best_age},
+              {"best_id", h.best_id},
+              {"diverged", h.diverged},
+              {"wall_s", h.wall_s},
+              {"rules_version", h.rules_version},
+              {"best_exploits", exploits_to_json(h.best_exploits)},
+              {"flagged_members", h.flagged_members},
+              {"species", h.species},
+              {"ended_early", h.ended_early},
+              {"mean_simulated_s", h.mean_simulated_s},
+              {"best_simulated_s", h.best_simulated_s},
+              {"best_periodic_residual", h.best_periodic_residual}};
     if (h.novelty) {
         const auto& n = *h.novelty;
         j["novelty"] = {{"best_novelty", n.best_novelty},
@@ -115,6 +119,12 @@ HistoryRow history_row_from_json(const json& j, const std::string& path) {
     if (j.contains("flagged_members"))
         h.flagged_members = static_cast<int>(f.integer("flagged_members"));
     if (j.contains("species")) h.species = static_cast<int>(f.integer("species"));  // format 3
+    // Absent before evaluations could end early: every simulation then ran the full time.
+    if (j.contains("ended_early")) h.ended_early = static_cast<int>(f.integer("ended_early"));
+    if (j.contains("mean_simulated_s")) h.mean_simulated_s = f.number("mean_simulated_s");
+    if (j.contains("best_simulated_s")) h.best_simulated_s = f.number("best_simulated_s");
+    if (j.contains("best_periodic_residual"))
+        h.best_periodic_residual = f.number("best_periodic_residual");
     if (j.contains("novelty")) {  // novelty search runs only
         const Fields n(j.at("novelty"), f.join("novelty"));
         NoveltyRow row;
@@ -245,8 +255,16 @@ json run_state_to_json(const RunState& s) {
         json measures = json::array();
         for (double m : r->measures)
             measures.push_back(m);
-        cache.push_back({hex(hash), r->diverged, r->steps, r->simulated_s, measures,
-                         r->divergence_reason, exploits_to_json(r->exploits), r->behaviour});
+        cache.push_back(
+            {hex(hash),
+             r->diverged,
+             r->steps,
+             r->simulated_s,
+             measures,
+             r->divergence_reason,
+             exploits_to_json(r->exploits),
+             r->behaviour,
+             {{"ended_early", r->ended_early}, {"periodic_residual", r->periodic_residual}}});
     }
     json rng = json::array();
     for (auto word : s.rng)
@@ -359,14 +377,16 @@ RunState run_state_from_json(const json& j, const std::string& label) {
             const auto& e = cache[i];
             const std::string where = item("cache", i);
             // A 7th entry (exploit flags) since exploit detection, an 8th (the behaviour
-            // descriptor) since novelty search; older checkpoints have 6 or 7.
-            if (!e.is_array() || e.size() < 6 || e.size() > 8 || !e[0].is_string() || !e[1].is_boolean() ||
-                !e[2].is_number_integer() || !e[3].is_number() || !e[4].is_array() ||
-                e[4].size() != static_cast<std::size_t>(kMeasureCount) || !e[5].is_string())
+            // descriptor) since novelty search, a 9th (where an early end stopped) since
+            // evaluations end when the motion repeats; older checkpoints have 6 to 8.
+            if (!e.is_array() || e.size() < 6 || e.size() > 9 || !e[0].is_string() ||
+                !e[1].is_boolean() || !e[2].is_number_integer() || !e[3].is_number() ||
+                !e[4].is_array() || e[4].size() != static_cast<std::size_t>(kMeasureCount) ||
+                !e[5].is_string())
                 throw FieldError(
                     where +
                     ": expected [hash, diverged, steps, simulated_s, measures, reason, exploits, "
-                    "behaviour]");
+                    "behaviour, early end]");
             FitnessReport r;
             r.diverged = e[1].get<bool>();
             r.steps = e[2].get<std::int64_t>();
@@ -383,7 +403,12 @@ RunState run_state_from_json(const json& j, const std::string& label) {
                     throw FieldError(where + "." + ex.what());
                 }
             }
-            if (e.size() == 8) r.behaviour = behaviour_from_json(e[7], where + "[7]");
+            if (e.size() >= 8) r.behaviour = behaviour_from_json(e[7], where + "[7]");
+            if (e.size() == 9) {
+                const Fields early(e[8], where + "[8]");
+                r.ended_early = early.boolean("ended_early");
+                r.periodic_residual = early.number("periodic_residual");
+            }
             r.fitness = fitness_under(r, s.experiment.fitness);
             s.cache.insert(Fields::parse_hex(e[0].get<std::string>(), where), r);
         }

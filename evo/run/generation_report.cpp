@@ -41,6 +41,17 @@ HistoryRow make_history_row(const GenerationTally& tally, const Selection& selec
     row.best_age = best.age;
     row.best_id = best.id;
     row.diverged = tally.evaluation->diverged;
+    // Where the simulations stopped (evaluations that end when the motion repeats).
+    const auto& simulated = tally.evaluation->simulated_reports;
+    double simulated_s = 0.0;
+    for (const auto& r : simulated) {
+        row.ended_early += r.ended_early ? 1 : 0;
+        simulated_s += r.simulated_s;
+    }
+    row.mean_simulated_s =
+        simulated.empty() ? 0.0 : simulated_s / static_cast<double>(simulated.size());
+    row.best_simulated_s = best.report.simulated_s;
+    row.best_periodic_residual = best.report.periodic_residual;
     row.wall_s = tally.wall_s;
     row.rules_version = tally.rules_version;
     row.best_exploits = best.report.exploits;

@@ -43,7 +43,9 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
                std::to_string(h.best_id) + "," + std::to_string(h.diverged) + "," + wall + "," +
                (h.best_exploits.escaped ? "1," : "0,") +
                (h.best_exploits.detached_motion ? "1," : "0,") +
-               (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) +
+               (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) + "," +
+               std::to_string(h.ended_early) + "," + engine::format_number(h.mean_simulated_s) + "," +
+               engine::format_number(h.best_simulated_s) + "," + engine::format_number(h.best_periodic_residual) +
                (species ? "," + std::to_string(h.species) : std::string());
         if (novelty) {
             const NoveltyRow n = h.novelty.value_or(NoveltyRow{});

@@ -17,7 +17,8 @@ namespace bhm::evo {
 
 inline constexpr const char* kFitnessCsvHeader =
     "generation,evaluations,simulations,best_fitness,median_fitness,best_age,best_id,diverged,wall_"
-    "s,best_escaped,best_detached_motion,best_tentacle,flagged_members";
+    "s,best_escaped,best_detached_motion,best_tentacle,flagged_members,ended_early,mean_simulated_"
+    "s,best_simulated_s,best_periodic_residual";
 
 //! fitness.csv text: the header then one row per generation. Numbers in the C locale; fitness with
 //! the shortest exact form, wall_s with millisecond resolution. NEAT runs (rows with species > 0)

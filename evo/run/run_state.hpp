@@ -41,6 +41,12 @@ struct HistoryRow {
     ExploitReport best_exploits;  //!< the flags of the best member
     int flagged_members = 0;      //!< population members raising any exploit flag
     int species = 0;              //!< NEAT: species after this generation (0 for other algorithms)
+    //! Of this generation's simulations, those that ended early because the motion repeated
+    //! (evo/evaluate/periodic_end.hpp), and their mean simulated time (where they stopped).
+    int ended_early = 0;
+    double mean_simulated_s = 0.0;
+    double best_simulated_s = 0.0;        //!< where the best member's simulation stopped
+    double best_periodic_residual = 0.0;  //!< its last period-to-period residual (voxels)
     std::optional<NoveltyRow> novelty;  //!< novelty search only
     bool operator==(const HistoryRow&) const = default;
 };

@@ -112,9 +112,9 @@ TEST_CASE("studio run directory: a folder that is not a run, or a damaged file, 
     state.experiment = testing::tiny_experiment();
     out.write_run_info(state.experiment, state);
     std::ofstream(dir / "fitness.csv") << evo::kFitnessCsvHeader
-                                     << "\n0,4,4,abc,1,0,3,0,1.0,0,0,0,0\n";
+                                     << "\n0,4,4,abc,1,0,3,0,1.0,0,0,0,0,0,11,11,0\n";
     // One bad row does not hide the run: the rows before it are shown and the row is named.
-    std::ofstream(dir / "fitness.csv", std::ios::app) << "1,4,4,0.5,0.4,1,5,0,2.0,0,0,0,0\n";
+    std::ofstream(dir / "fitness.csv", std::ios::app) << "1,4,4,0.5,0.4,1,5,0,2.0,0,0,0,0,0,11,11,0\n";
     watch.open(dir.string());
     CHECK(watch.refresh());
     REQUIRE(watch.snapshot());
@@ -123,7 +123,7 @@ TEST_CASE("studio run directory: a folder that is not a run, or a damaged file, 
           std::string::npos);
     // A partial last row (a crash mid-append): the complete rows stay in view.
     std::ofstream(dir / "fitness.csv") << evo::kFitnessCsvHeader
-                                     << "\n0,4,4,0.25,0.2,0,3,0,1.0,0,0,0,0\n1,4,4,0.5";
+                                     << "\n0,4,4,0.25,0.2,0,3,0,1.0,0,0,0,0,0,11,11,0\n1,4,4,0.5";
     std::filesystem::last_write_time(
         dir / "fitness.csv",
         std::filesystem::last_write_time(dir / "fitness.csv") + std::chrono::seconds(5));

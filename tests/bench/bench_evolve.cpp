@@ -7,9 +7,12 @@
 // per simulation onto `threads` idle cores (what a shared machine cannot show by wall time).
 //
 //   bench_evolve [--sims N (0: all)] [--sim-seconds S] [--threads-list 1,2] [--assets DIR]
-//                [--commit SHA] [--poisson-off] [PRESET...]
+//                [--commit SHA] [--poisson-off] [--no-periodic-end] [PRESET...]
 // --poisson-off sets every material's Poisson ratio to 0 (the engine's Poisson coupling off), to
-// show that coupling's share of the cost.
+// show that coupling's share of the cost. Evaluations end when the motion repeats
+// (simulation.end_when_periodic, on in the presets) only when --sim-seconds is the full evaluation
+// (an early end of a shortened one would break the linear scaling); --no-periodic-end switches it
+// off there too, to show its share. ended_early and mean_simulated_s say how far they ran.
 //
 // Defaults: one simulation of 0.2 s for each body of a whole random generation 0 (the preset's
 // population; a body's cost follows its voxels, and the first few random bodies are no sample of
@@ -83,7 +86,7 @@ int run(int argc, char** argv) {
     double sim_seconds = 0.2;
     std::vector<int> thread_counts = {1, 2};
     std::vector<std::string> presets;
-    bool poisson_off = false;
+    bool poisson_off = false, periodic_end = true;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -101,6 +104,8 @@ int run(int argc, char** argv) {
             sim_seconds = std::stod(value());
         else if (a == "--poisson-off")
             poisson_off = true;
+        else if (a == "--no-periodic-end")
+            periodic_end = false;
         else if (a == "--threads-list") {
             thread_counts.clear();
             std::stringstream list(value());
@@ -116,7 +121,7 @@ int run(int argc, char** argv) {
         << "preset,threads,population,simulations,mean_voxels,simulated_s_each,full_evaluation_s,"
            "wall_s,sim_s_per_wall_s,simulations_per_s_full,coordinator_s_per_generation,"
            "generations_per_hour,cpu_s_per_full_simulation,generations_per_hour_cpu,"
-           "hardware_threads,machine,commit"
+           "ended_early,mean_simulated_s,hardware_threads,machine,commit"
         << std::endl;
     const std::string machine = machine_description();
     for (const auto& preset : presets) {
@@ -150,6 +155,8 @@ int run(int argc, char** argv) {
         const double full_s = evaluation_seconds(full);
         shortened.simulation.settle_s = std::min(full.simulation.settle_s, sim_seconds / 2);
         shortened.simulation.evaluate_s = sim_seconds - shortened.simulation.settle_s;
+        if (!periodic_end || sim_seconds < full_s - 1e-9)
+            shortened.simulation.end_when_periodic = false;
         double voxels = 0;
         for (int k = 0; k < preset_sims; ++k)
             voxels += population.phenotypes[static_cast<std::size_t>(k % P)].voxels;
@@ -163,6 +170,12 @@ int run(int argc, char** argv) {
                     shortened, population.phenotypes[static_cast<std::size_t>(k % P)].body);
             });
             const double wall_s = seconds_since(t_sim);
+            int ended_early = 0;
+            double simulated_s = 0.0;
+            for (const auto& r : reports) {
+                ended_early += r.ended_early ? 1 : 0;
+                simulated_s += r.simulated_s / preset_sims;
+            }
             // CPU time of the simulations, scaled to full length: on a machine shared with other
             // jobs the wall-clock rate says more about the load than about the code, so the
             // _cpu figure projects a generation onto `threads` otherwise idle cores.
@@ -175,13 +188,15 @@ int run(int argc, char** argv) {
             const double full_rate = sim_rate / full_s;  // full evaluations per second
             // A generation simulates at most P + 1 new bodies (fewer with cache hits and clones).
             const double generation_s = coordinator_s + (P + 1) / full_rate;
-            char row[512];
-            std::snprintf(row, sizeof row,
-                          "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.3f,%.4f,%.6f,%.3f,%.3f,%.3f,%.3f,%u,%s,%s",
-                          preset.c_str(), threads, P, preset_sims, voxels, sim_seconds, full_s,
-                          wall_s, sim_rate, full_rate, coordinator_s, 3600.0 / generation_s,
-                          cpu_per_full_sim, 3600.0 / generation_cpu_s,
-                          std::thread::hardware_concurrency(), machine.c_str(), commit.c_str());
+            char row[640];
+            std::snprintf(
+                row, sizeof row,
+                "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.3f,%.4f,%.6f,%.3f,%.3f,%.3f,%.3f,%d,%.3f,%u,"
+                "%s,%s",
+                preset.c_str(), threads, P, preset_sims, voxels, sim_seconds, full_s, wall_s,
+                sim_rate, full_rate, coordinator_s, 3600.0 / generation_s, cpu_per_full_sim,
+                3600.0 / generation_cpu_s, ended_early, simulated_s,
+                std::thread::hardware_concurrency(), machine.c_str(), commit.c_str());
             std::cout << row << std::endl;
             std::cerr << preset << ", " << threads << " thread(s): " << full_rate
                       << " full simulations/s, " << 3600.0 / generation_s << " generations/hour; "

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "engine/internal/model_data.hpp"
 #include "engine_test_bodies.hpp"
@@ -101,4 +102,53 @@ TEST_CASE("uniform runs give the same trajectory as reading every neighbour from
         CHECK(gathered_link_slots(*m) > 0);
         check_runs_match_tables(s);
     }
+}
+
+TEST_CASE("run's poll hook slices without changing a step and can end the run early") {
+    // Polling every 7 steps against a sample period that is no whole number of steps or slices:
+    // the same samples at the same steps, the same final state to the last bit, as without it.
+    Material active;
+    active.cte_per_c = 0.01;
+    BodySpec spec = test::solid_box(3, 2, 2, active);
+    test::fix_x_min_layer(spec);
+    spec.environment.gravity_m_s2 = 9.81;
+    spec.actuation.start_s = 0.002;
+    auto model = Model::build(spec);
+    auto trace = [&](const RunHooks& extra, std::vector<std::int64_t>& steps) {
+        World world(model);
+        RunHooks hooks = extra;
+        hooks.observe = [&](const World& w) { steps.push_back(w.steps()); };
+        run(world, 0.01, 1370.0, hooks);
+        return world.center_of_mass_m();
+    };
+    std::vector<std::int64_t> plain_steps, polled_steps, stopped_steps;
+    const auto plain = trace(RunHooks{}, plain_steps);
+    int polls = 0;
+    RunHooks polled;
+    polled.poll_steps = 7;
+    polled.poll = [&](const World&) {
+        ++polls;
+        return RunVerdict::Continue;
+    };
+    const auto with_polls = trace(polled, polled_steps);
+    CHECK(polls > static_cast<int>(polled_steps.size()));  // between samples too
+    CHECK(polled_steps == plain_steps);
+    CHECK(with_polls == plain);
+    // Stop at the third sample: nothing is stepped or observed after it.
+    RunHooks stopping;
+    int seen = 0;
+    stopping.poll = [&](const World&) {
+        return seen >= 3 ? RunVerdict::Stop : RunVerdict::Continue;
+    };
+    stopping.observe = nullptr;
+    World world(model);
+    RunHooks hooks = stopping;
+    hooks.observe = [&](const World& w) {
+        ++seen;
+        stopped_steps.push_back(w.steps());
+    };
+    run(world, 0.01, 1370.0, hooks);
+    REQUIRE(stopped_steps.size() == 3);
+    CHECK(world.steps() == stopped_steps.back());
+    CHECK(stopped_steps == std::vector<std::int64_t>(plain_steps.begin(), plain_steps.begin() + 3));
 }

@@ -92,28 +92,6 @@ TEST_CASE("a raised cancel flag stops the evaluation") {
     CHECK_THROWS_AS(evaluate_body(e, box({2, 1, 1}, 1), &cancel), EvaluationCancelled);
 }
 
-TEST_CASE("evaluate_body steps and samples exactly as engine::run does") {
-    // Its sliced loop (for the controls) must not change the simulation: same steps, same samples,
-    // so the same measures to the last bit, here with a sample period that is not a whole number
-    // of slices or steps.
-    auto e = test::tiny_experiment({4, 2, 2});
-    e.simulation.record_fps = 137.0;
-    Body body = box({4, 2, 2}, 1);
-    body.cells[body.index(3, 0, 0)] = 2;
-    body.cells[body.index(3, 1, 1)] = 2;
-    const auto report = evaluate_body(e, body, nullptr);
-
-    bhm::engine::World world(bhm::engine::Model::build(make_body_spec(e, body, e.evolution.seed)));
-    MeasureTracker tracker(e, world);
-    bhm::engine::run(world, evaluation_seconds(e), e.simulation.record_fps,
-                     [&](const bhm::engine::World& w) { tracker.observe(w); });
-    REQUIRE_FALSE(report.diverged);
-    CHECK(report.steps == world.steps());
-    for (int k = 0; k < kMeasureCount; ++k)
-        CHECK(report.measures[static_cast<std::size_t>(k)] ==
-              tracker.measures()[static_cast<std::size_t>(k)]);
-}
-
 TEST_CASE("a cancel raised between two samples stops the evaluation within a few steps") {
     // One sample per 1000 s: without the in-between checks this would simulate 1000 s (minutes
     // of wall time) before seeing the flag.

@@ -1,0 +1,157 @@
+#include "evo/evaluate/periodic_end.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "evo/experiment/scene.hpp"
+
+namespace bhm::evo {
+
+namespace {
+
+double norm(const Vec3& v) {
+    return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+Vec3 minus(const Vec3& a, const Vec3& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+//! n when x is within a millionth of the whole number n >= 1, else 0.
+std::int64_t whole(double x) {
+    const double n = std::round(x);
+    return n >= 1.0 && std::abs(x - n) <= 1e-6 * n ? static_cast<std::int64_t>(n) : 0;
+}
+
+double angle_deg(const Vec3& a, const Vec3& b) {
+    const double lengths = norm(a) * norm(b);
+    if (!(lengths > 0.0)) return 0.0;
+    const double cosine = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / lengths;
+    return std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+}  // namespace
+
+PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const ExploitGroups& groups)
+    : settle_s_(experiment.simulation.settle_s),
+      voxel_size_m_(experiment.voxel_size_m),
+      total_mass_kg_(groups.total_mass_kg),
+      tolerance_(experiment.simulation.periodic_tolerance),
+      dt_s_(dt_s),
+      total_s_(evaluation_seconds(experiment)) {
+    const double fps =
+        experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
+    sample_period_s_ = 1.0 / fps;
+    if (!experiment.simulation.end_when_periodic || !(experiment.actuation.frequency_hz > 0.0))
+        return;
+    if (!(total_mass_kg_ > 0.0) || !(sample_period_s_ > dt_s_)) return;
+    const std::int64_t per_period = whole(fps / experiment.actuation.frequency_hz);
+    last_sample_ = whole(total_s_ * fps);
+    if (per_period < 2 || last_sample_ == 0) return;
+    samples_per_period_ = static_cast<int>(per_period);
+}
+
+double PeriodicEnd::due_time(std::int64_t k) const {
+    // engine::run's schedule: due at k / fps, the last one at total_s; the sample is taken at the
+    // first step at or past it (World::advance_to).
+    double due = static_cast<double>(k) * sample_period_s_;
+    if (due >= total_s_ - 0.5 * dt_s_) due = total_s_;
+    auto n = static_cast<std::int64_t>(std::ceil(due / dt_s_));
+    while (n > 0 && static_cast<double>(n - 1) * dt_s_ >= due)
+        --n;
+    while (static_cast<double>(n) * dt_s_ < due)
+        ++n;
+    return static_cast<double>(n) * dt_s_;
+}
+
+bool PeriodicEnd::observe(const TrackSample& sample) {
+    const std::int64_t k = observed_++;
+    if (!enabled() || !settled(sample.t_s, settle_s_)) return false;
+    if (first_settled_ < 0) {
+        first_settled_ = k;
+        reference_ = sample;
+        can_bend_ = norm(minus(sample.bend_tip_m, sample.bend_base_m)) > 0.0;
+    }
+    settled_.push_back(sample);
+    const int S = samples_per_period_;
+    if (settled_.size() > static_cast<std::size_t>(2 * S + 1)) settled_.pop_front();
+    const auto n = static_cast<std::int64_t>(settled_.size());
+    if (n < 2 * S + 1 || k >= last_sample_) return false;
+    const std::int64_t periods_left = (last_sample_ - k + S - 1) / S;
+    // A residual is the change of the drift from one period to the next; kept up over the
+    // periods left it adds up to residual * (1 + 2 + ... + (M + 1)).
+    const double grow =
+        0.5 * static_cast<double>(periods_left + 1) * static_cast<double>(periods_left + 2);
+    auto at = [&](std::int64_t i) -> const TrackSample& {
+        return settled_[static_cast<std::size_t>(i)];
+    };
+    const TrackSample& now = at(n - 1);
+    const TrackSample& ref = reference_;
+    bool repeats = true;
+    double worst = 0.0;
+    for (int t = 0; t < TrackSample::kTracks; ++t) {
+        // Mass moments (kg m) read as the centre-of-mass shift they make.
+        const double to_voxels =
+            t >= 6 ? 1.0 / (total_mass_kg_ * voxel_size_m_) : 1.0 / voxel_size_m_;
+        const Vec3 drift = minus(now.track(t), at(n - 1 - S).track(t));
+        double residual = 0.0;
+        for (int j = 0; j < S; ++j) {
+            const Vec3 d = minus(at(n - 1 - S + j).track(t), at(n - 1 - 2 * S + j).track(t));
+            residual = std::max(residual, norm(minus(d, drift)));
+        }
+        residual *= to_voxels;
+        worst = std::max(worst, residual);
+        // Absolute (voxel lengths): a measure may be a small projection of a long track.
+        if (residual * grow > tolerance_) repeats = false;
+    }
+    if (can_bend_) {
+        // The bend angle follows the direction base -> tip: its residual as an angle (radians per
+        // unit length of the line), against 1 degree + the largest angle of the last period.
+        const Vec3 dir0 = minus(ref.bend_tip_m, ref.bend_base_m);
+        const double length = norm(minus(now.bend_tip_m, now.bend_base_m));
+        double residual = 0.0, largest_deg = 0.0;
+        auto dir = [&](std::int64_t i) { return minus(at(i).bend_tip_m, at(i).bend_base_m); };
+        const Vec3 drift = minus(dir(n - 1), dir(n - 1 - S));
+        for (int j = 0; j < S; ++j) {
+            const Vec3 d = minus(dir(n - 1 - S + j), dir(n - 1 - 2 * S + j));
+            residual = std::max(residual, norm(minus(d, drift)));
+            largest_deg = std::max(largest_deg, angle_deg(dir0, dir(n - 1 - S + j)));
+        }
+        const double residual_deg =
+            length > 0.0 ? residual / length * 180.0 / std::numbers::pi : 0.0;
+        if (residual_deg * grow > tolerance_ * (1.0 + largest_deg)) repeats = false;
+    }
+    residual_voxels_ = worst;
+    return repeats;
+}
+
+void PeriodicEnd::extrapolate(const std::function<void(const TrackSample&)>& observe) const {
+    const int S = samples_per_period_;
+    const auto n = static_cast<std::int64_t>(settled_.size());
+    if (!enabled() || n < S + 1) return;
+    const std::int64_t last = observed_ - 1;  // index of the last observed sample
+    const TrackSample& now = settled_.back();
+    const TrackSample& before = settled_[static_cast<std::size_t>(n - 1 - S)];
+    for (std::int64_t k = last + 1; k <= last_sample_; ++k) {
+        const std::int64_t q = (k - last + S - 1) / S;  // periods ahead
+        const std::int64_t source = n - 1 - (last - (k - q * S));
+        TrackSample s = settled_[static_cast<std::size_t>(source)];
+        s.t_s = due_time(k);
+        for (int t = 0; t < TrackSample::kTracks; ++t)
+            for (std::size_t c = 0; c < 3; ++c)
+                s.track(t)[c] += static_cast<double>(q) * (now.track(t)[c] - before.track(t)[c]);
+        observe(s);
+    }
+}
+
+double periodic_end_error(const FitnessReport& early, const FitnessReport& full) {
+    double worst = 0.0;
+    for (std::size_t m = 0; m < early.measures.size(); ++m) {
+        const double allowed = std::max(0.005 * std::abs(full.measures[m]), 1e-3);
+        worst = std::max(worst, std::abs(early.measures[m] - full.measures[m]) / allowed);
+    }
+    return worst;
+}
+
+}  // namespace bhm::evo
