@@ -219,10 +219,14 @@ StopReason EvolutionRun::run() {
         if (holding && !stop_.load()) {
             tell(RunEvent::Paused, restarted);
             {
-                // A signal handler cannot notify, so poll the stop flag while paused.
+                // A signal handler cannot notify, so poll the flags while paused. New rules that
+                // arrive now abandon nothing: the stop they raised is lowered, the pause goes on.
                 std::unique_lock lock(control_mutex_);
-                while ((paused_.load() || hold_.load()) && !stop_.load())
+                for (;;) {
+                    if (restart_.exchange(false) && !user_stop_.load()) stop_.store(false);
+                    if (!(paused_.load() || hold_.load()) || stop_.load()) break;
                     control_changed_.wait_for(lock, std::chrono::milliseconds(100));
+                }
             }
             if (!stop_.load()) tell(RunEvent::Resumed, false);
         }

@@ -112,7 +112,7 @@ TEST_CASE("studio integrity: New, Open, recent files and Ctrl+Q ask before unsav
     CHECK(studio.quit_requested);
 }
 
-TEST_CASE("studio integrity: quitting mid-run asks; the live run owns its experiment") {
+TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experiment") {
     const auto dir = testing::fresh_dir("owns");
     auto e = testing::tiny_experiment();
     e.evolution.generations = 40;
@@ -250,7 +250,7 @@ TEST_CASE(
     CHECK(studio.document.experiment() == e);  // the editor took the run's own experiment
 }
 
-TEST_CASE("studio integrity: a tiny resize does not squeeze the layout for good; edges drag") {
+TEST_CASE("studio integrity: a tiny resize does not squeeze the layout for good, edges drag") {
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
     HeadlessStudio session(studio, 1280, 800);

@@ -162,7 +162,7 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
     CHECK(studio.run->history.back().best_fitness == run->history.back().best_fitness);
 }
 
-TEST_CASE("studio session: pause, change the fitness measure, resume; stop and resume the folder") {
+TEST_CASE("studio session: pause, change the fitness measure, resume, stop and resume the folder") {
     const auto dir = testing::fresh_dir("session-rules");
     Studio studio;
     auto e = testing::tiny_experiment();
@@ -247,7 +247,7 @@ TEST_CASE("studio session: a simulated body replays at t = 5 s with the settle p
     CHECK(studio.clock.time_s > 5.0);
 }
 
-TEST_CASE("studio session: the experiment editor picks NEAT; Start runs it and shows its species") {
+TEST_CASE("studio session: the experiment editor picks NEAT, Start runs it and shows its species") {
     const auto dir = testing::fresh_dir("session-neat");
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");

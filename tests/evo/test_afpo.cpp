@@ -38,7 +38,7 @@ TEST_CASE("ties in the overflowing layer: fitness desc, then age asc, then id as
     CHECK(select_survivors(pool, 2, false) == std::vector<int>{1, 2});
 }
 
-TEST_CASE("a 2P+1 = 101 pool is cut to P = 50; the best and the newcomer survive") {
+TEST_CASE("a 2P+1 = 101 pool is cut to P = 50, the best and the newcomer survive") {
     Rng rng(77);
     std::vector<AfpoObjectives> pool;
     for (int i = 0; i < 101; ++i)

@@ -117,7 +117,7 @@ TEST_CASE("a free fall's descriptor follows g t^2 / 2 and agrees with the fitnes
           bhm::test::relative(r.measures[static_cast<int>(FitnessMeasure::ComFinal3d)], 1e-12));
 }
 
-TEST_CASE("a bending bimorph's tip swings; its passive twin stays where it settled") {
+TEST_CASE("a bending bimorph's tip swings, its passive twin stays where it settled") {
     auto e = test::tiny_experiment({6, 1, 2});
     e.environment.gravity_m_s2 = 0.0;
     e.environment.floor = false;

@@ -98,7 +98,7 @@ TEST_CASE("material mapping: first active and first passive of the palette") {
     CHECK(m.passive == 2);
 }
 
-TEST_CASE("largest face-connected component; ties go to the first in index order") {
+TEST_CASE("largest face-connected component, ties go to the first in index order") {
     Body b;
     b.size = {5, 2, 1};
     // Row 0: 1 1 0 1 0   Row 1: 0 0 0 1 1  -> components {0,1} (2 cells) and {3,8,9} (3 cells);

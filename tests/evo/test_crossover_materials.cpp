@@ -92,7 +92,7 @@ TEST_CASE("a 3-material CPPN decodes as worked out by hand") {
     CHECK_THROWS_AS(decoder.decode(classic), std::invalid_argument);
 }
 
-TEST_CASE("per-material experiments evolve bodies with every material; files round-trip") {
+TEST_CASE("per-material experiments evolve bodies with every material, files round-trip") {
     const auto e = three_material_experiment();
     const auto again = parse_experiment(experiment_to_json(e), "test");
     CHECK(again == e);

@@ -205,7 +205,7 @@ TEST_CASE("a stop during a generation abandons it and leaves the state untouched
     CHECK(run.state().rng == rng);
 }
 
-TEST_CASE("pause and stop reach into the simulations of a generation; resume re-runs it") {
+TEST_CASE("pause and stop reach into the simulations of a generation, resume re-runs it") {
     // Simulations long enough (0.6 s simulated) that the controls land while they run.
     auto e = test::tiny_experiment();
     e.evolution.population = 4;
@@ -271,7 +271,7 @@ TEST_CASE("pause and stop reach into the simulations of a generation; resume re-
     fs::remove_all(parts);
 }
 
-TEST_CASE("a corrupt checkpoint falls back to the previous one; both corrupt is a clear error") {
+TEST_CASE("a corrupt checkpoint falls back to the previous one, both corrupt is a clear error") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("evo-corrupt", false);
     EvolutionRun(e, options(2, 2, dir.string())).run();
@@ -389,4 +389,22 @@ TEST_CASE("run(): a rule change mid-generation restarts that generation and equa
     CHECK(run.state().rule_changes.front().generation == 2);
     // Restarted (2) once for generation 2, then paused (0) and resumed (1) before generation 3.
     CHECK(events == std::vector<std::string>{"2:2", "0:3", "1:3"});
+}
+
+TEST_CASE("run(): new rules that arrive while the run is held between generations do not end it") {
+    const Experiment e = test::tiny_experiment();
+    Fitness rules = e.fitness;
+    rules.measure = FitnessMeasure::ComFinalYz;
+    EvolutionRun run(e, options(3, 2));
+    run.set_report_callback([&](auto r) {
+        if (r->generation == 0) run.pause_between_generations(true);
+    });
+    run.set_event_callback([&](RunEvent event, int, bool) {
+        if (event != RunEvent::Paused) return;
+        run.change_fitness_now(rules);  // as the studio's Apply while paused
+        run.set_paused(false);          // and its Resume
+    });
+    REQUIRE(run.run() == StopReason::GenerationBudget);
+    REQUIRE(run.state().rule_changes.size() == 1);
+    CHECK(run.state().rule_changes.front().generation == 1);
 }

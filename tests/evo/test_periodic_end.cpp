@@ -164,7 +164,7 @@ TEST_CASE("the option is read, written and checked with the experiment") {
     CHECK(named);
 }
 
-TEST_CASE("a report says where it stopped; reports written before early ends still read") {
+TEST_CASE("a report says where it stopped, reports written before early ends still read") {
     FitnessReport r;
     r.simulated_s = 2.0;
     r.ended_early = true;

@@ -52,7 +52,7 @@ TEST_CASE("the cyclic map wraps: phase 0 and a full turn get the same colour") {
     CHECK(glm::length(glm::vec3(a) - glm::vec3(half)) > 0.5f);
 }
 
-TEST_CASE("scalar ranges normalise and clamp; an empty range maps to the middle") {
+TEST_CASE("scalar ranges normalise and clamp, an empty range maps to the middle") {
     const ScalarRange range{2.0f, 6.0f};
     CHECK(range.normalize(2.0f) == 0.0f);
     CHECK(range.normalize(5.0f) == doctest::Approx(0.75f));

@@ -78,7 +78,7 @@ TEST_CASE("one instance per voxel, coloured by its material, held voxels flagged
     CHECK(static_cast<int>(seen.size()) == filled);
 }
 
-TEST_CASE("translucent materials go to the translucent list; unknown materials show magenta") {
+TEST_CASE("translucent materials go to the translucent list, unknown materials show magenta") {
     Scene scene = row_scene(3);
     scene.body.voxel_material = {kEnclosure, kPassive, 9};
     const DrawList list = build_draw_list(scene);

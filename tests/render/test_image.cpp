@@ -29,7 +29,7 @@ Image gradient(int w, int h) {
 }
 }  // namespace
 
-TEST_CASE("PNG round trip keeps every pixel; the write leaves no temp file") {
+TEST_CASE("PNG round trip keeps every pixel, the write leaves no temp file") {
     const Image image = gradient(33, 17);
     const std::string path = temp_path("roundtrip.png");
     write_png(path, image);
