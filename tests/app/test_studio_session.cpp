@@ -278,3 +278,20 @@ TEST_CASE("studio session: the experiment editor picks NEAT; Start runs it and s
     std::getline(csv, header);
     CHECK(header.substr(header.size() - 8) == ",species");
 }
+
+TEST_CASE("studio session: opening a file with several errors names every one in the status") {
+    const auto dir = testing::fresh_dir("session-problems");
+    json doc = evo::experiment_to_json(testing::tiny_experiment());
+    doc["materials"][0]["poisson_ratio"] = 0.7;
+    doc["evolution"]["generations"] = -3;
+    const auto path = (dir / "two-errors.json").string();
+    std::ofstream(path) << doc.dump(2);
+    Studio studio;
+    HeadlessStudio session(studio, 800, 500);
+    CHECK_THROWS_AS(run_script(session, json::array({{{"load", path}}})), ScriptError);
+    CHECK(studio.status_is_error);
+    CHECK_MESSAGE(studio.status.find("materials[0].poisson_ratio") != std::string::npos,
+                  studio.status);
+    CHECK_MESSAGE(studio.status.find("evolution.generations") != std::string::npos, studio.status);
+    CHECK(studio.edit_problems.size() == 2);
+}

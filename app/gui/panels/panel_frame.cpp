@@ -129,6 +129,13 @@ void draw_status_bar(Studio& s) {
         ImGui::TextColored(ImVec4(0.80f, 0.15f, 0.10f, 1.0f), "%s", s.status.c_str());
     else
         ImGui::TextUnformatted(s.status.c_str());
+    if (s.status_is_error && s.edit_problems.size() > 1 && ImGui::IsItemHovered()) {
+        // The line may be cut at the window's edge: the tooltip lists every problem in full.
+        ImGui::BeginTooltip();
+        for (const auto& problem : s.edit_problems)
+            ImGui::Text("%s: %s", problem.field.c_str(), problem.message.c_str());
+        ImGui::EndTooltip();
+    }
     if (s.show_demo_metrics) {
         char fps[48];
         std::snprintf(fps, sizeof fps, "%.0f fps (%.1f ms)", s.fps,
