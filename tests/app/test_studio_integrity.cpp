@@ -204,11 +204,13 @@ TEST_CASE(
                                         {"wait_generations": 1, "timeout_s": 240}])"));
     // Pause inside generation 1, once some of its simulations are done. Until then the Run
     // panel's figures move inside the generation: elapsed grows, the progress bar is shown.
-    const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress());
+    const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
+                                    studio.evolution.phase());
     for (int k = 0; k < 20000 && studio.evolution.progress().simulations_done < 1; ++k)
         session.frame();
     session.frame();
-    const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress());
+    const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
+                                    studio.evolution.phase());
     CHECK(studio.evolution.snapshot()->generation == 1);
     CHECK(later.elapsed_s > first.elapsed_s);
     CHECK(later.simulations > first.simulations);

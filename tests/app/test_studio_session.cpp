@@ -192,6 +192,10 @@ TEST_CASE("studio session: pause, change the fitness measure, resume; stop and r
     CHECK(run->rule_changes[0].description.find("com_final_3d") != std::string::npos);
     const int stopped_at = run->generation;
     CHECK(stopped_at > paused_at);
+    // A stopped run is going nowhere: its last estimate stays in the snapshot, the Run panel's
+    // figures have no ETA.
+    CHECK(run->eta_s > 0.0);
+    CHECK(live_figures(*run, studio.evolution.progress(), studio.evolution.phase()).eta_s < 0.0);
     // One plot per measure: degrees and voxels never share a line or an axis.
     const auto series = split_by_measure(*run);
     REQUIRE(series.size() == 2);
