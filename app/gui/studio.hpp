@@ -171,6 +171,9 @@ struct Studio {
     std::string status;  //!< one-line message in the status bar
     bool status_is_error = false;
     std::vector<evo::Problem> edit_problems;  //!< why the last edit was refused
+    //! The live run's phase when the status line last heard of it: an end of the run (finished,
+    //! stopped, failed) replaces a status such as "evolution resumed" with the run's own message.
+    RunPhase status_run_phase = RunPhase::Idle;
     bool show_help = false;
     bool screenshot_requested = false;  //!< F12: written by the app at the end of the frame
     bool show_demo_metrics = false;

@@ -496,6 +496,13 @@ void update_studio(Studio& studio) {
         }
     } else {
         studio.run = studio.evolution.snapshot();
+        // The run ended: the status line says how, instead of the last action's word.
+        const RunPhase phase = studio.run ? studio.run->phase : RunPhase::Idle;
+        const bool ended =
+            phase == RunPhase::Finished || phase == RunPhase::Stopped || phase == RunPhase::Failed;
+        if (ended && phase != studio.status_run_phase && !studio.run->message.empty())
+            set_status(studio, studio.run->message, phase == RunPhase::Failed);
+        studio.status_run_phase = phase;
     }
     // A resumed run's experiment, once loaded, becomes the editor's document (the run's own),
     // unless the editor holds unsaved edits of another one.

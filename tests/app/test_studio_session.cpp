@@ -180,6 +180,7 @@ TEST_CASE("studio session: pause, change the fitness measure, resume; stop and r
     // Generations are fast here: the pause may land a generation or two later than asked, so
     // wait for the first generation scored under the new rules, counted from where it paused.
     const int paused_at = studio.evolution.snapshot()->generation;
+    CHECK(studio.status == "evolution resumed");
     CHECK(paused_at < 6);  // leaves room to stop before the budget of 8
     run_script(session, json::array({{{"wait_generations", paused_at + 1}, {"timeout_s", 240}},
                                      {{"click", "Stop"}},
@@ -196,6 +197,8 @@ TEST_CASE("studio session: pause, change the fitness measure, resume; stop and r
     // figures have no ETA.
     CHECK(run->eta_s > 0.0);
     CHECK(live_figures(*run, studio.evolution.progress(), studio.evolution.phase()).eta_s < 0.0);
+    session.frame();  // the status line says how the run ended, not the last button's word
+    CHECK_MESSAGE(studio.status == run->message, studio.status);
     // One plot per measure: degrees and voxels never share a line or an axis.
     const auto series = split_by_measure(*run);
     REQUIRE(series.size() == 2);
@@ -211,6 +214,8 @@ TEST_CASE("studio session: pause, change the fitness measure, resume; stop and r
     // the history and the rule change.
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
     run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    session.frame();
+    CHECK_MESSAGE(studio.status == "finished: generation budget reached", studio.status);
     run = studio.evolution.snapshot();
     CHECK(run->generation == 8);
     CHECK(run->history.size() == 8);
