@@ -180,6 +180,13 @@ TEST_CASE(
     CHECK(studio.run->run_dir == fs::absolute(dir / "run").lexically_normal().string());
     CHECK(editing_run_document(studio));
     CHECK_FALSE(rules_differ_from_run(studio));
+    // Ctrl+Q now: the question promises no checkpoint (none exists before generation 0 ends).
+    run_script(session, json::parse(R"([{"key": "ctrl+q"}])"));
+    REQUIRE(asking_quit_run(studio));
+    CHECK_MESSAGE(quit_run_question(studio).find("no checkpoint") != std::string::npos,
+                  quit_run_question(studio));
+    CHECK(quit_run_question(studio).find("is kept") == std::string::npos);
+    answer_quit_run(studio, QuitRunAnswer::Cancel);
     run_script(session, json::parse(R"([{"click": "Stop"},
                                         {"wait_run": "stopped", "timeout_s": 60}])"));
     const auto run = studio.evolution.snapshot();
