@@ -78,7 +78,7 @@ struct ViewState {
 };
 
 struct ExportState {
-    std::string screenshot_path = "bhm-view.png";
+    std::string screenshot_path;  //!< empty: numbered files in default_screenshots_dir()
     int screenshot_width = 1920, screenshot_height = 1080;
     std::string frames_folder = "bhm-frames";
     int frames_width = 1280, frames_height = 720;

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "app/gui/headless_session.hpp"
@@ -303,4 +305,33 @@ TEST_CASE("studio session: opening a file with several errors names every one in
                   studio.status);
     CHECK_MESSAGE(studio.status.find("evolution.generations") != std::string::npos, studio.status);
     CHECK(studio.edit_problems.size() == 2);
+}
+
+TEST_CASE("studio session: F12 numbers its screenshots in the data folder and names them whole") {
+    namespace fs = std::filesystem;
+    const auto dir = fs::absolute(testing::fresh_dir("session-f12"));
+    const char* old_xdg = std::getenv("XDG_DATA_HOME");
+    const std::string saved = old_xdg ? old_xdg : "";
+    setenv("XDG_DATA_HOME", dir.c_str(), 1);
+    {
+        Studio studio;
+        studio.document.reset(testing::tiny_experiment(), "");
+        studio.exports.screenshot_width = 64;
+        studio.exports.screenshot_height = 48;
+        HeadlessStudio session(studio, 800, 500);
+        run_script(session, json::parse(R"([{"key": "f12"}])"));
+        const auto first = dir / "bhm-studio" / "screenshots" / "bhm-view-001.png";
+        const auto second = dir / "bhm-studio" / "screenshots" / "bhm-view-002.png";
+        CHECK(fs::exists(first));
+        CHECK_MESSAGE(studio.status.find(first.string()) != std::string::npos, studio.status);
+        run_script(session, json::parse(R"([{"key": "f12"}])"));
+        CHECK(fs::exists(first));  // kept, not overwritten
+        CHECK(fs::exists(second));
+        CHECK_MESSAGE(studio.status.find(second.string()) != std::string::npos, studio.status);
+        CHECK(render::read_png(second.string()).width == 64);
+    }
+    if (old_xdg)
+        setenv("XDG_DATA_HOME", saved.c_str(), 1);
+    else
+        unsetenv("XDG_DATA_HOME");
 }
