@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "app/gui/headless_session.hpp"
+#include "app/gui/key_bindings.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -83,6 +84,18 @@ TEST_CASE("studio session: the help panel lists every shortcut (golden)") {
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"key": "f1"}, {"frames": 3}])"));
     CHECK(studio.show_help);
+    // Every shortcut is drawn whole inside the help window: no key, description or row cut off.
+    const auto window = studio.widgets.at("help window");
+    for (const auto& binding : key_bindings())
+        for (const char* prefix : {"help keys: ", "help: "}) {
+            const std::string name = prefix + std::string(binding.keys);
+            const auto it = studio.widgets.find(name);
+            REQUIRE_MESSAGE(it != studio.widgets.end(), name);
+            const auto& item = it->second;
+            CHECK_MESSAGE(item.max.x <= window.max.x, name);
+            CHECK_MESSAGE(item.max.y <= window.max.y, name);
+            CHECK_MESSAGE(item.frame >= studio.frame - 1, name);
+        }
     testing::check_studio_golden("help", session.capture(), session.font());
     run_script(session, json::parse(R"([{"key": "f1"}])"));
     CHECK_FALSE(studio.show_help);
