@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "app/gui/studio_actions.hpp"
+#include "app/gui/studio_paths.hpp"
 #include "app/gui/view_renderer.hpp"
 #include "app/gui/view_scene.hpp"
 #include "app/gui/viewport.hpp"
@@ -51,15 +52,24 @@ bool export_screenshot(Studio& s, ViewRenderer& renderer, const std::string& pat
                        int height) {
     if (!check_size(s, width, height)) return false;
     try {
-        render::write_png(path, render_view_image(s, renderer, width, height));
+        const std::filesystem::path absolute(absolute_path(path));
+        if (absolute.has_parent_path()) std::filesystem::create_directories(absolute.parent_path());
+        render::write_png(absolute.string(), render_view_image(s, renderer, width, height));
         if (width * height > 4096 * 4096) renderer.release_export_buffer();
-        set_status(s, "screenshot written: " + path + " (" + std::to_string(width) + "x" +
-                          std::to_string(height) + ")");
+        set_status(s, "screenshot written: " + absolute.string() + " (" + std::to_string(width) +
+                          "x" + std::to_string(height) + ")");
         return true;
     } catch (const std::exception& e) {
         set_status(s, std::string("screenshot: ") + e.what(), true);
         return false;
     }
+}
+
+std::string next_screenshot_path(const Studio& s) {
+    const std::string& typed = s.exports.screenshot_path;
+    return next_numbered_path(
+        typed.empty() ? (std::filesystem::path(default_screenshots_dir()) / "bhm-view.png").string()
+                      : typed);
 }
 
 bool start_frame_export(Studio& s, const std::string& folder, int width, int height, double fps) {

@@ -14,8 +14,13 @@ class ViewRenderer;
 render::Image render_view_image(const Studio& studio, ViewRenderer& renderer, int width,
                                 int height);
 
+//! Writes the 3D view at width x height to path (its folder created); the status line shows the
+//! absolute path written.
 bool export_screenshot(Studio& studio, ViewRenderer& renderer, const std::string& path, int width,
                        int height);
+//! Where the next numbered screenshot goes (F12, or Save PNG with an empty path): beside the
+//! Export panel's path, else in default_screenshots_dir(), as bhm-view-001.png, -002, ...
+std::string next_screenshot_path(const Studio& studio);
 
 //! Starts writing the shown replay as folder/frame_00000.png ... at fps; continue_frame_export
 //! writes one frame per call (one per UI frame) until done.

@@ -220,9 +220,7 @@ void set_experiment_field(Studio& studio, const std::string& path, const json& v
         next = evo::parse_experiment(doc, document_label(studio.document));
     } catch (const evo::ValidationError& e) {
         studio.edit_problems = e.problems;
-        set_status(studio,
-                   "refused: " + e.problems.front().field + ": " + e.problems.front().message,
-                   true);
+        set_status(studio, describe_problems("refused: ", e.problems), true);
         throw ScriptError(std::string("set ") + path +
                           " refused: " + e.problems.front().to_string());
     }

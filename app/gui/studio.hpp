@@ -78,7 +78,7 @@ struct ViewState {
 };
 
 struct ExportState {
-    std::string screenshot_path = "bhm-view.png";
+    std::string screenshot_path;  //!< empty: numbered files in default_screenshots_dir()
     int screenshot_width = 1920, screenshot_height = 1080;
     std::string frames_folder = "bhm-frames";
     int frames_width = 1280, frames_height = 720;
@@ -171,6 +171,9 @@ struct Studio {
     std::string status;  //!< one-line message in the status bar
     bool status_is_error = false;
     std::vector<evo::Problem> edit_problems;  //!< why the last edit was refused
+    //! The live run's phase when the status line last heard of it: an end of the run (finished,
+    //! stopped, failed) replaces a status such as "evolution resumed" with the run's own message.
+    RunPhase status_run_phase = RunPhase::Idle;
     bool show_help = false;
     bool screenshot_requested = false;  //!< F12: written by the app at the end of the frame
     bool show_demo_metrics = false;

@@ -15,14 +15,23 @@ void set_status(Studio& studio, const std::string& message, bool is_error) {
     studio.status_is_error = is_error;
 }
 
+std::string describe_problems(const std::string& prefix,
+                              const std::vector<evo::Problem>& problems) {
+    // Every problem, not only the first: a user fixing one at a time would meet them in turns.
+    std::string text = prefix;
+    for (std::size_t i = 0; i < problems.size(); ++i)
+        text += (i == 0 ? "" : "; ") + problems[i].field + ": " + problems[i].message;
+    if (problems.size() > 1) text += " (" + std::to_string(problems.size()) + " problems)";
+    return text;
+}
+
 // --- Document ------------------------------------------------------------------------------
 
 bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label) {
     auto problems = studio.document.edit(next, label);
     studio.edit_problems = problems;
     if (!problems.empty()) {
-        const auto& p = problems.front();
-        set_status(studio, "refused: " + p.field + ": " + p.message, true);
+        set_status(studio, describe_problems("refused: ", problems), true);
         return false;
     }
     if (!label.empty()) set_status(studio, label);
@@ -50,7 +59,9 @@ bool open_experiment(Studio& studio, const std::string& path) {
     } catch (const evo::ValidationError& e) {
         studio.edit_problems = e.problems;
         set_status(studio,
-                   e.problems.empty() ? std::string(e.what()) : e.problems.front().to_string(),
+                   e.problems.empty()
+                       ? std::string(e.what())
+                       : describe_problems(e.problems.front().file + ":", e.problems),
                    true);
     } catch (const std::exception& e) {
         set_status(studio, path + ": " + e.what(), true);
@@ -485,6 +496,13 @@ void update_studio(Studio& studio) {
         }
     } else {
         studio.run = studio.evolution.snapshot();
+        // The run ended: the status line says how, instead of the last action's word.
+        const RunPhase phase = studio.run ? studio.run->phase : RunPhase::Idle;
+        const bool ended =
+            phase == RunPhase::Finished || phase == RunPhase::Stopped || phase == RunPhase::Failed;
+        if (ended && phase != studio.status_run_phase && !studio.run->message.empty())
+            set_status(studio, studio.run->message, phase == RunPhase::Failed);
+        studio.status_run_phase = phase;
     }
     // A resumed run's experiment, once loaded, becomes the editor's document (the run's own),
     // unless the editor holds unsaved edits of another one.

@@ -4,6 +4,7 @@
 // Failures never throw out of here: they become the status line (one line naming the file/field).
 #include <array>
 #include <string>
+#include <vector>
 
 #include "app/gui/studio.hpp"
 
@@ -12,9 +13,13 @@ namespace bhm::app::gui {
 //! Sets the status line (and the error flag) shown at the bottom of the window.
 void set_status(Studio& studio, const std::string& message, bool is_error = false);
 
+//! One status line naming every problem ("field: message; field: message"), prefixed by
+//! `prefix`; the status bar's tooltip lists them one per line (studio.edit_problems).
+std::string describe_problems(const std::string& prefix, const std::vector<evo::Problem>& problems);
+
 // --- Document ------------------------------------------------------------------------------
-//! Validates and applies an edited experiment; on refusal the status shows the validator's first
-//! message and studio.edit_problems all of them. Returns true when applied (or unchanged).
+//! Validates and applies an edited experiment; on refusal the status names every problem
+//! (studio.edit_problems holds them). Returns true when applied (or unchanged).
 bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label);
 void new_experiment(Studio& studio);
 bool open_experiment(Studio& studio, const std::string& path);

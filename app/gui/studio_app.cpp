@@ -141,7 +141,8 @@ void StudioApp::build_frame(double wall_dt_s) {
     draw_confirm_dialogs(s);
     if (s.screenshot_requested) {
         s.screenshot_requested = false;
-        export_screenshot(s, renderer_, s.exports.screenshot_path, s.exports.screenshot_width,
+        // Numbered: a second F12 keeps the first screenshot.
+        export_screenshot(s, renderer_, next_screenshot_path(s), s.exports.screenshot_width,
                           s.exports.screenshot_height);
     }
     continue_frame_export(s, renderer_);

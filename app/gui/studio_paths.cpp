@@ -1,6 +1,7 @@
 #include "app/gui/studio_paths.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -23,6 +24,22 @@ std::string default_runs_root() {
     if (home && *home)
         return (fs::path(home) / ".local" / "share" / "bhm-studio" / "runs").string();
     return absolute_path("runs");
+}
+
+std::string default_screenshots_dir() {
+    return (fs::path(default_runs_root()).parent_path() / "screenshots").string();
+}
+
+std::string next_numbered_path(const std::string& path) {
+    const fs::path base(absolute_path(path));
+    std::error_code ec;
+    for (int n = 1;; ++n) {
+        char number[16];
+        std::snprintf(number, sizeof number, "-%03d", n);
+        const fs::path candidate =
+            base.parent_path() / (base.stem().string() + number + base.extension().string());
+        if (!fs::exists(candidate, ec)) return candidate.string();
+    }
 }
 
 std::string default_presets_dir() {

@@ -17,6 +17,14 @@ std::string absolute_path(const std::string& path);
 //! runs/ in the current folder (the last resort only when neither variable is set).
 std::string default_runs_root();
 
+//! Folder F12 screenshots go to when the Export panel's path is empty: a screenshots/ folder
+//! beside default_runs_root() (not the folder the studio was started from).
+std::string default_screenshots_dir();
+
+//! The first of `stem-001.ext`, `stem-002.ext`, ... beside `path` that does not exist yet,
+//! absolute: each F12 keeps the earlier screenshots.
+std::string next_numbered_path(const std::string& path);
+
 //! The shipped presets: $BHM_PRESETS_DIR when set, else <exe>/../share/bhm/experiments when it
 //! exists, else the source tree's assets/experiments. Absolute; may not exist.
 std::string default_presets_dir();

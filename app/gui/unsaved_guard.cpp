@@ -101,6 +101,16 @@ void answer_unsaved(Studio& s, UnsavedAnswer answer) {
     proceed(s);
 }
 
+std::string quit_run_question(const Studio& s) {
+    const int done = s.run && s.run->loaded ? s.run->generation : 0;
+    if (done == 0)  // no checkpoint is written before generation 0 completes
+        return "Quitting now abandons generation 0, the first: no generation is complete, so "
+               "there is no checkpoint and the run cannot be resumed.";
+    return "Quitting now abandons the generation in progress; the checkpoint of the " +
+           std::to_string(done) + " completed generation" + (done == 1 ? "" : "s") +
+           " is kept and the run can be resumed.";
+}
+
 void answer_quit_run(Studio& s, QuitRunAnswer answer) {
     switch (answer) {
         case QuitRunAnswer::FinishGeneration:
@@ -157,11 +167,7 @@ void draw_confirm_dialogs(Studio& s) {
     ImGui::SetNextWindowPos(centre, ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     if (ImGui::BeginPopupModal(kQuitRunTitle, nullptr, flags)) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
-        const int done = s.run ? s.run->generation : 0;
-        ImGui::TextWrapped(
-            "Quitting now abandons the generation in progress; the checkpoint of the %d "
-            "completed generation%s is kept and the run can be resumed.",
-            done, done == 1 ? "" : "s");
+        ImGui::TextWrapped("%s", quit_run_question(s).c_str());
         ImGui::PopTextWrapPos();
         if (tracked_button(s, "Finish generation, then quit"))
             answer_quit_run(s, QuitRunAnswer::FinishGeneration);

@@ -26,6 +26,9 @@ void answer_quit_run(Studio& studio, QuitRunAnswer answer);
 bool asking_unsaved(const Studio& studio);
 //! The quit-while-running question is showing.
 bool asking_quit_run(const Studio& studio);
+//! What that question says about the checkpoint: the completed generations kept, or, in
+//! generation 0, that there is no checkpoint and the run cannot be resumed.
+std::string quit_run_question(const Studio& studio);
 
 //! Per frame: a quit waiting for the generation in progress goes on once the run has paused.
 void update_pending_action(Studio& studio);

@@ -180,6 +180,13 @@ TEST_CASE(
     CHECK(studio.run->run_dir == fs::absolute(dir / "run").lexically_normal().string());
     CHECK(editing_run_document(studio));
     CHECK_FALSE(rules_differ_from_run(studio));
+    // Ctrl+Q now: the question promises no checkpoint (none exists before generation 0 ends).
+    run_script(session, json::parse(R"([{"key": "ctrl+q"}])"));
+    REQUIRE(asking_quit_run(studio));
+    CHECK_MESSAGE(quit_run_question(studio).find("no checkpoint") != std::string::npos,
+                  quit_run_question(studio));
+    CHECK(quit_run_question(studio).find("is kept") == std::string::npos);
+    answer_quit_run(studio, QuitRunAnswer::Cancel);
     run_script(session, json::parse(R"([{"click": "Stop"},
                                         {"wait_run": "stopped", "timeout_s": 60}])"));
     const auto run = studio.evolution.snapshot();
@@ -204,11 +211,13 @@ TEST_CASE(
                                         {"wait_generations": 1, "timeout_s": 240}])"));
     // Pause inside generation 1, once some of its simulations are done. Until then the Run
     // panel's figures move inside the generation: elapsed grows, the progress bar is shown.
-    const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress());
+    const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
+                                    studio.evolution.phase());
     for (int k = 0; k < 20000 && studio.evolution.progress().simulations_done < 1; ++k)
         session.frame();
     session.frame();
-    const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress());
+    const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
+                                    studio.evolution.phase());
     CHECK(studio.evolution.snapshot()->generation == 1);
     CHECK(later.elapsed_s > first.elapsed_s);
     CHECK(later.simulations > first.simulations);

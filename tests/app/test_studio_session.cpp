@@ -4,9 +4,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "app/gui/headless_session.hpp"
+#include "app/gui/key_bindings.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -81,6 +84,18 @@ TEST_CASE("studio session: the help panel lists every shortcut (golden)") {
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"key": "f1"}, {"frames": 3}])"));
     CHECK(studio.show_help);
+    // Every shortcut is drawn whole inside the help window: no key, description or row cut off.
+    const auto window = studio.widgets.at("help window");
+    for (const auto& binding : key_bindings())
+        for (const char* prefix : {"help keys: ", "help: "}) {
+            const std::string name = prefix + std::string(binding.keys);
+            const auto it = studio.widgets.find(name);
+            REQUIRE_MESSAGE(it != studio.widgets.end(), name);
+            const auto& item = it->second;
+            CHECK_MESSAGE(item.max.x <= window.max.x, name);
+            CHECK_MESSAGE(item.max.y <= window.max.y, name);
+            CHECK_MESSAGE(item.frame >= studio.frame - 1, name);
+        }
     testing::check_studio_golden("help", session.capture(), session.font());
     run_script(session, json::parse(R"([{"key": "f1"}])"));
     CHECK_FALSE(studio.show_help);
@@ -180,6 +195,7 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     // Generations are fast here: the pause may land a generation or two later than asked, so
     // wait for the first generation scored under the new rules, counted from where it paused.
     const int paused_at = studio.evolution.snapshot()->generation;
+    CHECK(studio.status == "evolution resumed");
     CHECK(paused_at < 6);  // leaves room to stop before the budget of 8
     run_script(session, json::array({{{"wait_generations", paused_at + 1}, {"timeout_s", 240}},
                                      {{"click", "Stop"}},
@@ -192,6 +208,12 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     CHECK(run->rule_changes[0].description.find("com_final_3d") != std::string::npos);
     const int stopped_at = run->generation;
     CHECK(stopped_at > paused_at);
+    // A stopped run is going nowhere: its last estimate stays in the snapshot, the Run panel's
+    // figures have no ETA.
+    CHECK(run->eta_s > 0.0);
+    CHECK(live_figures(*run, studio.evolution.progress(), studio.evolution.phase()).eta_s < 0.0);
+    session.frame();  // the status line says how the run ended, not the last button's word
+    CHECK_MESSAGE(studio.status == run->message, studio.status);
     // One plot per measure: degrees and voxels never share a line or an axis.
     const auto series = split_by_measure(*run);
     REQUIRE(series.size() == 2);
@@ -207,6 +229,8 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     // the history and the rule change.
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
     run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    session.frame();
+    CHECK_MESSAGE(studio.status == "finished: generation budget reached", studio.status);
     run = studio.evolution.snapshot();
     CHECK(run->generation == 8);
     CHECK(run->history.size() == 8);
@@ -277,4 +301,50 @@ TEST_CASE("studio session: the experiment editor picks NEAT, Start runs it and s
     std::string header;
     std::getline(csv, header);
     CHECK(header.substr(header.size() - 8) == ",species");
+}
+
+TEST_CASE("studio session: opening a file with several errors names every one in the status") {
+    const auto dir = testing::fresh_dir("session-problems");
+    json doc = evo::experiment_to_json(testing::tiny_experiment());
+    doc["materials"][0]["poisson_ratio"] = 0.7;
+    doc["evolution"]["generations"] = -3;
+    const auto path = (dir / "two-errors.json").string();
+    std::ofstream(path) << doc.dump(2);
+    Studio studio;
+    HeadlessStudio session(studio, 800, 500);
+    CHECK_THROWS_AS(run_script(session, json::array({{{"load", path}}})), ScriptError);
+    CHECK(studio.status_is_error);
+    CHECK_MESSAGE(studio.status.find("materials[0].poisson_ratio") != std::string::npos,
+                  studio.status);
+    CHECK_MESSAGE(studio.status.find("evolution.generations") != std::string::npos, studio.status);
+    CHECK(studio.edit_problems.size() == 2);
+}
+
+TEST_CASE("studio session: F12 numbers its screenshots in the data folder and names them whole") {
+    namespace fs = std::filesystem;
+    const auto dir = fs::absolute(testing::fresh_dir("session-f12"));
+    const char* old_xdg = std::getenv("XDG_DATA_HOME");
+    const std::string saved = old_xdg ? old_xdg : "";
+    setenv("XDG_DATA_HOME", dir.c_str(), 1);
+    {
+        Studio studio;
+        studio.document.reset(testing::tiny_experiment(), "");
+        studio.exports.screenshot_width = 64;
+        studio.exports.screenshot_height = 48;
+        HeadlessStudio session(studio, 800, 500);
+        run_script(session, json::parse(R"([{"key": "f12"}])"));
+        const auto first = dir / "bhm-studio" / "screenshots" / "bhm-view-001.png";
+        const auto second = dir / "bhm-studio" / "screenshots" / "bhm-view-002.png";
+        CHECK(fs::exists(first));
+        CHECK_MESSAGE(studio.status.find(first.string()) != std::string::npos, studio.status);
+        run_script(session, json::parse(R"([{"key": "f12"}])"));
+        CHECK(fs::exists(first));  // kept, not overwritten
+        CHECK(fs::exists(second));
+        CHECK_MESSAGE(studio.status.find(second.string()) != std::string::npos, studio.status);
+        CHECK(render::read_png(second.string()).width == 64);
+    }
+    if (old_xdg)
+        setenv("XDG_DATA_HOME", saved.c_str(), 1);
+    else
+        unsetenv("XDG_DATA_HOME");
 }

@@ -83,6 +83,12 @@ double thread_cpu_s() {
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
+constexpr const char* kUsage =
+    "usage: bench_studio [--frames N] [--size WxH] [--sim-seconds S] [--evolve-seconds S]\n"
+    "                    [--samples N] [--no-evolution] [--frames-csv PATH] [--commit SHA]\n"
+    "The studio's UI frame rate, headless on llvmpipe, while a run evolves on the other core.\n"
+    "One summary row as CSV on stdout (frame times in ms); per-frame times to --frames-csv.\n";
+
 double percentile(std::vector<double> v, double q) {
     std::sort(v.begin(), v.end());
     return v[static_cast<std::size_t>(
@@ -125,8 +131,11 @@ int main(int argc, char** argv) {
                 frames_csv = value();
             else if (a == "--commit")
                 commit = value();
-            else
-                throw std::runtime_error("unknown option " + a);
+            else if (a == "--help" || a == "-h") {
+                std::cout << kUsage;
+                return 0;
+            } else
+                throw std::runtime_error("unknown option " + a + " (see --help)");
         }
         if (frames < 10) throw std::runtime_error("--frames must be >= 10");
     } catch (const std::exception& e) {

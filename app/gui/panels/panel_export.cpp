@@ -47,8 +47,12 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     size_fields("size##shot", x.screenshot_width, x.screenshot_height);
     ImGui::SameLine();
     if (tracked_button(s, "Save PNG"))
-        export_screenshot(s, renderer, x.screenshot_path, x.screenshot_width, x.screenshot_height);
-    hint("rendered off-screen at that size, with the view's camera");
+        export_screenshot(s, renderer,
+                          x.screenshot_path.empty() ? next_screenshot_path(s) : x.screenshot_path,
+                          x.screenshot_width, x.screenshot_height);
+    hint(
+        "rendered off-screen at that size, with the view's camera; an empty path numbers them "
+        "in the screenshots folder, F12 numbers them beside the path");
 
     section_title("Replay as a frame sequence");
     path_field(s, "##frames folder", x.frames_folder);

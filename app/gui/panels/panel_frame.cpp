@@ -69,23 +69,37 @@ void draw_help_window(Studio& s) {
     const float font = ImGui::GetFontSize();
     ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing,
                             ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 58.0f),
-                                    std::min(display.y - 60.0f, font * 33.0f)),
+    // Tall enough for every shortcut (wrapped) at the usual window sizes; smaller windows scroll.
+    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 60.0f),
+                                    std::min(display.y - 60.0f, font * 44.0f)),
                              ImGuiCond_Appearing);
     if (!ImGui::Begin("Help: shortcuts and mouse", &s.show_help, ImGuiWindowFlags_NoCollapse)) {
         ImGui::End();
         return;
+    }
+    {  // recorded so tests can check that every line is inside it
+        const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+        s.widgets["help window"] =
+            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
     }
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
     if (ImGui::BeginTable("help layout", 2, ImGuiTableFlags_SizingStretchSame)) {
         ImGui::TableNextColumn();
         section_title("Keyboard");
         if (ImGui::BeginTable("keys", 2, flags)) {
+            // The key column as wide as its widest chord ("Ctrl+Shift+Z"); descriptions wrap.
+            float keys_width = 0.0f;
+            for (const auto& b : key_bindings())
+                keys_width = std::max(keys_width, ImGui::CalcTextSize(b.keys).x);
+            ImGui::TableSetupColumn("keys", ImGuiTableColumnFlags_WidthFixed, keys_width);
+            ImGui::TableSetupColumn("what", ImGuiTableColumnFlags_WidthStretch);
             for (const auto& b : key_bindings()) {
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(b.keys);
+                record_widget(s, std::string("help keys: ") + b.keys);
                 ImGui::TableNextColumn();
-                ImGui::TextUnformatted(b.description);
+                ImGui::TextWrapped("%s", b.description);
+                record_widget(s, std::string("help: ") + b.keys);
             }
             ImGui::EndTable();
         }
@@ -129,6 +143,13 @@ void draw_status_bar(Studio& s) {
         ImGui::TextColored(ImVec4(0.80f, 0.15f, 0.10f, 1.0f), "%s", s.status.c_str());
     else
         ImGui::TextUnformatted(s.status.c_str());
+    if (s.status_is_error && s.edit_problems.size() > 1 && ImGui::IsItemHovered()) {
+        // The line may be cut at the window's edge: the tooltip lists every problem in full.
+        ImGui::BeginTooltip();
+        for (const auto& problem : s.edit_problems)
+            ImGui::Text("%s: %s", problem.field.c_str(), problem.message.c_str());
+        ImGui::EndTooltip();
+    }
     if (s.show_demo_metrics) {
         char fps[48];
         std::snprintf(fps, sizeof fps, "%.0f fps (%.1f ms)", s.fps,

@@ -109,8 +109,8 @@ void status(Studio& s) {
         char text[64];
         // Live: the generation in progress counts (elapsed, simulations, rate, ETA move inside a
         // generation); a watched directory has only its files.
-        const LiveFigures live =
-            s.showing_run_directory ? live_figures(*run, {}) : live_figures(*run, progress);
+        const LiveFigures live = s.showing_run_directory ? live_figures(*run, {}, phase)
+                                                         : live_figures(*run, progress, phase);
         cell("state", s.showing_run_directory ? "viewing" : run_phase_name(phase));
         std::snprintf(text, sizeof text, "%d / %d", run->generation, run->generation_budget);
         cell("generation", text);
@@ -118,8 +118,7 @@ void status(Studio& s) {
         std::snprintf(text, sizeof text, "%.2f", live.simulations_per_s);
         cell("sims/s", text);
         cell("elapsed", format_duration(live.elapsed_s));
-        cell("ETA",
-             live.eta_s >= 0.0 && phase != RunPhase::Paused ? format_duration(live.eta_s) : "-");
+        cell("ETA", live.eta_s >= 0.0 ? format_duration(live.eta_s) : "-");
         std::snprintf(text, sizeof text, "%lld", static_cast<long long>(live.simulations));
         cell("simulations", text);
         cell("measure", evo::kFitnessNames[static_cast<std::size_t>(measure)]);

@@ -332,12 +332,13 @@ LiveProgress EvolutionSession::progress() const {
     return out;
 }
 
-LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& p) {
+LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& p, RunPhase phase) {
     LiveFigures f;
     f.elapsed_s = run.elapsed_s;
     f.simulations = run.evaluations;
     f.simulations_per_s = run.simulations_per_s;
-    f.eta_s = run.eta_s;
+    const bool running = phase == RunPhase::Running;
+    f.eta_s = running ? run.eta_s : -1.0;
     if (!p.running || p.generation < run.generation) return f;
     f.elapsed_s += p.generation_s;
     f.simulations += p.simulations_done;
@@ -352,7 +353,7 @@ LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& p) {
                                          ? run.elapsed_s / run.generation
                                          : (this_left >= 0.0 ? p.generation_s + this_left : -1.0);
     const int after = run.generation_budget - p.generation - 1;
-    if (this_left >= 0.0 && mean_generation_s >= 0.0)
+    if (running && this_left >= 0.0 && mean_generation_s >= 0.0)
         f.eta_s = this_left + std::max(0, after) * mean_generation_s;
     return f;
 }

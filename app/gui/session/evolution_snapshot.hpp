@@ -95,7 +95,10 @@ struct LiveFigures {
     double eta_s = -1.0;             //!< to the generation budget; -1 unknown
     std::int64_t simulations = 0;    //!< completed + finished in the generation in progress
 };
-LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progress);
+//! `phase` is the run's phase now: only a running run has an ETA (a stopped, paused, finished
+//! or failed one is going nowhere, so its last estimate would mislead).
+LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progress,
+                         RunPhase phase);
 
 //! "escaped (12 % unanchored), tentacle (thin share 0.62)"; "" when nothing is flagged or the
 //! result predates exploit detection.
