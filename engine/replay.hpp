@@ -38,7 +38,7 @@ std::vector<double> voxel_mass_weights(const Replay& replay,
                                        const std::vector<double>& material_density);
 
 //! The centre of mass of one frame, in metres: voxel centres weighted by voxel_mass (empty = all
-//! equal), as World::center_of_mass_m computes it during the simulation.
+//! equal), as World::centre_of_mass_m computes it during the simulation.
 std::array<double, 3> centre_of_mass(const VoxelPoses& poses,
                                      const std::vector<double>& voxel_mass = {});
 

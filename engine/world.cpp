@@ -182,7 +182,7 @@ const std::string& World::divergence_reason() const {
     return state_->divergence_reason;
 }
 
-std::array<double, 3> World::center_of_mass_m() const {
+std::array<double, 3> World::centre_of_mass_m() const {
     const Model::Data& d = *state_->data;
     const VoxelState& s = state_->voxels;
     std::array<double, 3> sum{0.0, 0.0, 0.0};

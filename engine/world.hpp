@@ -29,7 +29,7 @@ public:
     bool diverged() const;
     const std::string& divergence_reason() const;
 
-    std::array<double, 3> center_of_mass_m() const;
+    std::array<double, 3> centre_of_mass_m() const;
     std::array<double, 3> voxel_position_m(int v) const;
     void read_poses(VoxelPoses& out) const;  //!< resizes out once, then reuses its storage
 

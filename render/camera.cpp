@@ -129,7 +129,7 @@ void zoom(Camera& camera, float factor) {
 
 void frame_bounds(Camera& camera, const Bounds& bounds, float aspect, float margin) {
     if (!bounds.valid) return;
-    camera.target = bounds.center();
+    camera.target = bounds.centre();
     camera.scene_radius_m = std::max(bounds.radius(), 1e-4f);
     const glm::vec3 r = camera.right(), u = camera.up(), f = camera.forward();
     const float fill = std::max(1.0f - 2.0f * margin, 0.1f);

@@ -16,7 +16,7 @@ struct Bounds {
     bool valid = false;  //!< false until something is added
     void add(const glm::vec3& point);
     void add(const Bounds& other);
-    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 centre() const { return 0.5f * (min + max); }
     float radius() const;  //!< half the diagonal
 };
 

@@ -61,7 +61,7 @@ void check_pose_count(const engine::VoxelPoses& poses, int voxel_count, const ch
 BoxInstance box_from_pose(const engine::VoxelPoses& poses, int v) {
     const std::size_t i = static_cast<std::size_t>(v);
     BoxInstance box;
-    box.center = {poses.position_m[3 * i], poses.position_m[3 * i + 1],
+    box.centre = {poses.position_m[3 * i], poses.position_m[3 * i + 1],
                   poses.position_m[3 * i + 2]};
     box.orientation = unit_quaternion(&poses.orientation[4 * i]);
     box.size = {poses.size_m[3 * i], poses.size_m[3 * i + 1], poses.size_m[3 * i + 2]};
@@ -130,8 +130,8 @@ void add_body(const Scene& scene, DrawList& list) {
         if (!options.show_edges) flags |= kBoxNoEdges;
         box.flags = static_cast<float>(flags);
         box.voxel = static_cast<float>(v);
-        list.bounds.add(box.center - rotated_half_extent(box));
-        list.bounds.add(box.center + rotated_half_extent(box));
+        list.bounds.add(box.centre - rotated_half_extent(box));
+        list.bounds.add(box.centre + rotated_half_extent(box));
         placed.push_back(box);
     }
     cull_hidden_faces(body, placed);
@@ -148,12 +148,12 @@ void add_ghost(const Scene& scene, DrawList& list) {
         if (scene.options.section_y >= 0 && body.voxel_coords(v)[1] > scene.options.section_y)
             continue;
         BoxInstance box = box_from_pose(ghost, v);
-        box.center += scene.options.ghost_offset_m;
+        box.centre += scene.options.ghost_offset_m;
         box.color = palette::kGhost;
         box.flags = static_cast<float>(kBoxGhost | (scene.options.show_edges ? 0u : kBoxNoEdges));
         box.voxel = static_cast<float>(v);
-        list.bounds.add(box.center - rotated_half_extent(box));
-        list.bounds.add(box.center + rotated_half_extent(box));
+        list.bounds.add(box.centre - rotated_half_extent(box));
+        list.bounds.add(box.centre + rotated_half_extent(box));
         placed.push_back(box);
     }
     cull_hidden_faces(body, placed);
@@ -231,7 +231,7 @@ void add_boundary_faces(const Scene& scene, const Bounds& w, DrawList& list) {
 
 void add_origin_star(const Scene& scene, DrawList& list) {
     const BodyView& body = scene.body;
-    glm::vec3 at = cell_center_m(0, 0, 0, body.voxel_size_m);
+    glm::vec3 at = cell_centre_m(0, 0, 0, body.voxel_size_m);
     for (int v = 0; v < body.voxel_count(); ++v) {
         if (body.voxel_cell[static_cast<std::size_t>(v)] != 0 || body.poses.position_m.empty())
             continue;

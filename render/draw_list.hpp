@@ -24,10 +24,10 @@ enum BoxFlags : std::uint32_t {
 //! Bits of BoxInstance::faces: face 2 * axis + (1 for the + side), i.e. x-, x+, y-, y+, z-, z+.
 inline constexpr std::uint32_t kAllFaces = 63u;
 
-//! One box: a unit cube scaled by size along its own axes, rotated, then moved to center.
+//! One box: a unit cube scaled by size along its own axes, rotated, then moved to centre.
 //! The layout is what the GPU reads per instance (floats only, tightly packed).
 struct BoxInstance {
-    glm::vec3 center{0.0f};
+    glm::vec3 centre{0.0f};
     glm::vec4 orientation{1.0f, 0.0f, 0.0f, 0.0f};  //!< unit quaternion w, x, y, z
     glm::vec3 size{0.0f};
     glm::vec4 color{1.0f};

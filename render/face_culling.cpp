@@ -38,7 +38,7 @@ glm::vec3 rotate_vector(const glm::vec4& q, const glm::vec3& v) {
 
 glm::vec3 box_corner(const BoxInstance& box, int sx, int sy, int sz) {
     const glm::vec3 local = 0.5f * glm::vec3(sx, sy, sz) * box.size;
-    return box.center + rotate_vector(box.orientation, local);
+    return box.centre + rotate_vector(box.orientation, local);
 }
 
 void cull_hidden_faces(const BodyView& body, std::vector<BoxInstance>& boxes,

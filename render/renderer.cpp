@@ -132,7 +132,7 @@ struct Renderer::Gl {
         float_attribute(1, 3, sizeof(CubeVertex), offsetof(CubeVertex, normal));
         glBindBuffer(GL_ARRAY_BUFFER, instance_vbo);
         constexpr GLsizei stride = sizeof(BoxInstance);
-        float_attribute(2, 3, stride, offsetof(BoxInstance, center), 1);
+        float_attribute(2, 3, stride, offsetof(BoxInstance, centre), 1);
         float_attribute(3, 4, stride, offsetof(BoxInstance, orientation), 1);
         float_attribute(4, 3, stride, offsetof(BoxInstance, size), 1);
         float_attribute(5, 4, stride, offsetof(BoxInstance, color), 1);
@@ -287,7 +287,7 @@ void Renderer::draw(const DrawList& list, const Camera& camera, int width_px, in
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
-    const float middle = glm::dot(list.workspace_bounds.center(), forward);
+    const float middle = glm::dot(list.workspace_bounds.centre(), forward);
     std::vector<TriangleVertex> far_faces, near_faces;
     for (std::size_t i = 0; i + 5 < list.translucent_triangles.size(); i += 6) {
         const auto& t = list.translucent_triangles;
@@ -309,7 +309,7 @@ void Renderer::draw(const DrawList& list, const Camera& camera, int width_px, in
         gl.sorted = list.translucent_boxes;
         std::sort(gl.sorted.begin(), gl.sorted.end(),
                   [&](const BoxInstance& a, const BoxInstance& b) {
-                      return glm::dot(a.center, forward) > glm::dot(b.center, forward);
+                      return glm::dot(a.centre, forward) > glm::dot(b.centre, forward);
                   });
         glEnable(GL_CULL_FACE);
         gl.box.use();

@@ -19,7 +19,7 @@ BodyView body_view_from_replay(const engine::Replay& replay) {
     return body;
 }
 
-std::vector<glm::vec3> center_of_mass_trail(const engine::Replay& replay, double time_s,
+std::vector<glm::vec3> centre_of_mass_trail(const engine::Replay& replay, double time_s,
                                             const std::vector<double>& voxel_mass) {
     std::vector<glm::vec3> trail;
     for (const auto& frame : replay.frames) {

@@ -17,7 +17,7 @@ BodyView body_view_from_replay(const engine::Replay& replay);
 
 //! Centre of mass of each frame up to and including time_s (engine::centre_of_mass; voxel_mass
 //! from engine::voxel_mass_weights, empty = all equal).
-std::vector<glm::vec3> center_of_mass_trail(const engine::Replay& replay, double time_s,
+std::vector<glm::vec3> centre_of_mass_trail(const engine::Replay& replay, double time_s,
                                             const std::vector<double>& voxel_mass = {});
 
 //! Bounds of every voxel over every frame (for framing a whole sequence without jumps).

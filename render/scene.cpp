@@ -7,7 +7,7 @@ std::array<int, 3> BodyView::voxel_coords(int v) const {
     return {cell % nx, (cell / nx) % ny, cell / (nx * ny)};
 }
 
-glm::vec3 cell_center_m(int x, int y, int z, double voxel_size_m) {
+glm::vec3 cell_centre_m(int x, int y, int z, double voxel_size_m) {
     const double s = voxel_size_m;
     return {static_cast<float>((x + 0.5) * s), static_cast<float>((y + 0.5) * s),
             static_cast<float>((z + 0.5) * s)};
@@ -38,7 +38,7 @@ engine::VoxelPoses rest_poses(const BodyView& body) {
     const float s = static_cast<float>(body.voxel_size_m);
     for (int v = 0; v < n; ++v) {
         const auto [x, y, z] = body.voxel_coords(v);
-        const glm::vec3 c = cell_center_m(x, y, z, body.voxel_size_m);
+        const glm::vec3 c = cell_centre_m(x, y, z, body.voxel_size_m);
         poses.position_m.insert(poses.position_m.end(), {c.x, c.y, c.z});
         poses.orientation.insert(poses.orientation.end(), {1.0f, 0.0f, 0.0f, 0.0f});
         poses.size_m.insert(poses.size_m.end(), {s, s, s});

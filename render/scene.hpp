@@ -35,7 +35,7 @@ BodyView body_view_from_spec(const engine::BodySpec& spec);
 //! voxel lengths, axis-aligned, full size. The body's lattice starts at the world origin.
 engine::VoxelPoses rest_poses(const BodyView& body);
 //! Centre of a lattice cell in metres under the same convention.
-glm::vec3 cell_center_m(int x, int y, int z, double voxel_size_m);
+glm::vec3 cell_centre_m(int x, int y, int z, double voxel_size_m);
 
 //! How a workspace face is marked (paper Figure 2): a fixed boundary plane green, a free one
 //! purple, or not drawn.

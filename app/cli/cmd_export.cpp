@@ -13,7 +13,7 @@
 #include "engine/io/text_file.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/formats/surface_mesh.hpp"
 #include "evo/formats/vtk_series.hpp"
 #include "evo/formats/vxa.hpp"

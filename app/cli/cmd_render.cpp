@@ -17,7 +17,7 @@
 #include "engine/replay.hpp"
 #include "evo/evaluate/replay_measures.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "render/caption.hpp"
 #include "render/draw_list.hpp"
 #include "render/offscreen.hpp"

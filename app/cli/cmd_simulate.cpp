@@ -23,7 +23,7 @@
 #include "evo/evaluate/periodic_end.hpp"
 #include "evo/evaluate/tracks.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app {
 

@@ -116,7 +116,7 @@ render::Scene replay_scene(const evo::Experiment& experiment, const engine::Repl
         std::vector<double> density;
         for (const auto& material : experiment.materials)
             density.push_back(material.physics.density_kg_m3);
-        scene.options.com_trail_m = render::center_of_mass_trail(
+        scene.options.com_trail_m = render::centre_of_mass_trail(
             replay, time_s, engine::voxel_mass_weights(replay, density));
     }
     return scene;

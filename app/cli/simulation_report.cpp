@@ -49,7 +49,7 @@ Vec3 centroid_m(const engine::World& world, const std::vector<int>& voxels) {
 }
 
 TrajectorySample measure_sample(const engine::World& world, const std::vector<int>& tip_voxels) {
-    return {world.time_s(), world.center_of_mass_m(), centroid_m(world, tip_voxels)};
+    return {world.time_s(), world.centre_of_mass_m(), centroid_m(world, tip_voxels)};
 }
 
 DisplacementSummary summarize_displacements(const std::vector<TrajectorySample>& samples,

@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app::gui {
 

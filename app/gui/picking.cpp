@@ -96,7 +96,7 @@ std::optional<FaceHit> pick_box_face(const Ray& ray, const LatticeBox& box) {
     return hit;
 }
 
-glm::vec3 face_center_m(const LatticeBox& box, evo::Face face) {
+glm::vec3 face_centre_m(const LatticeBox& box, evo::Face face) {
     glm::vec3 c = 0.5f * box.max_corner();
     const int axis = static_cast<int>(face) / 2;
     c[axis] = (static_cast<int>(face) % 2 == 1) ? box.max_corner()[axis] : 0.0f;

@@ -45,7 +45,7 @@ struct FaceHit {
 std::optional<FaceHit> pick_box_face(const Ray& ray, const LatticeBox& box);
 
 //! Centre of a face of the box, in metres.
-glm::vec3 face_center_m(const LatticeBox& box, evo::Face face);
+glm::vec3 face_centre_m(const LatticeBox& box, evo::Face face);
 
 //! Cells with coords[axis] > layer are hidden (a cut through the lattice to reach inner cells).
 struct Slice {

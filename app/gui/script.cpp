@@ -36,7 +36,7 @@ void frames_until(HeadlessStudio& session, double timeout_s, const std::function
     session.frame();
 }
 
-glm::vec2 widget_center(HeadlessStudio& session, const std::string& name) {
+glm::vec2 widget_centre(HeadlessStudio& session, const std::string& name) {
     auto& widgets = session.studio().widgets;
     auto it = widgets.find(name);
     if (it == widgets.end() || it->second.frame < session.studio().frame - 1) {
@@ -66,7 +66,7 @@ void click_face(HeadlessStudio& session, const std::string& name, bool fast) {
     session.frame();  // lays the view out in workspace mode
     const auto& e = s.document.experiment();
     const LatticeBox box{e.workspace_size, e.voxel_size_m};
-    const auto pixel = project_to_pixel(s.view.camera, face_center_m(box, *face), s.view.size_px);
+    const auto pixel = project_to_pixel(s.view.camera, face_centre_m(box, *face), s.view.size_px);
     const auto hit =
         pixel ? pick_box_face(ray_through_pixel(s.view.camera, *pixel, s.view.size_px), box)
               : std::nullopt;
@@ -165,7 +165,7 @@ void click_at(HeadlessStudio& session, glm::vec2 position, bool shift, bool fast
 
 void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by) {
     auto& in = session.input();
-    const glm::vec2 start = widget_center(session, name);
+    const glm::vec2 start = widget_centre(session, name);
     in.mouse = start;
     session.frame();
     in.buttons[0] = true;
@@ -237,7 +237,7 @@ void run_step(HeadlessStudio& session, const json& step) {
     } else if (step.contains("set")) {
         set_experiment_field(s, step.at("set").get<std::string>(), step.at("value"));
     } else if (step.contains("click")) {
-        click_at(session, widget_center(session, step.at("click").get<std::string>()), false,
+        click_at(session, widget_centre(session, step.at("click").get<std::string>()), false,
                  step.value("fast", false));
     } else if (step.contains("click_face")) {
         click_face(session, step.at("click_face").get<std::string>(), step.value("fast", false));
@@ -294,7 +294,7 @@ void run_step(HeadlessStudio& session, const json& step) {
             session, timeout_of(step, 30.0), [&] { return s.run && s.run->has_champion; },
             "a champion");
         const auto id = s.run->champion.id;
-        click_at(session, widget_center(session, "individual #" + std::to_string(id)));
+        click_at(session, widget_centre(session, "individual #" + std::to_string(id)));
         if (s.simulator.pending_id() != id && !(s.shown && s.shown->id == id))
             throw ScriptError("the click did not select the champion #" + std::to_string(id));
     } else if (step.contains("wait_simulation")) {

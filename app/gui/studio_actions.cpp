@@ -6,7 +6,7 @@
 
 #include "app/gui/studio_paths.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app::gui {
 

@@ -5,7 +5,7 @@
 #include "app/cli/render_scene.hpp"
 #include "app/gui/constraint_edits.hpp"
 #include "app/gui/session/replay_player.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app::gui {
 
@@ -83,7 +83,7 @@ render::Scene workspace_scene(const evo::Experiment& e, const PainterState& pain
         for (int y = 0; y < framed.size[1]; ++y)
             for (int x = 0; x < framed.size[0]; ++x) {
                 const auto i = static_cast<std::size_t>(framed.index(x, y, z));
-                // The frame overwrites the outer layers (evo/experiment/scene.hpp); overrides come after it.
+                // The frame overwrites the outer layers (evo/experiment/body_spec_of.hpp); overrides come after it.
                 if (material[i] != 0 && e.boundary.enclosure_material != 0 &&
                     in_frame(e, {x, y, z}) && find_override(e, {x, y, z}) < 0)
                     material[i] = static_cast<std::uint8_t>(extra.frame);

@@ -20,11 +20,11 @@ LatticeBox workspace_box(const evo::Experiment& e) {
 // Appends `from` moved by `offset` (a second body beside the first).
 void append_offset(render::DrawList& into, const render::DrawList& from, glm::vec3 offset) {
     for (auto box : from.boxes) {
-        box.center += offset;
+        box.centre += offset;
         into.boxes.push_back(box);
     }
     for (auto box : from.translucent_boxes) {
-        box.center += offset;
+        box.centre += offset;
         into.translucent_boxes.push_back(box);
     }
     auto move = [&](const auto& src, auto& dst) {

@@ -27,7 +27,7 @@
 #include "engine/world.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_reader.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/genome/genome.hpp"
 #include "evo/genome/phenotype.hpp"
 

@@ -9,7 +9,7 @@
 #include "engine/world.hpp"
 #include "evo/evaluate/behaviour.hpp"
 #include "evo/evaluate/periodic_end.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::evo {
 

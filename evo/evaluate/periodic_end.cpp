@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::evo {
 

@@ -133,7 +133,7 @@ TrackSampler::TrackSampler(const Experiment& experiment, const engine::World& wo
 TrackSample TrackSampler::sample(const engine::World& world) {
     TrackSample s;
     s.t_s = world.time_s();
-    s.com_m = world.center_of_mass_m();
+    s.com_m = world.centre_of_mass_m();
     if (!layers_.base.empty() && !layers_.tip.empty()) {
         s.bend_base_m = centroid_of(world, layers_.base);
         s.bend_tip_m = centroid_of(world, layers_.tip);

@@ -25,11 +25,11 @@ struct MaterialEntry {
 
 enum class PhaseMode { Uniform, Random };
 
-struct Actuation {
+struct ActuationSettings {
     double frequency_hz = 2.0;
     double temperature_amplitude_c = 14.47;
     PhaseMode phase = PhaseMode::Uniform;
-    bool operator==(const Actuation&) const = default;
+    bool operator==(const ActuationSettings&) const = default;
 };
 
 enum class BoundaryKind { Free, Fixed };
@@ -173,7 +173,7 @@ struct Experiment {
     std::array<int, 3> workspace_size{8, 8, 7};
     double voxel_size_m = 0.01;
     std::vector<MaterialEntry> materials;
-    Actuation actuation;
+    ActuationSettings actuation;
     engine::Environment environment;
     Boundary boundary;
     Simulation simulation;

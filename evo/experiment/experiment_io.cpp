@@ -16,7 +16,7 @@
 #include "engine/io/text_file.hpp"
 #include "engine/limits.hpp"
 #include "evo/experiment/json_reader.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::evo {
 

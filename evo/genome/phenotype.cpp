@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/genome/body_ops.hpp"
 
 namespace bhm::evo {

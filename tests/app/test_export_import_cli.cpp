@@ -16,7 +16,7 @@
 #include "../evo/mesh_check.hpp"
 #include "app/shell_run.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace {
 

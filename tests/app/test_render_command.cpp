@@ -14,7 +14,7 @@
 #include "app/shell_run.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "render/image.hpp"
 #include "render/replay_view.hpp"
 

@@ -89,7 +89,7 @@ TEST_CASE(
     "studio picking: every face is the entry face of a ray aimed at its centre from outside") {
     for (int f = 0; f < 6; ++f) {
         const auto face = static_cast<evo::Face>(f);
-        const glm::vec3 centre = face_center_m(kBox, face);
+        const glm::vec3 centre = face_centre_m(kBox, face);
         glm::vec3 normal(0.0f);
         normal[f / 2] = (f % 2) ? 1.0f : -1.0f;
         const Ray ray{centre + 0.1f * normal + glm::vec3(0.001f, 0.0007f, 0.0003f), -normal};

@@ -90,7 +90,7 @@ TEST_CASE("studio replay: the centre of mass weights voxels by density, as the e
     CHECK(com[0].x == doctest::Approx(0.25f * 0.005f + 0.75f * 0.015f));
     CHECK(com[1].x == doctest::Approx(0.25f * 0.015f + 0.75f * 0.015f));
     // Equal densities: the midpoint, also when one voxel is actuated to twice its length (its
-    // mass stays, so the COM agrees with World::center_of_mass_m, which the fitness uses).
+    // mass stays, so the COM agrees with World::centre_of_mass_m, which the fitness uses).
     replay.frames[0].size_m[0] = 0.02f;
     const auto equal = centre_of_mass_per_frame(replay, {});
     CHECK(equal[0].x == doctest::Approx(0.5f * (0.005f + 0.015f)));

@@ -34,7 +34,7 @@
 #include <vector>
 
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/run/evolution_run.hpp"
 #include "tests/bench/bench_machine.hpp"
 

@@ -46,7 +46,7 @@
 #include "engine/world.hpp"
 #include "evo/evaluate/fitness.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace {
 

@@ -38,7 +38,7 @@
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/search/mutation.hpp"
 #include "tests/bench/bench_machine.hpp"

@@ -26,7 +26,7 @@
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/periodic_end.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 using namespace bhm::evo;
 

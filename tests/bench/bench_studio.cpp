@@ -27,7 +27,7 @@
 #include "app/gui/headless_session.hpp"
 #include "app/gui/session/body_simulator.hpp"
 #include "app/gui/studio_actions.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "tests/bench/bench_machine.hpp"
 
 using namespace bhm;

@@ -41,7 +41,7 @@ BodySpec free_actuated_body() {
 TEST_CASE("free body with internal actuation keeps its momentum, centre of mass and spin") {
     auto model = Model::build(free_actuated_body());
     World w(model);
-    const auto com0 = w.center_of_mass_m();
+    const auto com0 = w.centre_of_mass_m();
     double max_speed = 0.0, max_moment_arm = 0.0;
     for (int k = 1; k <= 20; ++k) {
         REQUIRE(w.advance_to(0.01 * k));
@@ -55,7 +55,7 @@ TEST_CASE("free body with internal actuation keeps its momentum, centre of mass 
             std::max(max_speed, std::sqrt(2.0 * w.kinetic_energy_j() / model->total_mass_kg()));
         const double momentum_scale = model->total_mass_kg() * max_speed;
         CHECK(norm(w.linear_momentum()) < 1e-9 * momentum_scale);
-        const auto com = w.center_of_mass_m();
+        const auto com = w.centre_of_mass_m();
         CHECK(norm({com[0] - com0[0], com[1] - com0[1], com[2] - com0[2]}) < 1e-9);
         // Angular momentum about the (fixed) centre of mass = about the origin, as P = 0. Float
         // rounding of the link moments leaves a random walk far below the internal motion's.

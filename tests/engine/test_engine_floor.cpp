@@ -24,9 +24,9 @@ double travel_under_push(double ratio, double seconds) {
     const double mass = model->total_mass_kg() / model->voxel_count();
     for (int v = 0; v < model->voxel_count(); ++v)
         w.set_external_force(v, {ratio * mass * 9.81, 0, 0});
-    const double x0 = w.center_of_mass_m()[0];
+    const double x0 = w.centre_of_mass_m()[0];
     REQUIRE(w.advance_to(0.2 + seconds));
-    return w.center_of_mass_m()[0] - x0;
+    return w.centre_of_mass_m()[0] - x0;
 }
 
 }  // namespace
@@ -63,8 +63,8 @@ TEST_CASE("without a floor the body falls freely") {
     s.environment.gravity_m_s2 = -9.81;
     s.damping.global_ratio = 0.0;
     World w(Model::build(s));
-    const double z0 = w.center_of_mass_m()[2];
+    const double z0 = w.centre_of_mass_m()[2];
     REQUIRE(w.advance_to(0.1));
-    CHECK(z0 - w.center_of_mass_m()[2] ==
+    CHECK(z0 - w.centre_of_mass_m()[2] ==
           bhm::test::relative(0.5 * 9.81 * w.time_s() * w.time_s(), 1e-3));
 }

@@ -97,7 +97,7 @@ void check_same_trajectory(const BodySpec& small, const BodySpec& big, std::arra
     }
     // The comparison is between moving bodies, not two rest states.
     CHECK(wa.kinetic_energy_j() > 0.0);
-    const auto com = wa.center_of_mass_m(), com_b = wb.center_of_mass_m();
+    const auto com = wa.centre_of_mass_m(), com_b = wb.centre_of_mass_m();
     for (int k = 0; k < 3; ++k)
         CHECK(com_b[k] == bhm::test::relative(com[k] + shift[k] * L, 1e-12));
 }

@@ -62,10 +62,10 @@ TEST_CASE("the same input gives a bit-identical trajectory") {
     CHECK(same_bytes(a.size_m, c.size_m));
     // ... and the body did move (the comparison is not between two rest states).
     World w(model);
-    const auto com0 = w.center_of_mass_m();
+    const auto com0 = w.centre_of_mass_m();
     for (int i = 0; i < 12000; ++i)
         w.step();
-    CHECK(std::fabs(w.center_of_mass_m()[2] - com0[2]) > 1e-5);
+    CHECK(std::fabs(w.centre_of_mass_m()[2] - com0[2]) > 1e-5);
 }
 
 TEST_CASE("an absurd load is reported as diverged, not a crash, and hands out no NaN") {
@@ -87,7 +87,7 @@ TEST_CASE("an absurd load is reported as diverged, not a crash, and hands out no
         CHECK(std::isfinite(x));
     for (float x : poses.orientation)
         CHECK(std::isfinite(x));
-    for (double x : w.center_of_mass_m())
+    for (double x : w.centre_of_mass_m())
         CHECK(std::isfinite(x));
     CHECK(std::isfinite(w.kinetic_energy_j()));
 }

@@ -119,7 +119,7 @@ TEST_CASE("run's poll hook slices without changing a step and can end the run ea
         RunHooks hooks = extra;
         hooks.observe = [&](const World& w) { steps.push_back(w.steps()); };
         run(world, 0.01, 1370.0, hooks);
-        return world.center_of_mass_m();
+        return world.centre_of_mass_m();
     };
     std::vector<std::int64_t> plain_steps, polled_steps, stopped_steps;
     const auto plain = trace(RunHooks{}, plain_steps);

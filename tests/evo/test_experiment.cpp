@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace fs = std::filesystem;
 using namespace bhm::evo;

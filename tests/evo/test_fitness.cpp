@@ -8,7 +8,7 @@
 
 #include "engine/world.hpp"
 #include "evo/evaluate/fitness.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo_test_support.hpp"
 #include "support/relative_approx.hpp"
 

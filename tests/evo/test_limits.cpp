@@ -10,7 +10,7 @@
 #include "engine/model.hpp"
 #include "engine/world.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm;

@@ -16,7 +16,7 @@
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/evaluate/periodic_end.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo_test_support.hpp"
 
 using namespace bhm::evo;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "support/step_accuracy.hpp"
 
 namespace {

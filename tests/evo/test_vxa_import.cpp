@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/formats/vxa_import.hpp"
 #include "evo_test_support.hpp"

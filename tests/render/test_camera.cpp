@@ -141,7 +141,7 @@ TEST_CASE("bounds grow with points and report centre and radius") {
     b.add(glm::vec3(1, 2, 3));
     b.add(glm::vec3(-1, 0, 3));
     CHECK(b.valid);
-    check_vec(b.center(), {0, 1, 3});
+    check_vec(b.centre(), {0, 1, 3});
     CHECK(b.radius() == doctest::Approx(std::sqrt(2.0f)));
     Bounds other;
     b.add(other);  // invalid: no change

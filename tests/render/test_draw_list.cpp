@@ -69,9 +69,9 @@ TEST_CASE("one instance per voxel, coloured by its material, held voxels flagged
         const bool held = c[0] == 0;
         CHECK(((static_cast<unsigned>(box.flags) & kBoxFixed) != 0) == held);
         // At rest: lattice position, unit orientation, full size.
-        CHECK(box.center.x == doctest::Approx((c[0] + 0.5) * 0.01).epsilon(1e-6));
-        CHECK(box.center.y == doctest::Approx((c[1] + 0.5) * 0.01).epsilon(1e-6));
-        CHECK(box.center.z == doctest::Approx((c[2] + 0.5) * 0.01).epsilon(1e-6));
+        CHECK(box.centre.x == doctest::Approx((c[0] + 0.5) * 0.01).epsilon(1e-6));
+        CHECK(box.centre.y == doctest::Approx((c[1] + 0.5) * 0.01).epsilon(1e-6));
+        CHECK(box.centre.z == doctest::Approx((c[2] + 0.5) * 0.01).epsilon(1e-6));
         CHECK(box.orientation == glm::vec4(1, 0, 0, 0));
         CHECK(box.size == glm::vec3(0.01f));
     }
@@ -220,7 +220,7 @@ TEST_CASE("culling never hides an opaque face behind a translucent neighbour") {
 
 TEST_CASE("box corners follow position, orientation and size") {
     BoxInstance box;
-    box.center = {1, 2, 3};
+    box.centre = {1, 2, 3};
     box.size = {0.2f, 0.4f, 0.6f};
     // 90 degrees about z: local +x goes to world +y.
     box.orientation = {std::cos(0.25f * 3.14159265f), 0, 0, std::sin(0.25f * 3.14159265f)};
@@ -261,7 +261,7 @@ TEST_CASE("ghost of t = 0: translucent, offset, not counted as body voxels") {
         ++ghosts;
         CHECK(b.color == palette::kGhost);
         const auto c = scene.body.voxel_coords(static_cast<int>(b.voxel));
-        CHECK(b.center.y == doctest::Approx((c[1] + 0.5) * 0.01 + 0.1).epsilon(1e-5));
+        CHECK(b.centre.y == doctest::Approx((c[1] + 0.5) * 0.01 + 0.1).epsilon(1e-5));
     }
     CHECK(ghosts == scene.body.voxel_count());
     CHECK(list.bounds.max.y >= 0.1f + 0.04f - 1e-4f);  // framing includes the ghost beside

@@ -85,12 +85,12 @@ TEST_CASE("interpolation takes the short way between q and -q") {
 
 TEST_CASE("centre-of-mass trail: one weighted mean per frame up to the time") {
     const Replay r = two_voxel_replay();
-    const auto trail = center_of_mass_trail(r, 0.1);
+    const auto trail = centre_of_mass_trail(r, 0.1);
     REQUIRE(trail.size() == 2);
     CHECK(trail[0].x == doctest::Approx(0.010f));
     CHECK(trail[1].x == doctest::Approx(0.015f));
     // Weights 3 : 1 pull the mean toward the first voxel.
-    const auto weighted = center_of_mass_trail(r, 1.0, {3.0, 1.0});
+    const auto weighted = centre_of_mass_trail(r, 1.0, {3.0, 1.0});
     REQUIRE(weighted.size() == 3);
     CHECK(weighted[2].x == doctest::Approx((3 * 0.005 + 0.035) / 4));
 }

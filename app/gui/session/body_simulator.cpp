@@ -7,7 +7,7 @@
 #include "app/gui/session/replay_player.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app::gui {
 

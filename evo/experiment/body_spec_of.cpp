@@ -1,4 +1,4 @@
-#include "evo/experiment/scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 
 #include <cmath>
 #include <numbers>
