@@ -113,7 +113,8 @@ int simulate(ArgParser& args) {
     if (total_s > settle_s) timed.simulation.evaluate_s = total_s - settle_s;
     evo::TrackSampler sampler(timed, world);
     evo::MeasureTracker measured(timed, world), extrapolated(timed, world);
-    evo::PeriodicEnd periodic(timed, model->dt_s(), sampler.groups());
+    evo::PeriodicEnd periodic(timed, model->dt_s(), sampler.groups(),
+                              evo::every_part_held(*model));
     bool repeated = false;
     double would_stop_s = total_s;
     engine::run(world, total_s, record_fps, [&](const engine::World& w) {

@@ -116,7 +116,8 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     MeasureTracker tracker(experiment, world);
     ExploitTracker exploits(experiment, world);
     BehaviourTracker behaviour(experiment, world);
-    PeriodicEnd periodic(experiment, world.model().dt_s(), sampler.groups());
+    PeriodicEnd periodic(experiment, world.model().dt_s(), sampler.groups(),
+                         every_part_held(world.model()));
     auto observe = [&](const TrackSample& sample) {
         tracker.observe(sample);
         exploits.observe(sample);

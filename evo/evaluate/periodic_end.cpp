@@ -1,9 +1,13 @@
 #include "evo/evaluate/periodic_end.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <numbers>
 
+#include "engine/model.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::evo {
@@ -33,13 +37,15 @@ double angle_deg(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const ExploitGroups& groups)
+PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const ExploitGroups& groups,
+                         bool held)
     : settle_s_(experiment.simulation.settle_s),
       voxel_size_m_(experiment.voxel_size_m),
       total_mass_kg_(groups.total_mass_kg),
       tolerance_(experiment.simulation.periodic_tolerance),
       dt_s_(dt_s),
-      total_s_(evaluation_seconds(experiment)) {
+      total_s_(evaluation_seconds(experiment)),
+      held_(held) {
     const double fps =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
     sample_period_s_ = 1.0 / fps;
@@ -65,6 +71,42 @@ double PeriodicEnd::due_time(std::int64_t k) const {
     return static_cast<double>(n) * dt_s_;
 }
 
+namespace {
+
+//! A transient that shrinks by less than this a period is not trusted to keep decaying.
+constexpr double kTrustedDecay = 0.9;
+
+//! What a transient that went from `before` to `now` in one period still has to go, as a multiple
+//! of `now` (r / (1 - r), r = now / before, at least 1); infinite when it does not decay.
+double transient_left(double now, double before) {
+    if (now == 0.0) return 1.0;
+    if (!(before > 0.0)) return std::numeric_limits<double>::infinity();
+    const double r = now / before;
+    if (r >= kTrustedDecay) return std::numeric_limits<double>::infinity();
+    return std::max(1.0, r / (1.0 - r));
+}
+
+//! Period-to-period comparisons of one track x(i) (any units) over the window ending at sample e:
+//! the largest change a = max_j |x[e - S + j] - x[e - 2S + j]| (0 <= j <= S) and the drift's
+//! change residual = max_j |x[e - S + j] - x[e - 2S + j] - (x[e] - x[e - S])| (0 <= j < S).
+struct PeriodChange {
+    double change = 0.0, residual = 0.0;
+};
+
+template <class Track>
+PeriodChange period_change(const Track& x, std::int64_t e, int S) {
+    PeriodChange c;
+    const Vec3 drift = minus(x(e), x(e - S));
+    for (int j = 0; j <= S; ++j) {
+        const Vec3 d = minus(x(e - S + j), x(e - 2 * S + j));
+        c.change = std::max(c.change, norm(d));
+        if (j < S) c.residual = std::max(c.residual, norm(minus(d, drift)));
+    }
+    return c;
+}
+
+}  // namespace
+
 bool PeriodicEnd::observe(const TrackSample& sample) {
     const std::int64_t k = observed_++;
     if (!enabled() || !settled(sample.t_s, settle_s_)) return false;
@@ -75,52 +117,52 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
     }
     settled_.push_back(sample);
     const int S = samples_per_period_;
-    if (settled_.size() > static_cast<std::size_t>(2 * S + 1)) settled_.pop_front();
+    if (settled_.size() > static_cast<std::size_t>(3 * S + 1)) settled_.pop_front();
     const auto n = static_cast<std::int64_t>(settled_.size());
     if (n < 2 * S + 1 || k >= last_sample_) return false;
+    const bool have_before = n >= 3 * S + 1;  // the comparison one period earlier
     const std::int64_t periods_left = (last_sample_ - k + S - 1) / S;
-    // A residual is the change of the drift from one period to the next; kept up over the
-    // periods left it adds up to residual * (1 + 2 + ... + (M + 1)).
-    const double grow =
-        0.5 * static_cast<double>(periods_left + 1) * static_cast<double>(periods_left + 2);
+    const double M = static_cast<double>(periods_left);
+    // A drift change kept up over the periods left adds up to residual (1 + 2 + ... + (M + 1)).
+    const double kept_up = 0.5 * (M + 1.0) * (M + 2.0);
     auto at = [&](std::int64_t i) -> const TrackSample& {
         return settled_[static_cast<std::size_t>(i)];
     };
-    const TrackSample& now = at(n - 1);
-    const TrackSample& ref = reference_;
+    // One track's verdict, its comparisons scaled by `scale` into the units of `allowed`.
+    auto within = [&](const auto& x, double scale, double allowed, double* worst) {
+        const PeriodChange now = period_change(x, n - 1, S);
+        const PeriodChange before = have_before ? period_change(x, n - 1 - S, S) : PeriodChange{};
+        if (worst) *worst = std::max(*worst, (held_ ? now.change : now.residual) * scale);
+        if (held_) {
+            // Kept up unchanged over the periods left (no decay assumed), or decaying.
+            const double change = now.change * scale;
+            if (change * (M + 1.0) <= allowed) return true;
+            return have_before && change * transient_left(now.change, before.change) <= allowed;
+        }
+        return now.residual * scale * kept_up <= allowed;
+    };
     bool repeats = true;
     double worst = 0.0;
-    for (int t = 0; t < TrackSample::kTracks; ++t) {
+    for (int t = 0; t < TrackSample::kTracks && repeats; ++t) {
         // Mass moments (kg m) read as the centre-of-mass shift they make.
         const double to_voxels =
             t >= 6 ? 1.0 / (total_mass_kg_ * voxel_size_m_) : 1.0 / voxel_size_m_;
-        const Vec3 drift = minus(now.track(t), at(n - 1 - S).track(t));
-        double residual = 0.0;
-        for (int j = 0; j < S; ++j) {
-            const Vec3 d = minus(at(n - 1 - S + j).track(t), at(n - 1 - 2 * S + j).track(t));
-            residual = std::max(residual, norm(minus(d, drift)));
-        }
-        residual *= to_voxels;
-        worst = std::max(worst, residual);
+        auto track = [&](std::int64_t i) { return at(i).track(t); };
         // Absolute (voxel lengths): a measure may be a small projection of a long track.
-        if (residual * grow > tolerance_) repeats = false;
+        repeats = within(track, to_voxels, tolerance_, &worst);
     }
-    if (can_bend_) {
-        // The bend angle follows the direction base -> tip: its residual as an angle (radians per
+    if (repeats && can_bend_) {
+        // The bend angle follows the direction base -> tip: its changes as an angle (radians per
         // unit length of the line), against 1 degree + the largest angle of the last period.
-        const Vec3 dir0 = minus(ref.bend_tip_m, ref.bend_base_m);
-        const double length = norm(minus(now.bend_tip_m, now.bend_base_m));
-        double residual = 0.0, largest_deg = 0.0;
+        const Vec3 dir0 = minus(reference_.bend_tip_m, reference_.bend_base_m);
+        const TrackSample& last = at(n - 1);
+        const double length = norm(minus(last.bend_tip_m, last.bend_base_m));
         auto dir = [&](std::int64_t i) { return minus(at(i).bend_tip_m, at(i).bend_base_m); };
-        const Vec3 drift = minus(dir(n - 1), dir(n - 1 - S));
-        for (int j = 0; j < S; ++j) {
-            const Vec3 d = minus(dir(n - 1 - S + j), dir(n - 1 - 2 * S + j));
-            residual = std::max(residual, norm(minus(d, drift)));
+        double largest_deg = 0.0;
+        for (int j = 0; j <= S; ++j)
             largest_deg = std::max(largest_deg, angle_deg(dir0, dir(n - 1 - S + j)));
-        }
-        const double residual_deg =
-            length > 0.0 ? residual / length * 180.0 / std::numbers::pi : 0.0;
-        if (residual_deg * grow > tolerance_ * (1.0 + largest_deg)) repeats = false;
+        const double to_deg = length > 0.0 ? 180.0 / std::numbers::pi / length : 0.0;
+        repeats = within(dir, to_deg, tolerance_ * (1.0 + largest_deg), nullptr);
     }
     residual_voxels_ = worst;
     return repeats;
@@ -138,11 +180,45 @@ void PeriodicEnd::extrapolate(const std::function<void(const TrackSample&)>& obs
         const std::int64_t source = n - 1 - (last - (k - q * S));
         TrackSample s = settled_[static_cast<std::size_t>(source)];
         s.t_s = due_time(k);
-        for (int t = 0; t < TrackSample::kTracks; ++t)
+        for (int t = 0; t < TrackSample::kTracks && !held_; ++t)
             for (std::size_t c = 0; c < 3; ++c)
                 s.track(t)[c] += static_cast<double>(q) * (now.track(t)[c] - before.track(t)[c]);
         observe(s);
     }
+}
+
+bool every_part_held(const engine::Model& model) {
+    // Union-find over face neighbours (the links of the lattice join exactly those).
+    const int n = model.voxel_count();
+    std::vector<int> parent(static_cast<std::size_t>(n));
+    for (int v = 0; v < n; ++v)
+        parent[static_cast<std::size_t>(v)] = v;
+    auto root = [&](int v) {
+        while (parent[static_cast<std::size_t>(v)] != v) {
+            auto& p = parent[static_cast<std::size_t>(v)];
+            p = parent[static_cast<std::size_t>(p)];
+            v = p;
+        }
+        return v;
+    };
+    std::map<std::array<int, 3>, int> at;
+    for (int v = 0; v < n; ++v)
+        at.emplace(model.voxel_coords(v), v);
+    for (int v = 0; v < n; ++v) {
+        const auto c = model.voxel_coords(v);
+        for (int axis = 0; axis < 3; ++axis) {
+            auto next = c;
+            ++next[static_cast<std::size_t>(axis)];
+            const auto it = at.find(next);
+            if (it != at.end()) parent[static_cast<std::size_t>(root(v))] = root(it->second);
+        }
+    }
+    std::vector<char> held(static_cast<std::size_t>(n), 0);
+    for (int v = 0; v < n; ++v)
+        if (model.voxel_fixed(v)) held[static_cast<std::size_t>(root(v))] = 1;
+    for (int v = 0; v < n; ++v)
+        if (!held[static_cast<std::size_t>(root(v))]) return false;
+    return n > 0;
 }
 
 double periodic_end_error(const FitnessReport& early, const FitnessReport& full) {

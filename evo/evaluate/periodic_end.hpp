@@ -3,14 +3,24 @@
 //
 // Once the body has settled (t >= settle_s) every track the measures use (evo/evaluate/tracks.hpp:
 // centre of mass, bend line ends, descriptor tip, exploit centroids and mass moments, all linear
-// in the voxel positions) is compared over the last two actuation periods, sample by sample
-// (S = record_fps / frequency_hz samples a period):
-//   d_j = x[k - S + j] - x[k - 2S + j],  D = x[k] - x[k - S],  residual = max_j |d_j - D|
-// A held body repeats (D = 0), a walker repeats plus a constant drift D. With M periods still to
-// run, the evaluation stops when, for every track,
-//   residual * (M + 1) <= periodic_tolerance * (1 + |x[k] + M D - x_settled|)      (voxel lengths)
-// and the bend direction's residual, as an angle, likewise against 1 degree + its largest angle
-// so far. The samples the full run would still have taken are then extrapolated,
+// in the voxel positions) is compared period by period, sample by sample (S = record_fps /
+// frequency_hz samples a period). A held body (every connected part holds a fixed voxel) cannot
+// drift: its motion tends to one periodic orbit, and what separates it from that orbit is a
+// transient that decays. A free body (a walker) repeats plus a constant drift D per period.
+// - Held: a_p = max_j |x_p[j] - x_{p-1}[j]| over the last period, a_{p-1} the same one period
+//   earlier, r = a_p / a_{p-1} their ratio. A transient decaying by r a period has
+//   a_p r / (1 - r) left to go, so the evaluation stops when
+//     a_p max(1, r / (1 - r)) <= periodic_tolerance,  r < 0.9
+//   (the transient in the last period, which the rest of the run repeats with D = 0), or, with M
+//   periods left and no decay assumed, a_p (M + 1) <= periodic_tolerance.
+// - Free: the drift's change residual = max_j |d_j - D| (d_j = x_p[j] - x_{p-1}[j], D the last
+//   whole period's drift), with M periods left. A change kept up over the periods left adds up to
+//   residual (1 + 2 + ... + (M + 1)); one that decays by r a period to residual (1 + M r / (1 - r)).
+//   The evaluation stops when either bound is within the tolerance (the second only for r < 0.9),
+//   and the rest of the run is the last period plus q D.
+// Tracks in voxel lengths (mass moments as the centre-of-mass shift they make); the bend
+// direction's terms as an angle against the tolerance x (1 degree + its largest angle so far).
+// The samples the full run would still have taken are extrapolated,
 //   x[k + q S - i] = x[k - i] + q D,  0 <= i < S,
 // at the times the full run would have sampled (the first step at or after each due time), and
 // fed to the same trackers, so every measure (final, max, YZ, bend angle, exploit measures,
@@ -25,12 +35,18 @@
 #include "evo/evaluate/tracks.hpp"
 #include "evo/experiment/experiment.hpp"
 
+namespace bhm::engine {
+class Model;
+}
+
 namespace bhm::evo {
 
 class PeriodicEnd {
   public:
-    //! dt_s: the model's step; groups: the sampler's (their total mass scales the moments).
-    PeriodicEnd(const Experiment& experiment, double dt_s, const ExploitGroups& groups);
+    //! dt_s: the model's step; groups: the sampler's (their total mass scales the moments);
+    //! held: the body cannot drift (every_part_held), so its motion tends to a pure repeat.
+    PeriodicEnd(const Experiment& experiment, double dt_s, const ExploitGroups& groups,
+                bool held = false);
     //! On for this experiment (switched on and a whole number of samples per period and run).
     bool enabled() const { return samples_per_period_ > 0; }
     int samples_per_period() const { return samples_per_period_; }
@@ -52,12 +68,17 @@ class PeriodicEnd {
     std::int64_t observed_ = 0;     //!< samples observed so far
     std::int64_t first_settled_ = -1;
     bool can_bend_ = false;
+    bool held_ = false;
     TrackSample reference_;  //!< the first settled sample
-    //! The last 2S + 1 settled samples (all a comparison and the extrapolation read): memory stays
+    //! The last 3S + 1 settled samples (all a comparison and the extrapolation read): memory stays
     //! bounded however long the evaluation.
     std::deque<TrackSample> settled_;
     double residual_voxels_ = 0.0;
 };
+
+//! True when every connected part of the body (voxels joined through shared faces) holds a fixed
+//! voxel: such a body cannot drift.
+bool every_part_held(const engine::Model& model);
 
 //! The accuracy gate of an early end (issue 23): the largest, over the fitness measures, of
 //! |early - full| / max(0.5 % of |full|, 1e-3) (voxel lengths; degrees for the bend angle). At

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/model.hpp"
 #include "engine/world.hpp"
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/fitness_json.hpp"
@@ -54,9 +55,10 @@ TrackSample sample_of(double t, double x_voxels, double voxel_m) {
 //! Feeds x(k / 30 s) until the detector stops; returns the sample index it stopped at (-1: never)
 //! and checks every extrapolated sample against x itself.
 template <class Signal>
-int run_signal(const Experiment& e, const Signal& x, double* worst_error = nullptr) {
+int run_signal(const Experiment& e, const Signal& x, double* worst_error = nullptr,
+               bool held = false) {
     const double dt = 1e-4;
-    PeriodicEnd end(e, dt, unit_mass());
+    PeriodicEnd end(e, dt, unit_mass(), held);
     REQUIRE(end.enabled());
     const int last = 330;
     for (int k = 0; k <= last; ++k) {
@@ -135,6 +137,64 @@ TEST_CASE("a decaying transient ends only once what is left is within the tolera
     double loose_error = 0.0;
     const int loose_stop = run_signal(e, x, &loose_error);
     CHECK(loose_stop < stopped);
+}
+
+TEST_CASE("a held body's decaying transient ends once what it has left is within the tolerance") {
+    // The same signal as above, a clamped body's: it cannot drift, so only the transient still to
+    // decay (0.5 exp(-s / 0.4), falling by 0.29 a period) separates the last period from the orbit.
+    auto e = paper_schedule();
+    const auto x = [](double t) {
+        if (t < 1.0) return 0.0;
+        const double s = t - 1.0;
+        return 0.3 * std::sin(2.0 * std::numbers::pi * 2.0 * s) + 0.5 * (1.0 - std::exp(-s / 0.4));
+    };
+    double free_error = 1.0, held_error = 1.0;
+    const int free_stop = run_signal(e, x, &free_error, false);
+    const int held_stop = run_signal(e, x, &held_error, true);
+    REQUIRE(held_stop > 60);
+    CHECK(held_stop < free_stop);  // no drift to keep up over the periods left
+    CHECK(held_error <= std::max(0.005 * 0.5, 1e-3));
+    // The rest of the run repeats the last period, whose transient is largest at its start,
+    // a = e(start) (1 / r - 1) against the period before; r / (1 - r) < 1 here, so the stop is the
+    // first sample where a meets the tolerance (sqrt(1.25) a along the tracks, which move by x
+    // along x and x / 2 along y).
+    const double r = std::exp(-0.5 / 0.4);
+    auto a = [&](int k) {
+        return std::sqrt(1.25) * 0.5 * std::exp(-(k / 30.0 - 1.5) / 0.4) * (1.0 / r - 1.0);
+    };
+    CHECK(a(held_stop) <= 1e-3);
+    CHECK(a(held_stop - 1) > 1e-3);
+    // A transient that decays too slowly to trust (r = 0.95 a period) and is too large to keep up
+    // over the periods left never ends early, nor does a growing one.
+    const auto slow = [](double t) {
+        if (t < 1.0) return 0.0;
+        return 0.3 * std::sin(2.0 * std::numbers::pi * 2.0 * (t - 1.0)) +
+               0.05 * std::pow(0.95, 2.0 * (t - 1.0));
+    };
+    CHECK(run_signal(e, slow, nullptr, true) == -1);
+    const auto growing = [](double t) {
+        if (t < 1.0) return 0.0;
+        return (0.3 + 1e-3 * (t - 1.0)) * std::sin(2.0 * std::numbers::pi * 2.0 * (t - 1.0));
+    };
+    CHECK(run_signal(e, growing, nullptr, true) == -1);
+}
+
+TEST_CASE("a body is held when every part of it holds a fixed voxel") {
+    auto spec_of = [](std::vector<std::uint8_t> cells, std::vector<std::uint8_t> fixed) {
+        bhm::engine::BodySpec spec;
+        spec.nx = static_cast<int>(cells.size());
+        spec.ny = spec.nz = 1;
+        spec.material = std::move(cells);
+        spec.fixed = std::move(fixed);
+        spec.materials = {bhm::engine::Material{}};
+        return spec;
+    };
+    using bhm::engine::Model;
+    CHECK(every_part_held(*Model::build(spec_of({1, 1, 1, 1}, {1, 0, 0, 0}))));
+    // A gap splits off a free part: it can fall and drift.
+    CHECK_FALSE(every_part_held(*Model::build(spec_of({1, 1, 0, 1}, {1, 0, 0, 0}))));
+    CHECK(every_part_held(*Model::build(spec_of({1, 1, 0, 1}, {1, 0, 0, 1}))));
+    CHECK_FALSE(every_part_held(*Model::build(spec_of({1, 1, 1, 1}, {0, 0, 0, 0}))));
 }
 
 TEST_CASE("no early end when switched off or when a period is not a whole number of samples") {
