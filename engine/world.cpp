@@ -169,11 +169,29 @@ bool World::advance_to(double target_s) {
     return !s.diverged;
 }
 
+void World::rest_until(double target_s) {
+    State& s = *state_;
+    const double dt = s.data->dt_s;
+    if (s.diverged) return;
+    // The same first step at or past target_s as advance_to reaches.
+    auto n = static_cast<std::int64_t>(std::ceil(target_s / dt));
+    while (n > 0 && static_cast<double>(n - 1) * dt >= target_s)
+        --n;
+    while (static_cast<double>(n) * dt < target_s)
+        ++n;
+    if (n <= s.steps) return;
+    s.rested_steps += n - s.steps;
+    s.steps = n;
+}
+
 double World::time_s() const {
     return static_cast<double>(state_->steps) * state_->data->dt_s;
 }
 std::int64_t World::steps() const {
     return state_->steps;
+}
+std::int64_t World::integrated_steps() const {
+    return state_->steps - state_->rested_steps;
 }
 bool World::diverged() const {
     return state_->diverged;

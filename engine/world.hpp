@@ -24,8 +24,15 @@ public:
     void step();                        //!< advance by one dt (no-op once diverged)
     bool advance_to(double time_s);     //!< step until time_s() >= time_s; false if diverged
 
+    //! Lets time pass to the first step at or past time_s without integrating: for a body at
+    //! rest before anything drives it (an evaluation whose settling ended early,
+    //! evo/evaluate/settle_rest.hpp). The state is kept as it is; steps() counts the steps
+    //! passed, integrated_steps() only those computed. No-op once diverged or past time_s.
+    void rest_until(double time_s);
+
     double time_s() const;
-    std::int64_t steps() const;
+    std::int64_t steps() const;             //!< time_s() / dt
+    std::int64_t integrated_steps() const;  //!< steps() less those passed at rest
     bool diverged() const;
     const std::string& divergence_reason() const;
 

@@ -78,6 +78,7 @@ struct World::State {
     std::array<LinkScratch, 3> links;
     PoissonScratch poisson;
     std::int64_t steps = 0;
+    std::int64_t rested_steps = 0;  //!< of steps, those passed at rest (World::rest_until)
     bool diverged = false;
     std::string divergence_reason;
 };

@@ -9,6 +9,7 @@
 #include "engine/world.hpp"
 #include "evo/evaluate/behaviour.hpp"
 #include "evo/evaluate/periodic_end.hpp"
+#include "evo/evaluate/settle_rest.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::evo {
@@ -116,8 +117,9 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     MeasureTracker tracker(experiment, world);
     ExploitTracker exploits(experiment, world);
     BehaviourTracker behaviour(experiment, world);
-    PeriodicEnd periodic(experiment, world.model().dt_s(), sampler.groups(),
-                         every_part_held(world.model()));
+    const bool held = every_part_held(world.model());
+    PeriodicEnd periodic(experiment, world.model().dt_s(), sampler.groups(), held);
+    SettleRest rest(experiment, sampler.groups(), held);
     auto observe = [&](const TrackSample& sample) {
         tracker.observe(sample);
         exploits.observe(sample);
@@ -125,26 +127,44 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
     };
     const double sample_hz =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    bool repeats = false;
-    engine::RunHooks hooks;
-    hooks.observe = [&](const engine::World& w) {
-        const TrackSample sample = sampler.sample(w);
+    const double total_s = evaluation_seconds(experiment);
+    bool repeats = false, resting = false;
+    TrackSample last;
+    auto take = [&](const TrackSample& sample) {
         observe(sample);
         repeats = periodic.observe(sample);
+        resting = rest.observe(sample);
+        last = sample;
     };
+    engine::RunHooks hooks;
+    hooks.observe = [&](const engine::World& w) { take(sampler.sample(w)); };
     hooks.poll = [&](const engine::World&) {
         honour(control);
-        return repeats ? engine::RunVerdict::Stop : engine::RunVerdict::Continue;
+        return repeats || resting ? engine::RunVerdict::Stop : engine::RunVerdict::Continue;
     };
     hooks.poll_steps = kControlCheckSteps;
-    engine::run(world, evaluation_seconds(experiment), sample_hz, hooks);
+    engine::run(world, total_s, sample_hz, hooks);
+    if (resting && !world.diverged()) {
+        // At rest before settle_s (evo/evaluate/settle_rest.hpp): the rest of the settling passes
+        // without integrating, its samples are the last one's; simulation resumes at the first
+        // sample at or past settle_s, exactly where the full run takes it.
+        const double dt = world.model().dt_s();
+        for (std::int64_t k = rest.next_sample(); k < rest.settled_sample(); ++k) {
+            TrackSample still = last;
+            still.t_s = sample_time_s(k, 1.0 / sample_hz, total_s, dt);
+            take(still);
+        }
+        resting = false;
+        world.rest_until(sample_time_s(rest.settled_sample(), 1.0 / sample_hz, total_s, dt));
+        engine::run(world, total_s, sample_hz, hooks);
+    }
     const bool ended_early = repeats && !world.diverged();
     if (ended_early) periodic.extrapolate(observe);
 
     FitnessReport report;
     report.measures = tracker.measures();
     report.simulated_s = world.time_s();
-    report.steps = world.steps();
+    report.steps = world.integrated_steps();
     report.ended_early = ended_early;
     report.periodic_residual = periodic.residual_voxels();
     report.diverged = world.diverged();

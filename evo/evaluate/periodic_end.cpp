@@ -59,16 +59,7 @@ PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const Exploi
 }
 
 double PeriodicEnd::due_time(std::int64_t k) const {
-    // engine::run's schedule: due at k / fps, the last one at total_s; the sample is taken at the
-    // first step at or past it (World::advance_to).
-    double due = static_cast<double>(k) * sample_period_s_;
-    if (due >= total_s_ - 0.5 * dt_s_) due = total_s_;
-    auto n = static_cast<std::int64_t>(std::ceil(due / dt_s_));
-    while (n > 0 && static_cast<double>(n - 1) * dt_s_ >= due)
-        --n;
-    while (static_cast<double>(n) * dt_s_ < due)
-        ++n;
-    return static_cast<double>(n) * dt_s_;
+    return sample_time_s(k, sample_period_s_, total_s_, dt_s_);
 }
 
 namespace {

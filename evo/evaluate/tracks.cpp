@@ -162,4 +162,15 @@ TrackSample TrackSampler::sample(const engine::World& world) {
     return s;
 }
 
+double sample_time_s(std::int64_t k, double sample_period_s, double total_s, double dt_s) {
+    double due = static_cast<double>(k) * sample_period_s;
+    if (due >= total_s - 0.5 * dt_s) due = total_s;
+    auto n = static_cast<std::int64_t>(std::ceil(due / dt_s));
+    while (n > 0 && static_cast<double>(n - 1) * dt_s >= due)
+        --n;
+    while (static_cast<double>(n) * dt_s < due)
+        ++n;
+    return static_cast<double>(n) * dt_s;
+}
+
 }  // namespace bhm::evo

@@ -5,6 +5,7 @@
 // (BehaviourTracker) read a TrackSample instead of the world, so samples that were not simulated
 // but extrapolated (evo/evaluate/periodic_end.hpp) give every measure exactly as a simulated one.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "evo/experiment/experiment.hpp"
@@ -75,6 +76,11 @@ ExploitGroups exploit_groups(const Experiment& experiment, const engine::World& 
 
 //! The centroid of some voxels' positions (the zero vector for none).
 Vec3 centroid_of(const engine::World& world, const std::vector<int>& voxels);
+
+//! The time at which engine::run takes sample k of a run of total_s sampled every sample_period_s
+//! (1 / record_fps, computed so) with steps of dt_s: due at k x sample_period_s (the last one at
+//! total_s), taken at the first step at or past it (World::advance_to).
+double sample_time_s(std::int64_t k, double sample_period_s, double total_s, double dt_s);
 
 //! True once t is at or past settle_s: samples land on or just after their nominal time, and the
 //! tolerance keeps t = settle_s itself.

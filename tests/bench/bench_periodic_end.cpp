@@ -119,8 +119,8 @@ int run(int argc, char** argv) {
                           e.ended_early ? 1 : 0, e.simulated_s, e.periodic_residual, error, t2 - t1,
                           t1 - t0);
             std::cout << row << std::endl;
-            if (error > 1.0) {
-                std::cerr << name << " over the gate:";
+            if (error > 0.3) {
+                std::cerr << name << (error > 1.0 ? " over the gate:" : " near the gate:");
                 for (std::size_t m = 0; m < e.measures.size(); ++m)
                     std::cerr << " " << kFitnessNames[m] << " " << e.measures[m] << " (full "
                               << f.measures[m] << ")";

@@ -16,6 +16,7 @@
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/evaluate/periodic_end.hpp"
+#include "evo/evaluate/settle_rest.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo_test_support.hpp"
@@ -195,6 +196,43 @@ TEST_CASE("a body is held when every part of it holds a fixed voxel") {
     CHECK_FALSE(every_part_held(*Model::build(spec_of({1, 1, 0, 1}, {1, 0, 0, 0}))));
     CHECK(every_part_held(*Model::build(spec_of({1, 1, 0, 1}, {1, 0, 0, 1}))));
     CHECK_FALSE(every_part_held(*Model::build(spec_of({1, 1, 1, 1}, {0, 0, 0, 0}))));
+}
+
+namespace {
+
+//! Feeds x(k / 30 s) from t = 0 to a held body's SettleRest; the sample index where it says at
+//! rest (-1: never).
+template <class Signal>
+int rest_at(const Experiment& e, const Signal& x, bool held = true) {
+    SettleRest rest(e, unit_mass(), held);
+    for (int k = 0; k <= 330; ++k)
+        if (rest.observe(sample_of(k / 30.0, x(k / 30.0), e.voxel_size_m))) return k;
+    return -1;
+}
+
+}  // namespace
+
+TEST_CASE("settling ends once a held body is at rest, never while it still moves") {
+    auto e = paper_schedule();
+    // A sag that creeps to 0.3 voxel lengths with a 50 ms time constant: at rest once the creep
+    // left, 0.3 exp(-t / 0.05), is within a tenth of the tolerance (sqrt(1.25) of it along the
+    // tracks). That is at t = 0.05 ln(0.3 sqrt(1.25) / 1e-4) = 0.41 s, within a window (0.2 s).
+    const auto sag = [](double t) { return 0.3 * (1.0 - std::exp(-t / 0.05)); };
+    const int k = rest_at(e, sag);
+    REQUIRE(k > 0);
+    CHECK(k < 30);
+    CHECK(0.3 * std::sqrt(1.25) * std::exp(-(k / 30.0 - 0.2) / 0.05) <= 1e-4 * 1.0001);
+    CHECK(k / 30.0 >= 0.41 - 0.2);
+    // A slow swing (period 0.8 s) never reads as rest, nor a creep that hardly decays.
+    CHECK(rest_at(e, [](double t) { return 0.01 * std::sin(2.0 * std::numbers::pi * t / 0.8); }) ==
+          -1);
+    CHECK(rest_at(e, [](double t) { return 0.01 * std::exp(-t / 3.0); }) == -1);
+    // A sag still going at the last sample before settle_s leaves nothing to skip.
+    CHECK(rest_at(e, [](double t) { return 0.3 * (1.0 - std::exp(-t / 0.2)); }) == -1);
+    // Off for free bodies and with the early end switched off.
+    CHECK(rest_at(e, sag, false) == -1);
+    e.simulation.end_when_periodic = false;
+    CHECK(rest_at(e, sag) == -1);
 }
 
 TEST_CASE("no early end when switched off or when a period is not a whole number of samples") {
