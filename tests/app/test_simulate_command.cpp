@@ -242,3 +242,46 @@ TEST_CASE("simulate --help documents the outputs and the diverged exit status") 
     CHECK(run.out.find("summary.json") != std::string::npos);
     CHECK(run.out.find("3 the simulation diverged") != std::string::npos);
 }
+
+TEST_CASE("simulate's summary says where an evaluation would end and how far its extrapolation is") {
+    // The held 3x2x2 block driven at 2 Hz, sampled at 30 fps (15 samples a period) for 3 s: its
+    // motion repeats after a few periods. The summary's periodic_end block reports the stop, and
+    // its extrapolated measures against the ones measured over the whole run (the gate of issue
+    // 23, docs/experiment-format.md).
+    const fs::path dir = fresh_dir("periodic");
+    const fs::path experiment = dir / "experiment.json", body = dir / "body.json";
+    auto e = tiny_experiment();
+    e.actuation.frequency_hz = 2.0;
+    e.simulation.settle_s = 0.2;
+    bhm::evo::save_experiment(experiment.string(), e);
+    bhm::evo::save_body(body.string(), tiny_body());
+    const fs::path out = dir / "out";
+    const CapturedRun run = run_simulate(
+        {experiment.string(), "--body", body.string(), "--seconds", "3", "--out", out.string()});
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    std::ifstream summary_file(out / "summary.json");
+    const nlohmann::json s = nlohmann::json::parse(summary_file);
+    const auto& p = s.at("periodic_end");
+    CHECK(p.at("applies") == true);
+    REQUIRE(p.at("ends_early") == true);
+    const double stop = p.at("stop_s").get<double>();
+    CHECK(stop >= 0.2 + 2 * 0.5);  // two whole settled periods at least
+    CHECK(stop < 3.0);
+    CHECK(p.at("gate_error").get<double>() <= 1.0);
+    // The extrapolated final displacement is the measured one within the gate.
+    const double measured = s.at("displacement_3d_voxels").get<double>();
+    const double extrapolated = p.at("extrapolated").at("com_final_3d").get<double>();
+    CHECK(std::abs(extrapolated - measured) <= std::max(0.005 * std::abs(measured), 1e-3));
+    CHECK(measured > 1e-3);  // it moved: the comparison is not of zeros
+    // Switched off, the block reports that no early end applies.
+    e.simulation.end_when_periodic = false;
+    bhm::evo::save_experiment(experiment.string(), e);
+    const CapturedRun off = run_simulate({experiment.string(), "--body", body.string(), "--seconds",
+                                          "3", "--out", (dir / "off").string()});
+    REQUIRE(off.exit_code == 0);
+    std::ifstream off_file(dir / "off" / "summary.json");
+    const nlohmann::json o = nlohmann::json::parse(off_file);
+    CHECK(o.at("periodic_end").at("applies") == false);
+    CHECK(o.at("periodic_end").at("ends_early") == false);
+}
