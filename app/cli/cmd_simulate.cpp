@@ -21,9 +21,10 @@
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/periodic_end.hpp"
+#include "evo/evaluate/simulate.hpp"
 #include "evo/evaluate/tracks.hpp"
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app {
 
@@ -93,7 +94,7 @@ int simulate(ArgParser& args) {
     std::shared_ptr<const engine::Model> model;
     try {
         const evo::Body framed = evo::apply_frame_and_overrides(experiment, body);
-        model = engine::Model::build(evo::make_body_spec(experiment, framed, phase_seed));
+        model = evo::model_of(experiment, framed, phase_seed);
     } catch (const std::invalid_argument& e) {
         throw std::runtime_error(body_path + ": cannot simulate: " + e.what());
     }
@@ -101,43 +102,44 @@ int simulate(ArgParser& args) {
     if (!budget.empty()) throw std::runtime_error(experiment_path + ": " + budget);
     create_output_dir(out_dir);
 
-    engine::World world(model);
     SimulationRecorder recorder(*model, settle_s);
-    evo::ExploitTracker exploits(experiment, world);
     ProgressLine progress(stderr, total_s, model->voxel_count(), ::isatty(STDERR_FILENO) != 0);
-    const auto start = std::chrono::steady_clock::now();
     // The whole run is recorded (a replay shows every second); beside it, where an evaluation of
     // this body would have ended because the motion repeats (evo/evaluate/periodic_end.hpp) and
     // how far its extrapolated measures are from the ones measured here.
     evo::Experiment timed = experiment;
     if (total_s > settle_s) timed.simulation.evaluate_s = total_s - settle_s;
-    evo::TrackSampler sampler(timed, world);
-    evo::MeasureTracker measured(timed, world), extrapolated(timed, world);
-    evo::PeriodicEnd periodic(timed, model->dt_s(), sampler.groups(),
+    const engine::World at_start(model);
+    evo::MeasureTracker extrapolated(timed, at_start);
+    evo::PeriodicEnd periodic(timed, model->dt_s(), evo::TrackSampler(timed, at_start).groups(),
                               evo::every_part_held(*model));
     bool repeated = false;
     double would_stop_s = total_s;
-    engine::run(world, total_s, record_fps, [&](const engine::World& w) {
+    evo::SimulationOptions options;
+    options.seconds = total_s;
+    options.end_early = false;
+    evo::SimulationHooks hooks;
+    hooks.record = [&](const engine::World& w) {
         recorder.observe(w);
-        exploits.observe(w);
-        const evo::TrackSample sample = sampler.sample(w);
-        measured.observe(sample);
-        if (!repeated) {
-            extrapolated.observe(sample);
-            if (periodic.observe(sample)) {
-                repeated = true;
-                would_stop_s = w.time_s();
-                periodic.extrapolate(
-                    [&](const evo::TrackSample& later) { extrapolated.observe(later); });
-            }
-        }
         progress.update(w.time_s(), w.steps());
-    });
+    };
+    hooks.sampled = [&](const evo::TrackSample& sample) {
+        if (repeated) return;
+        extrapolated.observe(sample);
+        if (periodic.observe(sample)) {
+            repeated = true;
+            would_stop_s = sample.t_s;
+            periodic.extrapolate(
+                [&](const evo::TrackSample& later) { extrapolated.observe(later); });
+        }
+    };
+    const auto start = std::chrono::steady_clock::now();
+    const evo::SimulationResult sim = evo::simulate(experiment, model, options, hooks);
     const double wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     progress.finish();
 
-    const RunStats stats = run_stats_of(*model, world, wall_s);
+    const RunStats stats = run_stats_of(*model, sim.world, wall_s);
     const DisplacementSummary displacements =
         summarize_displacements(recorder.samples(), settle_s, model->voxel_size_m());
 
@@ -151,10 +153,10 @@ int simulate(ArgParser& args) {
     summary["voxel_size_m"] = model->voxel_size_m();
     // Through text: exploits_to_json builds the unordered json type.
     summary["exploits"] =
-        nlohmann::ordered_json::parse(evo::exploits_to_json(exploits.report(stats.diverged)).dump());
+        nlohmann::ordered_json::parse(evo::exploits_to_json(sim.report.exploits).dump());
 
     evo::FitnessReport full_report, early_report;
-    full_report.measures = measured.measures();
+    full_report.measures = sim.report.measures;
     early_report.measures = extrapolated.measures();
     nlohmann::ordered_json early = {{"applies", periodic.enabled()},
                                     {"ends_early", repeated && !stats.diverged},

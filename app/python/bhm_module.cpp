@@ -25,9 +25,10 @@
 #include "engine/io/text_file.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
+#include "evo/evaluate/simulate.hpp"
+#include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_reader.hpp"
-#include "evo/experiment/body_spec_of.hpp"
 #include "evo/genome/genome.hpp"
 #include "evo/genome/phenotype.hpp"
 
@@ -194,8 +195,8 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
                               engine::format_number(total_s));
     std::shared_ptr<const engine::Model> model;
     try {
-        model = engine::Model::build(evo::make_body_spec(
-            experiment, evo::apply_frame_and_overrides(experiment, body), phase_seed));
+        model =
+            evo::model_of(experiment, evo::apply_frame_and_overrides(experiment, body), phase_seed);
     } catch (const std::invalid_argument& e) {
         throw py::value_error(std::string("cannot simulate the body: ") + e.what());
     }
@@ -205,10 +206,10 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
         throw py::value_error("seconds: " + problem);
     const double settle_s = experiment.simulation.settle_s;
     const double record_fps = experiment.simulation.record_fps;
-    engine::World world(model);
     app::SimulationRecorder recorder(*model, settle_s);
     double wall_s = 0.0;
     bool interrupted = false;
+    std::optional<evo::SimulationResult> sim;
     {
         // Physics touches no Python object: other Python threads run meanwhile. Every 50 ms the
         // GIL is taken back for a moment to run Python's signal handlers, so Ctrl-C (or any
@@ -217,24 +218,27 @@ py::dict simulate(const py::handle& experiment_in, const py::handle& body_in,
         const auto start = std::chrono::steady_clock::now();
         auto next_check = start + kSignalCheckInterval;
         try {
-            engine::RunHooks hooks;
-            hooks.observe = [&](const engine::World& w) { recorder.observe(w); };
+            // The studio's and bhm simulate's recipe (evo/evaluate/simulate.hpp), the whole time.
+            evo::SimulationOptions options;
+            options.seconds = total_s;
+            options.end_early = false;
+            evo::SimulationHooks hooks;
+            hooks.record = [&](const engine::World& w) { recorder.observe(w); };
             hooks.poll = [&](const engine::World&) {
                 const auto now = std::chrono::steady_clock::now();
-                if (now < next_check) return engine::RunVerdict::Continue;
+                if (now < next_check) return;
                 next_check = now + kSignalCheckInterval;
                 py::gil_scoped_acquire acquire;
                 if (PyErr_CheckSignals() != 0) throw SimulationInterrupted{};
-                return engine::RunVerdict::Continue;
             };
-            engine::run(world, total_s, record_fps, hooks);
+            sim.emplace(evo::simulate(experiment, model, options, hooks));
         } catch (const SimulationInterrupted&) {
             interrupted = true;  // the Python error (KeyboardInterrupt) is set on this thread
         }
         wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     if (interrupted) throw py::error_already_set();
-    const app::RunStats stats = app::run_stats_of(*model, world, wall_s);
+    const app::RunStats stats = app::run_stats_of(*model, sim->world, wall_s);
     const auto& samples = recorder.samples();
     auto summary = app::summary_json(
         stats, app::summarize_displacements(samples, settle_s, model->voxel_size_m()));

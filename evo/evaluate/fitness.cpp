@@ -8,9 +8,7 @@
 
 #include "engine/world.hpp"
 #include "evo/evaluate/behaviour.hpp"
-#include "evo/evaluate/periodic_end.hpp"
-#include "evo/evaluate/settle_rest.hpp"
-#include "evo/experiment/body_spec_of.hpp"
+#include "evo/evaluate/simulate.hpp"
 
 namespace bhm::evo {
 
@@ -108,81 +106,9 @@ FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_bod
 
 FitnessReport evaluate_body(const Experiment& experiment, const Body& framed_body,
                             const EvaluationControl& control) {
-    const auto start = std::chrono::steady_clock::now();
-    // Random phases come from the run's seed (docs/experiment-format.md), which the experiment
-    // holds.
-    const auto spec = make_body_spec(experiment, framed_body, experiment.evolution.seed);
-    engine::World world(engine::Model::build(spec));
-    TrackSampler sampler(experiment, world);
-    MeasureTracker tracker(experiment, world);
-    ExploitTracker exploits(experiment, world);
-    BehaviourTracker behaviour(experiment, world);
-    const bool held = every_part_held(world.model());
-    PeriodicEnd periodic(experiment, world.model().dt_s(), sampler.groups(), held);
-    SettleRest rest(experiment, sampler.groups(), held);
-    auto observe = [&](const TrackSample& sample) {
-        tracker.observe(sample);
-        exploits.observe(sample);
-        behaviour.observe(sample);
-    };
-    const double sample_hz =
-        experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    const double total_s = evaluation_seconds(experiment);
-    bool repeats = false, resting = false;
-    TrackSample last;
-    auto take = [&](const TrackSample& sample) {
-        observe(sample);
-        repeats = periodic.observe(sample);
-        resting = rest.observe(sample);
-        last = sample;
-    };
-    engine::RunHooks hooks;
-    hooks.observe = [&](const engine::World& w) { take(sampler.sample(w)); };
-    hooks.poll = [&](const engine::World&) {
-        honour(control);
-        return repeats || resting ? engine::RunVerdict::Stop : engine::RunVerdict::Continue;
-    };
-    hooks.poll_steps = kControlCheckSteps;
-    engine::run(world, total_s, sample_hz, hooks);
-    if (resting && !world.diverged()) {
-        // At rest before settle_s (evo/evaluate/settle_rest.hpp): the rest of the settling passes
-        // without integrating, its samples are the last one's; simulation resumes at the first
-        // sample at or past settle_s, exactly where the full run takes it.
-        const double dt = world.model().dt_s();
-        for (std::int64_t k = rest.next_sample(); k < rest.settled_sample(); ++k) {
-            TrackSample still = last;
-            still.t_s = sample_time_s(k, 1.0 / sample_hz, total_s, dt);
-            take(still);
-        }
-        resting = false;
-        world.rest_until(sample_time_s(rest.settled_sample(), 1.0 / sample_hz, total_s, dt));
-        engine::run(world, total_s, sample_hz, hooks);
-    }
-    const bool ended_early = repeats && !world.diverged();
-    if (ended_early) periodic.extrapolate(observe);
-
-    FitnessReport report;
-    report.measures = tracker.measures();
-    report.simulated_s = world.time_s();
-    report.steps = world.integrated_steps();
-    report.ended_early = ended_early;
-    report.periodic_residual = periodic.residual_voxels();
-    report.diverged = world.diverged();
-    if (report.diverged) report.divergence_reason = world.divergence_reason();
-    const bool finite = std::all_of(report.measures.begin(), report.measures.end(),
-                                    [](double v) { return std::isfinite(v); });
-    if (!report.diverged && !finite) {
-        report.diverged = true;
-        report.divergence_reason = "non-finite fitness measure";
-    }
-    if (report.diverged)
-        report.measures.fill(0.0);  // keep files free of NaN; fitness says diverged
-    report.exploits = exploits.report(report.diverged);
-    if (!report.diverged) report.behaviour = behaviour.descriptor();
-    report.fitness = fitness_under(report, experiment.fitness);
-    report.sim_wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return report;
+    SimulationHooks hooks;
+    hooks.poll = [&](const engine::World&) { honour(control); };
+    return simulate(experiment, model_of(experiment, framed_body), {}, hooks).report;
 }
 
 }  // namespace bhm::evo

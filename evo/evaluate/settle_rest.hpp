@@ -4,9 +4,9 @@
 // Before actuation starts (t < settle_s) a body only sags under gravity and comes to rest; the
 // rest of its settling changes nothing. Every track the measures use (evo/evaluate/tracks.hpp) is
 // watched over windows of W = 0.2 s of samples: s_w = max_i |x[i] - x[e]| over the window ending at
-// sample e (voxel lengths; mass moments as the centre-of-mass shift they make), s_{w-1} the same one
-// window earlier, r = s_w / s_{w-1}. A creep that falls by r a window still has s_w r / (1 - r) to
-// go, so the body is at rest when for every track
+// sample e (voxel lengths; mass moments as the centre-of-mass shift they make), s_{w-1} the same
+// one window earlier, r = s_w / s_{w-1}. A creep that falls by r a window still has s_w r / (1 - r)
+// to go, so the body is at rest when for every track
 //   s_w max(1, r / (1 - r)) <= periodic_tolerance / 10,   r < 0.9
 // (a tenth: what is left of the settling adds to the early end's own error). The evaluation then
 // lets the rest of the settling pass without integrating (engine::World::rest_until) and feeds the
@@ -41,11 +41,11 @@ class SettleRest {
 
   private:
     double voxel_size_m_, total_mass_kg_, tolerance_;
-    int window_ = 0;                     //!< samples in a window
-    std::int64_t settled_sample_ = 0;    //!< 0: off
+    int window_ = 0;                   //!< samples in a window
+    std::int64_t settled_sample_ = 0;  //!< 0: off
     std::int64_t observed_ = 0;
     bool fired_ = false;
-    std::deque<TrackSample> recent_;     //!< the last 2W + 1 samples
+    std::deque<TrackSample> recent_;  //!< the last 2W + 1 samples
 };
 
 }  // namespace bhm::evo

@@ -7,6 +7,7 @@
 #include "app/gui/session/replay_player.hpp"
 #include "engine/model.hpp"
 #include "engine/world.hpp"
+#include "evo/evaluate/simulate.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app::gui {
@@ -34,21 +35,18 @@ std::vector<int> surface_voxels(const engine::Replay& replay) {
 SimulatedBody simulate_body(const SimulationRequest& request, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const evo::Experiment& experiment = request.experiment;
-    // The same spec, phases and sampling as evo::evaluate_body, so the numbers shown match the
-    // fitness evolution measured.
-    const auto spec =
-        evo::make_body_spec(experiment, *request.framed_body, experiment.evolution.seed);
-    auto model = engine::Model::build(spec);
-    engine::World world(model);
-    evo::MeasureTracker tracker(experiment, world);
+    // The same recipe as evo::evaluate_body (spec, phases, sampling, measures), run the whole
+    // time, so the numbers shown match the fitness evolution measured.
+    auto model = evo::model_of(experiment, *request.framed_body);
     SimulationRecorder recorder(*model, experiment.simulation.settle_s, true);
-    const double sample_hz =
-        experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
-    engine::run(world, evo::evaluation_seconds(experiment), sample_hz, [&](const engine::World& w) {
+    evo::SimulationOptions options;
+    options.end_early = false;
+    evo::SimulationHooks hooks;
+    hooks.record = [&](const engine::World& w) { recorder.observe(w); };
+    hooks.poll = [&](const engine::World&) {
         if (cancel && cancel->load(std::memory_order_relaxed)) throw evo::EvaluationCancelled();
-        tracker.observe(w);
-        recorder.observe(w);
-    });
+    };
+    const evo::SimulationResult sim = evo::simulate(experiment, model, options, hooks);
 
     SimulatedBody out;
     out.id = request.id;
@@ -61,16 +59,10 @@ SimulatedBody simulate_body(const SimulationRequest& request, const std::atomic<
         density.push_back(m.physics.density_kg_m3);
     out.com_m = centre_of_mass_per_frame(out.replay, density);
     out.surface_voxels = surface_voxels(out.replay);
-    out.measures = tracker.measures();
-    out.diverged = world.diverged();
-    if (out.diverged) out.divergence_reason = world.divergence_reason();
-    for (double m : out.measures)
-        if (!std::isfinite(m)) out.diverged = true;
-    if (out.diverged) out.measures.fill(0.0);
-    evo::FitnessReport report;
-    report.measures = out.measures;
-    report.diverged = out.diverged;
-    out.fitness = evo::fitness_under(report, experiment.fitness.measure);
+    out.measures = sim.report.measures;
+    out.diverged = sim.report.diverged;
+    out.divergence_reason = sim.report.divergence_reason;
+    out.fitness = evo::fitness_under(sim.report, experiment.fitness.measure);
     // Analysis data, once, here on the worker: the UI only reads it.
     out.series = body_time_series(experiment, out.replay, out.com_m);
     out.voxel_phase_rad = voxel_phases(experiment, *request.framed_body, out.replay);
