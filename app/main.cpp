@@ -18,6 +18,8 @@ struct Subcommand {
 constexpr Subcommand kSubcommands[] = {
     {"studio", bhm::app::cmd_studio, "open the BHM Studio desktop application (default)"},
     {"validate", bhm::app::cmd_validate, "check experiment and body files, report every problem"},
+    {"materials", bhm::app::cmd_materials,
+     "list the material library (values, ranges, sources)"},
     {"simulate", bhm::app::cmd_simulate, "simulate one body under an experiment"},
     {"evolve", bhm::app::cmd_evolve, "evolve morphologies headless (AFPO over CPPNs)"},
     {"render", bhm::app::cmd_render, "render a body or a replay to PNG without a display"},

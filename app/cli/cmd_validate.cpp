@@ -6,6 +6,7 @@
 #include "app/cli/commands.hpp"
 #include "app/cli/file_kind.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/validated_envelope.hpp"
 
 namespace bhm::app {
 
@@ -15,6 +16,8 @@ int validate_body(ArgParser& parser) {
     std::vector<evo::Problem> problems;
     std::optional<evo::Experiment> experiment;
     std::vector<std::string> bodies;
+    // Outside the validated envelope (docs/physics.md): reported, not refused.
+    std::vector<evo::Problem> warnings;
     for (const auto& path : parser.positionals()) {
         try {
             if (detect_file_kind(path) == FileKind::Body) {
@@ -23,6 +26,8 @@ int validate_body(ArgParser& parser) {
             } else {
                 auto e = evo::load_experiment(path);
                 if (!experiment) experiment = e;
+                auto more = evo::envelope_warnings(e, nullptr, path);
+                warnings.insert(warnings.end(), more.begin(), more.end());
             }
         } catch (const evo::ValidationError& error) {
             problems.insert(problems.end(), error.problems.begin(), error.problems.end());
@@ -35,6 +40,10 @@ int validate_body(ArgParser& parser) {
                 auto body = evo::load_body(path);
                 auto more = evo::validate_body_against(body, *experiment, path);
                 problems.insert(problems.end(), more.begin(), more.end());
+                if (more.empty()) {
+                    auto w = evo::envelope_warnings(*experiment, &body, path);
+                    warnings.insert(warnings.end(), w.begin(), w.end());
+                }
             } catch (const evo::ValidationError&) {
                 // already reported above
             }
@@ -42,6 +51,9 @@ int validate_body(ArgParser& parser) {
     }
     for (const auto& p : problems)
         std::cerr << p.to_string() << "\n";
+    if (!parser.has("--quiet"))
+        for (const auto& w : warnings)
+            std::cerr << w.to_string() << "\n";
     if (!problems.empty()) return 1;
     if (!parser.has("--quiet")) std::cout << parser.positionals().size() << " file(s) valid\n";
     return 0;
@@ -55,9 +67,11 @@ int cmd_validate(const Args& args) {
         "Checks experiment and body files and reports every problem, one per line, as\n"
         "file:field: message. A body file is recognised by its \"layers\" key; bodies are\n"
         "also checked against the first experiment named in the same call.\n"
+        "Materials outside the envelope docs/physics.md validates (stiffness contrast, Poisson's\n"
+        "ratio) are reported as file:field: warning: ..., which does not fail.\n"
         "Exit status: 0 when every file is valid, 1 when not, 2 on a usage error.");
     parser.positional("FILE", "experiment (.json) or body (.json) file", true, true);
-    parser.flag("--quiet", "print nothing when valid");
+    parser.flag("--quiet", "print nothing when valid (no warnings either)");
     return run_command(parser, args, validate_body);
 }
 

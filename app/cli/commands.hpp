@@ -9,6 +9,7 @@ namespace bhm::app {
 using Args = std::vector<std::string>;
 int cmd_studio(const Args& args);
 int cmd_validate(const Args& args);
+int cmd_materials(const Args& args);
 int cmd_simulate(const Args& args);
 int cmd_evolve(const Args& args);
 int cmd_render(const Args& args);

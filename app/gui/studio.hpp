@@ -27,6 +27,7 @@
 #include "app/gui/studio_settings.hpp"
 #include "app/gui/widgets/fitness_plot.hpp"
 #include "app/gui/widgets/tile_layout.hpp"
+#include "evo/experiment/material_library.hpp"
 #include "render/camera.hpp"
 
 namespace bhm::app::gui {
@@ -149,6 +150,12 @@ struct Studio {
     std::vector<ComparedRun> compared_runs;
     std::string compare_field;  //!< run directory to add to the comparison
 
+    //! The material library (docs/materials-format.md) for the Experiment panel's picker: read
+    //! once, on first use (studio_library_material); the one-line reason when it did not load.
+    std::optional<evo::MaterialLibrary> material_library;
+    std::string material_library_error;
+    std::string material_library_dir = evo::default_material_library_dir();
+    std::string material_filter;  //!< the picker's search text
     //! Shipped presets (the Files tab's gallery): Save never overwrites them.
     std::string presets_dir = default_presets_dir();
     std::string browser_dir;  //!< folder the file browser shows (absolute; empty: the current)

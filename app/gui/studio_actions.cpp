@@ -38,6 +38,33 @@ bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& 
     return true;
 }
 
+const evo::MaterialLibrary* studio_material_library(Studio& studio) {
+    if (!studio.material_library && studio.material_library_error.empty()) {
+        try {
+            studio.material_library = evo::load_material_library(studio.material_library_dir);
+        } catch (const evo::ValidationError& e) {
+            studio.material_library_error =
+                e.problems.empty() ? std::string(e.what()) : e.problems[0].to_string();
+        }
+    }
+    return studio.material_library ? &*studio.material_library : nullptr;
+}
+
+bool choose_library_material(Studio& studio, std::size_t slot, const std::string& id) {
+    const evo::MaterialLibrary* library = studio_material_library(studio);
+    const evo::LibraryMaterial* m = library ? library->find(id) : nullptr;
+    auto next = studio.document.experiment();
+    if (!m || slot >= next.materials.size()) {
+        set_status(studio, "no library material '" + id + "'", true);
+        return false;
+    }
+    auto& entry = next.materials[slot];
+    entry.name.clear();  // the library's name: the slot now holds another material
+    evo::apply_library_material(*m, next.actuation.temperature_amplitude_c, entry);
+    return apply_edit(studio, next,
+                      "material " + std::to_string(slot + 1) + " from library: " + m->name);
+}
+
 void new_experiment(Studio& studio) {
     studio.document = ExperimentDocument();
     studio.view.camera_needs_framing = true;

@@ -26,6 +26,13 @@ bool open_experiment(Studio& studio, const std::string& path);
 bool save_experiment_as(Studio& studio, const std::string& path);
 bool save_experiment(Studio& studio);  //!< to the current path (Save As when untitled)
 bool undo(Studio& studio);
+//! The material library, read from studio.material_library_dir on first use; nullptr (and
+//! studio.material_library_error) when it does not load.
+const evo::MaterialLibrary* studio_material_library(Studio& studio);
+//! Fills material slot (0-based) from library material `id` (evo::apply_library_material, at the
+//! experiment's temperature amplitude) as one undoable edit; values the library has no source for
+//! keep the slot's. False when the id is unknown or the edit is refused.
+bool choose_library_material(Studio& studio, std::size_t slot, const std::string& id);
 bool redo(Studio& studio);
 
 // --- Painter -------------------------------------------------------------------------------

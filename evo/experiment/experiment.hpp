@@ -19,6 +19,9 @@ struct MaterialEntry {
     engine::Material physics;
     std::array<float, 3> color{0.8f, 0.8f, 0.8f};  //!< RGB in [0, 1]
     bool has_color = false;
+    //! The library material (assets/materials/<id>.json) the slot was filled from; "" = typed by
+    //! hand. Provenance only once written: the file keeps every value (docs/materials-format.md).
+    std::string library;
     bool active() const { return physics.cte_per_c > 0.0; }
     bool operator==(const MaterialEntry&) const = default;
 };

@@ -17,6 +17,7 @@
 #include "engine/limits.hpp"
 #include "evo/experiment/json_reader.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/material_library.hpp"
 
 namespace bhm::evo {
 
@@ -93,12 +94,15 @@ void read_array3(JsonReader& r, const json& obj, const std::string& key, const s
     out = v;
 }
 
-MaterialEntry parse_material(JsonReader& r, const json& m, const std::string& path) {
-    MaterialEntry entry;
+// base: the defaults of the fields the object does not give (a library material's values, or
+// MaterialEntry's own).
+MaterialEntry parse_material(JsonReader& r, const json& m, const std::string& path,
+                             const MaterialEntry& base) {
+    MaterialEntry entry = base;
     r.check_keys(m, path,
-                 {"name", "youngs_modulus_pa", "density_kg_m3", "poisson_ratio", "cte_per_c",
-                  "static_friction", "dynamic_friction", "color"});
-    entry.name = r.string(m, "name", path, "");
+                 {"name", "library", "youngs_modulus_pa", "density_kg_m3", "poisson_ratio",
+                  "cte_per_c", "static_friction", "dynamic_friction", "color"});
+    entry.name = r.string(m, "name", path, base.name);
     auto& p = entry.physics;
     p.youngs_modulus_pa = r.number(m, "youngs_modulus_pa", path, p.youngs_modulus_pa);
     p.density_kg_m3 = r.number(m, "density_kg_m3", path, p.density_kg_m3);
@@ -125,6 +129,76 @@ MaterialEntry parse_material(JsonReader& r, const json& m, const std::string& pa
     }
     return entry;
 }
+
+// A slot naming a library material ("library": "<id>") takes the library's values for the fields
+// it leaves out. The library is read only when a field is left out: a file bhm wrote holds every
+// value and loads without it. A value the library has no source for must be given by the slot.
+class LibraryFill {
+  public:
+    MaterialEntry base_for(JsonReader& r, const json& m, const std::string& path,
+                           double temperature_amplitude_c) {
+        MaterialEntry base;
+        const auto it = m.find("library");
+        if (it == m.end()) return base;
+        const std::string field = JsonReader::join(path, "library");
+        if (!it->is_string() || it->get<std::string>().empty()) {
+            r.problem(field, "expected the id of a library material (a file name of "
+                             "assets/materials/ without .json), e.g. \"ecoflex-00-30\"");
+            return base;
+        }
+        base.library = it->get<std::string>();
+        static const char* kFilled[] = {"name", "youngs_modulus_pa", "density_kg_m3",
+                                        "poisson_ratio", "cte_per_c", "static_friction",
+                                        "dynamic_friction", "color"};
+        bool missing = false;
+        for (const char* key : kFilled)
+            missing = missing || !m.contains(key);
+        if (!missing) return base;
+        const MaterialLibrary* library = load(r, field);
+        if (!library) return base;
+        const LibraryMaterial* lm = library->find(base.library);
+        if (!lm) {
+            std::string message = "'" + base.library + "' is not in the material library " +
+                                  library->dir;
+            if (auto guess = closest_match(base.library, library->ids()); !guess.empty())
+                message += " (did you mean '" + guess + "'?)";
+            r.problem(field, message + "; `bhm materials` lists it");
+            return base;
+        }
+        apply_library_material(*lm, temperature_amplitude_c, base);
+        auto require = [&](const char* key, bool sourced) {
+            if (!sourced && !m.contains(key))
+                r.problem(JsonReader::join(path, key),
+                          "is required: library material '" + lm->id +
+                              "' has no sourced value for it (docs/materials-format.md)");
+        };
+        require("poisson_ratio", lm->poisson_ratio.has_value());
+        require("density_kg_m3", lm->density_kg_m3.has_value());
+        if (lm->active)
+            require("cte_per_c",
+                    lm->contraction_strain.has_value() && temperature_amplitude_c > 0);
+        return base;
+    }
+
+  private:
+    const MaterialLibrary* load(JsonReader& r, const std::string& field) {
+        if (!tried_) {
+            tried_ = true;
+            try {
+                library_ = load_material_library(default_material_library_dir());
+            } catch (const ValidationError& e) {
+                error_ = e.problems.empty() ? std::string(e.what()) : e.problems[0].to_string();
+            }
+        }
+        if (!library_)
+            r.problem(field, "the values it leaves out cannot be filled: the material library "
+                             "did not load (" + error_ + ")");
+        return library_ ? &*library_ : nullptr;
+    }
+    bool tried_ = false;
+    std::optional<MaterialLibrary> library_;
+    std::string error_;
+};
 
 void parse_boundary(JsonReader& r, const json& b, const std::string& path, Boundary& out) {
     r.check_keys(b, path, {"faces", "enclosure", "voxel_overrides"});
@@ -200,23 +274,7 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         e.voxel_size_m = r.number(*w, "voxel_size_m", "workspace", e.voxel_size_m);
     }
 
-    if (auto it = root.find("materials"); it != root.end()) {
-        if (!it->is_array()) {
-            r.problem("materials", "expected an array of materials");
-        } else {
-            for (size_t i = 0; i < it->size(); ++i) {
-                const std::string path = "materials[" + std::to_string(i) + "]";
-                if (!(*it)[i].is_object()) {
-                    r.problem(path, "expected an object, got " + JsonReader::type_name((*it)[i]));
-                    continue;
-                }
-                e.materials.push_back(parse_material(r, (*it)[i], path));
-            }
-        }
-    } else {
-        r.problem("materials", "is required (at least one material)");
-    }
-
+    // Actuation first: a library's active tissue sets cte_per_c from its amplitude.
     if (const json* a = r.object(root, "actuation", "")) {
         r.check_keys(*a, "actuation", {"frequency_hz", "temperature_amplitude_c", "phase"});
         e.actuation.frequency_hz =
@@ -225,6 +283,26 @@ Experiment parse_experiment(const json& root, const std::string& file) {
                                                        e.actuation.temperature_amplitude_c);
         e.actuation.phase =
             static_cast<PhaseMode>(r.choice(*a, "phase", "actuation", {"uniform", "random"}, 0));
+    }
+
+    if (auto it = root.find("materials"); it != root.end()) {
+        if (!it->is_array()) {
+            r.problem("materials", "expected an array of materials");
+        } else {
+            LibraryFill fill;
+            for (size_t i = 0; i < it->size(); ++i) {
+                const std::string path = "materials[" + std::to_string(i) + "]";
+                if (!(*it)[i].is_object()) {
+                    r.problem(path, "expected an object, got " + JsonReader::type_name((*it)[i]));
+                    continue;
+                }
+                const MaterialEntry base = fill.base_for(r, (*it)[i], path,
+                                                         e.actuation.temperature_amplitude_c);
+                e.materials.push_back(parse_material(r, (*it)[i], path, base));
+            }
+        }
+    } else {
+        r.problem("materials", "is required (at least one material)");
     }
 
     if (const json* env = r.object(root, "environment", "")) {
@@ -575,6 +653,7 @@ json experiment_to_json(const Experiment& e) {
                    {"static_friction", m.physics.static_friction},
                    {"dynamic_friction", m.physics.dynamic_friction}};
         if (m.has_color) mj["color"] = m.color;
+        if (!m.library.empty()) mj["library"] = m.library;
         j["materials"].push_back(mj);
     }
     j["actuation"] = {{"frequency_hz", e.actuation.frequency_hz},

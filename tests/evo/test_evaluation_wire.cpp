@@ -21,7 +21,7 @@ TEST_CASE("rules round-trip exactly, the paper experiments included") {
     CHECK(back.rules_id == m.rules_id);
     CHECK(back.rules == m.rules);
     for (const char* name : {"paper-exp1.json", "paper-exp1-attached.json", "paper-exp2.json",
-                             "paper-exp3.json", "quick-demo.json"}) {
+                             "paper-exp3.json", "quick-demo.json", "biohybrid-catheter.json"}) {
         CAPTURE(name);
         m.rules = load_experiment(std::string(BHM_SOURCE_DIR) + "/assets/experiments/" + name);
         CHECK(decode_rules(encode_rules(m)).rules == m.rules);

@@ -7,7 +7,9 @@
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/unsaved_guard.hpp"
+#include "app/gui/widgets/material_picker.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
+#include "evo/experiment/validated_envelope.hpp"
 
 namespace bhm::app::gui {
 
@@ -78,6 +80,7 @@ void materials_section(Studio& s) {
         ImGui::SameLine();
         if (ImGui::TreeNodeEx(title.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
             if (field_text("##name", m.name, "material name")) commit_draft(s, "material name");
+            material_library_picker(s, k);
             const std::string idx = std::to_string(k + 1);
             if (field_double("E", m.physics.youngs_modulus_pa, "Pa",
                              "Young's modulus, (0, 1e12] Pa; paper Table 1: 5e6", "%.4g"))
@@ -113,6 +116,12 @@ void materials_section(Studio& s) {
             ImGui::TreePop();
         }
         ImGui::PopID();
+    }
+    // Outside the envelope docs/physics.md validates: a warning, as `bhm validate` prints it.
+    for (const auto& w : evo::envelope_warnings(s.draft, nullptr, "")) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.75f, 0.3f, 1.0f));
+        ImGui::TextWrapped("%s: %s", w.field.c_str(), w.message.c_str());
+        ImGui::PopStyleColor();
     }
     if (tracked_button(s, "Add material") && materials.size() < 9) {
         evo::MaterialEntry m;
@@ -298,7 +307,9 @@ void draw_experiment_panel(Studio& s) {
         commit_draft(s, "description");
     const ImGuiTreeNodeFlags open = ImGuiTreeNodeFlags_DefaultOpen;
     if (ImGui::CollapsingHeader("Workspace", open)) workspace_section(s);
-    if (ImGui::CollapsingHeader("Materials")) materials_section(s);
+    const bool materials_open = ImGui::CollapsingHeader("Materials");
+    record_widget(s, "header Materials");
+    if (materials_open) materials_section(s);
     if (ImGui::CollapsingHeader("Actuation and environment")) actuation_section(s);
     if (ImGui::CollapsingHeader("Simulation timing", open)) simulation_section(s);
     if (ImGui::CollapsingHeader("Fitness", open)) fitness_section(s);

@@ -1,0 +1,76 @@
+#include "evo/experiment/validated_envelope.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "evo/experiment/body_spec_of.hpp"
+
+namespace bhm::evo {
+
+namespace {
+
+std::string number_text(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return buf;
+}
+
+}  // namespace
+
+std::vector<Problem> envelope_warnings(const Experiment& e, const Body* body,
+                                       const std::string& file) {
+    std::vector<Problem> out;
+    // The materials the body uses (1-based), or all of them.
+    std::vector<bool> used(e.materials.size() + 1, body == nullptr);
+    if (body) {
+        const Body framed = apply_frame_and_overrides(e, *body);
+        for (auto cell : framed.cells)
+            if (cell > 0 && cell < used.size()) used[cell] = true;
+    }
+    double e_min = 0, e_max = 0, nu_max = -1;
+    int k_min = 0, k_max = 0;
+    for (size_t k = 1; k < used.size(); ++k) {
+        if (!used[k]) continue;
+        const auto& m = e.materials[k - 1].physics;
+        if (k_min == 0 || m.youngs_modulus_pa < e_min) {
+            e_min = m.youngs_modulus_pa;
+            k_min = static_cast<int>(k);
+        }
+        if (k_max == 0 || m.youngs_modulus_pa > e_max) {
+            e_max = m.youngs_modulus_pa;
+            k_max = static_cast<int>(k);
+        }
+        nu_max = std::max(nu_max, m.poisson_ratio);
+        if (m.poisson_ratio < validated::kMinPoissonRatio ||
+            m.poisson_ratio > validated::kMaxPoissonRatio)
+            out.push_back({file, "materials[" + std::to_string(k - 1) + "].poisson_ratio",
+                           "warning: nu " + number_text(m.poisson_ratio) +
+                               " lies outside the validated [" +
+                               number_text(validated::kMinPoissonRatio) + ", " +
+                               number_text(validated::kMaxPoissonRatio) +
+                               "] (docs/physics.md, Known limits: auxetic voxels are not "
+                               "tested in bending)"});
+    }
+    if (k_min == 0 || e_min <= 0) return out;
+    const double contrast = e_max / e_min;
+    const std::string what = body ? "the body's materials" : "the experiment's materials";
+    const std::string pair = "materials[" + std::to_string(k_max - 1) + "] E " +
+                             number_text(e_max) + " Pa / materials[" + std::to_string(k_min - 1) +
+                             "] E " + number_text(e_min) + " Pa";
+    if (contrast > validated::kMaxStiffnessContrast)
+        out.push_back({file, "materials",
+                       "warning: stiffness contrast " + number_text(contrast) + " of " + what +
+                           " (" + pair + ") exceeds " +
+                           number_text(validated::kMaxStiffnessContrast) +
+                           ", the largest validated against CalculiX (docs/physics.md): "
+                           "bending may be off by tens of percent"});
+    if (contrast > 1.0 && nu_max > validated::kMaxPoissonRatioMixed)
+        out.push_back({file, "materials",
+                       "warning: " + what + " mix Young's moduli (contrast " +
+                           number_text(contrast) + ") with nu up to " + number_text(nu_max) +
+                           ": such bodies bend too stiffly (docs/physics.md, Known limits: "
+                           "13.7 % at contrast 10 and nu 0.35, 25.9 % at nu 0.49)"});
+    return out;
+}
+
+}  // namespace bhm::evo

@@ -1,0 +1,40 @@
+#pragma once
+// The envelope in which the engine's bodies are validated against the continuum (CalculiX and
+// theory), as docs/physics.md states it ("Validation: ours vs CalculiX vs theory" and "Known
+// limits"). The numbers live here and nowhere else; when docs/physics.md moves the envelope
+// (issue 24's mixed-stiffness work), change them here and in its table together.
+// Outside the envelope a body still runs (engine/limits.hpp decides what runs); `bhm validate`
+// and the studio warn, they do not refuse.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "evo/experiment/experiment.hpp"
+#include "evo/experiment/experiment_io.hpp"
+
+namespace bhm::evo::validated {
+
+//! Largest max E / min E validated: the 20x8x7 cantilever with two 10 E layers (docs/physics.md,
+//! "Validation" table; -1.5 % against CalculiX at nu = 0).
+inline constexpr double kMaxStiffnessContrast = 10.0;
+//! Poisson's ratios validated in bending and axial tests: 0, 0.2, 0.35, 0.49. Auxetic voxels
+//! (nu < 0) pass axial tests only ("Known limits": not tested in bending).
+inline constexpr double kMinPoissonRatio = 0.0;
+inline constexpr double kMaxPoissonRatio = 0.49;
+//! Bodies of two or more Young's moduli are on the continuum curve only up to this nu: "Known
+//! limits", the layered cantilever at contrast 10 is 13.7 % too stiff at nu 0.35 and 25.9 % at
+//! 0.49 (-1.5 % at nu 0).
+inline constexpr double kMaxPoissonRatioMixed = 0.0;
+
+}  // namespace bhm::evo::validated
+
+namespace bhm::evo {
+
+//! Warnings (not errors) for an experiment whose materials lie outside the validated envelope:
+//! the stiffness contrast and Poisson's ratios of the materials the body uses (with the frame and
+//! overrides), or of every material of the experiment when there is no body. Each is a Problem
+//! whose message starts with "warning: ".
+std::vector<Problem> envelope_warnings(const Experiment& experiment, const Body* body,
+                                       const std::string& file_label);
+
+}  // namespace bhm::evo
