@@ -159,7 +159,9 @@ GenerationProgress EvolutionRun::progress() const {
 void EvolutionRun::progress_begin(int generation) {
     const double paused = paused_seconds();
     std::lock_guard lock(progress_mutex_);
-    progress_ = GenerationProgress{true, generation, 0, 0, 0.0};
+    // Another attempt at the same generation keeps the time of the abandoned ones.
+    const double abandoned = progress_.generation == generation ? progress_.abandoned_s : 0.0;
+    progress_ = GenerationProgress{true, generation, 0, 0, 0.0, abandoned};
     progress_start_ = std::chrono::steady_clock::now();
     progress_paused_at_start_s_ = paused;
 }
@@ -179,6 +181,12 @@ void EvolutionRun::progress_end() {
     std::lock_guard lock(progress_mutex_);
     progress_.running = false;
     progress_.elapsed_s = last.elapsed_s;
+}
+
+void EvolutionRun::progress_abandoned() {
+    std::lock_guard lock(progress_mutex_);
+    progress_.abandoned_s += progress_.elapsed_s;
+    progress_.elapsed_s = 0.0;
 }
 
 void EvolutionRun::request_fitness_change(const Fitness& fitness) {
@@ -236,6 +244,7 @@ StopReason EvolutionRun::run() {
         restarted = false;
         if (run_generation()) continue;
         // Abandoned: for new rules (computed again at once) or a stop.
+        progress_abandoned();
         if (!restart_.exchange(false) || user_stop_.load()) return StopReason::StopRequested;
         stop_.store(false);
         restarted = true;
@@ -302,8 +311,9 @@ bool EvolutionRun::run_generation() {
     tally.evaluation = &evaluation;
     tally.clones = brood.clones;
     tally.newcomers_skipped = brood.newcomers_skipped;
-    tally.generation_wall_s = progress().elapsed_s;  // paused time excluded
-    tally.wall_s = state_.elapsed_s + tally.generation_wall_s;
+    const GenerationProgress spent = progress();
+    tally.generation_wall_s = spent.elapsed_s;  // paused time excluded
+    tally.wall_s = state_.elapsed_s + spent.abandoned_s + tally.generation_wall_s;
     commit_generation(rules, rescored.changed, applied_serial, next_id, rng, std::move(selection),
                       std::move(search), std::move(*champion), tally, new_champion);
     return true;
@@ -350,6 +360,7 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
     state_.elapsed_s = tally.wall_s;
     state_.population = selection.population;
     state_.pareto_rank = selection.ranks;
+    state_.novelty = selection.novelty;
     state_.champion = std::move(champion);
     state_.neat = std::move(search.neat);
     state_.novelty_archive = std::move(search.novelty_archive);
@@ -368,7 +379,11 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
         if (rules_changed) output_->write_run_info(original_experiment_, state_);
         output_->write_fitness_csv(state_.history);
         if (new_champion) output_->write_champion(rules, *state_.champion);
-        output_->write_checkpoint(state_);
+        // Resumed from the backup (checkpoint.json was damaged): the backup is the one good
+        // checkpoint left, so the damaged file goes aside instead of into its slot.
+        const bool resumed_from_backup =
+            fs::path(checkpoint_path_).filename() == kPreviousCheckpointFile;
+        output_->write_checkpoint(state_, resumed_from_backup);
         checkpoint_path_ = output_->path(kCheckpointFile);
     }
 
