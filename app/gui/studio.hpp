@@ -150,6 +150,9 @@ struct Studio {
     EvolutionSession evolution;
     RunDirectoryWatch run_directory;               //!< a run directory opened for viewing
     std::shared_ptr<const EvolutionSnapshot> run;  //!< the one shown: live session or directory
+    //! The live session's generation in progress, read just before `run` was taken: in that
+    //! order a generation completed in between is in the snapshot, never missing from both.
+    LiveProgress run_progress;
     bool showing_run_directory = false;
     std::chrono::steady_clock::time_point last_directory_check{};
     std::string run_dir_field;   //!< where the next run is written

@@ -540,6 +540,7 @@ void update_studio(Studio& studio) {
         }
     } else {
         studio.evolution.collect_ended();
+        studio.run_progress = studio.evolution.progress();
         studio.run = studio.evolution.snapshot();
         // The run ended: the status line says how, instead of the last action's word.
         const RunPhase phase = studio.run ? studio.run->phase : RunPhase::Idle;

@@ -135,10 +135,15 @@ void EvolutionRun::set_paused(bool paused) {
 }
 
 double EvolutionRun::paused_seconds() const {
+    return paused_seconds_now().first;
+}
+
+std::pair<double, std::chrono::steady_clock::time_point> EvolutionRun::paused_seconds_now() const {
     std::lock_guard lock(control_mutex_);
+    const auto now = std::chrono::steady_clock::now();
     double s = paused_s_;
-    if (paused_.load()) s += seconds_since(pause_began_);
-    return s;
+    if (paused_.load()) s += std::chrono::duration<double>(now - pause_began_).count();
+    return {s, now};
 }
 
 GenerationProgress EvolutionRun::progress() const {
@@ -151,8 +156,13 @@ GenerationProgress EvolutionRun::progress() const {
         paused_at_start = progress_paused_at_start_s_;
         start = progress_start_;
     }
-    if (p.running)
-        p.elapsed_s = std::max(0.0, seconds_since(start) - (paused_seconds() - paused_at_start));
+    if (p.running) {
+        // One instant for both readings: apart, a reader preempted between them (a loaded
+        // machine) saw the time in a paused generation jitter, even go back.
+        const auto [paused, now] = paused_seconds_now();
+        p.elapsed_s = std::max(0.0, std::chrono::duration<double>(now - start).count() -
+                                        (paused - paused_at_start));
+    }
     return p;
 }
 
@@ -311,6 +321,10 @@ bool EvolutionRun::run_generation() {
     tally.evaluation = &evaluation;
     tally.clones = brood.clones;
     tally.newcomers_skipped = brood.newcomers_skipped;
+    // The generation's clock stops here, before its files are written: it kept running in
+    // progress() while they were, so a live figure ran past the time committed below and went
+    // back when the generation's snapshot came.
+    progress_end();
     const GenerationProgress spent = progress();
     tally.generation_wall_s = spent.elapsed_s;  // paused time excluded
     tally.wall_s = state_.elapsed_s + spent.abandoned_s + tally.generation_wall_s;

@@ -27,6 +27,7 @@
 // progress() says how far the generation in progress is.
 #include <atomic>
 #include <chrono>
+#include <utility>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -182,6 +183,8 @@ class EvolutionRun {
     void publish(std::shared_ptr<const GenerationReport> report);
     //! Seconds spent paused since the run was made (the current pause included).
     double paused_seconds() const;
+    //! The same, with the instant it holds for (read under the same lock).
+    std::pair<double, std::chrono::steady_clock::time_point> paused_seconds_now() const;
     void progress_begin(int generation);
     void progress_set_total(int simulations);
     void progress_count_one();

@@ -134,7 +134,7 @@ void status(Studio& s) {
     // The session's phase is read live (an atomic), not from the last snapshot: Pause or Stop
     // shows at once.
     const RunPhase phase = s.showing_run_directory ? run->phase : s.evolution.phase();
-    const LiveProgress progress = s.evolution.progress();
+    const LiveProgress& progress = s.run_progress;
     if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
         auto cell = [](const char* name, const std::string& value) {
             ImGui::TableNextColumn();
