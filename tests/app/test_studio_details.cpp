@@ -4,6 +4,7 @@
 // novelty, and an idle studio does not redraw without a change.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "app/cli/render_video.hpp"
@@ -177,4 +178,23 @@ TEST_CASE("studio details: idle, the window draws only after a change or once a 
     studio.clock.playing = true;            // a replay plays: every frame
     CHECK(needs_animation(studio));
     for (int i = 0; i < 5; ++i) CHECK(gate.should_draw(studio, 1.4 + 0.01 * i));
+}
+
+TEST_CASE("studio details: the splitters show a grip at rest") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 800, 500);
+    run_script(session, json::parse(R"([{"frames": 2}])"));
+    const render::Image image = session.capture();  // top row first
+    for (const char* name : {"splitter left", "splitter right", "splitter replay"}) {
+        INFO(name);
+        const WidgetRect r = studio.widgets.at(name);
+        const int x = static_cast<int>(std::lround((r.min.x + r.max.x) * 0.5f));
+        const int y = static_cast<int>(std::lround((r.min.y + r.max.y) * 0.5f));
+        // The middle dot is darker than the window's background beside the strip.
+        const auto* dot = image.pixel(x, y);
+        const bool vertical = r.max.y - r.min.y > r.max.x - r.min.x;
+        const auto* beside = vertical ? image.pixel(x, y + 8) : image.pixel(x + 8, y);
+        CHECK(int(dot[0]) + 30 < int(beside[0]));
+    }
 }
