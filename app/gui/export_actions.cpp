@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/cli/render_video.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/studio_paths.hpp"
 #include "app/gui/view_renderer.hpp"
@@ -72,6 +73,33 @@ std::string next_screenshot_path(const Studio& s) {
                       : typed);
 }
 
+bool start_video_export(Studio& s, const std::string& path, int width, int height, double fps) {
+    const auto ends = [&](const char* suffix) {
+        const std::string x(suffix);
+        return path.size() >= x.size() && path.compare(path.size() - x.size(), x.size(), x) == 0;
+    };
+    const bool gif = ends(".gif") || ends(".GIF");
+    if (!gif && !ends(".mp4") && !ends(".MP4")) {
+        set_status(s, "video: the file name ends in .mp4 or .gif, got '" + path + "'", true);
+        return false;
+    }
+    const auto folder = std::filesystem::path(path).parent_path();
+    if (!start_frame_export(s, folder.empty() ? "." : folder.string(), width, height, fps))
+        return false;
+    auto& job = s.exports.frame_job;
+    try {
+        job.video = std::make_shared<VideoWriter>(path, width, height, fps,
+                                                  gif ? VideoFormat::Gif : VideoFormat::Mp4);
+    } catch (const std::exception& e) {
+        job = {};
+        set_status(s, std::string("video: ") + e.what(), true);
+        return false;
+    }
+    job.video_path = std::filesystem::absolute(path).string();
+    set_status(s, "writing " + std::to_string(job.total) + " frames to " + job.video_path);
+    return true;
+}
+
 bool start_frame_export(Studio& s, const std::string& folder, int width, int height, double fps) {
     if (!s.shown || s.shown->replay.frames.empty()) {
         set_status(s, "frame export: no simulated body to export", true);
@@ -102,7 +130,10 @@ bool start_frame_export(Studio& s, const std::string& folder, int width, int hei
 
 void continue_frame_export(Studio& s, ViewRenderer& renderer) {
     auto& job = s.exports.frame_job;
-    if (!job.active) return;
+    if (!job.active) {
+        job.video.reset();  // cancelled: ffmpeg is stopped, its temporary removed
+        return;
+    }
     if (!s.shown) {
         job.active = false;
         set_status(s, "frame export stopped: the body is gone", true);
@@ -114,16 +145,31 @@ void continue_frame_export(Studio& s, ViewRenderer& renderer) {
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%05d.png", job.next);
     try {
-        render::write_png(job.folder + name,
-                          renderer.draw_to_image(list, s.view.camera, job.width, job.height, 4));
+        const render::Image image =
+            renderer.draw_to_image(list, s.view.camera, job.width, job.height, 4);
+        if (job.video)
+            job.video->write(image);
+        else
+            render::write_png(job.folder + name, image);
+        if (++job.next >= job.total && job.video) {
+            job.video->finish();
+            job.video->commit();
+        }
     } catch (const std::exception& e) {
         job.active = false;
-        set_status(s, std::string("frame export: ") + e.what(), true);
+        job.video.reset();
+        set_status(s, std::string(job.video_path.empty() ? "frame export: " : "video: ") +
+                          e.what(),
+                   true);
         return;
     }
-    if (++job.next >= job.total) {
+    if (job.next >= job.total) {
         job.active = false;
-        set_status(s, "wrote " + std::to_string(job.total) + " frames to " + job.folder);
+        set_status(s, job.video ? "video written (" + std::to_string(job.total) +
+                                      " frames): " + job.video_path
+                                : "wrote " + std::to_string(job.total) + " frames to " +
+                                      job.folder);
+        job.video.reset();
     }
 }
 

@@ -27,6 +27,10 @@ std::string next_screenshot_path(const Studio& studio);
 bool start_frame_export(Studio& studio, const std::string& folder, int width, int height,
                         double fps);
 void continue_frame_export(Studio& studio, ViewRenderer& renderer);
+//! The same frames into a video through ffmpeg (as `bhm render --video`): .mp4 or .gif by the
+//! path's ending; it replaces path only once ffmpeg's output is verified.
+bool start_video_export(Studio& studio, const std::string& path, int width, int height,
+                        double fps);
 
 //! The shown body (the champion while following it) as VXA / body JSON.
 bool export_champion_vxa(Studio& studio, const std::string& path);

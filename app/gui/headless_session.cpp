@@ -89,6 +89,9 @@ void HeadlessStudio::frame(double dt_s) {
     for (bool& down : io.KeysDown)
         down = false;
     if (input_.key > 0 && input_.key < IM_ARRAYSIZE(io.KeysDown)) io.KeysDown[input_.key] = true;
+    for (const KeyChord& press : input_.key_presses)
+        studio_.key_presses.push_back(press);
+    input_.key_presses.clear();
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui::NewFrame();

@@ -5,6 +5,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -31,6 +32,9 @@ struct SyntheticInput {
     float wheel = 0.0f;  //!< consumed by the next frame
     bool ctrl = false, shift = false;
     int key = 0;  //!< GLFW key code held down (0 = none)
+    //! Presses since the last frame, as the window's key callback records them (a press and its
+    //! release may both come before the frame). Moved into studio.key_presses by the frame.
+    std::vector<KeyChord> key_presses;
 };
 
 class HeadlessStudio {

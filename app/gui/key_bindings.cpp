@@ -96,13 +96,17 @@ std::optional<KeyChord> parse_key_chord(const std::string& text) {
 }
 
 void dispatch_key_bindings(Studio& studio) {
-    const ImGuiIO& io = ImGui::GetIO();
-    if (io.WantTextInput) return;
-    for (const auto& binding : key_bindings()) {
-        if (!ImGui::IsKeyPressed(binding.key, false)) continue;
-        if (io.KeyCtrl != binding.ctrl || io.KeyShift != binding.shift) continue;
-        run_action(studio, binding.action);
-    }
+    // Each press with the modifiers held at that moment, in order, even when the key (or Ctrl)
+    // was released before this frame: a quick Ctrl+Z was lost when only the keys still down at
+    // the frame's start counted.
+    std::vector<KeyChord> presses;
+    presses.swap(studio.key_presses);
+    if (ImGui::GetIO().WantTextInput) return;
+    for (const KeyChord& press : presses)
+        for (const auto& binding : key_bindings())
+            if (binding.key == press.key && binding.ctrl == press.ctrl &&
+                binding.shift == press.shift)
+                run_action(studio, binding.action);
 }
 
 void run_action(Studio& studio, Action action) {

@@ -56,7 +56,8 @@ struct KeyChord {
 };
 std::optional<KeyChord> parse_key_chord(const std::string& text);
 
-//! Runs the bound actions whose keys were pressed this frame (call between NewFrame and Render).
+//! Runs the bound actions of the presses since the last frame (studio.key_presses, filled by the
+//! window's key callback or the headless input; emptied here). Call between NewFrame and Render.
 //! Skipped while a text field has the keyboard, so typing never triggers shortcuts.
 void dispatch_key_bindings(Studio& studio);
 

@@ -180,10 +180,15 @@ void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by)
     session.frame();
 }
 
-void press_key(HeadlessStudio& session, const std::string& chord_text) {
+void press_key(HeadlessStudio& session, const std::string& chord_text, bool fast) {
     const auto chord = parse_key_chord(chord_text);
     if (!chord) throw ScriptError("unknown key '" + chord_text + "'");
     auto& in = session.input();
+    in.key_presses.push_back(*chord);
+    if (fast) {  // pressed and released (Ctrl too) before the next frame: nothing is held
+        session.frame();
+        return;
+    }
     in.ctrl = chord->ctrl;
     in.shift = chord->shift;
     in.key = chord->key;
@@ -252,7 +257,7 @@ void run_step(HeadlessStudio& session, const json& step) {
     } else if (step.contains("click_cell")) {
         click_cell(session, step);
     } else if (step.contains("key")) {
-        press_key(session, step.at("key").get<std::string>());
+        press_key(session, step.at("key").get<std::string>(), step.value("fast", false));
     } else if (step.contains("view")) {
         const auto view = render::parse_named_view(step.at("view").get<std::string>());
         if (!view) throw ScriptError("unknown view (iso, front, top, side)");

@@ -20,7 +20,7 @@
 //   {"save": "exp.json"}                      File > Save As
 //   {"drag": "splitter right", "by": [-100, 0]}  press on a widget, move, release
 //   {"resize": [w, h]}                        the window's size (at most the one it started with)
-//   "fast": true on click, click_face, click_cell: press and release in one event batch
+//   "fast": true on click, click_face, click_cell, key: press and release in one event batch
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -56,6 +56,8 @@ void set_experiment_field(Studio& studio, const std::string& path, const nlohman
 void click_at(HeadlessStudio& session, glm::vec2 position, bool shift = false, bool fast = false);
 //! Presses over a widget, moves by `by` pixels over several frames, releases (splitters).
 void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by);
-void press_key(HeadlessStudio& session, const std::string& chord);
+//! Presses a chord. fast: the key and its modifiers go down and up before the next frame (a
+//! quick Ctrl+Z); otherwise they are held for one frame.
+void press_key(HeadlessStudio& session, const std::string& chord, bool fast = false);
 
 }  // namespace bhm::app::gui

@@ -16,6 +16,7 @@
 
 #include "app/gui/constraint_edits.hpp"
 #include "app/gui/experiment_document.hpp"
+#include "app/gui/key_bindings.hpp"
 #include "app/gui/picking.hpp"
 #include "app/gui/session/body_simulator.hpp"
 #include "app/gui/session/champion_history.hpp"
@@ -29,6 +30,10 @@
 #include "app/gui/widgets/tile_layout.hpp"
 #include "evo/experiment/material_library.hpp"
 #include "render/camera.hpp"
+
+namespace bhm::app {
+class VideoWriter;
+}
 
 namespace bhm::app::gui {
 
@@ -86,10 +91,17 @@ struct ExportState {
     double frames_fps = 30.0;
     std::string champion_vxa_path = "champion.vxa";
     std::string champion_json_path = "champion.json";
-    //! A frame sequence in progress: one frame is written per UI frame so the UI stays live.
+    std::string mesh_path = "champion.stl";  //!< .stl or .obj (+ .mtl beside it)
+    bool mesh_deformed = false;              //!< at the replay time instead of at rest
+    std::string vtk_folder = "bhm-paraview";
+    std::string video_path = "bhm-replay.mp4";  //!< .mp4 (H.264) or .gif, through ffmpeg
+    //! A frame sequence (or video) in progress: one frame is written per UI frame so the UI
+    //! stays live.
     struct FrameJob {
         bool active = false;
         std::string folder;
+        std::shared_ptr<VideoWriter> video;  //!< set: frames go to this video, not to PNGs
+        std::string video_path;
         int width = 0, height = 0;
         double fps = 30.0;
         int next = 0, total = 0;
@@ -111,6 +123,7 @@ struct PendingAction {
     bool unsaved_answered = false;       //!< the unsaved-edits question is answered
     bool run_answered = false;           //!< Quit: the running-evolution question is answered
     bool quit_after_generation = false;  //!< Quit: once the generation in progress is saved
+    std::string error;                   //!< why this question's Save failed ("" if it did not)
 };
 
 //! Another run's history overlaid on the fitness plots (Fitness > Compare).
@@ -138,6 +151,9 @@ struct Studio {
     EvolutionSession evolution;
     RunDirectoryWatch run_directory;               //!< a run directory opened for viewing
     std::shared_ptr<const EvolutionSnapshot> run;  //!< the one shown: live session or directory
+    //! The live session's generation in progress, read just before `run` was taken: in that
+    //! order a generation completed in between is in the snapshot, never missing from both.
+    LiveProgress run_progress;
     bool showing_run_directory = false;
     std::chrono::steady_clock::time_point last_directory_check{};
     std::string run_dir_field;   //!< where the next run is written
@@ -181,6 +197,9 @@ struct Studio {
     //! The live run's phase when the status line last heard of it: an end of the run (finished,
     //! stopped, failed) replaces a status such as "evolution resumed" with the run's own message.
     RunPhase status_run_phase = RunPhase::Idle;
+    //! Key presses since the last frame, each with the modifiers held when it went down (GLFW's
+    //! key callback, or the headless input): dispatch_key_bindings takes them.
+    std::vector<KeyChord> key_presses;
     bool show_help = false;
     bool screenshot_requested = false;  //!< F12: written by the app at the end of the frame
     bool show_demo_metrics = false;

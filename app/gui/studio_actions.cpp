@@ -7,6 +7,7 @@
 #include "app/gui/studio_paths.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/run/run_directory.hpp"
 
 namespace bhm::app::gui {
 
@@ -193,13 +194,17 @@ std::string fresh_run_dir(const evo::Experiment& e, const std::string& runs_root
     return (std::filesystem::path(runs_root) / (name + "-" + stamp)).string();
 }
 
-// What a live run can take between generations: the fitness rules (measure, constraints,
-// objectives). Boundary changes alter the bodies themselves and need a new run.
-bool same_rules(const evo::Experiment& a, const evo::Experiment& b) {
-    return a.fitness == b.fitness;
-}
-
 }  // namespace
+
+void forget_shown_bodies(Studio& studio) {
+    studio.simulator.cancel();
+    studio.compare_simulator.cancel();
+    studio.shown.reset();
+    studio.shown_version = studio.simulator.version();
+    studio.compared.reset();
+    studio.compared_version = studio.compare_simulator.version();
+    studio.selected_id = -1;
+}
 
 bool start_run(Studio& studio) {
     if (run_is_live(studio.evolution.phase())) {
@@ -213,6 +218,7 @@ bool start_run(Studio& studio) {
     try {
         studio.evolution.start(studio.document.experiment(), dir);
         close_run_directory(studio);
+        forget_shown_bodies(studio);
         studio.run_dir_field.clear();
         studio.run_document = studio.document.identity();
         studio.adopt_run_experiment = false;
@@ -262,6 +268,7 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
     try {
         studio.evolution.resume_from(absolute_path(run_dir));
         close_run_directory(studio);
+        forget_shown_bodies(studio);
         // The editor takes the run's experiment once its checkpoint is loaded (when it holds
         // no unsaved edits); until then no document of the editor belongs to the run.
         studio.run_document = 0;
@@ -276,15 +283,41 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
     }
 }
 
+bool restart_from_run_info(Studio& studio) {
+    const auto run = studio.evolution.snapshot();
+    if (!run || run->run_dir.empty() || run_is_live(studio.evolution.phase())) return false;
+    if (studio.document.dirty()) {
+        set_status(studio, "the editor holds unsaved edits: save or undo them first", true);
+        return false;
+    }
+    try {
+        const evo::RunInfo info = evo::read_run_info(run->run_dir);
+        studio.document.reset(info.started, "");
+        studio.view.camera_needs_framing = true;
+        studio.run_dir_field.clear();  // a new folder: the damaged one is left as it is
+    } catch (const std::exception& e) {
+        set_status(studio, std::string("cannot start again: ") + e.what(), true);
+        return false;
+    }
+    return start_run(studio);
+}
+
 bool editing_run_document(const Studio& studio) {
     return studio.run_document != 0 && studio.run_document == studio.document.identity() &&
            run_is_live(studio.evolution.phase());
 }
 
-bool rules_differ_from_run(const Studio& studio) {
+std::optional<evo::Fitness> run_fitness_rules(const Studio& studio) {
+    if (const evo::Experiment* sent = studio.evolution.sent_rules()) return sent->fitness;
     const auto snapshot = studio.evolution.snapshot();
-    if (!snapshot || !snapshot->loaded || !editing_run_document(studio)) return false;
-    return !same_rules(snapshot->experiment, studio.document.experiment());
+    if (!snapshot || !snapshot->loaded) return std::nullopt;
+    return snapshot->experiment.fitness;
+}
+
+bool rules_differ_from_run(const Studio& studio) {
+    if (!editing_run_document(studio)) return false;
+    const auto rules = run_fitness_rules(studio);
+    return rules && !(*rules == studio.document.experiment().fitness);
 }
 
 bool apply_rules_to_run(Studio& studio) {
@@ -302,7 +335,7 @@ bool apply_rules_to_run(Studio& studio) {
         return false;
     }
     const auto& doc = studio.document.experiment();
-    if (snapshot->experiment.fitness == doc.fitness) return false;
+    if (const auto rules = run_fitness_rules(studio); !rules || *rules == doc.fitness) return false;
     evo::Experiment rules = snapshot->experiment;
     rules.fitness = doc.fitness;
     studio.evolution.change_rules(rules);
@@ -324,6 +357,7 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
         studio.run_directory.open(run_dir);
         studio.run_directory.refresh();
         studio.showing_run_directory = true;
+        forget_shown_bodies(studio);
         studio.follow_champion = true;
         studio.requested_champion = -1;
         studio.run = studio.run_directory.snapshot();
@@ -345,6 +379,12 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
 
 void close_run_directory(Studio& studio) {
     studio.run_directory.close();
+    if (studio.showing_run_directory) {
+        // Back to the live session's run: the directory's bodies are not its own.
+        forget_shown_bodies(studio);
+        studio.follow_champion = true;
+        studio.requested_champion = -1;
+    }
     studio.showing_run_directory = false;
 }
 
@@ -496,6 +536,10 @@ void set_named_view(Studio& studio, render::NamedView view) {
     unit.add(glm::vec3(1.0f));
     const auto named = render::named_view(view, unit, 1.0f);
     studio.view.camera.yaw_rad = named.yaw_rad;
+    // The renderer's front looks from +y onto the paper's front section (a cut hides y beyond
+    // it); the studio shows no cut, so from +y its Front looked at the back of what the iso view
+    // shows. Here Front looks from -y, x to the right as in the iso view.
+    if (view == render::NamedView::Front) studio.view.camera.yaw_rad = -named.yaw_rad;
     studio.view.camera.pitch_rad = named.pitch_rad;
     studio.view.camera.orthographic = named.orthographic;
     studio.view.zoom = 1.0f;
@@ -522,6 +566,8 @@ void update_studio(Studio& studio) {
             if (studio.run_directory.refresh()) studio.run = studio.run_directory.snapshot();
         }
     } else {
+        studio.evolution.collect_ended();
+        studio.run_progress = studio.evolution.progress();
         studio.run = studio.evolution.snapshot();
         // The run ended: the status line says how, instead of the last action's word.
         const RunPhase phase = studio.run ? studio.run->phase : RunPhase::Idle;

@@ -3,6 +3,7 @@
 // scripts call these, so a keyboard shortcut, a button and a script step run the same code.
 // Failures never throw out of here: they become the status line (one line naming the file/field).
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,17 +49,31 @@ bool pause_run(Studio& studio);
 bool resume_run(Studio& studio);
 bool stop_run(Studio& studio);
 bool resume_run_directory(Studio& studio, const std::string& run_dir);
+//! The fallback when a resume failed (no usable checkpoint): the experiment the run was started
+//! with (its run.json) becomes the editor's document and starts from generation 0 in a new
+//! folder, as the CLI's message proposes. Refused while the editor holds unsaved edits.
+bool restart_from_run_info(Studio& studio);
 //! Sends the document's fitness rules (measure, constraints, objectives) to the paused or running
 //! session; the population is re-scored before the next generation and the change is marked.
 bool apply_rules_to_run(Studio& studio);
 //! The editor shows the live run's own document (the one it was started from, or the resumed
 //! run's experiment): only then can its rule edits be sent to the run.
 bool editing_run_document(const Studio& studio);
-//! The run's document is in the editor and its fitness rules differ from the live run's.
+//! The live run's fitness rules as they will be for its next generation: the last ones sent to
+//! it (Apply, Resume), else those in force; none while no run is loaded.
+//! What a live run can take between generations is its fitness rules (measure, constraints,
+//! objectives); boundary changes alter the bodies themselves and need a new run.
+std::optional<evo::Fitness> run_fitness_rules(const Studio& studio);
+//! The run's document is in the editor and its fitness rules differ from the live run's (those
+//! already sent to it count: the message of edits to apply goes as soon as they are sent).
 bool rules_differ_from_run(const Studio& studio);
 //! The document's boundary (faces, frame, overrides) differs from the live run's: it applies to
 //! the next run only.
 bool boundary_differs_from_run(const Studio& studio);
+
+//! Another run is about to be shown: the bodies of the one shown so far (and their simulations
+//! in flight) go, so its champion never plays under the new run's name.
+void forget_shown_bodies(Studio& studio);
 
 // --- Run directory -------------------------------------------------------------------------
 bool open_run_directory(Studio& studio, const std::string& run_dir);

@@ -59,6 +59,17 @@ void splitter(Studio& s, const char* name, ImVec2 pos, ImVec2 size, Splitter whi
             ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
             ImGui::GetColorU32(ImGui::IsItemActive() ? ImGuiCol_SeparatorActive
                                                      : ImGuiCol_SeparatorHovered));
+    } else {
+        // A grip at rest, so the edge can be found before the pointer happens on it: three dots
+        // across the middle of the strip (the edges were invisible, issue 25 item 7).
+        const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+        const ImVec2 mid((lo.x + hi.x) * 0.5f, (lo.y + hi.y) * 0.5f);
+        const ImU32 colour = ImGui::GetColorU32(ImGuiCol_Separator);
+        for (int k = -1; k <= 1; ++k) {
+            const ImVec2 at = vertical ? ImVec2(mid.x, mid.y + 5.0f * k)
+                                       : ImVec2(mid.x + 5.0f * k, mid.y);
+            ImGui::GetWindowDrawList()->AddCircleFilled(at, 1.5f, colour);
+        }
     }
     if (ImGui::IsItemActive()) {
         const ImVec2 d = ImGui::GetIO().MouseDelta;

@@ -87,7 +87,10 @@ bool asking_quit_run(const Studio& s) {
 void answer_unsaved(Studio& s, UnsavedAnswer answer) {
     switch (answer) {
         case UnsavedAnswer::Save:
-            if (!save_experiment(s)) return;  // the status says why; the question stays
+            if (!save_experiment(s)) {  // the question stays and says why
+                s.pending.error = s.status;
+                return;
+            }
             s.pending.unsaved_answered = true;
             break;
         case UnsavedAnswer::Discard:
@@ -116,7 +119,7 @@ void answer_quit_run(Studio& s, QuitRunAnswer answer) {
         case QuitRunAnswer::FinishGeneration:
             s.pending.run_answered = true;
             s.pending.quit_after_generation = true;
-            s.evolution.pause(/*abandon_generation=*/false);
+            s.evolution.pause(/*between_generations=*/true);  // it finishes and is saved
             set_status(s, "quitting once the generation in progress is done and saved");
             break;
         case QuitRunAnswer::QuitNow:
@@ -151,8 +154,12 @@ void draw_confirm_dialogs(Studio& s) {
                            document_label(s.document).c_str(), what);
         if (s.pending.kind == PendingAction::Kind::OpenExperiment)
             ImGui::TextDisabled("open: %s", s.pending.path.c_str());
-        if (s.status_is_error)
-            ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", s.status.c_str());
+        // Only this question's own failure: an older error in the status bar (say, another file
+        // that did not open) is not about it.
+        if (!s.pending.error.empty()) {
+            ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", s.pending.error.c_str());
+            record_widget(s, "dialog error");
+        }
         ImGui::PopTextWrapPos();
         if (tracked_button(s, "Save changes")) answer_unsaved(s, UnsavedAnswer::Save);
         ImGui::SameLine();

@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "app/gui/headless_session.hpp"
+#include "app/gui/redraw_gate.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_app.hpp"
 #include "app/gui/unsaved_guard.hpp"
@@ -32,11 +33,43 @@ void save_settings_quietly(Studio& studio) {
     }
 }
 
-// Something moves on screen: draw continuously; otherwise wait for input (saves the cores for
-// evolution) but wake up 4 times a second to pick up new generations.
-bool animating(const Studio& s) {
-    return s.clock.playing || run_is_live(s.evolution.phase()) || s.simulator.busy() ||
-           s.exports.frame_job.active || s.view.dragging;
+// What the GLFW callbacks reach through the window's user pointer.
+struct WindowContext {
+    Studio& studio;
+    RedrawGate gate;
+};
+
+WindowContext* context_of(GLFWwindow* window) {
+    return static_cast<WindowContext*>(glfwGetWindowUserPointer(window));
+}
+
+// Records each press with the modifiers of that moment (ImGui's backend calls this after its own
+// callback): a press released before the next frame still reaches the key bindings.
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+    WindowContext* c = context_of(window);
+    if (!c) return;
+    c->gate.input();
+    if (action == GLFW_PRESS)
+        c->studio.key_presses.push_back(
+            {key, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_SHIFT) != 0});
+}
+
+// The other input ImGui's backend chains to: each one is a reason to draw.
+void on_button(GLFWwindow* window, int, int, int) {
+    if (WindowContext* c = context_of(window)) c->gate.input();
+}
+void on_scroll(GLFWwindow* window, double, double) {
+    if (WindowContext* c = context_of(window)) c->gate.input();
+}
+void on_char(GLFWwindow* window, unsigned int) {
+    if (WindowContext* c = context_of(window)) c->gate.input();
+}
+void on_focus(GLFWwindow* window, int) {
+    if (WindowContext* c = context_of(window)) c->gate.input();
+}
+
+double seconds(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(t.time_since_epoch()).count();
 }
 
 }  // namespace
@@ -52,6 +85,15 @@ int run_window(Studio& studio, const WindowOptions& options) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;
     apply_studio_style(studio.settings.ui_scale);
+    WindowContext window_context{studio, {}};
+    RedrawGate& gate = window_context.gate;
+    glfwSetWindowUserPointer(window.handle(), &window_context);
+    // Installed first: ImGui's backend calls them after its own.
+    glfwSetKeyCallback(window.handle(), on_key);
+    glfwSetMouseButtonCallback(window.handle(), on_button);
+    glfwSetScrollCallback(window.handle(), on_scroll);
+    glfwSetCharCallback(window.handle(), on_char);
+    glfwSetWindowFocusCallback(window.handle(), on_focus);
     ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
     int exit_code = 0;
@@ -61,16 +103,33 @@ int run_window(Studio& studio, const WindowOptions& options) {
         double fps_accumulator = 0.0;
         int fps_frames = 0;
         std::string shown_title;
+        double cursor_x = -1.0, cursor_y = -1.0;
+        int window_w = 0, window_h = 0;
         for (int frame = 0; !studio.quit_requested; ++frame) {
             if (options.max_frames > 0 && frame >= options.max_frames) break;
             // The window's close button asks like Ctrl+Q (unsaved edits, a running run); the
             // window stays open while the question is shown.
-            if (window.should_close() && !window_close_requested(studio))
+            if (window.should_close() && !window_close_requested(studio)) {
                 glfwSetWindowShouldClose(window.handle(), GLFW_FALSE);
-            if (animating(studio) || frame < 3)
+                gate.input();
+            }
+            // Nothing moves by itself: wait for input (saves the cores for evolution), waking 4
+            // times a second to pick up new generations; the gate says whether to draw.
+            if (needs_animation(studio) || frame < 3)
                 window.poll_events();
             else
                 glfwWaitEventsTimeout(0.25);
+            // Pointer moves and resizes have no callback that ImGui's backend chains: compare.
+            double x = 0.0, y = 0.0;
+            int w = 0, h = 0;
+            glfwGetCursorPos(window.handle(), &x, &y);
+            glfwGetWindowSize(window.handle(), &w, &h);
+            if (x != cursor_x || y != cursor_y || w != window_w || h != window_h) gate.input();
+            cursor_x = x, cursor_y = y, window_w = w, window_h = h;
+            if (!gate.should_draw(studio, seconds(std::chrono::steady_clock::now()))) {
+                --frame;  // frames count the ones drawn
+                continue;
+            }
             const auto now = std::chrono::steady_clock::now();
             const double dt = std::chrono::duration<double>(now - last).count();
             last = now;

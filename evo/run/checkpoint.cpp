@@ -472,9 +472,10 @@ json parse_checkpoint_text(const std::string& text, std::vector<std::string>& no
     }
 }
 
-void save_checkpoint(const std::string& dir, const RunState& state) {
+void save_checkpoint(const std::string& dir, const RunState& state, bool current_is_damaged) {
     const fs::path current = fs::path(dir) / kCheckpointFile;
-    const fs::path previous = fs::path(dir) / kPreviousCheckpointFile;
+    const fs::path previous =
+        fs::path(dir) / (current_is_damaged ? kDamagedCheckpointFile : kPreviousCheckpointFile);
     engine::AtomicFile file(current.string());
     file.write(checkpoint_text(run_state_to_json(state)));
     // Once the new one is complete on disk: the old one becomes the previous, the new one takes
@@ -484,7 +485,7 @@ void save_checkpoint(const std::string& dir, const RunState& state) {
         if (!fs::exists(current, ec)) return;
         fs::rename(current, previous, ec);
         if (ec)
-            throw std::runtime_error(previous.string() + ": cannot keep the previous checkpoint (" +
+            throw std::runtime_error(previous.string() + ": cannot keep the replaced checkpoint (" +
                                      ec.message() + ")");
     });
 }

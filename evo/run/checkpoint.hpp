@@ -25,6 +25,9 @@ namespace bhm::evo {
 
 inline constexpr const char* kCheckpointFile = "checkpoint.json";
 inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
+//! Where a damaged checkpoint.json goes when a resume fell back to checkpoint.prev.json: rotating
+//! it into the backup slot would replace the one good checkpoint with the damaged one.
+inline constexpr const char* kDamagedCheckpointFile = "checkpoint.damaged.json";
 
 nlohmann::json individual_to_json(const Individual& individual);
 nlohmann::json run_state_to_json(const RunState& state);
@@ -38,8 +41,11 @@ std::string checkpoint_text(const nlohmann::json& payload);
 //! (format 1). Throws std::runtime_error saying what is damaged.
 nlohmann::json parse_checkpoint_text(const std::string& text, std::vector<std::string>& notes);
 
-//! Writes DIR/checkpoint.json, keeping the previous one as DIR/checkpoint.prev.json.
-void save_checkpoint(const std::string& dir, const RunState& state);
+//! Writes DIR/checkpoint.json, keeping the previous one as DIR/checkpoint.prev.json. When
+//! `current_is_damaged` (the run was resumed from checkpoint.prev.json), the old checkpoint.json
+//! is moved to DIR/checkpoint.damaged.json instead and checkpoint.prev.json stays as it is.
+void save_checkpoint(const std::string& dir, const RunState& state,
+                     bool current_is_damaged = false);
 
 struct LoadedCheckpoint {
     RunState state;

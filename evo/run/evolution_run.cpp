@@ -135,10 +135,15 @@ void EvolutionRun::set_paused(bool paused) {
 }
 
 double EvolutionRun::paused_seconds() const {
+    return paused_seconds_now().first;
+}
+
+std::pair<double, std::chrono::steady_clock::time_point> EvolutionRun::paused_seconds_now() const {
     std::lock_guard lock(control_mutex_);
+    const auto now = std::chrono::steady_clock::now();
     double s = paused_s_;
-    if (paused_.load()) s += seconds_since(pause_began_);
-    return s;
+    if (paused_.load()) s += std::chrono::duration<double>(now - pause_began_).count();
+    return {s, now};
 }
 
 GenerationProgress EvolutionRun::progress() const {
@@ -151,15 +156,22 @@ GenerationProgress EvolutionRun::progress() const {
         paused_at_start = progress_paused_at_start_s_;
         start = progress_start_;
     }
-    if (p.running)
-        p.elapsed_s = std::max(0.0, seconds_since(start) - (paused_seconds() - paused_at_start));
+    if (p.running) {
+        // One instant for both readings: apart, a reader preempted between them (a loaded
+        // machine) saw the time in a paused generation jitter, even go back.
+        const auto [paused, now] = paused_seconds_now();
+        p.elapsed_s = std::max(0.0, std::chrono::duration<double>(now - start).count() -
+                                        (paused - paused_at_start));
+    }
     return p;
 }
 
 void EvolutionRun::progress_begin(int generation) {
     const double paused = paused_seconds();
     std::lock_guard lock(progress_mutex_);
-    progress_ = GenerationProgress{true, generation, 0, 0, 0.0};
+    // Another attempt at the same generation keeps the time of the abandoned ones.
+    const double abandoned = progress_.generation == generation ? progress_.abandoned_s : 0.0;
+    progress_ = GenerationProgress{true, generation, 0, 0, 0.0, abandoned};
     progress_start_ = std::chrono::steady_clock::now();
     progress_paused_at_start_s_ = paused;
 }
@@ -179,6 +191,12 @@ void EvolutionRun::progress_end() {
     std::lock_guard lock(progress_mutex_);
     progress_.running = false;
     progress_.elapsed_s = last.elapsed_s;
+}
+
+void EvolutionRun::progress_abandoned() {
+    std::lock_guard lock(progress_mutex_);
+    progress_.abandoned_s += progress_.elapsed_s;
+    progress_.elapsed_s = 0.0;
 }
 
 void EvolutionRun::request_fitness_change(const Fitness& fitness) {
@@ -236,6 +254,7 @@ StopReason EvolutionRun::run() {
         restarted = false;
         if (run_generation()) continue;
         // Abandoned: for new rules (computed again at once) or a stop.
+        progress_abandoned();
         if (!restart_.exchange(false) || user_stop_.load()) return StopReason::StopRequested;
         stop_.store(false);
         restarted = true;
@@ -302,8 +321,13 @@ bool EvolutionRun::run_generation() {
     tally.evaluation = &evaluation;
     tally.clones = brood.clones;
     tally.newcomers_skipped = brood.newcomers_skipped;
-    tally.generation_wall_s = progress().elapsed_s;  // paused time excluded
-    tally.wall_s = state_.elapsed_s + tally.generation_wall_s;
+    // The generation's clock stops here, before its files are written: it kept running in
+    // progress() while they were, so a live figure ran past the time committed below and went
+    // back when the generation's snapshot came.
+    progress_end();
+    const GenerationProgress spent = progress();
+    tally.generation_wall_s = spent.elapsed_s;  // paused time excluded
+    tally.wall_s = state_.elapsed_s + spent.abandoned_s + tally.generation_wall_s;
     commit_generation(rules, rescored.changed, applied_serial, next_id, rng, std::move(selection),
                       std::move(search), std::move(*champion), tally, new_champion);
     return true;
@@ -350,6 +374,7 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
     state_.elapsed_s = tally.wall_s;
     state_.population = selection.population;
     state_.pareto_rank = selection.ranks;
+    state_.novelty = selection.novelty;
     state_.champion = std::move(champion);
     state_.neat = std::move(search.neat);
     state_.novelty_archive = std::move(search.novelty_archive);
@@ -368,7 +393,11 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
         if (rules_changed) output_->write_run_info(original_experiment_, state_);
         output_->write_fitness_csv(state_.history);
         if (new_champion) output_->write_champion(rules, *state_.champion);
-        output_->write_checkpoint(state_);
+        // Resumed from the backup (checkpoint.json was damaged): the backup is the one good
+        // checkpoint left, so the damaged file goes aside instead of into its slot.
+        const bool resumed_from_backup =
+            fs::path(checkpoint_path_).filename() == kPreviousCheckpointFile;
+        output_->write_checkpoint(state_, resumed_from_backup);
         checkpoint_path_ = output_->path(kCheckpointFile);
     }
 

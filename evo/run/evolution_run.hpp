@@ -27,6 +27,7 @@
 // progress() says how far the generation in progress is.
 #include <atomic>
 #include <chrono>
+#include <utility>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -66,6 +67,10 @@ struct GenerationProgress {
     int simulations_total = 0;  //!< its simulations (0 until its individuals exist; cache hits
                                 //!< and clones need none)
     double elapsed_s = 0.0;     //!< wall time in that generation so far, paused time excluded
+    //! Wall time of earlier attempts at that generation, abandoned for new rules (paused time
+    //! excluded): spent, so it counts in the run's elapsed time (RunState::elapsed_s) once the
+    //! generation is complete, and a live clock that left it out would jump back.
+    double abandoned_s = 0.0;
 };
 
 using ReportCallback = std::function<void(std::shared_ptr<const GenerationReport>)>;
@@ -178,10 +183,14 @@ class EvolutionRun {
     void publish(std::shared_ptr<const GenerationReport> report);
     //! Seconds spent paused since the run was made (the current pause included).
     double paused_seconds() const;
+    //! The same, with the instant it holds for (read under the same lock).
+    std::pair<double, std::chrono::steady_clock::time_point> paused_seconds_now() const;
     void progress_begin(int generation);
     void progress_set_total(int simulations);
     void progress_count_one();
     void progress_end();
+    //! The generation just ended was abandoned: its time joins progress_.abandoned_s.
+    void progress_abandoned();
 
     RunOptions options_;
     std::shared_ptr<RunDirectoryLock> lock_;  //!< held for the run's lifetime (null: no out_dir)
@@ -216,7 +225,7 @@ class EvolutionRun {
     ReportCallback callback_;
 
     mutable std::mutex progress_mutex_;
-    GenerationProgress progress_;  //!< elapsed_s unused: computed from the two below
+    GenerationProgress progress_;  //!< elapsed_s unused while running: from the two below
     std::chrono::steady_clock::time_point progress_start_;
     double progress_paused_at_start_s_ = 0.0;
 

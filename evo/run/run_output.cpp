@@ -124,8 +124,8 @@ void RunOutput::write_champion(const Experiment& experiment, const ChampionRecor
     save_vxa(path("champion.vxa"), experiment, champion.individual.phenotype.body);
 }
 
-void RunOutput::write_checkpoint(const RunState& state) const {
-    save_checkpoint(dir_, state);
+void RunOutput::write_checkpoint(const RunState& state, bool current_is_damaged) const {
+    save_checkpoint(dir_, state, current_is_damaged);
 }
 
 }  // namespace bhm::evo

@@ -41,7 +41,8 @@ class RunOutput {
     void write_fitness_csv(const std::vector<HistoryRow>& history) const;
     //! champion.json, champion.vxa and champions/gen-NNNNN.json.
     void write_champion(const Experiment& experiment, const ChampionRecord& champion) const;
-    void write_checkpoint(const RunState& state) const;
+    //! save_checkpoint (checkpoint.hpp), `current_is_damaged` included.
+    void write_checkpoint(const RunState& state, bool current_is_damaged = false) const;
 
   private:
     std::string dir_;

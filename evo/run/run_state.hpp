@@ -73,6 +73,9 @@ struct RunState {
     double elapsed_s = 0.0;  //!< wall time spent on completed generations, across resumes
     std::vector<Individual> population;  //!< in selection order
     std::vector<int> pareto_rank;        //!< per population member, from the last selection
+    //! Per population member: its novelty in the last selection (evolution.algorithm = "novelty"
+    //! only, else empty). Not in the checkpoint: empty after a resume until the next generation.
+    std::vector<double> novelty;
     std::optional<ChampionRecord> champion;
     std::vector<HistoryRow> history;
     std::vector<RuleChange> rule_changes;

@@ -83,6 +83,27 @@ TEST_CASE("a checkpoint whose contents changed but still parse is caught by its 
     fs::remove_all(dir);
 }
 
+TEST_CASE("after a resume from the backup the next checkpoint keeps it, the damaged one set aside") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = bhm::test::scratch_dir("rel-keep-backup", false);
+    EvolutionRun(e, options(2, dir.string())).run();  // generations 0 and 1: both files exist
+    const std::string backup = bhm::test::read_file(dir / kPreviousCheckpointFile);
+    const std::string damaged = "{\"checksum\":\"crc32:00000000\" damaged";
+    spit(dir / kCheckpointFile, damaged);
+    auto resumed = EvolutionRun::resume(options(2, dir.string()));
+    REQUIRE(resumed->state().generation == 0);  // from the backup
+    CHECK(resumed->run() == StopReason::GenerationBudget);  // one generation: one checkpoint
+    CHECK(resumed->state().generation == 1);
+    resumed.reset();
+    // The backup slot still holds the good generation-0 checkpoint (it received the damaged file).
+    CHECK(bhm::test::read_file(dir / kPreviousCheckpointFile) == backup);
+    CHECK(bhm::test::read_file(dir / kDamagedCheckpointFile) == damaged);
+    std::vector<std::string> notes;
+    CHECK(parse_checkpoint_text(bhm::test::read_file(dir / kCheckpointFile), notes)
+              .at("generation") == 1);
+    fs::remove_all(dir);
+}
+
 TEST_CASE("a format 1 checkpoint (no checksum) is still read, with a warning that names it") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-v1", false);

@@ -49,13 +49,17 @@ void champions_tab(Studio& s) {
         char label[48];
         std::snprintf(label, sizeof label, "%d##champion", e.generation);
         const bool shown = s.shown && s.shown->id == e.id;
-        if (ImGui::Selectable(label, shown, ImGuiSelectableFlags_AllowItemOverlap))
+        // The whole row replays it (only the "gen" cell did); "beside" overlaps it.
+        if (ImGui::Selectable(label, shown,
+                              ImGuiSelectableFlags_SpanAllColumns |
+                                  ImGuiSelectableFlags_AllowItemOverlap))
             replay_champion(s, e, false);
         record_widget(s, "champion gen " + std::to_string(e.generation));
         ImGui::TableNextColumn();
         ImGui::Text("#%lld", static_cast<long long>(e.id));
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(format_fitness(e.fitness, e.measure).c_str());
+        record_widget(s, "champion fitness gen " + std::to_string(e.generation));
         ImGui::TableNextColumn();
         ImGui::Text("%d", e.voxels);
         ImGui::TableNextColumn();

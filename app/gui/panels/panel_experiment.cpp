@@ -195,6 +195,22 @@ void fitness_section(Studio& s) {
         commit_draft(s, "minimum fill fraction");
     if (field_int("Min active", f.constraints.min_active_voxels, "voxels", ">= 0 active voxels"))
         commit_draft(s, "minimum active voxels");
+    // The exploit flags (E, D, T in the Population panel) can be forbidden, not only seen: a
+    // flagged body then scores as invalid (docs/evolution.md, Exploit flags).
+    ImGui::TextDisabled("Reject bodies flagged as");
+    if (field_bool("escaped (E)", f.constraints.reject_escaped,
+                   "voxels not held by a fixed face, directly or through neighbours; checked "
+                   "before simulating, so such bodies are never simulated"))
+        commit_draft(s, "reject escaped");
+    record_widget(s, "reject escaped");
+    if (field_bool("detached motion (D)", f.constraints.reject_detached_motion,
+                   "the body moves but its part next to the fixed face barely does; scored -2"))
+        commit_draft(s, "reject detached motion");
+    record_widget(s, "reject detached motion");
+    if (field_bool("tentacle (T)", f.constraints.reject_tentacle,
+                   "thin voxels (at most 2 filled neighbours) carry most of the motion; scored -2"))
+        commit_draft(s, "reject tentacle");
+    record_widget(s, "reject tentacle");
 }
 
 //! NEAT's parameters (docs/evolution.md#neat), shown when the algorithm is "neat".

@@ -1,11 +1,13 @@
-// The Export panel: screenshot of the 3D view at any size, a replay as a PNG sequence, and the
-// champion (or the body shown) as VXA and body JSON.
+// The Export panel: screenshot of the 3D view at any size, a replay as a PNG sequence, the
+// champion (or the body shown) as VXA and body JSON, its surface mesh (STL/OBJ, at rest or
+// deformed at the replay time) and its replay as a ParaView series, as `bhm export` writes them.
 #include <cstdio>
 #include <string>
 
 #include <imgui.h>
 
 #include "app/gui/export_actions.hpp"
+#include "app/gui/export_geometry.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -72,6 +74,12 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
         ImGui::EndDisabled();
     }
     hint("frame_00000.png ... over the whole simulated time");
+    path_field(s, "##video path", x.video_path);
+    ImGui::BeginDisabled(!s.shown || x.frame_job.active);
+    if (tracked_button(s, "Write video"))
+        start_video_export(s, x.video_path, x.frames_width, x.frames_height, x.frames_fps);
+    ImGui::EndDisabled();
+    hint("the same frames as an .mp4 (H.264) or an animated .gif through ffmpeg");
 
     section_title("Champion (or the body shown)");
     path_field(s, "##vxa path", x.champion_vxa_path);
@@ -82,6 +90,19 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     if (tracked_button(s, "Save body JSON")) export_champion_json(s, x.champion_json_path);
     ImGui::SameLine();
     ImGui::TextDisabled("bhm body file");
+
+    section_title("Surface mesh and ParaView");
+    path_field(s, "##mesh path", x.mesh_path);
+    if (tracked_button(s, "Save mesh")) export_mesh(s, x.mesh_path, x.mesh_deformed);
+    ImGui::SameLine();
+    ImGui::Checkbox("deformed at the replay time", &x.mesh_deformed);
+    record_widget(s, "mesh deformed");
+    hint("closed surface in metres: .stl, or .obj with a .mtl (a group per material)");
+    path_field(s, "##vtk folder", x.vtk_folder);
+    ImGui::BeginDisabled(!s.shown);
+    if (tracked_button(s, "Write ParaView series")) export_vtk_series(s, x.vtk_folder);
+    ImGui::EndDisabled();
+    hint("series.pvd, one .vtu per replay frame and the centre of mass path (.vtp)");
 }
 
 }  // namespace bhm::app::gui

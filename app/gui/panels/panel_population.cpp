@@ -96,11 +96,15 @@ void draw_population_panel(Studio& s) {
                             front);
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
-    if (!ImGui::BeginTable("population", 7, flags, ImGui::GetContentRegionAvail())) return;
+    // Novelty search selects on novelty: its members show it beside their fitness.
+    const bool novelty = run.experiment.evolution.algorithm == evo::Algorithm::Novelty;
+    if (!ImGui::BeginTable("population", novelty ? 8 : 7, flags, ImGui::GetContentRegionAvail()))
+        return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("id");
     ImGui::TableSetupColumn(measure == evo::FitnessMeasure::BendAngleDeg ? "fitness (deg)"
                                                                          : "fitness (vox)");
+    if (novelty) ImGui::TableSetupColumn("novelty");
     ImGui::TableSetupColumn("age");
     ImGui::TableSetupColumn("voxels");
     ImGui::TableSetupColumn("active");
@@ -123,6 +127,14 @@ void draw_population_panel(Studio& s) {
             ImGui::TextDisabled("diverged");
         else
             ImGui::Text("%.3f", m.fitness);
+        if (novelty) {
+            ImGui::TableNextColumn();
+            if (m.novelty >= 0.0)
+                ImGui::Text("%.3f", m.novelty);
+            else
+                ImGui::TextDisabled("-");
+            record_widget(s, std::string("novelty ") + id);
+        }
         ImGui::TableNextColumn();
         ImGui::Text("%d", m.age);
         ImGui::TableNextColumn();

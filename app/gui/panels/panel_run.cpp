@@ -69,13 +69,43 @@ void controls(Studio& s) {
             "The editor shows another experiment than the run's: its edits "
             "do not reach the run.");
     } else if (rules_differ_from_run(s)) {
+        // What differs, named: the measure is only one of the rules a user may have edited.
+        const auto rules = run_fitness_rules(s);
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.45f, 0.0f, 1.0f));
         ImGui::TextWrapped(
-            "Edited rules (measure %s) will apply %s.",
-            evo::kFitnessNames[static_cast<std::size_t>(s.document.experiment().fitness.measure)],
+            "Edited rules (%s) will apply %s.",
+            describe_fitness_change(*rules, s.document.experiment().fitness).c_str(),
             phase == RunPhase::Paused ? "on Resume" : "after Apply (Constraints)");
         ImGui::PopStyleColor();
+        record_widget(s, "edited rules");
     }
+}
+
+const ImVec4 kErrorRed(0.8f, 0.2f, 0.1f, 1.0f);
+
+// A failed run's message in red, wrapped, and whole on hover (it names files and fields).
+void failure_message(Studio& s, const std::string& message) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorRed);
+    ImGui::TextWrapped("%s", message.c_str());
+    ImGui::PopStyleColor();
+    record_widget(s, "run failure");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", message.c_str());
+}
+
+// A run that failed before it was built (a resume with no usable checkpoint). The way out comes
+// before the message, which names two files and their problems and can be long.
+void failure(Studio& s, const EvolutionSnapshot& run) {
+    ImGui::TextColored(kErrorRed, "state: failed");
+    if (!run.run_dir.empty()) {
+        ImGui::SameLine();
+        if (tracked_button(s, "Start again from generation 0")) restart_from_run_info(s);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "a new run folder, with the experiment this run was started with (its "
+                "run.json); the damaged folder is left as it is");
+    }
+    failure_message(s, run.message);
+    if (!run.run_dir.empty()) ImGui::TextDisabled("folder: %s", run.run_dir.c_str());
 }
 
 void status(Studio& s) {
@@ -83,13 +113,19 @@ void status(Studio& s) {
     if (!run || (run->phase == RunPhase::Idle && run->history.empty())) {
         if (s.showing_run_directory && !s.run_directory.error().empty())
             // e.g. a damaged run.json: say which file, rather than "No run yet".
-            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1.0f), "Cannot show the run: %s",
+            ImGui::TextColored(kErrorRed, "Cannot show the run: %s",
                                s.run_directory.error().c_str());
         else
             ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
         return;
     }
     if (!run->loaded) {  // a resumed run while its checkpoint loads: no defaults shown as its own
+        if (run->phase == RunPhase::Failed) {
+            // The load failed (no usable checkpoint): say so, as the CLI does, and offer what
+            // the CLI's message proposes, a start from generation 0 in a new folder.
+            failure(s, *run);
+            return;
+        }
         ImGui::TextUnformatted("state: loading the checkpoint");
         if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
         return;
@@ -98,7 +134,7 @@ void status(Studio& s) {
     // The session's phase is read live (an atomic), not from the last snapshot: Pause or Stop
     // shows at once.
     const RunPhase phase = s.showing_run_directory ? run->phase : s.evolution.phase();
-    const LiveProgress progress = s.evolution.progress();
+    const LiveProgress& progress = s.run_progress;
     if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
         auto cell = [](const char* name, const std::string& value) {
             ImGui::TableNextColumn();
@@ -166,7 +202,11 @@ void status(Studio& s) {
         else if (phase == RunPhase::Running && run->phase == RunPhase::Paused)
             message = "resumed";
     }
-    if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+    if (phase == RunPhase::Failed && !s.showing_run_directory) {
+        failure_message(s, message);
+    } else if (!message.empty()) {
+        ImGui::TextWrapped("%s", message.c_str());
+    }
 }
 
 void run_directory(Studio& s) {
@@ -197,7 +237,7 @@ void run_directory(Studio& s) {
         ImGui::SameLine();
         if (tracked_button(s, "Close")) close_run_directory(s);
         if (!s.run_directory.error().empty())
-            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1.0f), "%s",
+            ImGui::TextColored(kErrorRed, "%s",
                                s.run_directory.error().c_str());
     }
     ImGui::TreePop();

@@ -92,6 +92,14 @@ void BodySimulator::request(SimulationRequest request) {
     wake_.notify_all();
 }
 
+void BodySimulator::cancel() {
+    std::lock_guard lock(mutex_);
+    queued_.reset();
+    cancel_ = true;
+    pending_id_ = -1;
+    ++epoch_;
+}
+
 std::string BodySimulator::last_error() const {
     std::lock_guard lock(mutex_);
     return last_error_;
@@ -100,6 +108,7 @@ std::string BodySimulator::last_error() const {
 void BodySimulator::worker_loop() {
     for (;;) {
         SimulationRequest job;
+        std::uint64_t epoch = 0;
         {
             std::unique_lock lock(mutex_);
             wake_.wait(lock, [&] { return quit_ || queued_.has_value(); });
@@ -107,17 +116,20 @@ void BodySimulator::worker_loop() {
             job = std::move(*queued_);
             queued_.reset();
             cancel_ = false;
+            epoch = epoch_;
         }
         try {
             auto result = std::make_shared<SimulatedBody>(simulate_body(job, &cancel_));
-            results_.publish(std::move(result));
             std::lock_guard lock(mutex_);
-            last_error_.clear();
+            if (epoch == epoch_) {  // not cancelled while it finished
+                results_.publish(std::move(result));
+                last_error_.clear();
+            }
         } catch (const evo::EvaluationCancelled&) {
             // A newer request is queued (or we are quitting): nothing to publish.
         } catch (const std::exception& e) {
             std::lock_guard lock(mutex_);
-            last_error_ = job.label + ": " + e.what();
+            if (epoch == epoch_) last_error_ = job.label + ": " + e.what();
         }
         std::lock_guard lock(mutex_);
         if (!queued_) {

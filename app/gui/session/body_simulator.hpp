@@ -72,6 +72,9 @@ class BodySimulator {
 
     //! Queues a simulation; a pending request is replaced and a running one cancelled.
     void request(SimulationRequest request);
+    //! Drops the queued request and aborts the running one; nothing asked for before is
+    //! published any more (another run is shown: its bodies must not appear under it).
+    void cancel();
     //! The newest finished simulation (null before the first).
     std::shared_ptr<const SimulatedBody> latest() const { return results_.take(); }
     std::uint64_t version() const { return results_.version(); }
@@ -91,6 +94,7 @@ class BodySimulator {
     std::atomic<bool> cancel_{false};
     std::atomic<bool> busy_{false};
     std::atomic<std::int64_t> pending_id_{-1};
+    std::uint64_t epoch_ = 0;  //!< under mutex_: raised by cancel()
     std::string last_error_;
     LatestSlot<SimulatedBody> results_;
     std::thread worker_;  //!< started by the first request

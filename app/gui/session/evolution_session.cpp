@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 
 #include "evo/run/evolution_run.hpp"
+#include "evo/run/run_directory.hpp"
 
 namespace bhm::app::gui {
 
@@ -30,8 +32,6 @@ const char* run_phase_name(RunPhase phase) {
     return "?";
 }
 
-namespace {
-
 std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitness& after) {
     std::string what;
     auto add = [&](const std::string& s) { what += (what.empty() ? "" : ", ") + s; };
@@ -51,10 +51,14 @@ std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitne
     if (before.minimize_active_voxels != after.minimize_active_voxels)
         add(after.minimize_active_voxels ? "minimise active voxels"
                                          : "active voxels not minimised");
+    const auto reject = [&](bool b, bool a, const char* flag) {
+        if (b != a) add(std::string(a ? "reject " : "allow ") + flag);
+    };
+    reject(b.reject_escaped, a.reject_escaped, "escaped");
+    reject(b.reject_detached_motion, a.reject_detached_motion, "detached motion");
+    reject(b.reject_tentacle, a.reject_tentacle, "tentacle");
     return what.empty() ? "rules re-applied" : what;
 }
-
-}  // namespace
 
 // Shared with the run thread. The run thread owns `run`; the UI thread only calls its
 // thread-safe controls (request_stop, request_fitness_change) and our own flags below.
@@ -68,6 +72,7 @@ struct EvolutionSession::Shared {
     bool paused = false;
     bool freeze = false;  //!< the pause froze the simulations in flight (set_paused)
     bool stop = false;
+    bool created_dir = false;  //!< start() made the run folder (it did not exist before)
     // Built on the run thread only.
     std::vector<GenerationRecord> history;
     std::vector<RuleChangeNote> changes;
@@ -130,6 +135,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         p.voxels = m.phenotype.voxels;
         p.active_voxels = m.phenotype.active_voxels;
         p.pareto_rank = k < state.pareto_rank.size() ? state.pareto_rank[k] : 0;
+        p.novelty = k < state.novelty.size() ? state.novelty[k] : -1.0;
         p.valid = m.valid;
         p.exploits = m.report.exploits;
         p.body = std::make_shared<const evo::Body>(m.phenotype.body);
@@ -169,12 +175,37 @@ EvolutionSession::EvolutionSession() {
 EvolutionSession::~EvolutionSession() {
     stop();
     if (thread_.joinable()) thread_.join();
+    discard_unstarted_folder();
 }
 
 void EvolutionSession::join_finished() {
     if (run_is_live(phase_.load()))
         throw std::runtime_error("a run is already going: stop it first");
     if (thread_.joinable()) thread_.join();
+    discard_unstarted_folder();
+}
+
+void EvolutionSession::collect_ended() {
+    const RunPhase phase = phase_.load();
+    if (run_is_live(phase) || phase == RunPhase::Idle || !thread_.joinable()) return;
+    thread_.join();
+    discard_unstarted_folder();
+}
+
+void EvolutionSession::discard_unstarted_folder() {
+    if (!shared_ || !shared_->created_dir || phase_.load() != RunPhase::Stopped) return;
+    if (shared_->run && shared_->run->state().generation >= 0) return;  // it has a checkpoint
+    shared_->created_dir = false;
+    // The run thread is joined: nobody else reads the run. Dropping it releases the folder's lock.
+    shared_->live = nullptr;
+    shared_->run.reset();
+    namespace fs = std::filesystem;
+    const fs::path dir = shared_->run_dir;
+    std::error_code ec;
+    // Only what the run wrote before its first generation; anything else keeps the folder.
+    fs::remove(dir / evo::kRunInfoFile, ec);
+    fs::remove(dir / "champions", ec);  // fails, harmlessly, unless empty
+    fs::remove(dir, ec);
 }
 
 void EvolutionSession::start(const evo::Experiment& experiment, const std::string& run_dir) {
@@ -185,8 +216,11 @@ void EvolutionSession::start(const evo::Experiment& experiment, const std::strin
     // constructor only creates the folder and writes run.json. Handing the built run to the
     // thread also makes the very first snapshot complete (rules, budget), so the Run panel is
     // right from the frame after Start.
+    std::error_code ec;
+    const bool existed = std::filesystem::exists(run_dir, ec);
     launch(std::make_unique<evo::EvolutionRun>(experiment, options), {}, run_dir,
            "generation 0: creating the population");
+    shared_->created_dir = !existed;
 }
 
 void EvolutionSession::resume_from(const std::string& run_dir) {
@@ -216,6 +250,7 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
         shared->live = shared->run.get();
     }
     shared_ = shared;
+    sent_rules_.reset();
     phase_ = RunPhase::Running;
     slot_.publish(snapshot_of(*shared, RunPhase::Running, first_message));
     thread_ = std::thread([this, shared, make = std::move(make)] {
@@ -290,7 +325,8 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                     done >= 0 ? "stopped: the checkpoint of generation " + std::to_string(done) +
                                     " is kept; resume it from " + shared->run_dir
                               : std::string("stopped during generation 0: no generation was "
-                                            "completed, so there is no checkpoint to resume"));
+                                            "completed, so there is no checkpoint to resume "
+                                            "(its empty folder is removed)"));
         } catch (const std::exception& e) {
             publish(RunPhase::Failed, std::string("run failed: ") + e.what());
         }
@@ -329,6 +365,7 @@ LiveProgress EvolutionSession::progress() const {
     out.simulations_done = p.simulations_done;
     out.simulations_total = p.simulations_total;
     out.generation_s = p.elapsed_s;
+    out.abandoned_s = p.abandoned_s;
     return out;
 }
 
@@ -339,8 +376,11 @@ LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& p, Ru
     f.simulations_per_s = run.simulations_per_s;
     const bool running = phase == RunPhase::Running;
     f.eta_s = running ? run.eta_s : -1.0;
-    if (!p.running || p.generation < run.generation) return f;
-    f.elapsed_s += p.generation_s;
+    if (p.generation < run.generation) return f;  // no generation after the snapshot's yet
+    // The next generation's time so far, its attempts abandoned for new rules included, also
+    // once an attempt has ended: without them the clock would jump back when one is abandoned.
+    f.elapsed_s += p.abandoned_s + p.generation_s;
+    if (!p.running) return f;
     f.simulations += p.simulations_done;
     if (p.simulations_done > 0 && p.generation_s > 0.0)
         f.simulations_per_s = p.simulations_done / p.generation_s;
@@ -389,6 +429,7 @@ void EvolutionSession::change_rules(const evo::Experiment& experiment) {
     if (!shared_ || !run_is_live(phase_.load())) return;
     std::lock_guard lock(shared_->mutex);
     if (!shared_->run) return;
+    sent_rules_ = experiment;
     // A generation in progress (or frozen by a pause) would finish under the old rules: the run
     // abandons it and computes it again under the new ones (thread-safe).
     if (shared_->stop)

@@ -47,6 +47,13 @@ class EvolutionSession {
     //! re-scores the population under them (evo::EvolutionRun::request_fitness_change) and the
     //! history marks the change. The boundary cannot change within a run (it changes the bodies).
     void change_rules(const evo::Experiment& experiment);
+    //! The rules last sent by change_rules to this run (null before any): in force from the next
+    //! generation, while the snapshot still shows the old ones. UI thread only.
+    const evo::Experiment* sent_rules() const { return sent_rules_ ? &*sent_rules_ : nullptr; }
+
+    //! Once the run has ended (its last snapshot is out, the thread returns right after): joins
+    //! the thread and tidies (discard_unstarted_folder). Cheap to call every frame.
+    void collect_ended();
 
     std::shared_ptr<const EvolutionSnapshot> snapshot() const { return slot_.take(); }
     //! The generation in progress, now (lock-free for the UI but for the run's own short lock).
@@ -58,6 +65,10 @@ class EvolutionSession {
 
   private:
     void join_finished();
+    //! A run stopped before its first generation leaves no checkpoint: the folder start() made
+    //! for it (run.json, an empty champions/) is removed once its thread is joined, so quitting
+    //! in generation 0 leaves no empty run behind. UI thread only.
+    void discard_unstarted_folder();
     //! Runs `ready` (a new run) or what `make` returns on the run thread (a resumed one).
     void launch(std::unique_ptr<evo::EvolutionRun> ready,
                 std::function<std::unique_ptr<evo::EvolutionRun>()> make,
@@ -65,6 +76,7 @@ class EvolutionSession {
     LatestSlot<EvolutionSnapshot> slot_;
     std::atomic<RunPhase> phase_{RunPhase::Idle};
     std::shared_ptr<Shared> shared_;
+    std::optional<evo::Experiment> sent_rules_;
     std::thread thread_;
 };
 

@@ -46,6 +46,9 @@ struct PopulationMember {
     int pareto_rank = 0;  //!< 0 = on the Pareto front of (fitness up, age down[, active down])
     int species = 0;      //!< NEAT: its species id (0 for other algorithms)
     bool valid = true;    //!< false: breaks the current constraints
+    //! Novelty search: its novelty in the last selection (behaviour distance, voxel lengths);
+    //! negative when unknown (other algorithms, or a resumed run before its next generation).
+    double novelty = -1.0;
     evo::ExploitReport exploits;  //!< escaped / detached_motion / tentacle (evo/evaluate/exploit_flags.hpp)
     std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)
     double active_fraction() const { return voxels > 0 ? double(active_voxels) / voxels : 0.0; }
@@ -86,6 +89,9 @@ struct LiveProgress {
     int simulations_done = 0;   //!< finished simulations of it
     int simulations_total = 0;  //!< its simulations (0 until its individuals exist)
     double generation_s = 0.0;  //!< wall time in it so far, paused time excluded
+    //! Earlier attempts at it abandoned for new rules: spent time, so elapsed counts it
+    //! (evo::GenerationProgress::abandoned_s).
+    double abandoned_s = 0.0;
 };
 
 //! Live figures from the last completed generation's snapshot and the progress of the next.
@@ -99,6 +105,10 @@ struct LiveFigures {
 //! or failed one is going nowhere, so its last estimate would mislead).
 LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progress,
                          RunPhase phase);
+
+//! "measure com_final_3d, min fill 0.2, reject tentacle": what changes from `before` to `after`
+//! ("rules re-applied" when nothing does), for the plots' markers and the Run panel.
+std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitness& after);
 
 //! "escaped (12 % unanchored), tentacle (thin share 0.62)"; "" when nothing is flagged or the
 //! result predates exploit detection.

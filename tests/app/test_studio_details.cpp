@@ -1,0 +1,200 @@
+// Scripted headless checks of the studio's smaller promises: the Front view faces the front, a
+// quick Ctrl+Z is not lost, a Champions row replays wherever it is clicked, a dialog shows only
+// its own error, the exploit rejections have controls, a novelty run shows each member's
+// novelty, and an idle studio does not redraw without a change.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "app/cli/render_video.hpp"
+#include "app/gui/headless_session.hpp"
+#include "app/gui/redraw_gate.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/unsaved_guard.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool drawn_now(const Studio& s, const std::string& widget) {
+    const auto it = s.widgets.find(widget);
+    return it != s.widgets.end() && it->second.frame == s.frame;
+}
+
+}  // namespace
+
+TEST_CASE("studio details: Front looks at the side the iso view shows, x to the right") {
+    Studio studio;
+    for (auto view : {render::NamedView::Iso, render::NamedView::Front}) {
+        set_named_view(studio, view);
+        const auto& c = studio.view.camera;
+        CHECK(c.eye_direction().y < -0.5f);  // the eye on the -y side
+        CHECK(c.right().x > 0.8f);           // x grows to the right
+    }
+    CHECK(studio.view.camera.orthographic);
+}
+
+TEST_CASE("studio details: a Ctrl+Z pressed and released between two frames still undoes") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 800, 500);
+    run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.2}])"));
+    REQUIRE(studio.document.can_undo());
+    run_script(session, json::parse(R"([{"key": "ctrl+z", "fast": true}, {"frames": 1}])"));
+    CHECK(studio.document.experiment().simulation.settle_s == 0.1);
+    CHECK_FALSE(studio.document.can_undo());
+    run_script(session, json::parse(R"([{"key": "ctrl+y"}])"));  // held a frame: still works
+    CHECK(studio.document.experiment().simulation.settle_s == 0.2);
+}
+
+TEST_CASE("studio details: a second dialog does not show an older error") {
+    const auto dir = testing::fresh_dir("details-dialog");
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 800, 500);
+    CHECK_FALSE(open_experiment(studio, (dir / "missing.json").string()));  // an error...
+    REQUIRE(studio.status_is_error);
+    run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.2}])"));
+    set_status(studio, "an earlier failure", true);
+    request_new_experiment(studio);  // ...then an unrelated question
+    run_script(session, json::parse(R"([{"frames": 3}])"));
+    REQUIRE(drawn_now(studio, "Save changes"));
+    CHECK_FALSE(drawn_now(studio, "dialog error"));
+    // Its own failure is shown: Save with no file name.
+    studio.path_field.clear();
+    run_script(session, json::parse(R"([{"click": "Save changes"}, {"frames": 2}])"));
+    CHECK(drawn_now(studio, "dialog error"));
+    CHECK(studio.pending.error.find("file name") != std::string::npos);
+    run_script(session, json::parse(R"([{"click": "Cancel"}, {"frames": 2}])"));
+    request_new_experiment(studio);  // asked again: clean
+    run_script(session, json::parse(R"([{"frames": 3}])"));
+    CHECK(drawn_now(studio, "Save changes"));
+    CHECK_FALSE(drawn_now(studio, "dialog error"));
+}
+
+TEST_CASE("studio details: the exploit flags can be rejected from the Experiment panel") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1024, 900);
+    run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2}])"));
+    for (const char* name : {"reject escaped", "reject detached motion", "reject tentacle"}) {
+        INFO(name);
+        REQUIRE(studio.widgets.count(name));
+        run_script(session, json::array({{{"click", name}}, {{"frames", 1}}}));
+        CHECK(studio.document.undo_label() == name);
+    }
+    const auto& c = studio.document.experiment().fitness.constraints;
+    CHECK(c.reject_escaped);
+    CHECK(c.reject_detached_motion);
+    CHECK(c.reject_tentacle);
+}
+
+TEST_CASE("studio details: novelty column, Champions rows replay from any cell, mesh and VTK") {
+    const auto dir = testing::fresh_dir("details-novelty");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.evolution.algorithm = evo::Algorithm::Novelty;
+    e.evolution.novelty.k = 3;
+    e.evolution.novelty.archive_threshold = 0.01;
+    e.evolution.novelty.archive_capacity = 12;
+    e.evolution.generations = 2;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 800);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_run": "finished", "timeout_s": 240},
+                                        {"wait_simulation": true, "timeout_s": 120},
+                                        {"click": "tab Population"}, {"frames": 2}])"));
+    const auto run = studio.evolution.snapshot();
+    REQUIRE(!run->population.empty());
+    for (const auto& m : run->population) CHECK(m.novelty >= 0.0);
+    const std::string first = "novelty #" + std::to_string(run->population.front().id);
+    CHECK(drawn_now(studio, first));
+
+    run_script(session, json::parse(R"([{"click": "tab Champions"}, {"frames": 2}])"));
+    const auto& entries = studio.champion_history.entries();
+    REQUIRE(!entries.empty());
+    const auto& oldest = entries.front();
+    const std::string cell = "champion fitness gen " + std::to_string(oldest.generation);
+    REQUIRE(drawn_now(studio, cell));
+    set_status(studio, "");
+    run_script(session, json::array({{{"click", cell}}, {{"frames", 1}}}));
+    CHECK_MESSAGE(studio.status.find("simulating the champion of generation " +
+                                     std::to_string(oldest.generation)) == 0,
+                  studio.status);
+
+    // The CLI's geometry exports from the Export tab: a mesh at rest and deformed, a series.
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"replay": {"time_s": 0.3, "playing": false}},
+                                        {"click": "tab Export"}, {"frames": 2}])"));
+    studio.exports.mesh_path = (dir / "rest.stl").string();
+    studio.exports.vtk_folder = (dir / "paraview").string();
+    run_script(session, json::parse(R"([{"click": "Save mesh"}, {"frames": 1}])"));
+    REQUIRE_MESSAGE(fs::exists(dir / "rest.stl"), studio.status);
+    const auto stl_size = fs::file_size(dir / "rest.stl");
+    CHECK(stl_size > 84);
+    CHECK((stl_size - 84) % 50 == 0);  // binary STL: header, count, 50 bytes a triangle
+    studio.exports.mesh_path = (dir / "deformed.obj").string();
+    run_script(session, json::parse(R"([{"click": "mesh deformed"}, {"click": "Save mesh"},
+                                        {"frames": 1}])"));
+    CHECK(studio.exports.mesh_deformed);
+    CHECK_MESSAGE(studio.status.find("at t = 0.3 s") != std::string::npos, studio.status);
+    CHECK(fs::exists(dir / "deformed.obj"));
+    CHECK(fs::exists(dir / "deformed.mtl"));
+    run_script(session, json::parse(R"([{"click": "Write ParaView series"}, {"frames": 1}])"));
+    CHECK_MESSAGE(fs::exists(dir / "paraview" / "series.pvd"), studio.status);
+    CHECK(fs::exists(dir / "paraview" / "com_path.vtp"));
+    if (!app::find_on_path("ffmpeg")) {
+        MESSAGE("no ffmpeg on PATH: the video export is not tried");
+        return;
+    }
+    studio.exports.video_path = (dir / "replay.gif").string();
+    studio.exports.frames_width = 160;
+    studio.exports.frames_height = 100;
+    studio.exports.frames_fps = 10.0;
+    run_script(session, json::parse(R"([{"click": "Write video"}, {"frames": 8}])"));
+    CHECK_FALSE(studio.exports.frame_job.active);
+    CHECK_MESSAGE(fs::exists(dir / "replay.gif"), studio.status);
+    CHECK_MESSAGE(studio.status.find("video written (5 frames)") == 0, studio.status);
+}
+
+TEST_CASE("studio details: idle, the window draws only after a change or once a second") {
+    Studio studio;
+    RedrawGate gate;
+    int drawn = 0;
+    for (int i = 0; i < 10; ++i)
+        drawn += gate.should_draw(studio, 0.01 * i);
+    CHECK(drawn == RedrawGate::kSettleFrames);  // the first frames, then nothing
+    CHECK(gate.should_draw(studio, 1.2));       // once a second
+    CHECK_FALSE(gate.should_draw(studio, 1.3));
+    gate.input();
+    CHECK(gate.should_draw(studio, 1.31));  // input: a few frames to settle
+    studio.clock.playing = true;            // a replay plays: every frame
+    CHECK(needs_animation(studio));
+    for (int i = 0; i < 5; ++i) CHECK(gate.should_draw(studio, 1.4 + 0.01 * i));
+}
+
+TEST_CASE("studio details: the splitters show a grip at rest") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 800, 500);
+    run_script(session, json::parse(R"([{"frames": 2}])"));
+    const render::Image image = session.capture();  // top row first
+    for (const char* name : {"splitter left", "splitter right", "splitter replay"}) {
+        INFO(name);
+        const WidgetRect r = studio.widgets.at(name);
+        const int x = static_cast<int>(std::lround((r.min.x + r.max.x) * 0.5f));
+        const int y = static_cast<int>(std::lround((r.min.y + r.max.y) * 0.5f));
+        // The middle dot is darker than the window's background beside the strip.
+        const auto* dot = image.pixel(x, y);
+        const bool vertical = r.max.y - r.min.y > r.max.x - r.min.x;
+        const auto* beside = vertical ? image.pixel(x, y + 8) : image.pixel(x + 8, y);
+        CHECK(int(dot[0]) + 30 < int(beside[0]));
+    }
+}

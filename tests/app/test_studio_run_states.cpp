@@ -1,0 +1,219 @@
+// Scripted headless sessions of the Run panel's states that must never be stale or silent: a
+// resume that fails, the messages and labels around a change of rules or of run.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "app/gui/headless_session.hpp"
+#include "app/gui/redraw_gate.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "evo/run/checkpoint.hpp"
+#include "evo/run/evolution_run.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+//! A finished run of `generations` generations in dir, written by evo (not by the studio).
+void write_run(const fs::path& dir, const evo::Experiment& e) {
+    evo::RunOptions options;
+    options.out_dir = dir.string();
+    evo::EvolutionRun run(e, options);
+    run.run();
+}
+
+bool drawn_now(const Studio& s, const std::string& widget) {
+    const auto it = s.widgets.find(widget);
+    return it != s.widgets.end() && it->second.frame == s.frame;
+}
+
+}  // namespace
+
+TEST_CASE("studio run states: a resume with no usable checkpoint fails in red and offers a start") {
+    const auto dir = fs::absolute(testing::fresh_dir("states-damaged"));
+    auto e = testing::tiny_experiment();
+    e.name = "damaged";
+    e.evolution.generations = 1;
+    write_run(dir / "run", e);
+    for (const char* name : {evo::kCheckpointFile, evo::kPreviousCheckpointFile})
+        std::ofstream(dir / "run" / name) << "{ damaged";
+
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1024, 700);
+    REQUIRE(resume_run_directory(studio, (dir / "run").string()));
+    run_script(session, json::parse(R"([{"wait_run": "failed", "timeout_s": 60}, {"frames": 2}])"));
+    // The Run panel says why, in the CLI's words (it said "loading the checkpoint" for ever).
+    CHECK(drawn_now(studio, "run failure"));
+    const auto run = studio.evolution.snapshot();
+    REQUIRE(run);
+    CHECK_MESSAGE(run->message.find("no usable checkpoint") != std::string::npos, run->message);
+    CHECK(studio.status_is_error);
+    CHECK_MESSAGE(studio.status.find("no usable checkpoint") != std::string::npos, studio.status);
+
+    // The fallback: the run's own experiment from generation 0 in a new folder.
+    const auto runs_root = dir / "data";
+    setenv("XDG_DATA_HOME", runs_root.c_str(), 1);
+    REQUIRE(drawn_now(studio, "Start again from generation 0"));
+    run_script(session, json::parse(R"([{"click": "Start again from generation 0"},
+                                        {"frames": 2}])"));
+    INFO("status: " << studio.status);
+    REQUIRE(run_is_live(studio.evolution.phase()));
+    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    unsetenv("XDG_DATA_HOME");
+    const auto fresh = studio.evolution.snapshot();
+    REQUIRE(fresh);
+    CHECK(fresh->loaded);
+    CHECK(fresh->experiment.name == "damaged");
+    CHECK(fresh->generation == 1);
+    CHECK(fresh->run_dir != (dir / "run").string());
+    CHECK(fs::exists(fs::path(fresh->run_dir) / evo::kCheckpointFile));
+    CHECK(studio.document.experiment().name == "damaged");
+}
+
+namespace {
+
+// As the Run panel reads it: the progress first, then the snapshot (studio.run_progress).
+double live_elapsed(const Studio& s) {
+    const LiveProgress progress = s.evolution.progress();
+    const auto run = s.evolution.snapshot();
+    return live_figures(*run, progress, s.evolution.phase()).elapsed_s;
+}
+
+template <class Done>
+void frames_until(HeadlessStudio& session, double timeout_s, Done done) {
+    const auto start = std::chrono::steady_clock::now();
+    while (!done()) {
+        session.frame();
+        REQUIRE_MESSAGE(std::chrono::steady_clock::now() - start <
+                            std::chrono::duration<double>(timeout_s),
+                        "timed out");
+    }
+}
+
+}  // namespace
+
+TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, the clock never runs back") {
+    const auto dir = testing::fresh_dir("states-rules");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 8;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_generations": 1, "timeout_s": 240}])"));
+    // Paused inside a generation with simulations done: its time so far is on the clock.
+    frames_until(session, 120.0, [&] {
+        const auto p = studio.evolution.progress();
+        return p.running && p.simulations_done >= 1;
+    });
+    run_script(session, json::parse(R"([{"click": "Pause"},
+                                        {"wait_run": "paused", "timeout_s": 120},
+                                        {"set": "fitness.constraints.min_fill_fraction",
+                                         "value": 0.05},
+                                        {"frames": 2}])"));
+    // Paused, with no replay playing and no body simulating: no redraw at full rate.
+    studio.clock.playing = false;
+    frames_until(session, 120.0, [&] { return !studio.simulator.busy(); });
+    CHECK_FALSE(needs_animation(studio));
+    // The note names what was edited (it named the measure, whatever the edit).
+    CHECK(drawn_now(studio, "edited rules"));
+    CHECK(describe_fitness_change(studio.evolution.snapshot()->experiment.fitness,
+                                  studio.document.experiment().fitness) == "min fill 0.05");
+    const double before = live_elapsed(studio);
+    CHECK(before > 0.0);
+    // Resume sends the rules: the note goes at once, not a generation later. The frozen
+    // generation is abandoned and computed again under the new rules, and its time stays counted.
+    run_script(session, json::parse(R"([{"click": "Resume"}])"));
+    CHECK_FALSE(drawn_now(studio, "edited rules"));
+    CHECK(needs_animation(studio));
+    const int resumed_at = studio.evolution.snapshot()->generation;
+    double last = live_elapsed(studio);
+    CHECK(last >= before - 1e-9);
+    double worst_step = 0.0;
+    // The clock only moves forward: it went back by the abandoned attempt's time, and at the
+    // end of a generation by the time its files took (its clock ran on while they were written).
+    frames_until(session, 240.0, [&] {
+        const double now = live_elapsed(studio);
+        worst_step = std::min(worst_step, now - last);
+        last = now;
+        CHECK_FALSE(drawn_now(studio, "edited rules"));
+        return studio.evolution.snapshot()->generation > resumed_at + 1;
+    });
+    CHECK_MESSAGE(worst_step >= -1e-9, "the elapsed time went back by " << -worst_step << " s");
+    const auto run = studio.evolution.snapshot();
+    CHECK(run->experiment.fitness.constraints.min_fill_fraction == 0.05);
+    CHECK(run->elapsed_s >= before);
+    run_script(session, json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
+}
+
+TEST_CASE("studio run states: a new run never plays the last run's champion under its name") {
+    const auto dir = testing::fresh_dir("states-champion");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.name = "first";
+    e.evolution.generations = 1;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "first").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_run": "finished", "timeout_s": 240},
+                                        {"wait_simulation": true, "timeout_s": 120}])"));
+    REQUIRE(studio.shown);
+    CHECK(studio.shown->experiment.name == "first");
+    e.name = "second";
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "second").string();
+    run_script(session, json::parse(R"([{"click": "Start"}])"));
+    CHECK_FALSE(studio.shown);  // not the first run's body under the second run's panel
+    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240},
+                                        {"wait_simulation": true, "timeout_s": 120}])"));
+    REQUIRE(studio.shown);
+    CHECK(studio.shown->experiment.name == "second");
+}
+
+TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no empty run folder") {
+    const auto dir = testing::fresh_dir("states-gen0");
+    auto e = testing::tiny_experiment();
+    e.evolution.population = 60;  // generation 0 lasts long enough to stop it
+    {
+        Studio studio;
+        studio.document.reset(e, "");
+        studio.run_dir_field = (dir / "stopped").string();
+        HeadlessStudio session(studio, 1024, 700);
+        run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}])"));
+        REQUIRE(fs::exists(dir / "stopped" / "run.json"));
+        run_script(session, json::parse(R"([{"click": "Stop"},
+                                            {"wait_run": "stopped", "timeout_s": 60},
+                                            {"frames": 2}])"));
+        CHECK_FALSE(fs::exists(dir / "stopped"));
+        CHECK(studio.evolution.snapshot()->message.find("no checkpoint") != std::string::npos);
+        // A run that had completed a generation keeps everything (tested in the session tests);
+        // quitting mid-generation 0 is the same stop, at the studio's end.
+        studio.run_dir_field = (dir / "quit").string();
+        run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}])"));
+        REQUIRE(fs::exists(dir / "quit" / "run.json"));
+    }
+    CHECK_FALSE(fs::exists(dir / "quit"));
+    // A folder that held something before the run is left as it was.
+    fs::create_directories(dir / "kept");
+    std::ofstream(dir / "kept" / "notes.txt") << "mine";
+    {
+        Studio studio;
+        studio.document.reset(e, "");
+        studio.run_dir_field = (dir / "kept").string();
+        HeadlessStudio session(studio, 1024, 700);
+        run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}, {"click": "Stop"},
+                                            {"wait_run": "stopped", "timeout_s": 60}])"));
+    }
+    CHECK(fs::exists(dir / "kept" / "notes.txt"));
+}
