@@ -311,10 +311,9 @@ double link_elastic_energy(const Model::Data& model, const VoxelState& voxels, i
         // Normal parts: |ta_n|^2 = |ta|^2 - (ta.e)^2 etc. U_bend = k_s / 2 |ta_n + tb_n|^2 +
         // k_b / 2 |ta_n - tb_n|^2 (k_s = 3 k_b at nu = 0: k_b (2 ta_n^2 + 2 tb_n^2 + 2 ta_n.tb_n))
         const double aa = ta_ta - ta_e * ta_e, bb = tb_tb - tb_e * tb_e, ab = ta_tb - ta_e * tb_e;
-        const double k_shear =
-            std::fmin(kShearPerTorsion * lp.k_torsion[c], 3.0f * lp.k_bend[c]);
-        const double bend = 0.5 * k_shear * (aa + bb + 2.0 * ab) +
-                            0.5 * lp.k_bend[c] * (aa + bb - 2.0 * ab);
+        const double k_shear = std::fmin(kShearPerTorsion * lp.k_torsion[c], 3.0f * lp.k_bend[c]);
+        const double bend =
+            0.5 * k_shear * (aa + bb + 2.0 * ab) + 0.5 * lp.k_bend[c] * (aa + bb - 2.0 * ab);
         const double twist = tb_e - ta_e;
         energy += 0.5 * lp.k_axial[c] * x * x + 0.5 * lp.k_torsion[c] * twist * twist + bend;
     }

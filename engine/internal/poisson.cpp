@@ -493,7 +493,8 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
             if constexpr (kMixed) out.mu[a][s] += inner * pair[1 - s];
             // The deviatoric term uses the half-link, except at a column's end, where it takes
             // the same estimate as the volumetric one (so a uniform strain stays exact there).
-            const float half = w.dev[a][s][v] * e[s] + (kMixed ? (1.0f + inner) * pair[s] : pair[s]);
+            const float half =
+                w.dev[a][s][v] * e[s] + (kMixed ? (1.0f + inner) * pair[s] : pair[s]);
             out.gamma[a][s] = half + at_column_end(w, a, s, v) * (out.mu[a][s] - half);
         }
     }
@@ -552,8 +553,8 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
             // in pair) and the half-link (full weight: (1 + inner) pair).
             if constexpr (kMixed) {
                 const float inner = inside_column(w, a, s, v);
-                dgrad[s] = w.pair[a][s][v] *
-                           (P[a][s] + inner * P[a][1 - s] + (1.0f + inner) * deviatoric);
+                dgrad[s] =
+                    w.pair[a][s][v] * (P[a][s] + inner * P[a][1 - s] + (1.0f + inner) * deviatoric);
             } else {
                 dgrad[s] = w.pair[a][s][v] * (P[a][s] + deviatoric);
             }

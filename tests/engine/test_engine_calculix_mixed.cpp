@@ -8,8 +8,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <numbers>
 #include <sstream>
@@ -24,9 +24,9 @@ using namespace bhm::engine::test;
 
 namespace {
 
-constexpr double kL = 0.01;      // voxel size (m)
-constexpr double kStiff = 5e6;   // the stiffer material's E (Pa); the softer is kStiff / contrast
-constexpr double kCte = 0.01;    // active material, heated scenes (1 / degC)
+constexpr double kL = 0.01;     // voxel size (m)
+constexpr double kStiff = 5e6;  // the stiffer material's E (Pa); the softer is kStiff / contrast
+constexpr double kCte = 0.01;   // active material, heated scenes (1 / degC)
 
 enum class Load { Gravity, Heat };
 
@@ -45,7 +45,8 @@ std::vector<MixedScene> mixed_scenes() {
          [](int, int, int z) { return z == 1 || z == 5 ? 1 : 0; }},
         {"layers-soft-in-stiff", 20, 8, 7, Load::Gravity,
          [](int, int, int z) { return z == 1 || z == 5 ? 0 : 1; }},
-        {"bilayer-soft-active", 20, 2, 4, Load::Heat, [](int, int, int z) { return z < 2 ? 0 : 1; }},
+        {"bilayer-soft-active", 20, 2, 4, Load::Heat,
+         [](int, int, int z) { return z < 2 ? 0 : 1; }},
         {"checkerboard", 12, 4, 4, Load::Gravity,
          [](int x, int y, int z) { return (x + y + z) % 2; }},
         {"core-shell", 20, 4, 4, Load::Gravity,
@@ -148,7 +149,8 @@ struct Result {
 Result compare(const MixedScene& s, double contrast, double nu) {
     Result r{engine_tip(s, contrast, nu), calculix_tip(s, contrast, nu)};
     MESSAGE(std::string(s.name) << ", contrast " << contrast << ", nu " << nu << ": tip " << r.ours
-                   << " m, CalculiX " << r.fem << " m, error " << 100.0 * r.error() << " %");
+                                << " m, CalculiX " << r.fem << " m, error " << 100.0 * r.error()
+                                << " %");
     return r;
 }
 
@@ -224,7 +226,8 @@ TEST_CASE("calculix probe: one scene of two materials" * doctest::skip()) {
     if (std::getenv("BHM_REFINE")) {  // CalculiX alone, meshes of 1, 2 and 3 elements per voxel
         for (int r = 1; r <= 3; ++r)
             MESSAGE(name << ", contrast " << k << ", nu " << n << ", " << r
-                         << " elements per voxel: CalculiX tip " << calculix_tip(scene(name), k, n, r));
+                         << " elements per voxel: CalculiX tip "
+                         << calculix_tip(scene(name), k, n, r));
         return;
     }
     compare(scene(name), k, n);

@@ -188,8 +188,7 @@ TEST_CASE("envelope: random bodies of several materials inside the envelope stay
 
 // The long form of the case above, as docs/physics.md quotes it (600 bodies, 40,000 steps each,
 // seeded 1; a few minutes): build/bin/test_engine -tc="envelope fuzz*" --no-skip
-TEST_CASE("envelope fuzz: 600 random bodies of several materials, 40,000 steps" *
-          doctest::skip()) {
+TEST_CASE("envelope fuzz: 600 random bodies of several materials, 40,000 steps" * doctest::skip()) {
     const int steps = 40000;
     Random r{1};
     int diverged = 0;

@@ -206,7 +206,8 @@ TEST_CASE("on corpus bodies an early end gives the full 11 s measures") {
             if (entry.at("name").get<std::string>() != name) continue;
             const Body body = apply_frame_and_overrides(on, parse_body(entry.at("body"), file));
             const FitnessReport e = evaluate_body(on, body);
-            MESSAGE(file << "/" << name << std::string(e.ended_early ? " ended early" : " ran the full length"));
+            MESSAGE(file << "/" << name
+                         << std::string(e.ended_early ? " ended early" : " ran the full length"));
             if (!e.ended_early) continue;  // the full length: nothing extrapolated
             const FitnessReport f = evaluate_body(off, body);
             CHECK(e.steps < f.steps);
