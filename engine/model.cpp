@@ -35,9 +35,6 @@ double shear_modulus(const Material& m) {
     return m.youngs_modulus_pa / (2.0 * (1.0 + m.poisson_ratio));
 }
 
-// Torsion constant of a square section of side a: J = 0.1406 a^4 (Saint-Venant, b/a = 1).
-constexpr double kSquareTorsionFactor = 0.1406;
-
 void resize_voxels(Model::Data& d, int n) {
     for (auto* v :
          {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep, &d.angular_keep,

@@ -194,19 +194,33 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
         pb2[c] = f.theta_pos[2];
 
         // Absent links have zero stiffness, so everything below is exactly zero for them.
+        // Bending as its two modes: the antisymmetric one (curvature, ta = -tb) with E I / L,
+        // the symmetric one (shear, ta = tb) with 3 (2 G / E) E I / L = G L^3 / 2, taken from the
+        // torsion stiffness G J / L (kShearPerTorsion), so the lattice's shear modulus is G
+        // (E / 2 with Euler-Bernoulli beams alone, at any nu). At nu = 0 both are the beam's
+        // M_a = -k_b (4 ta + 2 tb), M_b = -k_b (2 ta + 4 tb).
         const float kb = k_bend[c] * size2;
+        const float kt = k_torsion[c] * size2;
+        // (At most the Euler-Bernoulli 3 k_b: auxetic voxels, G > E / 2, keep the beam's shear,
+        // so the stable step, which knows 4 E I / L, still bounds this mode.)
+        const float ks_g = kShearPerTorsion * kt, ks_beam = 3.0f * kb;
+        const float ks = ks_g < ks_beam ? ks_g : ks_beam;  // (std::fmin would not vectorise)
         const float twist_a = ta0 * f.ex + ta1 * f.ey + ta2 * f.ez;
         const float twist_b = tb0 * f.ex + tb1 * f.ey + tb2 * f.ez;
-        const float kt_twist = k_torsion[c] * size2 * (twist_b - twist_a);
+        const float kt_twist = kt * (twist_b - twist_a);
         // Bending acts on the normal parts only: add back the e components, then torsion.
-        const float along_a = kt_twist + kb * (4.0f * twist_a + 2.0f * twist_b);
-        const float along_b = -kt_twist + kb * (2.0f * twist_a + 4.0f * twist_b);
-        const float ma0 = -kb * (4.0f * ta0 + 2.0f * tb0) + along_a * f.ex;
-        const float ma1 = -kb * (4.0f * ta1 + 2.0f * tb1) + along_a * f.ey;
-        const float ma2 = -kb * (4.0f * ta2 + 2.0f * tb2) + along_a * f.ez;
-        const float mb0 = -kb * (2.0f * ta0 + 4.0f * tb0) + along_b * f.ex;
-        const float mb1 = -kb * (2.0f * ta1 + 4.0f * tb1) + along_b * f.ey;
-        const float mb2 = -kb * (2.0f * ta2 + 4.0f * tb2) + along_b * f.ez;
+        const float sym_e = ks * (twist_a + twist_b), anti_e = kb * (twist_a - twist_b);
+        const float along_a = kt_twist + sym_e + anti_e;
+        const float along_b = -kt_twist + sym_e - anti_e;
+        const float sym0 = ks * (ta0 + tb0), anti0 = kb * (ta0 - tb0);
+        const float sym1 = ks * (ta1 + tb1), anti1 = kb * (ta1 - tb1);
+        const float sym2 = ks * (ta2 + tb2), anti2 = kb * (ta2 - tb2);
+        const float ma0 = -(sym0 + anti0) + along_a * f.ex;
+        const float ma1 = -(sym1 + anti1) + along_a * f.ey;
+        const float ma2 = -(sym2 + anti2) + along_a * f.ez;
+        const float mb0 = -(sym0 - anti0) + along_b * f.ex;
+        const float mb1 = -(sym1 - anti1) + along_b * f.ey;
+        const float mb2 = -(sym2 - anti2) + along_b * f.ez;
         const float s0 = ma0 + mb0, s1 = ma1 + mb1, s2 = ma2 + mb2;
         const float inv_len = 1.0f / f.length;
         const float axial = k_axial[c] * size * x;
@@ -294,13 +308,14 @@ double link_elastic_energy(const Model::Data& model, const VoxelState& voxels, i
             tb_tb += tb * tb;
             ta_tb += ta * tb;
         }
-        // Normal parts: |ta_n|^2 = |ta|^2 - (ta.e)^2 etc. U_bend = k_b (2 ta_n^2 + 2 tb_n^2 + 2
-        // ta_n.tb_n)
+        // Normal parts: |ta_n|^2 = |ta|^2 - (ta.e)^2 etc. U_bend = k_s / 2 |ta_n + tb_n|^2 +
+        // k_b / 2 |ta_n - tb_n|^2 (k_s = 3 k_b at nu = 0: k_b (2 ta_n^2 + 2 tb_n^2 + 2 ta_n.tb_n))
+        const double aa = ta_ta - ta_e * ta_e, bb = tb_tb - tb_e * tb_e, ab = ta_tb - ta_e * tb_e;
+        const double k_shear = std::fmin(kShearPerTorsion * lp.k_torsion[c], 3.0f * lp.k_bend[c]);
         const double bend =
-            2.0 * (ta_ta - ta_e * ta_e) + 2.0 * (tb_tb - tb_e * tb_e) + 2.0 * (ta_tb - ta_e * tb_e);
+            0.5 * k_shear * (aa + bb + 2.0 * ab) + 0.5 * lp.k_bend[c] * (aa + bb - 2.0 * ab);
         const double twist = tb_e - ta_e;
-        energy += 0.5 * lp.k_axial[c] * x * x + 0.5 * lp.k_torsion[c] * twist * twist +
-                  lp.k_bend[c] * bend;
+        energy += 0.5 * lp.k_axial[c] * x * x + 0.5 * lp.k_torsion[c] * twist * twist + bend;
     }
     return energy;
 }

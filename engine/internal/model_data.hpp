@@ -58,11 +58,17 @@ struct VoxelRun {
     int begin = 0, end = 0, below_y = 0, below_z = 0;
 };
 
+//! J = kSquareTorsionFactor L^4 of a square section (Saint-Venant).
+inline constexpr double kSquareTorsionFactor = 0.1406;
+//! The stiffness of a link's symmetric bending mode (shear, ta = tb), 6 G I / L = G L^3 / 2, over
+//! its torsion stiffness G J / L: the kernel takes it from k_torsion (link_pass.cpp).
+inline constexpr float kShearPerTorsion = static_cast<float>(0.5 / kSquareTorsionFactor);
+
 //! Per link slot constants of one lattice axis (float: they feed the float link kernel).
 struct LinkParams {
     std::vector<float> exists;      //!< (slots) 1 = a real link, 0 = no link at this slot
     std::vector<float> k_axial;     //!< E A / L (N/m)
-    std::vector<float> k_bend;      //!< E I / L (N m/rad); moments use 4x and 2x this
+    std::vector<float> k_bend;      //!< E I / L (N m/rad): the curvature mode's stiffness
     std::vector<float> k_torsion;   //!< G J / L (N m/rad)
     std::vector<float> damp_steps;  //!< Rayleigh beta / dt: damping term = k * beta * rate
     std::vector<float> rest_base;   //!< rest length with no actuation (m)
@@ -87,16 +93,20 @@ struct PoissonParams {
     //! voxel, per [axis][side]: the centre strain the volumetric term of that side's octants uses,
     //! mu = own * e_side + other * e_other_side + far * e_far + pair * d (poisson.hpp).
     //! The strains are stresses over the voxel's E (a link's strain times E_link / E_voxel), so
-    //! two materials in one link stay springs in series.
+    //! two materials in one link stay springs in series. Inside a column of a `mixed` body mu
+    //! also takes the other side's mu_pair * d.
     std::array<std::array<std::vector<float>, 2>, 3> mu_own, mu_other, mu_far, mu_pair;
-    //! voxel, per [axis][side]: gamma = dev_scale * e_side + mu_pair * d, or mu at a column's
+    //! voxel, per [axis][side]: gamma = dev_scale * e_side + mu_pair * d (twice that inside a
+    //! column of a mixed body, where mu_pair is half the half-link's weight), or mu at a column's
     //! end (where mu_far < 0); dev_scale > 0 exactly where that half-link exists
     std::array<std::array<std::vector<float>, 2>, 3> dev_scale;
     //! voxel, per [axis][side]: the link slot e_far reads (the partner's other link), or kNoLink
     std::array<std::array<std::vector<std::int32_t>, 2>, 3> far_slot;
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
     std::array<std::vector<float>, 3> pair_step;   //!< link slot: relaxation step of d, 0 if none
-    std::vector<std::int32_t> pair_voxels;         //!< voxels at either end of an isolated link
+    //! voxels at either end of a link with a relaxed d (isolated or mixed)
+    std::vector<std::int32_t> pair_voxels;
+    bool mixed = false;  //!< some link joins two materials and carries a relaxed split d
     //! The far links of the column-end estimates, as sparse lists (a few voxels per column), so
     //! the dense loops read them contiguously instead of through tables on every slot:
     //! far_reads[a]: (voxel, side, slot) with mu_far != 0, copies strain[slot] to the voxel's

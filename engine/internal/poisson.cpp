@@ -91,6 +91,7 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
         }
         octant_modulus[a].assign(d.stored, 0.0);
     }
+    pp.mixed = false;
     std::vector<char> relaxed(d.stored, 0);
     for (int v = 0; v < n; ++v) {
         for (int a = 0; a < 3; ++a) {
@@ -129,6 +130,11 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
     // The centre strain of each voxel on each axis (poisson.hpp), in the voxel's own strain
     // units: a link's strain times E_link / E_voxel (its stress over the voxel's modulus).
     auto young = [&](int v) { return spec.materials[d.voxel_material[v] - 1].youngs_modulus_pa; };
+    auto same_material = [&](int v, int p) {
+        const Material& a = spec.materials[d.voxel_material[v] - 1];
+        const Material& b = spec.materials[d.voxel_material[p] - 1];
+        return a.youngs_modulus_pa == b.youngs_modulus_pa && a.poisson_ratio == b.poisson_ratio;
+    };
     std::vector<char> pair_voxel(d.stored, 0);
     for (int v = 0; v < n; ++v)
         for (int a = 0; a < 3; ++a) {
@@ -147,11 +153,22 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                     pp.mu_own[a][s][v] = w[s];
                 continue;
             }
+            // A link between two materials (E or nu differ, both ends coupled) splits its strain
+            // between its halves by a relaxed internal variable d, h = w e -+ d, instead of by
+            // the series weights alone (poisson.hpp): the coefficient of d in mu is set below.
+            bool mixed[kSides] = {false, false};
+            for (int s = 0; s < kSides; ++s)
+                mixed[s] = h[s] != 0.0f && relaxed[partner[s]] && !same_material(v, partner[s]);
             const int count = links_on_axis(pp, a, v);
             if (count == 2) {  // interior: the mean of the two half-links
                 for (int s = 0; s < kSides; ++s) {
                     pp.mu_own[a][s][v] = 0.5f * w[s];
                     pp.mu_other[a][s][v] = 0.5f * w[1 - s];
+                    pp.mixed = pp.mixed || mixed[s];
+                    if (mixed[s]) {
+                        pp.mu_pair[a][s][v] = s == 1 ? -0.5f : 0.5f;
+                        pair_voxel[v] = 1;
+                    }
                 }
                 continue;
             }
@@ -174,6 +191,11 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                 pp.mu_far[a][s][v] =
                     static_cast<float>(-0.5 * (2.0 * ep * en / (ep + en)) / young(v));
                 pp.far_slot[a][s][v] = s == 1 ? p : d.minus[a][p];
+                pp.mixed = pp.mixed || mixed[s];
+                if (mixed[s]) {
+                    pp.mu_pair[a][s][v] = s == 1 ? -1.5f : 1.5f;
+                    pair_voxel[v] = 1;
+                }
             } else if (!column && relaxed[p]) {
                 // An isolated link (a column of two): the two centres are e_link -+ d, d relaxed.
                 pp.mu_own[a][s][v] = w[s];
@@ -181,6 +203,11 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                 pair_voxel[v] = 1;
             } else {
                 pp.mu_own[a][s][v] = w[s];
+                pp.mixed = pp.mixed || mixed[s];
+                if (mixed[s]) {
+                    pp.mu_pair[a][s][v] = s == 1 ? -1.0f : 1.0f;
+                    pair_voxel[v] = 1;
+                }
             }
         }
     for (int a = 0; a < 3; ++a) {
@@ -201,8 +228,82 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
     return octant_modulus;
 }
 
+namespace {
+
+// The Jacobi step of a body with mixed links is half the row-sum step: at the full step, one of
+// the 60 random bodies of test_engine_envelope.cpp (seed 2026, body 37: E 95 and 163 MPa at nu
+// 0.2 and 0.49, densities 133 and 1247 kg/m^3, dt_fraction 1) diverged within 270 steps, also at
+// half the time step; it runs at 0.7 and at 0.5 of it and without the time extrapolation. The
+// static iteration alone is stable at the full step, so the coupling with the moving positions
+// takes the margin. The static answer is the same, reached in about twice the steps.
+constexpr double kMixedStepFactor = 0.5;
+
+// The d's of one voxel: local index k = 2 a + s, set where mu_pair[a][s] != 0.
+// hessian[k][l] = d^2 (W / V) / (dd_k dd_l) of this voxel's octants (linear volumetric stress,
+// its saturation only lowers it): mu[a][s'] takes d_(a,s) with pair (s' = s) or inner * pair
+// (s' != s), the half-link gamma[a][s] with (1 + inner) pair, or pair at a column's end.
+using LocalHessian = std::array<std::array<double, 6>, 6>;
+
+LocalHessian local_hessian(const PoissonParams& pp, int v) {
+    LocalHessian hess{};
+    double mu_coef[6][3][kSides] = {}, gamma_coef[6][3][kSides] = {};
+    for (int a = 0; a < 3; ++a)
+        for (int s = 0; s < kSides; ++s) {
+            const int k = 2 * a + s;
+            const double pair = pp.mu_pair[a][s][v];
+            if (pair == 0.0) continue;
+            const double inner = pp.mu_other[a][s][v] > 0.0f ? 1.0 : 0.0;
+            const bool end = pp.mu_far[a][s][v] < 0.0f;
+            mu_coef[k][a][s] = pair;
+            mu_coef[k][a][1 - s] = inner * pair;
+            gamma_coef[k][a][s] = end ? pair : (1.0 + inner) * pair;
+        }
+    const float* has[3][kSides] = {{pp.has_minus[0].data(), pp.has_plus[0].data()},
+                                   {pp.has_minus[1].data(), pp.has_plus[1].data()},
+                                   {pp.has_minus[2].data(), pp.has_plus[2].data()}};
+    for (int o = 0; o < 8; ++o) {
+        const int side[3] = {(o >> 2) & 1, (o >> 1) & 1, o & 1};
+        const double lambda8 = pp.octant_lambda8[o][v];
+        for (int k = 0; k < 6; ++k)
+            for (int l = 0; l < 6; ++l) {
+                double theta_k = 0.0, theta_l = 0.0, shear = 0.0;
+                for (int a = 0; a < 3; ++a) {
+                    const double h = has[a][side[a]][v];
+                    theta_k += h * mu_coef[k][a][side[a]];
+                    theta_l += h * mu_coef[l][a][side[a]];
+                    shear += h * gamma_coef[k][a][side[a]] * gamma_coef[l][a][side[a]];
+                }
+                // W / V = sum_o (G sum gamma^2 + lambda_o theta^2 / 2) / 8
+                hess[k][l] += 0.25 * pp.shear[v] * shear + lambda8 * theta_k * theta_l;
+            }
+    }
+    return hess;
+}
+
+}  // namespace
+
 void finish_poisson_params(Model::Data& d) {
     PoissonParams& pp = d.poisson;
+    if (pp.mixed) {
+        // Bodies with mixed links: the same row-sum Jacobi step from each end's local Hessian
+        // (off-diagonal terms: the other d's at either end).
+        std::vector<LocalHessian> hess(d.voxels);
+        for (int v : pp.pair_voxels)
+            hess[v] = local_hessian(pp, v);
+        for (int a = 0; a < 3; ++a)
+            for (int c = 0; c < d.voxels; ++c) {
+                if (pp.mu_pair[a][1][c] == 0.0f) continue;
+                const int b = d.plus[a][c];
+                const int kc = 2 * a + 1, kb = 2 * a;
+                double h = hess[c][kc][kc] + hess[b][kb][kb], off = 0.0;
+                for (int l = 0; l < 6; ++l) {
+                    if (l != kc) off += std::fabs(hess[c][kc][l]);
+                    if (l != kb) off += std::fabs(hess[b][kb][l]);
+                }
+                pp.pair_step[a][c] = static_cast<float>(kMixedStepFactor / (h + off));
+            }
+        return;
+    }
     // dW/(dd dd') / V between this link's d and the d of another isolated link at the same end
     // voxel u (side s of axis a): lambda_o / 8 over the two octants both half-links span.
     auto coupling = [&](int a, int u, int s) {
@@ -355,6 +456,11 @@ BHM_ENGINE_INLINE float half_link_exists(const Views& w, int a, int s, int v) {
 BHM_ENGINE_INLINE float at_column_end(const Views& w, int a, int s, int v) {
     return static_cast<float>(w.far[a][s][v] < 0.0f);
 }
+// 1 inside a column of a coupled voxel (its centre strain is the mean of both half-links):
+// exactly where the other half-link's weight is set.
+BHM_ENGINE_INLINE float inside_column(const Views& w, int a, int s, int v) {
+    return static_cast<float>(w.other[a][s][v] > 0.0f);
+}
 
 // The strains one voxel's octants see: mu (volumetric term) and gamma (deviatoric term) of each
 // axis and side, h = 1 where that half-link exists.
@@ -364,6 +470,9 @@ struct VoxelStrains {
 
 // below: per axis, the link slot whose + end is v (kNoLink reads the zero lead slot); far: per
 // axis and side, the strain of the partner's other link (only used where mu_far != 0).
+// kMixed: the body has links with a split d inside columns (PoissonParams::mixed); without, the
+// inner terms are zero and left out (a body of one material pays nothing for them).
+template <bool kMixed>
 BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&below)[3],
                                              const float (&far_strain)[3][kSides]) {
     VoxelStrains out;
@@ -371,16 +480,21 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
     for (int a = 0; a < 3; ++a) {
         const float e[kSides] = {w.strain[a][below[a]], w.strain[a][v]};
         const float dd[kSides] = {w.d[a][below[a]], w.d[a][v]};
+        const float pair[kSides] = {w.pair[a][0][v] * dd[0], w.pair[a][1][v] * dd[1]};
 #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             out.h[a][s] = half_link_exists(w, a, s, v);
             const float far = far_strain[a][s];
-            const float pair = w.pair[a][s][v] * dd[s];
-            out.mu[a][s] =
-                w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] + w.far[a][s][v] * far + pair;
+            // Inside a column the centre is the mean of both half-links, d's included (a mixed
+            // link's d enters mu with half its weight, its half-link with the full one).
+            const float inner = kMixed ? inside_column(w, a, s, v) : 0.0f;
+            out.mu[a][s] = w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] +
+                           w.far[a][s][v] * far + pair[s];
+            if constexpr (kMixed) out.mu[a][s] += inner * pair[1 - s];
             // The deviatoric term uses the half-link, except at a column's end, where it takes
             // the same estimate as the volumetric one (so a uniform strain stays exact there).
-            const float half = w.dev[a][s][v] * e[s] + pair;
+            const float half =
+                w.dev[a][s][v] * e[s] + (kMixed ? (1.0f + inner) * pair[s] : pair[s]);
             out.gamma[a][s] = half + at_column_end(w, a, s, v) * (out.mu[a][s] - half);
         }
     }
@@ -394,14 +508,15 @@ VoxelStrains voxel_strains(const Views& w, int v) {
     for (int a = 0; a < 3; ++a)
         for (int s = 0; s < kSides; ++s)
             far[a][s] = w.strain[a][w.far_slot[a][s][v]];
-    return voxel_strains(w, v, below, far);
+    return voxel_strains<true>(w, v, below, far);
 }
 
 // Per voxel: dW/d(strain) of each octant's terms, pulled back to its half-links, to the far links
 // of its end estimates and to the relaxations d (all per unit volume).
+template <bool kMixed>
 BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)[3],
                                        const float (&far_strain)[3][kSides]) {
-    const VoxelStrains k = voxel_strains(w, v, below, far_strain);
+    const VoxelStrains k = voxel_strains<kMixed>(w, v, below, far_strain);
     float P[3][kSides] = {};
 #pragma GCC unroll 8
     for (int sx = 0; sx < kSides; ++sx)
@@ -434,7 +549,15 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
             grad[s] = own * P[a][s] + w.other[a][1 - s][v] * P[a][1 - s] +
                       (dev + end * (own - dev)) * deviatoric;
             far[s] = w.far[a][s][v] * (P[a][s] + deviatoric);
-            dgrad[s] = w.pair[a][s][v] * (P[a][s] + deviatoric);
+            // d_s enters mu_s, mu of the other side inside a column (half weight each, both
+            // in pair) and the half-link (full weight: (1 + inner) pair).
+            if constexpr (kMixed) {
+                const float inner = inside_column(w, a, s, v);
+                dgrad[s] =
+                    w.pair[a][s][v] * (P[a][s] + inner * P[a][1 - s] + (1.0f + inner) * deviatoric);
+            } else {
+                dgrad[s] = w.pair[a][s][v] * (P[a][s] + deviatoric);
+            }
         }
         w.grad_neg[a][v] = grad[0];
         w.grad_pos[a][v] = grad[1];
@@ -450,7 +573,7 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
 // and v + 1); along y and z a uniform run reads them at a constant offset, a gathered one
 // through the tables, and the far links (nonzero only at column ends) from the far strains the
 // sparse copy filled (far_strain_copies).
-template <bool kGather>
+template <bool kGather, bool kMixed>
 BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
     const int below_y = run.below_y, below_z = run.below_z;
     const float* __restrict ex = w.strain[0];
@@ -461,7 +584,7 @@ BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
         const float far[3][kSides] = {{ex[v - 2], ex[v + 1]},
                                       {w.far_strain[1][0][v], w.far_strain[1][1][v]},
                                       {w.far_strain[2][0][v], w.far_strain[2][1][v]}};
-        voxel_gradients(w, v, below, far);
+        voxel_gradients<kMixed>(w, v, below, far);
     }
 }
 
@@ -528,9 +651,9 @@ BHM_ENGINE_KERNEL void poisson_pass(const Model::Data& d, const VoxelState& s,
     const Views w = views_of(d, p);
     for (const VoxelRun& run : d.voxel_runs)
         if (run.below_y == 0)
-            voxel_loop<true>(w, run);
+            d.poisson.mixed ? voxel_loop<true, true>(w, run) : voxel_loop<true, false>(w, run);
         else
-            voxel_loop<false>(w, run);
+            d.poisson.mixed ? voxel_loop<false, true>(w, run) : voxel_loop<false, false>(w, run);
     far_gradient_copies(d.poisson, p);
     if (d.poisson.pair_voxels.empty()) return;
     for (int a = 0; a < 3; ++a)

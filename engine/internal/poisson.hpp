@@ -22,6 +22,16 @@
 // by -nu eps and keeps E), the energy is positive for nu >= 0 (auxetic voxels keep half-link
 // strains), and at nu = 0 it is the links' own E e^2 / 2.
 //
+// A link between two materials (E or nu differ, both ends coupled) splits its strain between its
+// halves as h = w e -+ d: w the series weights (stress continuity along the link, 2 E_p / (E_v +
+// E_p), right for a bar in tension) and d the same kind of relaxed internal variable as an
+// isolated link's, so the split settles where the full normal stress of both halves, lateral
+// Poisson terms included, is continuous (the minimum of the octants' energy over d). The lateral
+// strains of bending, equal in both materials, are no longer forced into the softer half. The
+// reduced energy min_d W is never stiffer than W at d = 0, so the stable step and the damping cap
+// still hold; d enters a column's centre strain with the half-link's weight in the mean (1/2
+// inside a column, 3/2 in an end's extrapolation).
+//
 // At large strains (an active region held by a passive frame or the clamp, contracted to
 // 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link
 // past zero length; it saturates instead, lambda theta / sqrt(1 + (theta / theta_0)^2) with
@@ -48,7 +58,7 @@ double octant_volumetric_modulus(double youngs_modulus, double nu, int linked_ax
 //! Fills Model::Data::poisson (except the link slots' rest_scale) and returns, per axis and
 //! voxel, the mean over its octants of the link-axis modulus M_k / E (a link's own modulus).
 std::array<std::vector<double>, 3> build_poisson_params(Model::Data& model);
-//! After the links are built: the relaxation steps of the isolated links' d.
+//! After the links are built: the relaxation steps of the d of isolated and mixed links.
 void finish_poisson_params(Model::Data& model);
 
 //! Moduli of a voxel of Young's modulus E and Poisson's ratio nu with `linked_axes` (1..3) axes
@@ -68,7 +78,7 @@ void prepare_poisson_scratch(const Model::Data& model, PoissonScratch& scratch);
 
 //! From the current positions: every link's strain, chord and length, and the normal stresses
 //! (in `scratch` and `links`) from which the link pass forms the rest-length shifts; then relaxes
-//! the isolated links' d (the one state in `scratch`).
+//! the d of isolated and mixed links (the one state in `scratch`).
 void poisson_pass(const Model::Data& model, const VoxelState& voxels,
                   std::array<LinkScratch, 3>& links, PoissonScratch& scratch, float sin_t,
                   float cos_t);

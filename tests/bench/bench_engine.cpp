@@ -110,6 +110,17 @@ std::vector<Scene> scenes() {
     list.push_back({"bands_20x8x7",
                     block_fixed_at_x_min(20, 8, 7, [](int x) { return (x / 4) % 2 == 0 ? 2 : 1; }),
                     40000});
+    // Two stiffnesses (issue 24): the cantilever with layers z = 1 and 5 of a 10x stiffer
+    // passive material, every vertical link between them mixed.
+    BodySpec layered = cantilever;
+    Material stiff = passive_material();
+    stiff.youngs_modulus_pa *= 10.0;
+    layered.materials.push_back(stiff);
+    for (int z = 0; z < layered.nz; ++z)
+        for (int y = 0; y < layered.ny; ++y)
+            for (int x = 0; x < layered.nx; ++x)
+                if (z == 1 || z == 5) layered.material[layered.cell_index(x, y, z)] = 3;
+    list.push_back({"layered_20x8x7", layered, 40000});
     return list;
 }
 

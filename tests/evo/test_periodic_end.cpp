@@ -304,6 +304,8 @@ TEST_CASE("on corpus bodies an early end gives the full 11 s measures") {
             if (entry.at("name").get<std::string>() != name) continue;
             const Body body = apply_frame_and_overrides(on, parse_body(entry.at("body"), file));
             const FitnessReport e = evaluate_body(on, body);
+            MESSAGE(file << "/" << name
+                         << std::string(e.ended_early ? " ended early" : " ran the full length"));
             if (!e.ended_early) continue;  // the full length: nothing extrapolated
             const FitnessReport f = evaluate_body(off, body);
             CHECK(e.steps < f.steps);
@@ -317,5 +319,8 @@ TEST_CASE("on corpus bodies an early end gives the full 11 s measures") {
         }
     }
     MESSAGE(early << " of 4 bodies ended early; largest gate error " << worst);
-    CHECK(early >= 3);
+    // 3 of 4 until issue 24 gave the lattice's shear mode G instead of E / 2 (docs/physics.md):
+    // since, the champion and random-39 (the two nearest the gate, above) run the full length,
+    // which is the safe side; random-00 and random-09 still end early within the gate.
+    CHECK(early >= 2);
 }

@@ -1,0 +1,234 @@
+// Bodies of two materials against CalculiX (issue 24): stiffness contrasts of 10 and 100 at
+// nu 0, 0.35 and 0.49 on the layered cantilever (both orders of its layers), a bilayer of soft
+// active tissue on a stiff passive strip heated by 1 degC, a voxel checkerboard cantilever and a
+// stiff-core / soft-shell beam under their own weight. Each scene is meshed voxel for voxel in
+// CalculiX (C3D20R, the clamp at the held voxels' centre plane) and compared at the tip: the
+// mean vertical displacement of the last voxel layer's centres.
+// docs/physics.md ("Bodies of several materials") has the table these cases print.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <functional>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "calculix.hpp"
+#include "engine_test_bodies.hpp"
+
+using namespace bhm::engine;
+using namespace bhm::engine::test;
+
+namespace {
+
+constexpr double kL = 0.01;     // voxel size (m)
+constexpr double kStiff = 5e6;  // the stiffer material's E (Pa); the softer is kStiff / contrast
+constexpr double kCte = 0.01;   // active material, heated scenes (1 / degC)
+
+enum class Load { Gravity, Heat };
+
+// A clamped nx x ny x nz box whose voxel (x, y, z) is of material soft_or_stiff(x, y, z):
+// 0 = soft (E / contrast), 1 = stiff (E). In heated scenes the soft material is the active one.
+struct MixedScene {
+    const char* name;
+    int nx, ny, nz;
+    Load load;
+    std::function<int(int, int, int)> stiff;
+};
+
+std::vector<MixedScene> mixed_scenes() {
+    return {
+        {"layers-stiff-in-soft", 20, 8, 7, Load::Gravity,
+         [](int, int, int z) { return z == 1 || z == 5 ? 1 : 0; }},
+        {"layers-soft-in-stiff", 20, 8, 7, Load::Gravity,
+         [](int, int, int z) { return z == 1 || z == 5 ? 0 : 1; }},
+        {"bilayer-soft-active", 20, 2, 4, Load::Heat,
+         [](int, int, int z) { return z < 2 ? 0 : 1; }},
+        {"checkerboard", 12, 4, 4, Load::Gravity,
+         [](int x, int y, int z) { return (x + y + z) % 2; }},
+        {"core-shell", 20, 4, 4, Load::Gravity,
+         [](int, int y, int z) { return y >= 1 && y <= 2 && z >= 1 && z <= 2 ? 1 : 0; }},
+    };
+}
+
+bool skip_without_ccx() {
+    if (ccx::available()) return false;
+    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
+    WARN(false);
+    return true;
+}
+
+std::vector<ccx::Material> materials(const MixedScene& s, double contrast, double nu) {
+    const double cte = s.load == Load::Heat ? kCte : 0.0;
+    return {{kStiff / contrast, nu, 1000.0, cte}, {kStiff, nu, 1000.0, 0.0}};
+}
+
+// CalculiX: elements of L / 2 along x from the clamp (voxel 0's centre), one element per voxel
+// across; element ex lies in voxel (ex + 1) / 2.
+// `refine` elements per voxel edge (2 refine along x) check the mesh's convergence.
+double calculix_tip(const MixedScene& s, double contrast, double nu, int refine = 1) {
+    const double length = (s.nx - 0.5) * kL;
+    const int r = refine;
+    ccx::Mesh m{{length, s.ny * kL, s.nz * kL}, {r * (2 * s.nx - 1), r * s.ny, r * s.nz}};
+    std::ostringstream inp;
+    ccx::write_mesh(inp, m, materials(s, contrast, nu), [&](int ex, int ey, int ez) {
+        return s.stiff((ex / r + 1) / 2, ey / r, ez / r);
+    });
+    ccx::write_set(inp, "NSET", "CLAMP",
+                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
+    const double probe_x = (s.nx - 1) * kL;
+    const auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    inp << "*BOUNDARY\nCLAMP, 1, 3\n";
+    if (s.load == Load::Heat)
+        inp << "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n*STEP\n*STATIC\n"
+               "*TEMPERATURE\nNALL, 1.\n";
+    else
+        inp << "*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n";
+    inp << "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    return ccx::mean(ccx::solve(s.name, inp.str()), probe, 2);
+}
+
+// Runs a world to static equilibrium (1e-4 relative change of the tip over 0.05 s slices).
+double settle(World& w, int layer) {
+    double last = 0.0;
+    for (int slice = 1; slice <= 120; ++slice) {
+        REQUIRE(w.advance_to(0.05 * slice));
+        const double now = layer_displacement(w, layer, 2);
+        if (slice > 2 && std::fabs(now - last) <= 1e-4 * std::fabs(now)) return now;
+        last = now;
+    }
+    FAIL("did not reach static equilibrium");
+    return last;
+}
+
+BodySpec engine_body(const MixedScene& s, double contrast, double nu) {
+    const auto mats = materials(s, contrast, nu);
+    Material soft;
+    soft.youngs_modulus_pa = mats[0].e;
+    soft.poisson_ratio = nu;
+    soft.cte_per_c = mats[0].cte;
+    Material stiff = soft;
+    stiff.youngs_modulus_pa = mats[1].e;
+    stiff.cte_per_c = 0.0;
+    BodySpec b = solid_box(s.nx, s.ny, s.nz, soft);
+    b.materials.push_back(stiff);
+    for (int z = 0; z < s.nz; ++z)
+        for (int y = 0; y < s.ny; ++y)
+            for (int x = 0; x < s.nx; ++x)
+                b.material[b.cell_index(x, y, z)] = static_cast<std::uint8_t>(1 + s.stiff(x, y, z));
+    fix_x_min_layer(b);
+    b.damping.bond_ratio = 0.1;
+    b.damping.global_ratio = 0.05;
+    if (s.load == Load::Heat) {
+        // A constant +1 degC: frequency 0 and phase pi / 2 make dT = A sin(pi / 2) = A.
+        b.actuation.frequency_hz = 0.0;
+        b.actuation.temperature_amplitude_c = 1.0;
+        b.actuation.start_s = 0.0;
+        b.phase_rad.assign(b.material.size(), static_cast<float>(std::numbers::pi / 2));
+    } else {
+        b.environment.gravity_m_s2 = -9.81;
+    }
+    return b;
+}
+
+double engine_tip(const MixedScene& s, double contrast, double nu) {
+    World w(Model::build(engine_body(s, contrast, nu)));
+    return settle(w, s.nx - 1);
+}
+
+struct Result {
+    double ours = 0.0, fem = 0.0;
+    double error() const { return ours / fem - 1.0; }
+};
+
+Result compare(const MixedScene& s, double contrast, double nu) {
+    Result r{engine_tip(s, contrast, nu), calculix_tip(s, contrast, nu)};
+    MESSAGE(std::string(s.name) << ", contrast " << contrast << ", nu " << nu << ": tip " << r.ours
+                                << " m, CalculiX " << r.fem << " m, error " << 100.0 * r.error()
+                                << " %");
+    return r;
+}
+
+const MixedScene& scene(const char* name) {
+    static const std::vector<MixedScene> all = mixed_scenes();
+    for (const MixedScene& s : all)
+        if (std::string(s.name) == name) return s;
+    throw std::runtime_error(std::string("no scene ") + name);
+}
+
+}  // namespace
+
+static void check(const char* name, double contrast, double nu, double tolerance) {
+    const Result r = compare(scene(name), contrast, nu);
+    CHECK(std::fabs(r.error()) < tolerance);
+}
+
+// A few cells of the table below, seconds each (2-core machine, unloaded). Where the 100x
+// contrast is already off at nu = 0 (the lattice's own error there: -5.5 % soft layers, -3 % core)
+// the bound is 7 %; the heated bilayer at nu = 0.49 and the checkerboard are known limits
+// (docs/physics.md, "Bodies of several materials"), kept from growing.
+TEST_CASE("calculix: soft layers in a stiffer cantilever under gravity") {
+    if (skip_without_ccx()) return;
+    check("layers-soft-in-stiff", 10.0, 0.49, 0.05);
+    check("layers-soft-in-stiff", 100.0, 0.49, 0.07);
+}
+
+TEST_CASE("calculix: stiff layers in a 100x softer cantilever under gravity within 5%") {
+    if (skip_without_ccx()) return;
+    check("layers-stiff-in-soft", 100.0, 0.35, 0.05);
+}
+
+TEST_CASE("calculix: soft active tissue on a stiff passive strip heated 1 degC") {
+    if (skip_without_ccx()) return;
+    check("bilayer-soft-active", 10.0, 0.35, 0.05);
+    check("bilayer-soft-active", 100.0, 0.35, 0.05);
+    check("bilayer-soft-active", 100.0, 0.49, 0.14);  // known: -12.5 %, was -25.6 %
+}
+
+TEST_CASE("calculix: a stiff-core / soft-shell beam under gravity") {
+    if (skip_without_ccx()) return;
+    check("core-shell", 10.0, 0.49, 0.05);
+    check("core-shell", 100.0, 0.35, 0.07);
+}
+
+// Stiff voxels that touch only along edges: the lattice (face links only) sees a near-uniform
+// body of about twice the soft modulus. A documented limit (+66 % here), kept from growing.
+TEST_CASE("calculix: a 10x checkerboard cantilever (known: far too soft)") {
+    if (skip_without_ccx()) return;
+    check("checkerboard", 10.0, 0.35, 0.75);
+}
+
+// The whole table of docs/physics.md (every scene, contrast 10 and 100, nu 0, 0.35, 0.49):
+// minutes on the 2-core machine, so run on demand:
+//   build/bin/test_engine -tc="calculix table*" --no-skip -s
+TEST_CASE("calculix table: bodies of two materials, every scene" * doctest::skip()) {
+    if (skip_without_ccx()) return;
+    for (const MixedScene& s : mixed_scenes())
+        for (double contrast : {10.0, 100.0})
+            for (double nu : {0.0, 0.35, 0.49})
+                compare(s, contrast, nu);
+}
+
+// One scene on demand: BHM_SCENE=checkerboard BHM_CONTRAST=100 BHM_NU=0.49
+//   build/bin/test_engine -tc="calculix probe*" --no-skip -s
+TEST_CASE("calculix probe: one scene of two materials" * doctest::skip()) {
+    if (skip_without_ccx()) return;
+    const char* name = std::getenv("BHM_SCENE");
+    const char* contrast = std::getenv("BHM_CONTRAST");
+    const char* nu = std::getenv("BHM_NU");
+    REQUIRE(name);
+    const double k = contrast ? std::atof(contrast) : 10.0, n = nu ? std::atof(nu) : 0.35;
+    if (std::getenv("BHM_REFINE")) {  // CalculiX alone, meshes of 1, 2 and 3 elements per voxel
+        for (int r = 1; r <= 3; ++r)
+            MESSAGE(name << ", contrast " << k << ", nu " << n << ", " << r
+                         << " elements per voxel: CalculiX tip "
+                         << calculix_tip(scene(name), k, n, r));
+        return;
+    }
+    compare(scene(name), k, n);
+}
