@@ -52,15 +52,18 @@ double children_cpu_s() {
            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
+// The solver's first *ERROR line, else its last line: one line for the message.
 std::string first_error(const fs::path& log) {
     std::ifstream in(log);
-    std::string line;
-    while (std::getline(in, line))
-        if (line.find("*ERROR") != std::string::npos) {
-            while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-            return line.substr(line.find_first_not_of(' '));
-        }
-    return "no *ERROR line";
+    std::string line, last = "ccx printed nothing";
+    while (std::getline(in, line)) {
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        const auto start = line.find_first_not_of(' ');
+        if (start == std::string::npos) continue;
+        if (line.find("*ERROR") != std::string::npos) return line.substr(start);
+        last = line.substr(start);
+    }
+    return last;
 }
 
 std::string read_text(const fs::path& path) {
