@@ -24,8 +24,8 @@ namespace fs = std::filesystem;
 
 evo::VerifyOptions options_of(const ArgParser& parser) {
     evo::VerifyOptions o;
-    o.mesh.element = evo::parse_fem_element(parser.get("--element", "C3D20R"));
-    o.mesh.subdivision = static_cast<int>(parser.get_int("--subdivision", 1));
+    o.mesh.element = evo::parse_fem_element(parser.get("--element", "C3D8I"));
+    o.mesh.subdivision = static_cast<int>(parser.get_int("--subdivision", 2));
     if (o.mesh.subdivision < 1 || o.mesh.subdivision > 4)
         throw UsageError("--subdivision: " + std::to_string(o.mesh.subdivision) +
                          " is not in [1, 4]");
@@ -168,8 +168,8 @@ int cmd_verify(const Args& args) {
                   "folder for report.json and the VTK meshes (default BODY-verify, or "
                   "RUN_DIR/verify)",
                   PathRole::OutputDir);
-    parser.option("--element", "TYPE", "C3D20R (default) or C3D8I");
-    parser.option("--subdivision", "N", "elements per voxel edge, 1 to 4 (default 1)");
+    parser.option("--element", "TYPE", "C3D8I (default) or C3D20R");
+    parser.option("--subdivision", "N", "elements per voxel edge, 1 to 4 (default 2)");
     parser.flag("--nlgeom", "geometrically nonlinear steps (large rotations; much slower)");
     parser.option("--tolerance", "PERCENT", "largest difference that agrees (default 10)");
     parser.option("--max-voxels", "N", "refuse larger bodies (default 4000)");

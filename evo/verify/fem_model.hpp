@@ -16,8 +16,8 @@ namespace bhm::evo {
 enum class FemElement { C3D20R, C3D8I };
 
 struct FemMeshOptions {
-    FemElement element = FemElement::C3D20R;
-    int subdivision = 1;  //!< elements per voxel edge (an even count puts a node at each centre)
+    FemElement element = FemElement::C3D8I;
+    int subdivision = 2;  //!< elements per voxel edge (an even count puts a node at each centre)
 };
 
 struct FemModel {
