@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/run_directory.hpp"
+#include "evo/verify/ccx_run.hpp"
 #include "evo/verify/verify_body.hpp"
 #include "evo/verify/verify_report.hpp"
 
@@ -102,13 +104,30 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
     report["fitness_measure"] = evo::kFitnessNames[static_cast<std::size_t>(e.fitness.measure)];
     nlohmann::json bodies = nlohmann::json::array();
     std::vector<double> recorded, fem, ours;
-    int rank = 0;
+    int rank = 0, failed = 0;
+    if (!evo::ccx_available())
+        throw std::runtime_error("ccx (CalculiX) is not on the PATH; install the Debian package "
+                                 "calculix-ccx");
     for (const auto* c : picked) {
         ++rank;
         char folder[32];
         std::snprintf(folder, sizeof folder, "rank-%02d", rank);
         const auto spec = evo::make_body_spec(e, c->body);
-        const auto v = evo::verify_body(spec, e.fitness.measure, options);
+        evo::BodyVerification v;
+        try {
+            v = evo::verify_body(spec, e.fitness.measure, options);
+        } catch (const std::runtime_error& error) {
+            // One body's failed solve costs that body only: the others are still verified.
+            ++failed;
+            bodies.push_back({{"folder", folder},
+                              {"champion_id", c->id},
+                              {"generation_found", c->generation_found},
+                              {"recorded_fitness", c->fitness},
+                              {"error", error.what()}});
+            std::cout << "#" << rank << " (generation " << c->generation_found
+                      << "): error: " << error.what() << "\n";
+            continue;
+        }
         nlohmann::json j = write_body_outputs(v, options, out / folder);
         j["folder"] = folder;
         j["champion_id"] = c->id;
@@ -127,6 +146,7 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
     const double by_engine = evo::spearman(ours, fem);
     report["bodies"] = bodies;
     report["compared"] = fem.size();
+    report["failed"] = failed;
     report["spearman_recorded_fitness_vs_fem"] = correlation(by_fitness);
     report["spearman_engine_static_vs_fem"] = correlation(by_engine);
     fs::create_directories(out);
@@ -136,7 +156,7 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
                 fem.size(), std::isnan(by_fitness) ? "n/a" : std::to_string(by_fitness).c_str(),
                 std::isnan(by_engine) ? "n/a" : std::to_string(by_engine).c_str(),
                 (out / "report.json").string().c_str());
-    return 0;
+    return failed == 0 ? 0 : 1;
 }
 
 int verify_body(ArgParser& parser) {

@@ -129,6 +129,7 @@ TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank corr
     REQUIRE(j["bodies"].size() >= 1);
     CHECK(j["bodies"].size() <= 2);
     CHECK(j.contains("spearman_recorded_fitness_vs_fem"));
+    CHECK(j["failed"] == 0);
     // best recorded fitness first, and each body's deformed FEM mesh beside its report
     if (j["bodies"].size() == 2)
         CHECK(j["bodies"][0]["recorded_fitness"].get<double>() >=
