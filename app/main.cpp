@@ -26,6 +26,8 @@ constexpr Subcommand kSubcommands[] = {
     {"export", bhm::app::cmd_export,
      "export a body or a run's champion (VXA, body JSON, STL/OBJ mesh, VTK series)"},
     {"import", bhm::app::cmd_import, "read a VoxCAD/evosoro VXA file as experiment + body"},
+    {"verify", bhm::app::cmd_verify,
+     "check a body or a run's top designs in a continuum FEM (CalculiX)"},
 };
 
 void print_usage(std::ostream& out) {

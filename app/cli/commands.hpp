@@ -15,5 +15,6 @@ int cmd_evolve(const Args& args);
 int cmd_render(const Args& args);
 int cmd_export(const Args& args);
 int cmd_import(const Args& args);
+int cmd_verify(const Args& args);
 
 }  // namespace bhm::app

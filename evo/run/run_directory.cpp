@@ -1,5 +1,6 @@
 #include "evo/run/run_directory.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <sstream>
@@ -74,8 +75,10 @@ RunInfo read_run_info(const std::string& run_dir) {
     return info;
 }
 
-ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment) {
-    const std::string path = path_in(run_dir, kChampionFile);
+namespace {
+
+ChampionFile read_champion_at(const std::string& path, const std::string& run_dir,
+                              const Experiment& experiment) {
     const json c = read_json_object(path);
     if (!c.contains("phenotype")) throw std::runtime_error(path + ":phenotype: missing");
     ChampionFile out;
@@ -98,6 +101,30 @@ ChampionFile read_champion_file(const std::string& run_dir, const Experiment& ex
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": a field has the wrong type (" + e.what() + ")");
     }
+    return out;
+}
+
+}  // namespace
+
+ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment) {
+    return read_champion_at(path_in(run_dir, kChampionFile), run_dir, experiment);
+}
+
+std::vector<ChampionFile> read_champion_history(const std::string& run_dir,
+                                                const Experiment& experiment) {
+    const std::filesystem::path dir = std::filesystem::path(run_dir) / kChampionsDir;
+    std::vector<std::string> files;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("gen-", 0) == 0 && entry.path().extension() == ".json")
+            files.push_back(entry.path().string());
+    }
+    std::sort(files.begin(), files.end());  // gen-NNNNN: zero-padded, so oldest first
+    std::vector<ChampionFile> out;
+    for (const auto& file : files)
+        out.push_back(read_champion_at(file, run_dir, experiment));
+    if (out.empty()) out.push_back(read_champion_file(run_dir, experiment));
     return out;
 }
 

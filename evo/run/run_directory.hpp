@@ -42,6 +42,12 @@ struct ChampionFile {
 //! experiment would name materials it does not define). Throws std::runtime_error naming the file.
 ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment);
 
+inline constexpr const char* kChampionsDir = "champions";
+//! Every champion a run has had (champions/gen-NNNNN.json, oldest first), each read and checked
+//! as read_champion_file; champion.json alone where the folder is empty or missing.
+std::vector<ChampionFile> read_champion_history(const std::string& run_dir,
+                                                const Experiment& experiment);
+
 //! fitness.csv with its columns found by name (columns added later do not break a reader). A
 //! row that cannot be read (a partial last line after a crash, or one being appended) ends the
 //! table: the rows before it are kept and `problem` names it.

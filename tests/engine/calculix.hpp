@@ -1,7 +1,7 @@
 #pragma once
-// A tiny CalculiX (ccx) driver for the verification suite: a structured C3D20R brick mesh of a
-// box, written as a .inp, solved by `ccx` in a temporary directory, nodal displacements read
-// back from the .dat. CalculiX is an independent 3-D continuum FEM (Debian calculix-ccx).
+// The verification suite's CalculiX (ccx) decks: a structured C3D20R brick mesh of a box, written
+// as a .inp and solved by the project's one ccx driver (evo/verify/ccx_run.hpp, which bhm verify
+// uses too). CalculiX is an independent 3-D continuum FEM (Debian calculix-ccx).
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
+#include "evo/verify/ccx_run.hpp"
 
 namespace bhm::engine::test::ccx {
 
 inline bool available() {
-    return std::system("command -v ccx > /dev/null 2>&1") == 0;
+    return evo::ccx_available();
 }
 
 struct Material {
@@ -114,37 +114,10 @@ inline void write_mesh(std::ostream& out, const Mesh& m, const std::vector<Mater
     }
 }
 
-//! Runs ccx on `inp` (the whole input deck) in a fresh temporary directory and returns the
-//! displacements of the last *NODE PRINT block, by node id.
+//! Runs ccx on `inp` (the whole input deck) through the one CalculiX driver of the project
+//! (evo/verify/ccx_run.hpp) and returns the displacements of the last *NODE PRINT block.
 inline std::map<int, std::array<double, 3>> solve(const std::string& name, const std::string& inp) {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("bhm-ccx-" + name + "-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    {
-        std::ofstream f(dir / (name + ".inp"));
-        f << inp;
-        if (!f) throw std::runtime_error("cannot write " + (dir / (name + ".inp")).string());
-    }
-    const std::string cmd =
-        "cd '" + dir.string() + "' && OMP_NUM_THREADS=1 ccx -i " + name + " > ccx.log 2>&1";
-    if (std::system(cmd.c_str()) != 0)
-        throw std::runtime_error("ccx failed, see " + (dir / "ccx.log").string());
-    std::ifstream dat(dir / (name + ".dat"));
-    std::map<int, std::array<double, 3>> out;
-    std::string text;
-    while (std::getline(dat, text)) {
-        if (text.find("displacements") != std::string::npos) {
-            out.clear();  // keep the last block only
-            continue;
-        }
-        std::istringstream row(text);
-        int id = 0;
-        std::array<double, 3> u{};
-        if (row >> id >> u[0] >> u[1] >> u[2]) out[id] = u;
-    }
-    std::filesystem::remove_all(dir);
-    if (out.empty()) throw std::runtime_error("ccx wrote no displacements for " + name);
-    return out;
+    return evo::run_ccx(name, inp).blocks.back();
 }
 
 //! Mean of one displacement component over the given nodes.

@@ -1,0 +1,79 @@
+#include "evo/verify/ccx_deck.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+namespace bhm::evo {
+
+namespace {
+
+void write_ids(std::ostringstream& out, const std::vector<int>& ids) {
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        out << ids[i] << ((i % 10 == 9 || i + 1 == ids.size()) ? ",\n" : ", ");
+}
+
+}  // namespace
+
+std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
+                     const std::vector<FemLoad>& loads, bool nlgeom) {
+    std::ostringstream out;
+    char line[256];
+    out << "** bhm verify: " << model.elements.size() << " "
+        << fem_element_name(model.options.element) << " elements\n*NODE, NSET=NALL\n";
+    for (int id = 1; id <= model.node_count(); ++id) {
+        const auto p = model.node_position_m(id);
+        std::snprintf(line, sizeof line, "%d, %.10g, %.10g, %.10g\n", id, p[0], p[1], p[2]);
+        out << line;
+    }
+    const std::set<int> used(model.element_material.begin(), model.element_material.end());
+    for (int material : used) {
+        out << "*ELEMENT, TYPE=" << fem_element_name(model.options.element)
+            << ", ELSET=M" << material << "\n";
+        for (std::size_t e = 0; e < model.elements.size(); ++e) {
+            if (model.element_material[e] != material) continue;
+            out << e + 1;
+            const auto& nodes = model.elements[e];
+            for (std::size_t k = 0; k < nodes.size(); ++k)
+                out << (k == 15 ? ",\n" : ", ") << nodes[k];  // at most 16 entries per line
+            out << "\n";
+        }
+    }
+    out << "*ELSET, ELSET=EALL\n";
+    for (int material : used)
+        out << "M" << material << "\n";
+    for (int material : used) {
+        const engine::Material& m = spec.materials.at(static_cast<std::size_t>(material - 1));
+        std::snprintf(line, sizeof line,
+                      "*MATERIAL, NAME=MAT%d\n*ELASTIC\n%.10g, %.10g\n*DENSITY\n%.10g\n", material,
+                      m.youngs_modulus_pa, m.poisson_ratio, m.density_kg_m3);
+        out << line;
+        if (m.cte_per_c != 0.0) {
+            std::snprintf(line, sizeof line, "*EXPANSION, ZERO=0.\n%.10g\n", m.cte_per_c);
+            out << line;
+        }
+        out << "*SOLID SECTION, ELSET=M" << material << ", MATERIAL=MAT" << material << "\n";
+    }
+    if (!model.fixed_nodes.empty()) {
+        out << "*NSET, NSET=HELD\n";
+        write_ids(out, model.fixed_nodes);
+        out << "*BOUNDARY\nHELD, 1, 3\n";
+    }
+    out << "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n";
+    const double g = spec.environment.gravity_m_s2;
+    for (const FemLoad& load : loads) {
+        out << "** load " << load.name << "\n*STEP" << (nlgeom ? ", NLGEOM, INC=200" : "")
+            << "\n*STATIC\n" << (nlgeom ? "0.25, 1., 1e-5, 0.5\n" : "");
+        if (g != 0.0) {
+            std::snprintf(line, sizeof line, "*DLOAD\nEALL, GRAV, %.10g, 0., 0., %d.\n",
+                          std::fabs(g), g < 0.0 ? -1 : 1);
+            out << line;
+        }
+        std::snprintf(line, sizeof line, "*TEMPERATURE\nNALL, %.10g\n", load.temperature_c);
+        out << line << "*NODE PRINT, NSET=NALL, FREQUENCY=10000\nU\n*END STEP\n";
+    }
+    return out.str();
+}
+
+}  // namespace bhm::evo

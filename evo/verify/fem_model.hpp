@@ -1,0 +1,47 @@
+#pragma once
+// A body's continuum model for CalculiX: every voxel split into s x s x s hexahedra (C3D20R, the
+// 20-node quadratic brick with reduced integration, or C3D8I, the 8-node brick with incompatible
+// modes) on one structured grid, so neighbouring voxels share their nodes; each element carries
+// its voxel's material. Held voxels are clamped where the engine holds them, at their centre: a
+// node of a held voxel is fixed when it is at least half a voxel (L-infinity) from every free
+// voxel, which for a fixed face layer is the plane through the layer's centres (docs/verify.md).
+#include <array>
+#include <string>
+#include <vector>
+
+#include "engine/body_spec.hpp"
+
+namespace bhm::evo {
+
+enum class FemElement { C3D20R, C3D8I };
+
+struct FemMeshOptions {
+    FemElement element = FemElement::C3D8I;
+    int subdivision = 2;  //!< elements per voxel edge (an even count puts a node at each centre)
+};
+
+struct FemModel {
+    FemMeshOptions options;
+    double voxel_size_m = 0.01;
+    int points_per_voxel = 4;          //!< grid points per voxel edge (s, or 2 s for C3D20R)
+    std::array<int, 3> grid{};         //!< grid points per axis
+    std::vector<std::array<int, 3>> node_grid;  //!< node id - 1 -> grid point
+    std::vector<std::vector<int>> elements;     //!< node ids in Abaqus order (8 or 20)
+    std::vector<int> element_material;          //!< 1-based material index of each element
+    std::vector<int> fixed_nodes;               //!< node ids held in all three directions
+    std::vector<int> voxel_cells;               //!< the body's material cells, in lattice order
+    //! Per voxel: node ids and weights whose sum is the displacement of the voxel's centre.
+    std::vector<std::vector<std::pair<int, double>>> voxel_centre;
+
+    std::array<double, 3> node_position_m(int id) const;
+    int node_count() const { return static_cast<int>(node_grid.size()); }
+};
+
+//! Meshes the material cells of `spec`. Throws std::invalid_argument on a bad subdivision.
+FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& options);
+
+std::string fem_element_name(FemElement element);
+//! "C3D20R" or "C3D8I"; throws std::invalid_argument naming the accepted names.
+FemElement parse_fem_element(const std::string& name);
+
+}  // namespace bhm::evo

@@ -1,0 +1,35 @@
+#pragma once
+// Our engine's quasi-static answer at one load: the body with every active voxel held at a
+// constant temperature change (frequency 0, phase +-pi/2: dT = A sin(+-pi/2) = +-A from t = 0,
+// whatever the experiment's phases), gravity on, the floor off (the continuum model has no
+// contact), and more global damping than an evaluation so that it comes to rest sooner; run in
+// 0.05 s slices until the voxels move less than `tolerance` of their displacement over a slice.
+// Damping does not change where a body comes to rest, only how soon.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "engine/body_spec.hpp"
+
+namespace bhm::evo {
+
+struct QuasiStaticOptions {
+    double global_damping_ratio = 0.2;
+    double tolerance = 1e-4;
+    double max_time_s = 30.0;
+};
+
+struct QuasiStaticResult {
+    //! Per material cell in lattice order (as FemModel::voxel_cells): centre displacement (m).
+    std::vector<std::array<double, 3>> displacement_m;
+    bool settled = false;
+    std::string problem;  //!< "" or why there is no answer (diverged, did not settle)
+    double simulated_s = 0.0;
+    double cpu_s = 0.0;
+};
+
+//! `temperature_c` is the uniform temperature change of every voxel (0 at rest).
+QuasiStaticResult engine_quasi_static(const engine::BodySpec& spec, double temperature_c,
+                                      const QuasiStaticOptions& options = {});
+
+}  // namespace bhm::evo

@@ -1,0 +1,283 @@
+#include "evo/verify/verify_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <queue>
+#include <stdexcept>
+
+#include "evo/verify/ccx_deck.hpp"
+
+namespace bhm::evo {
+
+namespace {
+
+using Vec = std::array<double, 3>;
+
+double norm(const Vec& v) {
+    return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+bool held_cell(const engine::BodySpec& s, int cell) {
+    return !s.fixed.empty() && s.fixed[static_cast<std::size_t>(cell)] != 0;
+}
+
+std::array<int, 3> coords(const engine::BodySpec& s, int cell) {
+    return {cell % s.nx, (cell / s.nx) % s.ny, cell / (s.nx * s.ny)};
+}
+
+Vec centre_m(const engine::BodySpec& s, int cell) {
+    const auto c = coords(s, cell);
+    return {(c[0] + 0.5) * s.voxel_size_m, (c[1] + 0.5) * s.voxel_size_m,
+            (c[2] + 0.5) * s.voxel_size_m};
+}
+
+// The geometry every measure refers to: the held voxels' centroid (the root), the voxel farthest
+// from it (the tip) and each voxel's mass.
+struct Geometry {
+    std::vector<int> cells;
+    std::vector<double> mass;
+    Vec root{};
+    int tip = 0;  // index into cells
+};
+
+Geometry geometry_of(const engine::BodySpec& s, const std::vector<int>& cells) {
+    Geometry g;
+    g.cells = cells;
+    int held = 0;
+    for (int cell : cells) {
+        const auto& m = s.materials[static_cast<std::size_t>(
+            s.material[static_cast<std::size_t>(cell)] - 1)];
+        g.mass.push_back(m.density_kg_m3);
+        if (!held_cell(s, cell)) continue;
+        const Vec c = centre_m(s, cell);
+        for (int a = 0; a < 3; ++a)
+            g.root[a] += c[a];
+        ++held;
+    }
+    for (int a = 0; a < 3; ++a)
+        g.root[a] /= std::max(held, 1);
+    double farthest = -1.0;
+    for (std::size_t v = 0; v < cells.size(); ++v) {
+        const Vec c = centre_m(s, cells[v]);
+        const double d = norm({c[0] - g.root[0], c[1] - g.root[1], c[2] - g.root[2]});
+        if (d > farthest + 1e-12) {
+            farthest = d;
+            g.tip = static_cast<int>(v);
+        }
+    }
+    return g;
+}
+
+ResponseMeasures measure(const engine::BodySpec& s, const Geometry& g,
+                         const std::vector<Vec>& u) {
+    ResponseMeasures r;
+    const std::size_t tip = static_cast<std::size_t>(g.tip);
+    r.tip_m = u[tip];
+    const Vec c = centre_m(s, g.cells[tip]);
+    const Vec before{c[0] - g.root[0], c[1] - g.root[1], c[2] - g.root[2]};
+    const Vec after{before[0] + u[tip][0], before[1] + u[tip][1], before[2] + u[tip][2]};
+    const double cosine = (before[0] * after[0] + before[1] * after[1] + before[2] * after[2]) /
+                          std::max(norm(before) * norm(after), 1e-300);
+    r.bend_deg = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+    Vec com{};
+    double mass = 0.0;
+    for (std::size_t v = 0; v < u.size(); ++v) {
+        for (int a = 0; a < 3; ++a)
+            com[a] += g.mass[v] * u[v][a];
+        mass += g.mass[v];
+    }
+    for (int a = 0; a < 3; ++a)
+        com[a] /= mass;
+    r.com_yz_m = {com[1], com[2]};
+    r.com_m = com;
+    return r;
+}
+
+std::optional<double> relative(double difference, double truth, double smallest) {
+    if (std::fabs(truth) < smallest) return std::nullopt;
+    return std::fabs(difference) / std::fabs(truth);
+}
+
+std::vector<Vec> fem_voxel_displacements(const FemModel& m, const NodalDisplacements& nodes) {
+    std::vector<Vec> out;
+    for (const auto& centre : m.voxel_centre) {
+        Vec u{};
+        for (const auto& [id, w] : centre) {
+            const auto it = nodes.find(id);
+            if (it == nodes.end())
+                throw std::runtime_error("ccx printed no displacement for node " +
+                                         std::to_string(id));
+            for (int a = 0; a < 3; ++a)
+                u[a] += w * it->second[a];
+        }
+        out.push_back(u);
+    }
+    return out;
+}
+
+}  // namespace
+
+double Differences::worst() const {
+    double w = 0.0;
+    for (const auto& d : {tip, bend, com_yz, rms})
+        if (d) w = std::max(w, *d);
+    return w;
+}
+
+std::string BodyVerification::verdict() const {
+    if (status == VerifyStatus::OutOfReach) return "outside the continuum's reach: " + reason;
+    char line[128];
+    std::snprintf(line, sizeof line, agrees ? "agrees within %.1f %%" : "differs by %.1f %%",
+                  100.0 * worst);
+    return line;
+}
+
+std::string continuum_reach_problem(const engine::BodySpec& s) {
+    std::vector<int> seen(static_cast<std::size_t>(s.cell_count()), 0);
+    std::queue<int> todo;
+    int voxels = 0;
+    for (int c = 0; c < s.cell_count(); ++c) {
+        if (s.material[static_cast<std::size_t>(c)] == 0) continue;
+        ++voxels;
+        if (held_cell(s, c)) {
+            seen[static_cast<std::size_t>(c)] = 1;
+            todo.push(c);
+        }
+    }
+    if (voxels == 0) return "the body has no voxel";
+    if (todo.empty())
+        return "no voxel is held (a free body moves by its contact with the floor, which the "
+               "continuum model does not have)";
+    int reached = static_cast<int>(todo.size());
+    while (!todo.empty()) {
+        const auto c = coords(s, todo.front());
+        todo.pop();
+        const int steps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        for (const auto& d : steps) {
+            const int x = c[0] + d[0], y = c[1] + d[1], z = c[2] + d[2];
+            if (x < 0 || y < 0 || z < 0 || x >= s.nx || y >= s.ny || z >= s.nz) continue;
+            const int n = s.cell_index(x, y, z);
+            if (seen[static_cast<std::size_t>(n)] || s.material[static_cast<std::size_t>(n)] == 0)
+                continue;
+            seen[static_cast<std::size_t>(n)] = 1;
+            ++reached;
+            todo.push(n);
+        }
+    }
+    if (reached < voxels)
+        return std::to_string(voxels - reached) + " of " + std::to_string(voxels) +
+               " voxels are not attached to a held voxel (a detached or escaped part)";
+    return "";
+}
+
+BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitness,
+                             const VerifyOptions& options) {
+    BodyVerification out;
+    out.tolerance = options.tolerance;
+    double amplitude = spec.actuation.temperature_amplitude_c;
+    for (int c = 0; c < spec.cell_count(); ++c) {
+        const int m = spec.material[static_cast<std::size_t>(c)];
+        if (m == 0) continue;
+        ++out.voxels;
+        if (held_cell(spec, c)) ++out.held_voxels;
+        if (spec.materials[static_cast<std::size_t>(m - 1)].cte_per_c != 0.0) ++out.active_voxels;
+    }
+    if (out.voxels > options.max_voxels)
+        throw std::runtime_error("body too large to verify: " + std::to_string(out.voxels) +
+                                 " voxels, at most " + std::to_string(options.max_voxels) +
+                                 " (--max-voxels)");
+    out.reason = continuum_reach_problem(spec);
+    if (!out.reason.empty()) {
+        out.status = VerifyStatus::OutOfReach;
+        return out;
+    }
+
+    // The continuum.
+    out.fem_model = build_fem_model(spec, options.mesh);
+    out.fem_nodes = out.fem_model.node_count();
+    out.fem_elements = static_cast<int>(out.fem_model.elements.size());
+    std::vector<FemLoad> loads{{"rest", 0.0}};
+    if (out.active_voxels > 0 && amplitude != 0.0) {
+        loads.push_back({"+A", amplitude});
+        loads.push_back({"-A", -amplitude});
+    }
+    const CcxResult fem = run_ccx("body", ccx_deck(out.fem_model, spec, loads, options.nlgeom),
+                                  options.threads, options.keep_dir);
+    if (fem.blocks.size() != loads.size())
+        throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
+                                 " displacement blocks for " + std::to_string(loads.size()) +
+                                 " load steps");
+    out.fem_cpu_s = fem.cpu_s;
+    out.fem_wall_s = fem.wall_s;
+    out.fem_displacements = fem.blocks;
+
+    const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
+    out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
+    const double smallest_m = 1e-4 * spec.voxel_size_m;
+    for (std::size_t k = 0; k < loads.size(); ++k) {
+        const auto ours = engine_quasi_static(spec, loads[k].temperature_c, options.engine);
+        out.engine_cpu_s += ours.cpu_s;
+        if (!ours.problem.empty())
+            throw std::runtime_error("our engine has no static answer at " + loads[k].name + ": " +
+                                     ours.problem);
+        const auto theirs = fem_voxel_displacements(out.fem_model, fem.blocks[k]);
+        LoadComparison c;
+        c.load = loads[k].name;
+        c.temperature_c = loads[k].temperature_c;
+        c.fem = measure(spec, g, theirs);
+        c.engine = measure(spec, g, ours.displacement_m);
+        Vec tip_difference{};
+        for (int a = 0; a < 3; ++a)
+            tip_difference[a] = c.engine.tip_m[a] - c.fem.tip_m[a];
+        c.differences.tip = relative(norm(tip_difference), norm(c.fem.tip_m), smallest_m);
+        c.differences.bend = relative(c.engine.bend_deg - c.fem.bend_deg, c.fem.bend_deg, 0.05);
+        c.differences.com_yz = relative(
+            std::hypot(c.engine.com_yz_m[0] - c.fem.com_yz_m[0],
+                       c.engine.com_yz_m[1] - c.fem.com_yz_m[1]),
+            std::hypot(c.fem.com_yz_m[0], c.fem.com_yz_m[1]), smallest_m);
+        double d2 = 0.0, f2 = 0.0;
+        for (std::size_t v = 0; v < theirs.size(); ++v)
+            for (int a = 0; a < 3; ++a) {
+                const double d = ours.displacement_m[v][a] - theirs[v][a];
+                d2 += d * d;
+                f2 += theirs[v][a] * theirs[v][a];
+            }
+        const double n = static_cast<double>(theirs.size());
+        c.fem_rms_m = std::sqrt(f2 / n);
+        c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
+        out.worst = std::max(out.worst, c.differences.worst());
+        out.loads.push_back(c);
+    }
+    out.agrees = out.worst <= options.tolerance;
+
+    // The experiment's measure at the actuation's extremes, from the rest shape.
+    auto score = [&](auto pick) {
+        double best = 0.0;
+        for (std::size_t k = 1; k < out.loads.size(); ++k)
+            best = std::max(best, pick(out.loads[k], out.loads[0]));
+        return best;
+    };
+    auto pick_of = [&](bool from_fem) {
+        return [from_fem, fitness](const LoadComparison& at, const LoadComparison& rest) {
+            const ResponseMeasures& m = from_fem ? at.fem : at.engine;
+            const ResponseMeasures& r = from_fem ? rest.fem : rest.engine;
+            switch (fitness) {
+                case FitnessMeasure::BendAngleDeg:
+                    return m.bend_deg;
+                case FitnessMeasure::ComFinalYz:
+                case FitnessMeasure::ComMaxYz:
+                    return std::hypot(m.com_yz_m[0] - r.com_yz_m[0], m.com_yz_m[1] - r.com_yz_m[1]);
+                default:
+                    return norm({m.com_m[0] - r.com_m[0], m.com_m[1] - r.com_m[1],
+                                 m.com_m[2] - r.com_m[2]});
+            }
+        };
+    };
+    out.fem_score = score(pick_of(true));
+    out.engine_score = score(pick_of(false));
+    return out;
+}
+
+}  // namespace bhm::evo

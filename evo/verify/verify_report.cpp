@@ -1,0 +1,142 @@
+#include "evo/verify/verify_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+namespace bhm::evo {
+
+namespace {
+
+nlohmann::json optional_json(const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json measures_json(const ResponseMeasures& m) {
+    return {{"tip_displacement_m", m.tip_m},
+            {"bend_angle_deg", m.bend_deg},
+            {"com_yz_displacement_m", m.com_yz_m},
+            {"com_displacement_m", m.com_m}};
+}
+
+std::vector<double> ranks(const std::vector<double>& v) {
+    std::vector<std::size_t> order(v.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+    std::vector<double> r(v.size());
+    for (std::size_t i = 0; i < order.size();) {
+        std::size_t j = i;
+        while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+        for (std::size_t k = i; k <= j; ++k)
+            r[order[k]] = 0.5 * static_cast<double>(i + j) + 1.0;
+        i = j + 1;
+    }
+    return r;
+}
+
+}  // namespace
+
+double spearman(const std::vector<double>& a, const std::vector<double>& b) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (a.size() != b.size() || a.size() < 2) return nan;
+    const auto ra = ranks(a), rb = ranks(b);
+    const double n = static_cast<double>(a.size());
+    const double ma = std::accumulate(ra.begin(), ra.end(), 0.0) / n;
+    const double mb = std::accumulate(rb.begin(), rb.end(), 0.0) / n;
+    double sab = 0.0, saa = 0.0, sbb = 0.0;
+    for (std::size_t i = 0; i < ra.size(); ++i) {
+        sab += (ra[i] - ma) * (rb[i] - mb);
+        saa += (ra[i] - ma) * (ra[i] - ma);
+        sbb += (rb[i] - mb) * (rb[i] - mb);
+    }
+    if (saa == 0.0 || sbb == 0.0) return nan;
+    return sab / std::sqrt(saa * sbb);
+}
+
+nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptions& options) {
+    nlohmann::json j;
+    j["verdict"] = v.verdict();
+    j["status"] = v.status == VerifyStatus::Compared ? "compared" : "out_of_reach";
+    j["voxels"] = v.voxels;
+    j["held_voxels"] = v.held_voxels;
+    j["active_voxels"] = v.active_voxels;
+    if (v.status == VerifyStatus::OutOfReach) {
+        j["reason"] = v.reason;
+        return j;
+    }
+    j["agrees"] = v.agrees;
+    j["tolerance"] = v.tolerance;
+    j["worst_relative_difference"] = v.worst;
+    j["tip_cell"] = v.tip_cell;
+    j["fem"] = {{"solver", "CalculiX ccx"},
+                {"element", fem_element_name(options.mesh.element)},
+                {"elements_per_voxel_edge", options.mesh.subdivision},
+                {"nlgeom", options.nlgeom},
+                {"nodes", v.fem_nodes},
+                {"elements", v.fem_elements},
+                {"cpu_s", v.fem_cpu_s},
+                {"wall_s", v.fem_wall_s}};
+    j["engine"] = {{"method", "constant temperature change, floor off, damped until at rest"},
+                   {"global_damping_ratio", options.engine.global_damping_ratio},
+                   {"rest_tolerance", options.engine.tolerance},
+                   {"cpu_s", v.engine_cpu_s}};
+    j["score"] = {{"fem", v.fem_score}, {"engine", v.engine_score}};
+    nlohmann::json loads = nlohmann::json::array();
+    for (const auto& c : v.loads)
+        loads.push_back({{"load", c.load},
+                         {"temperature_c", c.temperature_c},
+                         {"fem", measures_json(c.fem)},
+                         {"engine", measures_json(c.engine)},
+                         {"fem_voxel_displacement_rms_m", c.fem_rms_m},
+                         {"relative_difference",
+                          {{"tip_displacement", optional_json(c.differences.tip)},
+                           {"bend_angle", optional_json(c.differences.bend)},
+                           {"com_yz_displacement", optional_json(c.differences.com_yz)},
+                           {"voxel_displacement_rms", optional_json(c.differences.rms)}}}});
+    j["loads"] = loads;
+    return j;
+}
+
+std::string fem_mesh_vtk(const FemModel& model, const NodalDisplacements& u,
+                         const std::string& title) {
+    std::ostringstream out;
+    char line[160];
+    out << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS "
+        << model.node_count() << " double\n";
+    auto displacement = [&](int id) {
+        const auto it = u.find(id);
+        return it == u.end() ? std::array<double, 3>{} : it->second;
+    };
+    for (int id = 1; id <= model.node_count(); ++id) {
+        const auto p = model.node_position_m(id);
+        const auto d = displacement(id);
+        std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", p[0] + d[0], p[1] + d[1], p[2] + d[2]);
+        out << line;
+    }
+    const std::size_t per = model.elements.empty() ? 0 : model.elements.front().size();
+    out << "CELLS " << model.elements.size() << " " << model.elements.size() * (per + 1) << "\n";
+    for (const auto& e : model.elements) {
+        out << per;
+        for (int id : e)
+            out << " " << id - 1;  // VTK's 20-node hexahedron has Abaqus's node order
+        out << "\n";
+    }
+    out << "CELL_TYPES " << model.elements.size() << "\n";
+    for (std::size_t i = 0; i < model.elements.size(); ++i)
+        out << (per == 20 ? 25 : 12) << "\n";
+    out << "CELL_DATA " << model.elements.size() << "\nSCALARS material int 1\nLOOKUP_TABLE default\n";
+    for (int m : model.element_material)
+        out << m << "\n";
+    out << "POINT_DATA " << model.node_count() << "\nVECTORS displacement double\n";
+    for (int id = 1; id <= model.node_count(); ++id) {
+        const auto d = displacement(id);
+        std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", d[0], d[1], d[2]);
+        out << line;
+    }
+    return out.str();
+}
+
+}  // namespace bhm::evo

@@ -1,0 +1,139 @@
+// bhm verify on the command line: its one-line errors (usage, bad input, body too large, ccx
+// missing), a free body reported as outside the continuum's reach, and the top-K report of a tiny
+// run directory made by bhm evolve.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/verify/ccx_run.hpp"
+#include "shell_run.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace bhm;
+
+const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
+
+struct Fixture {
+    fs::path dir = fs::temp_directory_path() / ("bhm-verify-cli-" + std::to_string(::getpid()));
+    std::string experiment, free_experiment, body;
+
+    Fixture() {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        // paper-exp1-attached (x- held) on a 5x3x3 workspace, 4 individuals, short evaluations.
+        evo::Experiment e = evo::load_experiment(std::string(BHM_SOURCE_DIR) +
+                                                 "/assets/experiments/paper-exp1-attached.json");
+        e.workspace_size = {5, 3, 3};
+        e.evolution.population = 4;
+        e.simulation.settle_s = 0.2;
+        e.simulation.evaluate_s = 0.5;
+        experiment = (dir / "experiment.json").string();
+        evo::save_experiment(experiment, e);
+        e.boundary.faces[static_cast<int>(evo::Face::XMin)] = evo::BoundaryKind::Free;
+        e.fitness.constraints.attached_to_fixed_face = false;
+        free_experiment = (dir / "free.json").string();
+        evo::save_experiment(free_experiment, e);
+        evo::Body b;
+        b.size = {5, 3, 3};
+        b.cells.assign(static_cast<std::size_t>(b.cell_count()), 1);
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 5; ++x)
+                b.cells[static_cast<std::size_t>(b.index(x, y, 0))] = 2;
+        body = (dir / "body.json").string();
+        evo::save_body(body, b);
+    }
+    ~Fixture() { fs::remove_all(dir); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+};
+
+test::ShellResult bhm_run(const std::string& args) {
+    return test::run_shell(kBhm + " " + args);
+}
+
+int lines(const std::string& s) {
+    int n = 0;
+    for (char c : s)
+        n += c == '\n';
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("bhm verify: usage and input errors are one line and a non-zero exit") {
+    Fixture f;
+    const auto help = bhm_run("verify --help");
+    CHECK(help.status == 0);
+    CHECK(help.output.find("RUN_DIR [--top K]") != std::string::npos);
+
+    const auto no_body = bhm_run("verify " + f.experiment);
+    CHECK(no_body.status == 2);
+    CHECK(no_body.output.find("needs --body BODY") != std::string::npos);
+
+    const auto missing = bhm_run("verify " + f.path("nope.json") + " --body " + f.body);
+    CHECK(missing.status == 1);
+    CHECK(missing.output.find("nope.json") != std::string::npos);
+
+    const auto large = bhm_run("verify " + f.experiment + " --body " + f.body +
+                               " --max-voxels 10 --out " + f.path("large"));
+    CHECK(large.status == 1);
+    CHECK(large.output.find("body too large to verify: 45 voxels, at most 10") != std::string::npos);
+    CHECK(lines(large.output) == 1);
+
+    const auto no_ccx = test::run_shell("env PATH=/nonexistent " + kBhm + " verify " +
+                                        f.experiment + " --body " + f.body + " --out " +
+                                        f.path("no-ccx"));
+    CHECK(no_ccx.status == 1);
+    CHECK(no_ccx.output.find("ccx (CalculiX) is not on the PATH") != std::string::npos);
+    CHECK(lines(no_ccx.output) == 1);
+}
+
+TEST_CASE("bhm verify: a free body is outside the continuum's reach, reported and not solved") {
+    Fixture f;
+    const auto r = bhm_run("verify " + f.free_experiment + " --body " + f.body + " --out " +
+                           f.path("free"));
+    CHECK(r.status == 0);
+    CHECK(r.output.find("outside the continuum's reach: no voxel is held") != std::string::npos);
+    std::ifstream in(f.path("free/report.json"));
+    const auto j = nlohmann::json::parse(in);
+    CHECK(j["status"] == "out_of_reach");
+}
+
+TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank correlation") {
+    if (!evo::ccx_available()) {
+        MESSAGE("SKIPPED: CalculiX (ccx) is not installed");
+        WARN(false);
+        return;
+    }
+    Fixture f;
+    const std::string run = f.path("run");
+    const auto evolve = bhm_run("evolve " + f.experiment + " --out " + run +
+                                " --generations 4 --threads 1");
+    REQUIRE(evolve.status == 0);
+    const auto r = bhm_run("verify " + run + " --top 2");
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("#1 (generation ") != std::string::npos);
+    CHECK(r.output.find("Spearman rank correlation over ") != std::string::npos);
+    std::ifstream in(run + "/verify/report.json");
+    REQUIRE(in.good());
+    const auto j = nlohmann::json::parse(in);
+    REQUIRE(j["bodies"].size() >= 1);
+    CHECK(j["bodies"].size() <= 2);
+    CHECK(j.contains("spearman_recorded_fitness_vs_fem"));
+    CHECK(j["failed"] == 0);
+    // best recorded fitness first, and each body's deformed FEM mesh beside its report
+    if (j["bodies"].size() == 2)
+        CHECK(j["bodies"][0]["recorded_fitness"].get<double>() >=
+              j["bodies"][1]["recorded_fitness"].get<double>());
+    CHECK(fs::exists(run + "/verify/rank-01/report.json"));
+    CHECK(fs::exists(run + "/verify/rank-01/fem-rest.vtk"));
+}
