@@ -108,27 +108,89 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     }
     opt.set_lower_bounds(lower);
     opt.set_upper_bounds(upper);
-    opt.set_initial_step(step);
     opt.set_xtol_abs(o.x_tolerance);
-    opt.set_maxeval(std::max(o.max_simulations, static_cast<int>(2 * p + 2)));
-    using Fn = decltype(objective);
-    opt.set_min_objective(
-        [](const std::vector<double>& trial, std::vector<double>&, void* data) {
-            return (*static_cast<Fn*>(data))(trial);
-        },
-        &objective);
-    double final_value = 0.0;
-    try {
-        const nlopt::result r = opt.optimize(x, final_value);
-        out.stop_reason = r == nlopt::MAXEVAL_REACHED ? "simulation budget reached"
-                          : r == nlopt::XTOL_REACHED  ? "parameters converged"
-                          : r == nlopt::FTOL_REACHED  ? "misfit converged"
-                                                      : "optimiser stopped (" +
-                                                          std::to_string(static_cast<int>(r)) + ")";
-    } catch (const EvaluationCancelled&) {
-        throw;
-    } catch (const nlopt::roundoff_limited&) {
-        out.stop_reason = "optimiser limited by round-off";
+    // The misfit of a mostly quasi-static track is bumpy in the weakly seen parameters (E at a
+    // slow drive), so a local search from the experiment's values alone can stop in a side valley.
+    // First a scan of the box (a Halton sequence, all at once on the worker pool), then BOBYQA
+    // from the experiment's values and from the best scan points.
+    const int budget = std::max(o.max_simulations, static_cast<int>(2 * p + 2));
+    const int scan = std::min(budget / 3, std::max(8, 8 * static_cast<int>(p)));
+    std::vector<std::vector<double>> scan_x(static_cast<std::size_t>(scan), std::vector<double>(p));
+    constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47};
+    for (int j = 0; j < scan; ++j)
+        for (std::size_t i = 0; i < p; ++i) {
+            const int base = kPrimes[i % std::size(kPrimes)];
+            double f = 1.0, u = 0.0;
+            for (int k = j + 1; k > 0; k /= base) f /= base, u += f * (k % base);
+            scan_x[static_cast<std::size_t>(j)][i] = lower[i] + u * (upper[i] - lower[i]);
+        }
+    std::vector<double> scan_misfit(static_cast<std::size_t>(scan));
+    parallel_for(scan, resolve_thread_count(o.threads), [&](int j) {
+        const auto sim = simulate_track(apply_fit(e, ps, scan_x[static_cast<std::size_t>(j)]), body,
+                                        track, o.cancel);
+        scan_misfit[static_cast<std::size_t>(j)] =
+            sim.diverged ? diverged_misfit : track_misfit(track, sim);
+    });
+    sims += scan;
+    out.scan_simulations = scan;
+    std::vector<int> order(static_cast<std::size_t>(scan));
+    for (int j = 0; j < scan; ++j) order[static_cast<std::size_t>(j)] = j;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return scan_misfit[static_cast<std::size_t>(a)] < scan_misfit[static_cast<std::size_t>(b)];
+    });
+    for (int j : order)
+        if (scan_misfit[static_cast<std::size_t>(j)] < best) {
+            best = scan_misfit[static_cast<std::size_t>(j)];
+            best_x = scan_x[static_cast<std::size_t>(j)];
+        }
+    if (o.progress) o.progress(sims, best);
+    std::vector<std::vector<double>> starts = {x};
+    for (std::size_t k = 0; k < std::min<std::size_t>(2, order.size()); ++k)
+        starts.push_back(scan_x[static_cast<std::size_t>(order[k])]);
+
+    // BOBYQA's trust region can shrink onto a shallow valley before reaching its floor; restarting
+    // from the best point of the search with a fresh, smaller region finds the rest; passes stop
+    // once one no longer improves that search's misfit by 1 %.
+    for (const auto& start : starts) {
+        std::vector<double> here = start;
+        double here_best = std::numeric_limits<double>::infinity();
+        auto tracked = [&](const std::vector<double>& trial) {
+            const double m = objective(trial);
+            if (m < here_best) here_best = m, here = trial;
+            return m;
+        };
+        using Tracked = decltype(tracked);
+        opt.set_min_objective(
+            [](const std::vector<double>& trial, std::vector<double>&, void* data) {
+                return (*static_cast<Tracked*>(data))(trial);
+            },
+            &tracked);
+        for (int pass = 0; pass < 4 && sims + static_cast<int>(2 * p + 2) <= budget; ++pass) {
+            const double before_pass = here_best;
+            std::vector<double> pass_step(p);
+            for (std::size_t i = 0; i < p; ++i)
+                pass_step[i] = std::min(step[i] / static_cast<double>(1 << pass),
+                                        0.5 * std::max(upper[i] - here[i], here[i] - lower[i]));
+            opt.set_initial_step(pass_step);
+            opt.set_maxeval(budget - sims);
+            x = here;
+            double final_value = 0.0;
+            try {
+                const nlopt::result r = opt.optimize(x, final_value);
+                out.stop_reason = r == nlopt::MAXEVAL_REACHED ? "simulation budget reached"
+                                  : r == nlopt::XTOL_REACHED  ? "parameters converged"
+                                  : r == nlopt::FTOL_REACHED  ? "misfit converged"
+                                  : r == nlopt::SUCCESS       ? "converged"
+                                                              : "optimiser stopped (" +
+                                                                  std::to_string(static_cast<int>(r)) + ")";
+            } catch (const EvaluationCancelled&) {
+                throw;
+            } catch (const nlopt::roundoff_limited&) {
+                out.stop_reason = "optimiser limited by round-off";
+            }
+            ++out.optimiser_passes;
+            if (pass > 0 && here_best > 0.99 * before_pass) break;
+        }
     }
     out.x = best_x;
     out.optimiser_simulations = sims;

@@ -2,7 +2,7 @@
 // bhm calibrate's fit: the parameters (evo/calibrate/fit_parameters.hpp) that minimise the misfit
 // between a measured track and the simulated one (evo/calibrate/track_simulation.hpp), found by
 // NLopt's BOBYQA (Powell 2009: bounded, derivative-free, a quadratic model of the misfit) in log
-// space; then the uncertainty and identifiability from the Jacobian of the residuals at the
+// space, after a parallel scan of the box on the worker pool; then the uncertainty and identifiability from the Jacobian of the residuals at the
 // optimum (evo/calibrate/identifiability.hpp), its 2p simulations run at once on the worker pool.
 #include <atomic>
 #include <functional>
@@ -44,6 +44,8 @@ struct CalibrationResult {
     double misfit_before_m = 0.0, misfit_after_m = 0.0, motion_rms_m = 0.0;
     bool good_fit = false;
     int optimiser_simulations = 0, jacobian_simulations = 0;
+    int optimiser_passes = 0;  //!< BOBYQA runs (restarts included)
+    int scan_simulations = 0;  //!< of optimiser_simulations, the parallel scan of the box
     std::string stop_reason;
     Identifiability identifiability;
     SimulatedTrack before, after;
