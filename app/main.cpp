@@ -24,6 +24,7 @@ constexpr Subcommand kSubcommands[] = {
     {"export", bhm::app::cmd_export,
      "export a body or a run's champion (VXA, body JSON, STL/OBJ mesh, VTK series)"},
     {"import", bhm::app::cmd_import, "read a VoxCAD/evosoro VXA file as experiment + body"},
+    {"calibrate", bhm::app::cmd_calibrate, "fit simulation parameters to a measured track"},
 };
 
 void print_usage(std::ostream& out) {

@@ -14,5 +14,6 @@ int cmd_evolve(const Args& args);
 int cmd_render(const Args& args);
 int cmd_export(const Args& args);
 int cmd_import(const Args& args);
+int cmd_calibrate(const Args& args);
 
 }  // namespace bhm::app
