@@ -97,7 +97,9 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
             best_x = trial;
         }
         if (o.progress) o.progress(sims, best);
-        return m;
+        // BOBYQA models its objective as a quadratic: the mean square is one near the optimum,
+        // the RMS has a cusp there.
+        return m * m;
     };
     nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(p));
     std::vector<double> lower(p), upper(p), step(p);

@@ -1,8 +1,10 @@
 #include "evo/calibrate/track_simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "engine/model.hpp"
@@ -49,22 +51,49 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
                               const MeasuredTrack& track, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const Experiment& e = point.experiment;
-    auto spec = make_body_spec(e, framed_body, e.evolution.seed);
-    if (point.phase_lag_rad != 0.0) {
-        spec.phase_rad.resize(static_cast<std::size_t>(spec.cell_count()), 0.0f);
-        for (auto& phase : spec.phase_rad)
-            phase = static_cast<float>(phase + point.phase_lag_rad);
-    }
-    engine::World world(engine::Model::build(spec));
-    const auto voxels = point_voxels(e, world, track);
     SimulatedTrack sim;
+    std::shared_ptr<const engine::Model> model;
+    try {
+        auto spec = make_body_spec(e, framed_body, e.evolution.seed);
+        if (point.phase_lag_rad != 0.0) {
+            spec.phase_rad.resize(static_cast<std::size_t>(spec.cell_count()), 0.0f);
+            for (auto& phase : spec.phase_rad)
+                phase = static_cast<float>(phase + point.phase_lag_rad);
+        }
+        model = engine::Model::build(spec);
+    } catch (const std::invalid_argument& error) {
+        // Parameters outside the engine's envelope (a trial of the fit): as good as diverged.
+        sim.diverged = true;
+        sim.divergence_reason = error.what();
+        sim.position_m.assign(track.points.size(), {});
+        return sim;
+    }
+    engine::World world(model);
+    const auto voxels = point_voxels(e, world, track);
     sim.position_m.assign(track.points.size(), {});
+    auto positions = [&] {
+        std::vector<std::array<double, 3>> p(voxels.size());
+        for (std::size_t i = 0; i < voxels.size(); ++i)
+            p[i] = voxels[i].empty() ? world.centre_of_mass_m() : centroid_of(world, voxels[i]);
+        return p;
+    };
+    // Each sample is interpolated between the steps on either side of its time: the step's
+    // length changes with E and density, and taking the first step past the time would add a
+    // jitter of up to one step's motion to the misfit, enough to stall the optimiser.
+    const double dt = world.model().dt_s();
     for (double t : track.t_s) {
         if (cancel && cancel->load()) throw EvaluationCancelled();
+        if (!world.advance_to(t - dt)) break;
+        const double t0 = world.time_s();
+        const auto p0 = positions();
         if (!world.advance_to(t)) break;
-        for (std::size_t i = 0; i < voxels.size(); ++i)
-            sim.position_m[i].push_back(voxels[i].empty() ? world.centre_of_mass_m()
-                                                          : centroid_of(world, voxels[i]));
+        const double t1 = world.time_s();
+        auto p1 = positions();
+        const double w = t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+        for (std::size_t i = 0; i < voxels.size(); ++i) {
+            for (std::size_t a = 0; a < 3; ++a) p1[i][a] = p0[i][a] + w * (p1[i][a] - p0[i][a]);
+            sim.position_m[i].push_back(p1[i]);
+        }
     }
     sim.diverged = world.diverged();
     sim.divergence_reason = world.divergence_reason();

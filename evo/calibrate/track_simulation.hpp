@@ -22,9 +22,10 @@ struct SimulatedTrack {
 };
 
 //! Simulates the framed body (apply_frame_and_overrides) under point.experiment, sampling the
-//! track's points at its times (the engine's first step at or past each). Throws
+//! track's points at its times (interpolated between the steps either side of each). Throws
 //! std::runtime_error for a point the body does not have (a voxel:N cell that is empty, a tip of
-//! a single-layer body) and EvaluationCancelled when cancel is raised.
+//! a single-layer body) and EvaluationCancelled when cancel is raised. Parameters outside the
+//! engine's envelope (engine/limits.hpp) give a diverged track with the engine's reason.
 SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
                               const MeasuredTrack& track,
                               const std::atomic<bool>* cancel = nullptr);

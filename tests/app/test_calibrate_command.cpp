@@ -100,17 +100,17 @@ TEST_CASE("bhm calibrate fits back the amplitude of a track simulated with a kno
     std::ifstream in(dir / "out" / "report.json");
     const auto report = nlohmann::json::parse(in);
     CHECK(report["fit"][0]["name"] == "amplitude");
-    CHECK(report["fit"][0]["initial"].get<double>() == doctest::Approx(14.47));
+    CHECK(std::abs(report["fit"][0]["initial"].get<double>() - 14.47) < 1e-9);
     // The CSV keeps 9 significant digits, so the fit is close to exact.
-    CHECK(report["fit"][0]["fitted"].get<double>() == doctest::Approx(10.0).epsilon(0.01));
+    CHECK(std::abs(report["fit"][0]["fitted"].get<double>() / 10.0 - 1.0) < 0.01);
     CHECK(report["good_fit"] == true);
     CHECK(report["misfit_after_m"].get<double>() < 0.05 * report["misfit_before_m"].get<double>());
     CHECK(report["simulations"]["total"].get<int>() ==
           report["simulations"]["optimiser"].get<int>() + 2 + 2);
     const auto calibrated =
         bhm::evo::load_experiment((dir / "out" / "calibrated-experiment.json").string());
-    CHECK(calibrated.actuation.temperature_amplitude_c ==
-          doctest::Approx(report["fit"][0]["fitted"].get<double>()));
+    CHECK(std::abs(calibrated.actuation.temperature_amplitude_c -
+                   report["fit"][0]["fitted"].get<double>()) < 1e-6);
     CHECK(fs::exists(dir / "out" / "simulated-before.csv"));
     CHECK(fs::exists(dir / "out" / "simulated-after.csv"));
     if (report["plot"].is_string()) {

@@ -11,11 +11,13 @@
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/test_support_calibrate.hpp"
+#include "support/relative_approx.hpp"
 
 using namespace bhm::evo;
 using bhm::evo::test::bilayer;
 using bhm::evo::test::calibration_experiment;
 using bhm::evo::test::synthetic_track;
+using bhm::test::relative;
 
 namespace {
 
@@ -27,22 +29,25 @@ bool trades_off(const CalibrationResult& r, int a, int b) {
 
 }  // namespace
 
-TEST_CASE("a synthetic track with noise gives back E, amplitude and bond damping") {
+TEST_CASE("a synthetic track with noise gives back E, amplitude and global damping") {
     if (!calibration_available()) return;
     const Experiment e = calibration_experiment();
     const Body body = apply_frame_and_overrides(e, bilayer(false));
-    const auto ps = parse_fit_list("E,amplitude,bond_damping", e);
-    // The truth: E x 1.25, amplitude x 0.85, bond damping x 1.4, then 1 % noise.
+    const auto ps = parse_fit_list("E,amplitude,global_damping", e);
+    // The truth: E x 1.25, amplitude x 0.85, global damping x 1.4, then noise of +-0.5 % of the
+    // motion. (Bond damping at 0.1 of critical barely moves this tip: 65 % more of it changes
+    // the track by a tenth of this noise, so it is not what this case fits.)
     const std::vector<double> truth = {std::log(1.25), std::log(0.85), std::log(1.4)};
-    const MeasuredTrack track = synthetic_track(apply_fit(e, ps, truth), body, 0.01);
+    const MeasuredTrack track = synthetic_track(apply_fit(e, ps, truth), body, 0.005);
     CalibrationOptions o;
     o.threads = 2;
     const CalibrationResult r = calibrate(e, body, track, ps, o);
     MESSAGE("simulations ", r.optimiser_simulations, " + ", r.jacobian_simulations, ", misfit ",
-            r.misfit_before_m, " -> ", r.misfit_after_m, " m, motion ", r.motion_rms_m, " m");
-    CHECK(r.fitted[0].value == doctest::Approx(5e6 * 1.25).epsilon(0.02));
-    CHECK(r.fitted[1].value == doctest::Approx(14.47 * 0.85).epsilon(0.02));
-    CHECK(r.fitted[2].value == doctest::Approx(0.1 * 1.4).epsilon(0.10));
+            r.misfit_before_m, " -> ", r.misfit_after_m, " m, motion ", r.motion_rms_m, " m; E ",
+            r.fitted[0].value, " amplitude ", r.fitted[1].value, " global damping ", r.fitted[2].value);
+    CHECK(r.fitted[0].value == relative(5e6 * 1.25, 0.02));
+    CHECK(r.fitted[1].value == relative(14.47 * 0.85, 0.02));
+    CHECK(r.fitted[2].value == relative(0.01 * 1.4, 0.10));
     CHECK(r.good_fit);
     CHECK(r.misfit_after_m < 0.1 * r.misfit_before_m);
     CHECK(r.identifiability.trade_offs.empty());
@@ -52,9 +57,9 @@ TEST_CASE("a synthetic track with noise gives back E, amplitude and bond damping
     }
     // The calibrated experiment holds the fitted values.
     CHECK(r.calibrated.experiment.materials[1].physics.youngs_modulus_pa ==
-          doctest::Approx(r.fitted[0].value));
+          relative(r.fitted[0].value, 1e-12));
     CHECK(r.calibrated.experiment.actuation.temperature_amplitude_c ==
-          doctest::Approx(r.fitted[1].value));
+          relative(r.fitted[1].value, 1e-12));
 }
 
 TEST_CASE("a track of a different body is reported as a poor fit") {
@@ -89,7 +94,7 @@ TEST_CASE("expansion coefficient and amplitude, which only act as a product, are
     CHECK(trades_off(r, 0, 1));
     // The product is what the track fixes: 1.2 x 1.1.
     CHECK(r.fitted[0].value * r.fitted[1].value ==
-          doctest::Approx(0.01 * 14.47 * 1.32).epsilon(0.02));
+          relative(0.01 * 14.47 * 1.32, 0.02));
 }
 
 TEST_CASE("two parameters whose effects are nearly proportional are reported as trading off") {
