@@ -23,6 +23,7 @@ bool calibration_available() {
 #endif
 }
 
+#ifdef BHM_WITH_NLOPT
 namespace {
 
 std::string join_names(const std::vector<FitParameter>& ps, const std::vector<int>& group) {
@@ -66,6 +67,7 @@ std::vector<std::vector<double>> residual_jacobian(const Experiment& e, const Bo
 }
 
 }  // namespace
+#endif
 
 CalibrationResult calibrate(const Experiment& e, const Body& body, const MeasuredTrack& track,
                             const std::vector<FitParameter>& ps, const CalibrationOptions& o) {
