@@ -28,7 +28,8 @@ namespace {
 
 const char* const kSummary =
     "Finds the simulation parameters named by --fit that make BODY under EXPERIMENT move as the\n"
-    "measured TRACK does (docs/track-format.md): NLopt's BOBYQA, bounded to 1/5..5 times the\n"
+    "measured TRACK does (docs/track-format.md, docs/calibration.md): a parallel scan, then\n"
+    "NLopt's BOBYQA with restarts, bounded to 1/5..5 times the\n"
     "experiment's value (phase_lag: -pi..pi), minimising the RMS difference of the displacements\n"
     "from the first row at the track's times (parameters: see --fit). Writes into DIR:\n"
     "  report.json                 fitted values with one standard deviation (from the misfit's\n"
@@ -232,8 +233,8 @@ int cmd_calibrate(const Args& args) {
         .option("--fit", "NAMES", "comma-separated parameters to fit: " + evo::fit_names_help())
         .option("--out", "DIR", "output directory, created if missing (default: ./calibrate-out)",
                 PathRole::OutputDir)
-        .option("--threads", "N", "simulations at once for the uncertainty (default: all cores)")
-        .option("--max-simulations", "N", "budget of the optimiser's simulations (default 200)")
+        .option("--threads", "N", "simulations at once in the scan and the uncertainty (default: all cores)")
+        .option("--max-simulations", "N", "budget of the scan's and the optimiser's simulations (default 200)")
         .flag("--simulate-only", "only simulate the experiment as given at the track's times");
     return run_command(parser, args, calibrate);
 }
