@@ -26,6 +26,10 @@ bool calibration_available() {
 #ifdef BHM_WITH_NLOPT
 namespace {
 
+// One standard deviation of x beyond which a parameter is reported as poorly determined: a
+// factor of e^0.5 = 1.65 either way (0.5 rad for the phase lag).
+constexpr double kPoorlyDetermined = 0.5;
+
 std::string join_names(const std::vector<FitParameter>& ps, const std::vector<int>& group) {
     std::string s;
     for (int i : group) s += (s.empty() ? "" : ", ") + ps[static_cast<std::size_t>(i)].name;
@@ -225,6 +229,12 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
                                    "): the optimum may lie beyond");
         out.fitted.push_back(f);
     }
+    for (std::size_t i = 0; i < p; ++i)
+        if (std::isfinite(id.sigma_x[i]) && id.sigma_x[i] > kPoorlyDetermined)
+            out.warnings.push_back(ps[i].name + " is poorly determined by the track (one standard "
+                                   "deviation is " +
+                                   std::to_string(id.sigma_x[i]) +
+                                   (ps[i].log_scale ? " in log units" : " rad") + ")");
     for (int i : id.no_effect)
         out.warnings.push_back(ps[static_cast<std::size_t>(i)].name +
                                " does not change the simulated track: it cannot be fitted from it");
