@@ -26,6 +26,7 @@ constexpr Subcommand kSubcommands[] = {
     {"export", bhm::app::cmd_export,
      "export a body or a run's champion (VXA, body JSON, STL/OBJ mesh, VTK series)"},
     {"import", bhm::app::cmd_import, "read a VoxCAD/evosoro VXA file as experiment + body"},
+    {"calibrate", bhm::app::cmd_calibrate, "fit simulation parameters to a measured track"},
     {"verify", bhm::app::cmd_verify,
      "check a body or a run's top designs in a continuum FEM (CalculiX)"},
 };

@@ -13,6 +13,7 @@ packages=(
   calculix-ccx
   libopenmpi-dev openmpi-bin
   ffmpeg
+  libnlopt-cxx-dev libpng-dev
   pybind11-dev python3-pybind11 python3-numpy python3-dev
 )
 

@@ -16,5 +16,6 @@ int cmd_render(const Args& args);
 int cmd_export(const Args& args);
 int cmd_import(const Args& args);
 int cmd_verify(const Args& args);
+int cmd_calibrate(const Args& args);
 
 }  // namespace bhm::app

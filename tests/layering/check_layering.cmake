@@ -2,14 +2,14 @@
 #  1. nothing outside engine/ includes engine/internal/ (the step's private parts), except the
 #     engine's own white-box tests in tests/engine/ (they check the private layout itself);
 #  2. inside evo/, a folder includes only itself and folders before it in the order of the work:
-#     experiment -> genome -> formats -> evaluate -> search -> run -> verify.
+#     experiment -> genome -> formats -> evaluate -> search -> run -> verify -> calibrate.
 # Prints every violation as FILE: includes HEADER (why) and fails when there is any.
 cmake_minimum_required(VERSION 3.22)
 if(NOT ROOT)
   message(FATAL_ERROR "usage: cmake -DROOT=<repository root> -P check_layering.cmake")
 endif()
 
-set(evo_order experiment genome formats evaluate search run verify)
+set(evo_order experiment genome formats evaluate search run verify calibrate)
 set(violations 0)
 
 file(GLOB_RECURSE sources RELATIVE ${ROOT}

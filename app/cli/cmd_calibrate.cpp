@@ -1,0 +1,242 @@
+// bhm calibrate: fit simulation parameters to a measured track (evo/calibrate/calibrator.hpp) and
+// write the report, the calibrated experiment, the simulated tracks and a plot. This file only
+// wires files to the fit.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "app/cli/arg_parser.hpp"
+#include "app/cli/commands.hpp"
+#include "app/cli/track_plot.hpp"
+#include "evo/calibrate/calibrator.hpp"
+#include "evo/calibrate/fit_parameters.hpp"
+#include "evo/calibrate/measured_track.hpp"
+#include "evo/calibrate/track_simulation.hpp"
+#include "evo/evaluate/worker_pool.hpp"
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
+
+namespace bhm::app {
+
+namespace {
+
+const char* const kSummary =
+    "Finds the simulation parameters named by --fit that make BODY under EXPERIMENT move as the\n"
+    "measured TRACK does (docs/track-format.md, docs/calibration.md): a parallel scan, then\n"
+    "NLopt's BOBYQA with restarts, bounded to 1/5..5 times the\n"
+    "experiment's value (phase_lag: -pi..pi), minimising the RMS difference of the displacements\n"
+    "from the first row at the track's times (parameters: see --fit). Writes into DIR:\n"
+    "  report.json                 fitted values with one standard deviation (from the misfit's\n"
+    "                              curvature at the optimum, Gauss-Newton), misfit before/after,\n"
+    "                              simulations used, correlations, parameters that trade off,\n"
+    "                              and warnings (poor fit, a bound reached)\n"
+    "  calibrated-experiment.json  EXPERIMENT with the fitted values\n"
+    "  simulated-before.csv, simulated-after.csv  the simulated points at the track's times\n"
+    "                              (track format, metres)\n"
+    "  tracks.png                  per point and axis, displacement against time: measured =\n"
+    "                              black dots, before = orange, after = blue\n"
+    "With --simulate-only, only simulated.csv (the experiment as given; no --fit needed).\n"
+    "\n"
+    "exit status: 0 ok (a poor fit is reported in report.json and on stderr), 1 invalid input or\n"
+    "a build without NLopt, 2 usage error.";
+
+nlohmann::json finite_or_null(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+void create_output_dir(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir))
+        throw std::runtime_error(dir + ": cannot create output directory" +
+                                 (ec ? " (" + ec.message() + ")" : std::string()));
+}
+
+// The simulated points as a track file (absolute positions, metres).
+std::string simulated_csv(const evo::MeasuredTrack& track, const evo::SimulatedTrack& sim,
+                          const std::string& comment) {
+    evo::MeasuredTrack out = track;
+    for (std::size_t i = 0; i < out.points.size(); ++i) out.points[i].position_m = sim.position_m[i];
+    out.t_s.resize(sim.position_m.empty() ? 0 : sim.position_m[0].size());
+    return evo::measured_track_to_csv(out, comment);
+}
+
+nlohmann::json report_json(const evo::CalibrationResult& r, const std::string& experiment_path,
+                           const std::string& body_path, const std::string& track_path,
+                           int threads) {
+    nlohmann::json fit = nlohmann::json::array();
+    for (const auto& f : r.fitted)
+        fit.push_back({{"name", f.parameter.name},
+                       {"unit", evo::fit_unit(f.parameter)},
+                       {"initial", f.initial_value},
+                       {"fitted", f.value},
+                       {"sigma", finite_or_null(f.sigma)},
+                       {"relative_sigma",
+                        finite_or_null(f.value != 0.0 ? f.sigma / std::abs(f.value) : NAN)},
+                       {"at_bound", f.at_bound}});
+    const auto& id = r.identifiability;
+    nlohmann::json correlation = nlohmann::json::array();
+    for (const auto& row : id.correlation) {
+        nlohmann::json line = nlohmann::json::array();
+        for (double c : row) line.push_back(finite_or_null(c));
+        correlation.push_back(line);
+    }
+    nlohmann::json trade_offs = nlohmann::json::array();
+    for (const auto& group : id.trade_offs) {
+        nlohmann::json names = nlohmann::json::array();
+        for (int i : group) names.push_back(r.fitted[static_cast<std::size_t>(i)].parameter.name);
+        trade_offs.push_back(names);
+    }
+    nlohmann::json no_effect = nlohmann::json::array();
+    for (int i : id.no_effect) no_effect.push_back(r.fitted[static_cast<std::size_t>(i)].parameter.name);
+    return {{"experiment", experiment_path},
+            {"body", body_path},
+            {"track", track_path},
+            {"fit", fit},
+            {"phase_lag_rad", r.calibrated.phase_lag_rad},
+            {"misfit_before_m", finite_or_null(r.misfit_before_m)},
+            {"misfit_after_m", finite_or_null(r.misfit_after_m)},
+            {"motion_rms_m", r.motion_rms_m},
+            {"relative_misfit_after",
+             finite_or_null(r.motion_rms_m > 0 ? r.misfit_after_m / r.motion_rms_m : NAN)},
+            {"good_fit", r.good_fit},
+            {"simulations",
+             {{"optimiser", r.optimiser_simulations},
+              {"uncertainty", r.jacobian_simulations},
+              {"optimiser_passes", r.optimiser_passes},
+              {"scan", r.scan_simulations},
+              {"before_after", 2},
+              {"total", r.optimiser_simulations + r.jacobian_simulations + 2}}},
+            {"stop_reason", r.stop_reason},
+            {"identifiability",
+             {{"correlation", correlation},
+              {"smallest_scaled_curvature_eigenvalue", id.smallest_eigenvalue},
+              {"near_singular", id.near_singular},
+              {"trade_offs", trade_offs},
+              {"no_effect", no_effect}}},
+            {"warnings", r.warnings},
+            {"threads", threads},
+            {"wall_s", r.wall_s}};
+}
+
+int calibrate(ArgParser& args) {
+    const std::string experiment_path = args.positionals().at(0);
+    if (!args.has("--body")) throw UsageError("missing --body BODY.json");
+    if (!args.has("--track")) throw UsageError("missing --track TRACK.csv");
+    const bool simulate_only = args.has("--simulate-only");
+    if (!simulate_only && !args.has("--fit")) throw UsageError("missing --fit NAMES");
+    const long long max_sims = args.get_int("--max-simulations", 200);
+    if (max_sims < 1) throw UsageError("--max-simulations must be >= 1");
+    const long long threads_arg = args.get_int("--threads", 0);
+    if (threads_arg < 0) throw UsageError("--threads must be >= 0");
+    const std::string body_path = args.get("--body"), track_path = args.get("--track");
+    const std::string out_dir = args.get("--out", "calibrate-out");
+
+    evo::Experiment experiment;
+    evo::Body body;
+    try {
+        auto loaded = evo::load_experiment_and_body(experiment_path, body_path);
+        experiment = std::move(loaded.experiment);
+        body = std::move(*loaded.body);
+    } catch (const evo::ValidationError& e) {
+        for (const auto& p : e.problems) std::cerr << p.to_string() << "\n";
+        return 1;
+    }
+    const evo::MeasuredTrack track = evo::load_measured_track(track_path);
+    const evo::Body framed = evo::apply_frame_and_overrides(experiment, body);
+    if (simulate_only) {
+        const auto sim = evo::simulate_track(evo::FitPoint{experiment, 0.0}, framed, track);
+        create_output_dir(out_dir);
+        evo::write_file_atomically(
+            out_dir + "/simulated.csv",
+            simulated_csv(track, sim,
+                          "Simulated by bhm calibrate --simulate-only: " + experiment_path + ", " +
+                              body_path + ", at the times of " + track_path));
+        std::cout << "wrote " << out_dir << "/simulated.csv" << (sim.diverged ? " (diverged)" : "")
+                  << "\n";
+        return sim.diverged ? 1 : 0;
+    }
+    std::vector<evo::FitParameter> parameters;
+    try {
+        parameters = evo::parse_fit_list(args.get("--fit"), experiment);
+    } catch (const std::runtime_error& e) {
+        throw UsageError(e.what());
+    }
+    if (!evo::calibration_available())
+        throw std::runtime_error("bhm was built without NLopt (Debian's libnlopt-cxx-dev), so it "
+                                 "cannot calibrate");
+    create_output_dir(out_dir);
+
+    evo::CalibrationOptions options;
+    options.threads = evo::resolve_thread_count(static_cast<int>(threads_arg));
+    options.max_simulations = static_cast<int>(max_sims);
+    const bool tty = ::isatty(STDERR_FILENO) != 0;
+    options.progress = [&](int sims, double best) {
+        if (tty)
+            std::fprintf(stderr, "\rcalibrate: %d simulations, best misfit %.4g m   ", sims, best);
+        else if (sims % 20 == 0)
+            std::fprintf(stderr, "calibrate: %d simulations, best misfit %.4g m\n", sims, best);
+    };
+    const evo::CalibrationResult r =
+        evo::calibrate(experiment, framed, track, parameters, options);
+    if (tty) std::fprintf(stderr, "\n");
+
+    evo::Experiment calibrated = r.calibrated.experiment;
+    calibrated.description += (calibrated.description.empty() ? "" : " ") +
+                              std::string("Calibrated by bhm calibrate against ") + track_path +
+                              " (" + out_dir + "/report.json).";
+    evo::save_experiment(out_dir + "/calibrated-experiment.json", calibrated);
+    evo::write_file_atomically(out_dir + "/simulated-before.csv",
+                               simulated_csv(track, r.before, "Simulated before calibration"));
+    evo::write_file_atomically(out_dir + "/simulated-after.csv",
+                               simulated_csv(track, r.after, "Simulated after calibration"));
+    auto report = report_json(r, experiment_path, body_path, track_path, options.threads);
+    if (track_plot_available()) {
+        write_track_plot(out_dir + "/tracks.png", track, r.before, r.after);
+        report["plot"] = "tracks.png";
+    } else {
+        report["plot"] = nullptr;
+        report["warnings"].push_back("no plot: bhm was built without libpng");
+    }
+    if (r.calibrated.phase_lag_rad != 0.0)
+        report["warnings"].push_back(
+            "the experiment format has no uniform phase field: the fitted phase_lag is in this "
+            "report only, not in calibrated-experiment.json");
+    evo::write_file_atomically(out_dir + "/report.json", report.dump(2) + "\n");
+
+    for (const auto& f : r.fitted)
+        std::cout << f.parameter.name << " = " << f.value << " +- " << f.sigma << " "
+                  << evo::fit_unit(f.parameter) << " (was " << f.initial_value << ")\n";
+    std::cout << "misfit " << r.misfit_before_m << " m -> " << r.misfit_after_m << " m (track motion "
+              << r.motion_rms_m << " m), " << r.optimiser_simulations + r.jacobian_simulations + 2
+              << " simulations, " << r.wall_s << " s\n";
+    for (const auto& w : report["warnings"]) std::cerr << "warning: " << w.get<std::string>() << "\n";
+    std::cout << "wrote " << out_dir << "/report.json\n";
+    return 0;
+}
+
+}  // namespace
+
+int cmd_calibrate(const Args& args) {
+    ArgParser parser("calibrate",
+                     "EXPERIMENT.json --body BODY.json --track TRACK.csv --fit NAMES [--out DIR]",
+                     kSummary);
+    parser.positional("EXPERIMENT.json", "the experiment (docs/experiment-format.md)")
+        .option("--body", "BODY.json", "the body the track was measured on (required)")
+        .option("--track", "TRACK.csv", "the measured track (docs/track-format.md; required)")
+        .option("--fit", "NAMES", "comma-separated parameters to fit: " + evo::fit_names_help())
+        .option("--out", "DIR", "output directory, created if missing (default: ./calibrate-out)",
+                PathRole::OutputDir)
+        .option("--threads", "N", "simulations at once in the scan and the uncertainty (default: all cores)")
+        .option("--max-simulations", "N", "budget of the scan's and the optimiser's simulations (default 200)")
+        .flag("--simulate-only", "only simulate the experiment as given at the track's times");
+    return run_command(parser, args, calibrate);
+}
+
+}  // namespace bhm::app

@@ -1,0 +1,163 @@
+#include "app/cli/track_plot.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+#include "evo/experiment/experiment_io.hpp"
+
+#ifdef BHM_WITH_PNG
+#include <png.h>
+#endif
+
+namespace bhm::app {
+
+namespace {
+
+using Rgb = std::array<std::uint8_t, 3>;
+constexpr Rgb kMeasured{0, 0, 0}, kBefore{230, 120, 20}, kAfter{30, 90, 220}, kGrid{200, 200, 200},
+    kFrame{120, 120, 120};
+constexpr int kWidth = 900, kPanelHeight = 200, kMargin = 12;
+
+struct Canvas {
+    int width, height;
+    std::vector<std::uint8_t> rgb;
+    Canvas(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 255) {}
+    void put(int x, int y, Rgb c) {
+        if (x < 0 || y < 0 || x >= width || y >= height) return;
+        auto* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+        p[0] = c[0], p[1] = c[1], p[2] = c[2];
+    }
+    // Bresenham, 2 pixels thick.
+    void line(int x0, int y0, int x1, int y1, Rgb c) {
+        const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
+        const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
+        int err = dx + dy;
+        for (;;) {
+            put(x0, y0, c), put(x0, y0 + 1, c);
+            if (x0 == x1 && y0 == y1) break;
+            const int e2 = 2 * err;
+            if (e2 >= dy) err += dy, x0 += sx;
+            if (e2 <= dx) err += dx, y0 += sy;
+        }
+    }
+    void dot(int x, int y, Rgb c) {
+        for (int j = -2; j <= 2; ++j)
+            for (int i = -2; i <= 2; ++i) put(x + i, y + j, c);
+    }
+};
+
+#ifdef BHM_WITH_PNG
+std::string encode_png(const Canvas& canvas) {
+    std::string out;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!png || !info) {
+        png_destroy_write_struct(&png, nullptr);
+        throw std::runtime_error("cannot start the PNG encoder");
+    }
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        throw std::runtime_error("cannot encode the PNG");
+    }
+    png_set_write_fn(
+        png, &out,
+        [](png_structp p, png_bytep data, png_size_t n) {
+            static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(data), n);
+        },
+        nullptr);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(canvas.width),
+                 static_cast<png_uint_32>(canvas.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (int y = 0; y < canvas.height; ++y)
+        png_write_row(png, const_cast<png_bytep>(&canvas.rgb[static_cast<std::size_t>(y) * canvas.width * 3]));
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return out;
+}
+#endif
+
+}  // namespace
+
+bool track_plot_available() {
+#ifdef BHM_WITH_PNG
+    return true;
+#else
+    return false;
+#endif
+}
+
+void write_track_plot(const std::string& path, const evo::MeasuredTrack& track,
+                      const evo::SimulatedTrack& before, const evo::SimulatedTrack& after) {
+#ifndef BHM_WITH_PNG
+    (void)track, (void)before, (void)after;
+    throw std::runtime_error(path + ": bhm was built without libpng, so it cannot plot");
+#else
+    struct Panel {
+        std::size_t point, axis;
+    };
+    std::vector<Panel> panels;
+    for (std::size_t i = 0; i < track.points.size(); ++i)
+        for (std::size_t a = 0; a < 3; ++a)
+            if (track.points[i].axes[a]) panels.push_back({i, a});
+    Canvas canvas(kWidth, static_cast<int>(panels.size()) * kPanelHeight);
+    const double t0 = track.t_s.front(), t1 = track.t_s.back();
+    const std::size_t rows = track.t_s.size();
+    for (std::size_t k = 0; k < panels.size(); ++k) {
+        const auto [pi, a] = panels[k];
+        const auto& measured = track.points[pi].position_m;
+        auto disp = [&](const std::vector<std::array<double, 3>>& s, std::size_t r) {
+            return s[r][a] - s[0][a];
+        };
+        const evo::SimulatedTrack* sims[2] = {&before, &after};
+        auto usable = [&](const evo::SimulatedTrack* s) {
+            return !s->diverged && s->position_m.size() > pi && s->position_m[pi].size() == rows;
+        };
+        double lo = 0.0, hi = 0.0;
+        for (std::size_t r = 0; r < rows; ++r) {
+            lo = std::min(lo, disp(measured, r)), hi = std::max(hi, disp(measured, r));
+            for (auto* s : sims)
+                if (usable(s))
+                    lo = std::min(lo, disp(s->position_m[pi], r)),
+                    hi = std::max(hi, disp(s->position_m[pi], r));
+        }
+        if (hi - lo <= 0.0) hi = lo + 1e-6;
+        const int top = static_cast<int>(k) * kPanelHeight + kMargin;
+        const int bottom = static_cast<int>(k + 1) * kPanelHeight - kMargin;
+        auto px = [&](double t) {
+            return kMargin + static_cast<int>(std::lround((t - t0) / (t1 - t0) * (kWidth - 2 * kMargin)));
+        };
+        auto py = [&](double v) {
+            return bottom - static_cast<int>(std::lround((v - lo) / (hi - lo) * (bottom - top)));
+        };
+        canvas.line(kMargin, top, kWidth - kMargin, top, kFrame);
+        canvas.line(kMargin, bottom, kWidth - kMargin, bottom, kFrame);
+        canvas.line(kMargin, top, kMargin, bottom, kFrame);
+        canvas.line(kWidth - kMargin, top, kWidth - kMargin, bottom, kFrame);
+        canvas.line(kMargin, py(0.0), kWidth - kMargin, py(0.0), kGrid);
+        const Rgb colors[2] = {kBefore, kAfter};
+        for (int s = 0; s < 2; ++s) {
+            if (!usable(sims[s])) continue;
+            const auto& series = sims[s]->position_m[pi];
+            for (std::size_t r = 1; r < rows; ++r)
+                canvas.line(px(track.t_s[r - 1]), py(disp(series, r - 1)), px(track.t_s[r]),
+                            py(disp(series, r)), colors[s]);
+        }
+        for (std::size_t r = 0; r < rows; ++r) canvas.dot(px(track.t_s[r]), py(disp(measured, r)), kMeasured);
+    }
+    std::string png;
+    try {
+        png = encode_png(canvas);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
+    evo::write_file_atomically(path, png);
+#endif
+}
+
+}  // namespace bhm::app

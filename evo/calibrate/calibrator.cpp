@@ -1,0 +1,258 @@
+#include "evo/calibrate/calibrator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "evo/evaluate/fitness.hpp"
+#include "evo/evaluate/worker_pool.hpp"
+
+#ifdef BHM_WITH_NLOPT
+#include <nlopt.hpp>
+#endif
+
+namespace bhm::evo {
+
+bool calibration_available() {
+#ifdef BHM_WITH_NLOPT
+    return true;
+#else
+    return false;
+#endif
+}
+
+#ifdef BHM_WITH_NLOPT
+namespace {
+
+// One standard deviation of x beyond which a parameter is reported as poorly determined: a
+// factor of e^0.5 = 1.65 either way (0.5 rad for the phase lag).
+constexpr double kPoorlyDetermined = 0.5;
+
+std::string join_names(const std::vector<FitParameter>& ps, const std::vector<int>& group) {
+    std::string s;
+    for (int i : group) s += (s.empty() ? "" : ", ") + ps[static_cast<std::size_t>(i)].name;
+    return s;
+}
+
+// Jacobian of the residuals by central differences (one-sided at a bound), 2p simulations on
+// the worker pool. Returns jac[k][i].
+std::vector<std::vector<double>> residual_jacobian(const Experiment& e, const Body& body,
+                                                   const MeasuredTrack& track,
+                                                   const std::vector<FitParameter>& ps,
+                                                   const std::vector<double>& x,
+                                                   const CalibrationOptions& o) {
+    const std::size_t p = ps.size();
+    std::vector<std::vector<double>> xs(2 * p, x);
+    std::vector<double> span(p);
+    for (std::size_t i = 0; i < p; ++i) {
+        const double hi = std::min(ps[i].upper, x[i] + o.jacobian_step);
+        const double lo = std::max(ps[i].lower, x[i] - o.jacobian_step);
+        xs[2 * i][i] = hi;
+        xs[2 * i + 1][i] = lo;
+        span[i] = hi - lo;
+    }
+    std::vector<std::vector<double>> r(2 * p);
+    parallel_for(static_cast<int>(2 * p), resolve_thread_count(o.threads), [&](int j) {
+        const auto sim = simulate_track(apply_fit(e, ps, xs[static_cast<std::size_t>(j)]), body,
+                                        track, o.cancel);
+        if (sim.diverged)
+            throw std::runtime_error("the simulation diverged next to the optimum (" +
+                                     sim.divergence_reason + "): no uncertainty");
+        r[static_cast<std::size_t>(j)] = track_residuals(track, sim);
+    });
+    const std::size_t n = r[0].size();
+    std::vector<std::vector<double>> jac(n, std::vector<double>(p, 0.0));
+    for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t i = 0; i < p; ++i)
+            jac[k][i] = (r[2 * i][k] - r[2 * i + 1][k]) / span[i];
+    return jac;
+}
+
+}  // namespace
+#endif
+
+CalibrationResult calibrate(const Experiment& e, const Body& body, const MeasuredTrack& track,
+                            const std::vector<FitParameter>& ps, const CalibrationOptions& o) {
+#ifndef BHM_WITH_NLOPT
+    (void)e, (void)body, (void)track, (void)ps, (void)o;
+    throw std::runtime_error(
+        "bhm was built without NLopt (Debian's libnlopt-cxx-dev), so it cannot calibrate");
+#else
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t p = ps.size();
+    CalibrationResult out;
+    out.motion_rms_m = track_motion_rms(track);
+    std::vector<double> x(p, 0.0);
+    out.before = simulate_track(apply_fit(e, ps, x), body, track, o.cancel);
+    out.misfit_before_m = track_misfit(track, out.before);
+    // A diverged trial is worse than any real one but finite, so BOBYQA's model stays usable.
+    const double diverged_misfit =
+        1e3 * std::max({out.motion_rms_m, 1e-3 * e.voxel_size_m,
+                        std::isfinite(out.misfit_before_m) ? out.misfit_before_m : 0.0});
+    double best = std::isfinite(out.misfit_before_m) ? out.misfit_before_m : diverged_misfit;
+    std::vector<double> best_x = x;
+    int sims = 0;
+    auto objective = [&](const std::vector<double>& trial) {
+        const auto sim = simulate_track(apply_fit(e, ps, trial), body, track, o.cancel);
+        ++sims;
+        const double m = sim.diverged ? diverged_misfit : track_misfit(track, sim);
+        if (m < best) {
+            best = m;
+            best_x = trial;
+        }
+        if (o.progress) o.progress(sims, best);
+        // BOBYQA models its objective as a quadratic: the mean square is one near the optimum,
+        // the RMS has a cusp there.
+        return m * m;
+    };
+    nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(p));
+    std::vector<double> lower(p), upper(p), step(p);
+    for (std::size_t i = 0; i < p; ++i) {
+        lower[i] = ps[i].lower;
+        upper[i] = ps[i].upper;
+        step[i] = 0.1 * (upper[i] - lower[i]);
+    }
+    opt.set_lower_bounds(lower);
+    opt.set_upper_bounds(upper);
+    opt.set_xtol_abs(o.x_tolerance);
+    // The misfit of a mostly quasi-static track is bumpy in the weakly seen parameters (E at a
+    // slow drive), so a local search from the experiment's values alone can stop in a side valley.
+    // First a scan of the box (a Halton sequence, all at once on the worker pool), then BOBYQA
+    // from the experiment's values and from the best scan points.
+    const int budget = std::max(o.max_simulations, static_cast<int>(2 * p + 2));
+    const int scan = std::min(budget / 3, std::max(8, 8 * static_cast<int>(p)));
+    std::vector<std::vector<double>> scan_x(static_cast<std::size_t>(scan), std::vector<double>(p));
+    constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47};
+    for (int j = 0; j < scan; ++j)
+        for (std::size_t i = 0; i < p; ++i) {
+            const int base = kPrimes[i % std::size(kPrimes)];
+            double f = 1.0, u = 0.0;
+            for (int k = j + 1; k > 0; k /= base) f /= base, u += f * (k % base);
+            scan_x[static_cast<std::size_t>(j)][i] = lower[i] + u * (upper[i] - lower[i]);
+        }
+    std::vector<double> scan_misfit(static_cast<std::size_t>(scan));
+    parallel_for(scan, resolve_thread_count(o.threads), [&](int j) {
+        const auto sim = simulate_track(apply_fit(e, ps, scan_x[static_cast<std::size_t>(j)]), body,
+                                        track, o.cancel);
+        scan_misfit[static_cast<std::size_t>(j)] =
+            sim.diverged ? diverged_misfit : track_misfit(track, sim);
+    });
+    sims += scan;
+    out.scan_simulations = scan;
+    std::vector<int> order(static_cast<std::size_t>(scan));
+    for (int j = 0; j < scan; ++j) order[static_cast<std::size_t>(j)] = j;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        return scan_misfit[static_cast<std::size_t>(a)] < scan_misfit[static_cast<std::size_t>(b)];
+    });
+    for (int j : order)
+        if (scan_misfit[static_cast<std::size_t>(j)] < best) {
+            best = scan_misfit[static_cast<std::size_t>(j)];
+            best_x = scan_x[static_cast<std::size_t>(j)];
+        }
+    if (o.progress) o.progress(sims, best);
+    std::vector<std::vector<double>> starts = {x};
+    for (std::size_t k = 0; k < std::min<std::size_t>(2, order.size()); ++k)
+        starts.push_back(scan_x[static_cast<std::size_t>(order[k])]);
+
+    // BOBYQA's trust region can shrink onto a shallow valley before reaching its floor; restarting
+    // from the best point of the search with a fresh, smaller region finds the rest; passes stop
+    // once one no longer improves that search's misfit by 1 %.
+    for (const auto& start : starts) {
+        std::vector<double> here = start;
+        double here_best = std::numeric_limits<double>::infinity();
+        auto tracked = [&](const std::vector<double>& trial) {
+            const double m = objective(trial);
+            if (m < here_best) here_best = m, here = trial;
+            return m;
+        };
+        using Tracked = decltype(tracked);
+        opt.set_min_objective(
+            [](const std::vector<double>& trial, std::vector<double>&, void* data) {
+                return (*static_cast<Tracked*>(data))(trial);
+            },
+            &tracked);
+        for (int pass = 0; pass < 4 && sims + static_cast<int>(2 * p + 2) <= budget; ++pass) {
+            const double before_pass = here_best;
+            std::vector<double> pass_step(p);
+            for (std::size_t i = 0; i < p; ++i)
+                pass_step[i] = std::min(step[i] / static_cast<double>(1 << pass),
+                                        0.5 * std::max(upper[i] - here[i], here[i] - lower[i]));
+            opt.set_initial_step(pass_step);
+            opt.set_maxeval(budget - sims);
+            x = here;
+            double final_value = 0.0;
+            try {
+                const nlopt::result r = opt.optimize(x, final_value);
+                out.stop_reason = r == nlopt::MAXEVAL_REACHED ? "simulation budget reached"
+                                  : r == nlopt::XTOL_REACHED  ? "parameters converged"
+                                  : r == nlopt::FTOL_REACHED  ? "misfit converged"
+                                  : r == nlopt::SUCCESS       ? "converged"
+                                                              : "optimiser stopped (" +
+                                                                  std::to_string(static_cast<int>(r)) + ")";
+            } catch (const EvaluationCancelled&) {
+                throw;
+            } catch (const nlopt::roundoff_limited&) {
+                out.stop_reason = "optimiser limited by round-off";
+            }
+            ++out.optimiser_passes;
+            if (pass > 0 && here_best > 0.99 * before_pass) break;
+        }
+    }
+    out.x = best_x;
+    out.optimiser_simulations = sims;
+    out.calibrated = apply_fit(e, ps, out.x);
+    out.after = simulate_track(out.calibrated, body, track, o.cancel);
+    out.misfit_after_m = track_misfit(track, out.after);
+    out.good_fit = out.misfit_after_m <= o.good_fit_fraction * out.motion_rms_m;
+
+    const auto jac = residual_jacobian(e, body, track, ps, out.x, o);
+    out.jacobian_simulations = static_cast<int>(2 * p);
+    const std::size_t n = jac.size();
+    const double ssr = out.misfit_after_m * out.misfit_after_m * static_cast<double>(n);
+    out.identifiability =
+        analyse_identifiability(jac, ssr / static_cast<double>(n > p ? n - p : n));
+    const auto& id = out.identifiability;
+    for (std::size_t i = 0; i < p; ++i) {
+        FittedParameter f;
+        f.parameter = ps[i];
+        f.x = out.x[i];
+        f.initial_value = fit_value(e, ps[i], 0.0);
+        f.value = fit_value(e, ps[i], out.x[i]);
+        // d value / d x = value for a log-scale parameter, 1 for the phase lag.
+        f.sigma = id.sigma_x[i] * (ps[i].log_scale ? std::abs(f.value) : 1.0);
+        f.at_bound = out.x[i] <= ps[i].lower + 1e-3 || out.x[i] >= ps[i].upper - 1e-3;
+        if (f.at_bound)
+            out.warnings.push_back(ps[i].name + " ended at a bound of its search range (x" +
+                                   std::string(ps[i].log_scale ? "1/5..5" : "-pi..pi") +
+                                   "): the optimum may lie beyond");
+        out.fitted.push_back(f);
+    }
+    for (std::size_t i = 0; i < p; ++i)
+        if (std::isfinite(id.sigma_x[i]) && id.sigma_x[i] > kPoorlyDetermined)
+            out.warnings.push_back(ps[i].name + " is poorly determined by the track (one standard "
+                                   "deviation is " +
+                                   std::to_string(id.sigma_x[i]) +
+                                   (ps[i].log_scale ? " in log units" : " rad") + ")");
+    for (int i : id.no_effect)
+        out.warnings.push_back(ps[static_cast<std::size_t>(i)].name +
+                               " does not change the simulated track: it cannot be fitted from it");
+    for (const auto& group : id.trade_offs)
+        out.warnings.push_back(join_names(ps, group) +
+                               " trade off: the track cannot tell them apart, so their fitted "
+                               "values are one of many equally good combinations");
+    if (id.near_singular && id.trade_offs.empty() && id.no_effect.empty())
+        out.warnings.push_back("the misfit's curvature is near singular: the uncertainties are "
+                               "not meaningful");
+    if (!out.good_fit)
+        out.warnings.push_back(
+            "poor fit: the misfit after calibration is " +
+            std::to_string(out.motion_rms_m > 0 ? out.misfit_after_m / out.motion_rms_m : 0.0) +
+            " of the track's motion; the body, the track or the fitted parameters do not match");
+    out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+#endif
+}
+
+}  // namespace bhm::evo

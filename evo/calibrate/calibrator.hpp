@@ -1,0 +1,62 @@
+#pragma once
+// bhm calibrate's fit: the parameters (evo/calibrate/fit_parameters.hpp) that minimise the misfit
+// between a measured track and the simulated one (evo/calibrate/track_simulation.hpp), found by
+// NLopt's BOBYQA (Powell 2009: bounded, derivative-free, a quadratic model of the misfit) in log
+// space, after a parallel scan of the box on the worker pool; then the uncertainty and identifiability from the Jacobian of the residuals at the
+// optimum (evo/calibrate/identifiability.hpp), its 2p simulations run at once on the worker pool.
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "evo/calibrate/fit_parameters.hpp"
+#include "evo/calibrate/identifiability.hpp"
+#include "evo/calibrate/measured_track.hpp"
+#include "evo/calibrate/track_simulation.hpp"
+
+namespace bhm::evo {
+
+//! False where bhm was built without NLopt: calibrate() then throws.
+bool calibration_available();
+
+struct CalibrationOptions {
+    int threads = 0;             //!< worker threads for the Jacobian (0 = all)
+    int max_simulations = 200;   //!< budget of the optimiser's simulations
+    double x_tolerance = 1e-4;   //!< stop once a step changes no x by more (log units)
+    double jacobian_step = 0.01; //!< central-difference step in x
+    //! A misfit below this fraction of the track's motion RMS counts as a good fit.
+    double good_fit_fraction = 0.2;
+    const std::atomic<bool>* cancel = nullptr;
+    //! After each of the optimiser's simulations: how many so far and the best misfit (metres).
+    std::function<void(int simulations, double best_misfit_m)> progress;
+};
+
+struct FittedParameter {
+    FitParameter parameter;
+    double x = 0.0, initial_value = 0.0, value = 0.0;
+    double sigma = 0.0;  //!< one standard deviation of value (NaN where not identifiable)
+    bool at_bound = false;
+};
+
+struct CalibrationResult {
+    std::vector<FittedParameter> fitted;
+    std::vector<double> x;
+    double misfit_before_m = 0.0, misfit_after_m = 0.0, motion_rms_m = 0.0;
+    bool good_fit = false;
+    int optimiser_simulations = 0, jacobian_simulations = 0;
+    int optimiser_passes = 0;  //!< BOBYQA runs (restarts included)
+    int scan_simulations = 0;  //!< of optimiser_simulations, the parallel scan of the box
+    std::string stop_reason;
+    Identifiability identifiability;
+    SimulatedTrack before, after;
+    FitPoint calibrated;  //!< the experiment with the fitted values (and the phase lag)
+    double wall_s = 0.0;
+    //! One line per finding a reader must not miss (trade-offs, no effect, at a bound, poor fit).
+    std::vector<std::string> warnings;
+};
+
+CalibrationResult calibrate(const Experiment& experiment, const Body& framed_body,
+                            const MeasuredTrack& track, const std::vector<FitParameter>& parameters,
+                            const CalibrationOptions& options);
+
+}  // namespace bhm::evo

@@ -1,0 +1,52 @@
+#pragma once
+// The simulation parameters bhm calibrate can fit (--fit), each as a factor on the experiment's
+// value (searched in log space) or, for the phase lag, an added angle.
+#include <string>
+#include <vector>
+
+#include "evo/experiment/experiment.hpp"
+
+namespace bhm::evo {
+
+enum class FitKind {
+    YoungsModulus,   //!< E of one material, or of every material by one factor
+    Density,         //!< rho, likewise
+    Cte,             //!< the active materials' expansion coefficient
+    Amplitude,       //!< actuation.temperature_amplitude_c
+    Frequency,       //!< actuation.frequency_hz
+    PhaseLag,        //!< added to every voxel's actuation phase (radians)
+    BondDamping,     //!< simulation.bond_damping_ratio
+    GlobalDamping,   //!< simulation.global_damping_ratio
+    Friction,        //!< static and dynamic friction of every material, by one factor
+};
+
+struct FitParameter {
+    std::string name;       //!< as given to --fit ("E", "E:muscle", "bond_damping", ...)
+    FitKind kind = FitKind::YoungsModulus;
+    int material = -1;      //!< 0-based material index, -1 = every material it applies to
+    bool log_scale = true;  //!< x = ln(factor); false: x = added radians (phase lag)
+    double lower = 0.0, upper = 0.0;  //!< bounds on x
+};
+
+//! Parses a comma-separated --fit list against the experiment. Throws std::runtime_error with a
+//! one-line reason (unknown name, unknown material, repeated name, a parameter that is zero in the
+//! experiment so no factor can move it).
+std::vector<FitParameter> parse_fit_list(const std::string& list, const Experiment& experiment);
+
+//! The names --fit accepts, for --help.
+std::string fit_names_help();
+
+//! The experiment with x applied (x[i] for parameters[i]); the phase lag goes to phase_lag_rad.
+struct FitPoint {
+    Experiment experiment;
+    double phase_lag_rad = 0.0;
+};
+FitPoint apply_fit(const Experiment& base, const std::vector<FitParameter>& parameters,
+                   const std::vector<double>& x);
+
+//! The physical value of parameter p at x (the first material's where it spans several) and
+//! its unit.
+double fit_value(const Experiment& base, const FitParameter& p, double x);
+const char* fit_unit(const FitParameter& p);
+
+}  // namespace bhm::evo

@@ -1,0 +1,84 @@
+// The measured-track reader (docs/track-format.md): what it accepts and the one-line errors that
+// name the row for what it does not.
+#include <doctest/doctest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "evo/calibrate/measured_track.hpp"
+
+using bhm::evo::parse_measured_track;
+
+namespace {
+
+// The message of the error parsing text raises ("" when it parses).
+std::string error_of(const std::string& text) {
+    try {
+        parse_measured_track(text, "t.csv");
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("a track in pixels with a scale and a time offset reads in metres and simulation time") {
+    const auto track = parse_measured_track(
+        "# from a tracker\n# units: px\n# scale_m_per_px: 0.0005\n# time_offset_s: 1.5\n"
+        "t_s,tip.x,tip.z,com.x,com.y,com.z,voxel:7.y\n"
+        "0.0, 100, 40, 1, 2, 3, 5\n"
+        "0.1, 102, 38, 1, 2, 3, 5\n"
+        "0.2, 104, 36, 1, 2, 3, 6\n",
+        "t.csv");
+    REQUIRE(track.t_s.size() == 3);
+    CHECK(track.t_s[1] == doctest::Approx(1.6));
+    REQUIRE(track.points.size() == 3);
+    CHECK(track.points[0].name == "tip");
+    CHECK(track.points[0].axes == std::array<bool, 3>{true, false, true});
+    CHECK(track.points[0].position_m[2][0] == doctest::Approx(104 * 0.0005));
+    CHECK(track.points[0].position_m[2][2] == doctest::Approx(36 * 0.0005));
+    CHECK(track.points[2].kind == bhm::evo::TrackPointKind::Voxel);
+    CHECK(track.points[2].cell == 7);
+    // 3 rows x (2 + 3 + 1) axes
+    CHECK(track.compared_values() == 18);
+}
+
+TEST_CASE("bad tracks give one-line errors naming the row") {
+    const std::string header = "# units: m\nt_s,tip.x\n";
+    CHECK(error_of(header + "0,0\n0.1,0.001\n") ==
+          "t.csv: row 2: too short, a track needs at least 3 rows");
+    CHECK(error_of(header + "0,0\n0.2,0.001\n0.1,0.002\n") ==
+          "t.csv: row 3 (line 5): time 0.1 s is not after the previous row's (times must "
+          "increase)");
+    CHECK(error_of(header + "0,0\n0.1,nan\n0.2,0\n") ==
+          "t.csv: row 2 (line 4): a position is not finite (nan)");
+    CHECK(error_of(header + "0,0\n0.1,abc\n0.2,0\n") ==
+          "t.csv: row 2 (line 4): 'abc' is not a number");
+    CHECK(error_of(header + "0,0\n0.1\n0.2,0\n") ==
+          "t.csv: row 2 (line 4): has 1 values, the header has 2");
+    // Pixels written as metres.
+    CHECK(error_of(header + "0,0\n0.1,412\n0.2,0\n") ==
+          "t.csv: row 2 (line 4): 412 m is implausible for a position in metres (pixels need "
+          "'# units: px' and '# scale_m_per_px: S')");
+    CHECK(error_of("# units: mm\nt_s,tip.x\n0,0\n1,0\n2,0\n") ==
+          "t.csv: line 1: units 'mm' is not supported (use m, or px with scale_m_per_px)");
+    CHECK(error_of("# units: px\nt_s,tip.x\n0,0\n1,0\n2,0\n") ==
+          "t.csv: units px needs '# scale_m_per_px: S'");
+    CHECK(error_of("t_s,knee.x\n0,0\n1,0\n2,0\n") ==
+          "t.csv: line 1: unknown point 'knee' (tip, com or voxel:N)");
+    CHECK(error_of("t_s,tip.w\n0,0\n1,0\n2,0\n") ==
+          "t.csv: line 1: column 'tip.w' is not POINT.x, POINT.y or POINT.z");
+    CHECK(error_of("time,tip.x\n0,0\n1,0\n2,0\n") == "t.csv: line 1: the header must start with t_s");
+    CHECK(error_of("# time_offset_s: -1\nt_s,tip.x\n0,0\n1,0\n2,0\n") ==
+          "t.csv: row 1 (line 3): time 0 s is before the simulation starts (with time_offset_s)");
+}
+
+TEST_CASE("a track written by measured_track_to_csv reads back the same") {
+    const auto track = parse_measured_track("t_s,com.x,com.z\n0,0.01,0.02\n0.5,0.011,0.019\n1,0.012,0.018\n",
+                                            "t.csv");
+    const auto again = parse_measured_track(bhm::evo::measured_track_to_csv(track, "note"), "u.csv");
+    CHECK(again.t_s == track.t_s);
+    CHECK(again.points[0].position_m == track.points[0].position_m);
+    CHECK(again.points[0].axes == track.points[0].axes);
+}
