@@ -237,5 +237,5 @@ TEST_CASE("the biohybrid catheter preset fills its materials from the library") 
     // Muscle in silicone at nu 0.49: the mixed-nu warning, not the contrast one (9.9 <= 10).
     const auto warnings = envelope_warnings(e, nullptr, "catheter");
     REQUIRE(warnings.size() == 1);
-    CHECK(warnings[0].message.find("bend too stiffly") != std::string::npos);
+    CHECK(warnings[0].message.find("bends 9-13 % short") != std::string::npos);
 }
