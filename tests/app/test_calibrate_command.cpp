@@ -15,6 +15,7 @@
 #include "app/cli/commands.hpp"
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "support/captured_command.hpp"
 
 namespace fs = std::filesystem;
 
@@ -27,26 +28,10 @@ fs::path fresh_dir(const std::string& name) {
     return dir;
 }
 
-struct CapturedRun {
-    int exit_code;
-    std::string out, err;
-};
+using bhm::test::CapturedRun;
 
 CapturedRun run_calibrate(const std::vector<std::string>& args) {
-    std::ostringstream out, err;
-    auto* old_out = std::cout.rdbuf(out.rdbuf());
-    auto* old_err = std::cerr.rdbuf(err.rdbuf());
-    int code = -1;
-    try {
-        code = bhm::app::cmd_calibrate(args);
-    } catch (...) {
-        std::cout.rdbuf(old_out);
-        std::cerr.rdbuf(old_err);
-        throw;
-    }
-    std::cout.rdbuf(old_out);
-    std::cerr.rdbuf(old_err);
-    return {code, out.str(), err.str()};
+    return bhm::test::run_captured(bhm::app::cmd_calibrate, args);
 }
 
 // A 4x1x2 bilayer cantilever held at x-, active on top; 6 Hz drive, 0.2 s.

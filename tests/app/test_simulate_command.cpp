@@ -16,6 +16,7 @@
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "support/relative_approx.hpp"
+#include "support/captured_command.hpp"
 
 namespace fs = std::filesystem;
 
@@ -59,27 +60,10 @@ bhm::evo::Body tiny_body() {
     return b;
 }
 
-struct CapturedRun {
-    int exit_code;
-    std::string out, err;
-};
+using bhm::test::CapturedRun;
 
-// Runs the command with std::cout / std::cerr captured.
 CapturedRun run_simulate(const std::vector<std::string>& args) {
-    std::ostringstream out, err;
-    auto* old_out = std::cout.rdbuf(out.rdbuf());
-    auto* old_err = std::cerr.rdbuf(err.rdbuf());
-    int code = -1;
-    try {
-        code = bhm::app::cmd_simulate(args);
-    } catch (...) {
-        std::cout.rdbuf(old_out);
-        std::cerr.rdbuf(old_err);
-        throw;
-    }
-    std::cout.rdbuf(old_out);
-    std::cerr.rdbuf(old_err);
-    return {code, out.str(), err.str()};
+    return bhm::test::run_captured(bhm::app::cmd_simulate, args);
 }
 
 std::vector<std::vector<double>> read_csv_rows(const fs::path& path, std::string& header) {
