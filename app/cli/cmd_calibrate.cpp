@@ -13,6 +13,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "app/cli/track_plot.hpp"
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/calibrate/fit_parameters.hpp"
@@ -145,8 +146,7 @@ int calibrate(ArgParser& args) {
         experiment = std::move(loaded.experiment);
         body = std::move(*loaded.body);
     } catch (const evo::ValidationError& e) {
-        for (const auto& p : e.problems) std::cerr << p.to_string() << "\n";
-        return 1;
+        return report_problems(e.problems);
     }
     const evo::MeasuredTrack track = evo::load_measured_track(track_path);
     const evo::Body framed = evo::apply_frame_and_overrides(experiment, body);

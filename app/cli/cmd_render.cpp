@@ -12,12 +12,13 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "app/cli/render_scene.hpp"
 #include "app/cli/render_video.hpp"
 #include "engine/replay.hpp"
 #include "evo/evaluate/replay_measures.hpp"
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "render/caption.hpp"
 #include "render/draw_list.hpp"
 #include "render/offscreen.hpp"
@@ -63,12 +64,6 @@ Size parse_size(const std::string& text) {
         size.width < 16 || size.height < 16 || size.width > 8192 || size.height > 8192)
         throw UsageError("--size wants WxH with each side in 16..8192, got '" + text + "'");
     return size;
-}
-
-int report_problems(const std::vector<evo::Problem>& problems) {
-    for (const auto& p : problems)
-        std::cerr << p.to_string() << "\n";
-    return 1;
 }
 
 std::string describe_time(double t) {

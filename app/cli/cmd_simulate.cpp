@@ -11,6 +11,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "app/cli/simulate_progress.hpp"
 #include "app/cli/simulation_limits.hpp"
 #include "app/cli/simulation_report.hpp"
@@ -49,13 +50,6 @@ const char* const kSummary =
     "exit status: 0 ok, 1 invalid or missing input (every problem printed as file:field: "
     "message),\n"
     "2 usage error, 3 the simulation diverged (the files are still written, with diverged: true).";
-
-// Prints every problem of a ValidationError, one per line, and gives exit status 1.
-int report_problems(const std::vector<evo::Problem>& problems) {
-    for (const auto& p : problems)
-        std::cerr << p.to_string() << "\n";
-    return 1;
-}
 
 void create_output_dir(const std::string& dir) {
     std::error_code ec;
