@@ -22,6 +22,13 @@ std::string number(double x) {
     return buf;
 }
 
+// A bound of a range as written: 1000, not number()'s 1e+03.
+std::string bound(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
+
 // Two materials joined by a link act as springs in series: 2 a b / (a + b).
 double series(double a, double b) {
     return 2.0 * a * b / (a + b);
@@ -78,14 +85,18 @@ std::vector<Problem> settings_problems(const BodySpec& spec) {
         if (!finite(ratio) || ratio < 0.0 || ratio > kMaxDampingRatio)
             out.push_back({field, "must be in [0, " + number(kMaxDampingRatio) + "]"});
     const Actuation& a = spec.actuation;
-    if (!finite(a.frequency_hz) || a.frequency_hz < 0.0 || a.frequency_hz > 1000.0)
-        out.push_back({"actuation.frequency_hz", "must be in [0, 1000] Hz"});
+    if (!finite(a.frequency_hz) || a.frequency_hz < 0.0 || a.frequency_hz > kMaxFrequencyHz)
+        out.push_back(
+            {"actuation.frequency_hz", "must be in [0, " + bound(kMaxFrequencyHz) + "] Hz"});
     if (!finite(a.temperature_amplitude_c) || a.temperature_amplitude_c < 0.0 ||
-        a.temperature_amplitude_c > 1000.0)
-        out.push_back({"actuation.temperature_amplitude_c", "must be in [0, 1000] degC"});
+        a.temperature_amplitude_c > kMaxTemperatureAmplitudeC)
+        out.push_back({"actuation.temperature_amplitude_c",
+                       "must be in [0, " + bound(kMaxTemperatureAmplitudeC) + "] degC"});
     if (!finite(a.start_s)) out.push_back({"actuation.start_s", "must be finite"});
-    if (!finite(spec.environment.gravity_m_s2) || std::fabs(spec.environment.gravity_m_s2) > 1000.0)
-        out.push_back({"environment.gravity_m_s2", "must be in [-1000, 1000] m/s^2"});
+    if (!finite(spec.environment.gravity_m_s2) ||
+        std::fabs(spec.environment.gravity_m_s2) > kMaxGravityMS2)
+        out.push_back({"environment.gravity_m_s2", "must be in [" + bound(-kMaxGravityMS2) + ", " +
+                                                       bound(kMaxGravityMS2) + "] m/s^2"});
     if (!finite(spec.dt_fraction) || spec.dt_fraction <= 0.0 || spec.dt_fraction > kMaxDtFraction)
         out.push_back({"dt_fraction", "must be in (0, " + number(kMaxDtFraction) +
                                           "] (a fraction of the largest stable step)"});

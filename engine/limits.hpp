@@ -22,6 +22,9 @@ inline constexpr double kMaxPoissonRatio = 0.49;     //!< inclusive; 0.5 is inco
 //! measured: all three survive 0.6, the banded block diverges at 0.65).
 inline constexpr double kMaxActuationStrain = 0.6;
 inline constexpr double kMaxDtFraction = 1.0;
+inline constexpr double kMaxFrequencyHz = 1000.0;
+inline constexpr double kMaxTemperatureAmplitudeC = 1000.0;
+inline constexpr double kMaxGravityMS2 = 1000.0;  //!< |gravity| along z
 inline constexpr double kMaxDampingRatio = 10.0;
 //! A simulation needing more steps than this is refused (hours of wall time per simulation).
 inline constexpr double kMaxStepsPerSimulation = 1e8;
