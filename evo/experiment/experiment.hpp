@@ -27,6 +27,7 @@ struct MaterialEntry {
 };
 
 enum class PhaseMode { Uniform, Random };
+inline constexpr std::array<const char*, 2> kPhaseNames = {"uniform", "random"};
 
 struct ActuationSettings {
     double frequency_hz = 2.0;

@@ -194,4 +194,31 @@ int JsonReader::choice(const nlohmann::json& obj, const std::string& key, const 
     return fallback_index;
 }
 
+void JsonReader::array3(const nlohmann::json& obj, const std::string& key, const std::string& path,
+                        std::array<int, 3>& out) {
+    auto it = obj.find(key);
+    if (it == obj.end()) return;
+    const std::string field = join(path, key);
+    if (!it->is_array() || it->size() != 3) {
+        problem(field, "expected an array of 3 integers [x, y, z]");
+        return;
+    }
+    std::array<int, 3> v{};
+    for (int i = 0; i < 3; ++i) {
+        const nlohmann::json& e = (*it)[i];
+        if (!e.is_number_integer() && !e.is_number_unsigned()) {
+            problem(field + "[" + std::to_string(i) + "]",
+                    "expected an integer, got " + type_name(e));
+            return;
+        }
+        long long x = e.get<long long>();
+        if (x < -1'000'000'000LL || x > 1'000'000'000LL) {
+            problem(field + "[" + std::to_string(i) + "]", "is out of range");
+            return;
+        }
+        v[i] = static_cast<int>(x);
+    }
+    out = v;
+}
+
 }  // namespace bhm::evo

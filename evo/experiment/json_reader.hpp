@@ -1,6 +1,7 @@
 #pragma once
 // A JSON walker that collects every problem instead of stopping at the first: each accessor
 // reads one field with its default, checks type and range, and records "file:field: message".
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -48,6 +49,9 @@ class JsonReader {
                  bool fallback);
     std::string string(const nlohmann::json& obj, const std::string& key, const std::string& path,
                        const std::string& fallback);
+    //! An array of 3 integers [x, y, z] into out; out is left as it was when absent or invalid.
+    void array3(const nlohmann::json& obj, const std::string& key, const std::string& path,
+                std::array<int, 3>& out);
     //! A string that must be one of choices; returns its index or fallback_index.
     int choice(const nlohmann::json& obj, const std::string& key, const std::string& path,
                const std::vector<std::string>& choices, int fallback_index);

@@ -1,0 +1,356 @@
+// The field table (experiment_fields.hpp). Physics ranges are the engine's constants
+// (engine/limits.hpp), so the editor, the validator and Model::build agree on them.
+#include "evo/experiment/experiment_fields.hpp"
+
+#include <cstdio>
+
+#include "engine/limits.hpp"
+
+namespace bhm::evo {
+
+namespace {
+
+namespace lim = engine::limits;
+constexpr bool kOpen = true;  // Range{lo, hi, kOpen}: lo excluded
+
+// One accessor per row, written as the member's path (MuJoCo's mjxmacro.h does the same). The
+// rows are laid out by hand, a few designators a line, so the table reads as one.
+// clang-format off
+#define BHM_TEXT(expr) .text = [](Experiment& e) -> std::string& { return e.expr; }
+#define BHM_NUMBER(expr) .number = [](Experiment& e) -> double& { return e.expr; }
+#define BHM_INTEGER(expr) .integer = [](Experiment& e) -> int& { return e.expr; }
+#define BHM_BOOLEAN(expr) .boolean = [](Experiment& e) -> bool& { return e.expr; }
+#define BHM_CHOICE(expr, Enum, names)                                                 \
+    .get_choice = [](const Experiment& e) { return static_cast<int>(e.expr); },      \
+    .set_choice = [](Experiment& e, int v) { e.expr = static_cast<Enum>(v); }, \
+    .choices = names
+#define BHM_MATERIAL(member) .number = [](engine::Material& m) -> double& { return m.member; }
+
+const ExperimentField kExperimentFields[] = {
+    {.path = "name", .label = "##name", .unit = "", .help = "experiment name",
+     BHM_TEXT(name)},
+    {.path = "description", .label = "##description", .unit = "",
+     .help = "description: the problem and sources", BHM_TEXT(description)},
+    {.path = "workspace.size", .label = "Workspace", .unit = "voxels",
+     .help = "lattice size (x, y, z); paper exp. 3: 20 x 8 x 7",
+     .range = {1, kMaxWorkspaceDimension},
+     .size3 = [](Experiment& e) -> std::array<int, 3>& { return e.workspace_size; }},
+    {.path = "workspace.voxel_size_m", .label = "Voxel size", .unit = "m",
+     .help = "edge length of one voxel; paper: 0.01 m",
+     .range = {lim::kMinVoxelSizeM, lim::kMaxVoxelSizeM}, .format = "%.6g",
+     BHM_NUMBER(voxel_size_m)},
+    {.path = "actuation.frequency_hz", .label = "Frequency", .unit = "Hz",
+     .help = "actuation frequency; paper Table 1: 2 Hz", .range = {0, lim::kMaxFrequencyHz},
+     BHM_NUMBER(actuation.frequency_hz)},
+    {.path = "actuation.temperature_amplitude_c", .label = "Amplitude", .unit = "degC",
+     .help = "temperature swing of the active material; Kriegman 2020: 14.47",
+     .range = {0, lim::kMaxTemperatureAmplitudeC},
+     .rule = [] {
+         return "|cte_per_c x amplitude| <= " + range_number(lim::kMaxActuationStrain) +
+                " (the engine's stable actuation strain)";
+     },
+     BHM_NUMBER(actuation.temperature_amplitude_c)},
+    {.path = "actuation.phase", .label = "Phase", .unit = "",
+     .help = "per-voxel phase: uniform (all 0) or random (drawn per voxel)",
+     BHM_CHOICE(actuation.phase, PhaseMode, kPhaseNames)},
+    {.path = "environment.gravity_m_s2", .label = "Gravity", .unit = "m/s^2",
+     .help = "along z; -9.81 pulls down", .range = {-lim::kMaxGravityMS2, lim::kMaxGravityMS2},
+     BHM_NUMBER(environment.gravity_m_s2)},
+    {.path = "environment.floor", .label = "Floor at z = 0", .unit = "",
+     .help = "penalty contact with Coulomb friction", BHM_BOOLEAN(environment.floor)},
+    {.path = "simulation.settle_s", .label = "Settle", .unit = "s",
+     .help = "gravity only, actuation off; paper: 1 s", .range = {0, 1e4},
+     BHM_NUMBER(simulation.settle_s)},
+    {.path = "simulation.evaluate_s", .label = "Evaluate", .unit = "s",
+     .help = "actuated time; paper: 10 s", .range = {0, 1e5, kOpen},
+     BHM_NUMBER(simulation.evaluate_s)},
+    {.path = "simulation.dt_fraction", .label = "dt fraction", .unit = "",
+     .help = "time step as a fraction of the largest stable step",
+     .range = {0, lim::kMaxDtFraction, kOpen}, .note = "(a fraction of the largest stable step)",
+     .format = "%.3f", BHM_NUMBER(simulation.dt_fraction)},
+    {.path = "simulation.bond_damping_ratio", .label = "Bond damping", .unit = "",
+     .help = "damping of each link, as a ratio of critical (Voxelyze zeta_internal); 1",
+     .range = {0, lim::kMaxDampingRatio}, .format = "%.3f",
+     BHM_NUMBER(simulation.bond_damping_ratio)},
+    {.path = "simulation.global_damping_ratio", .label = "Global damping", .unit = "",
+     .help = "damping of each voxel toward rest, as a ratio of critical (zeta_global)",
+     .range = {0, lim::kMaxDampingRatio}, .format = "%.3f",
+     BHM_NUMBER(simulation.global_damping_ratio)},
+    {.path = "simulation.collision_damping_ratio", .label = "Collision damping", .unit = "",
+     .help = "damping of floor contact, as a ratio of critical", .range = {0, lim::kMaxDampingRatio},
+     .format = "%.3f", BHM_NUMBER(simulation.collision_damping_ratio)},
+    {.path = "simulation.record_fps", .label = "Record rate", .unit = "frames/s",
+     .help = "replay frames and fitness samples per second", .range = {0, 1000, kOpen},
+     BHM_NUMBER(simulation.record_fps)},
+    {.path = "simulation.end_when_periodic", .label = "End when periodic", .unit = "",
+     .help = "end an evaluation once the motion repeats period by period; extrapolate the rest",
+     BHM_BOOLEAN(simulation.end_when_periodic)},
+    {.path = "simulation.periodic_tolerance", .label = "Periodic tolerance", .unit = "",
+     .help = "allowed extrapolation error, relative to 1 voxel length (1 deg for the bend angle) "
+             "plus the displacement reached",
+     .range = {0, 1, kOpen}, .format = "%.3g", BHM_NUMBER(simulation.periodic_tolerance)},
+    {.path = "fitness.measure", .label = "Measure", .unit = "",
+     .help = "what evolution maximises: centre-of-mass travel (voxel lengths) or bend angle (deg)",
+     BHM_CHOICE(fitness.measure, FitnessMeasure, kFitnessNames)},
+    {.path = "fitness.minimize_active_voxels", .label = "Minimise active voxels", .unit = "",
+     .help = "third AFPO objective", BHM_BOOLEAN(fitness.minimize_active_voxels)},
+    {.path = "fitness.constraints.attached_to_fixed_face", .label = "Attached to fixed face",
+     .unit = "", .help = "the body must touch every fixed face (paper section 4.1)",
+     BHM_BOOLEAN(fitness.constraints.attached_to_fixed_face)},
+    {.path = "fitness.constraints.min_fill_fraction", .label = "Min fill", .unit = "",
+     .help = "share of the design space the body must fill", .range = {0, 1}, .format = "%.3f",
+     BHM_NUMBER(fitness.constraints.min_fill_fraction)},
+    {.path = "fitness.constraints.min_active_voxels", .label = "Min active", .unit = "voxels",
+     .help = "active voxels a body needs", .range = {0, kMaxWorkspaceCells},
+     .rule = [] { return std::string("at most the workspace's voxel count"); },
+     BHM_INTEGER(fitness.constraints.min_active_voxels)},
+    {.path = "fitness.constraints.reject_escaped", .label = "escaped (E)", .unit = "",
+     .help = "reject voxels not held by a fixed face, directly or through neighbours; checked "
+             "before simulating, so such bodies are never simulated",
+     BHM_BOOLEAN(fitness.constraints.reject_escaped)},
+    {.path = "fitness.constraints.reject_detached_motion", .label = "detached motion (D)",
+     .unit = "",
+     .help = "reject a body that moves while its part next to the fixed face barely does; "
+             "scored -2",
+     BHM_BOOLEAN(fitness.constraints.reject_detached_motion)},
+    {.path = "fitness.constraints.reject_tentacle", .label = "tentacle (T)", .unit = "",
+     .help = "reject a body whose thin voxels (at most 2 filled neighbours) carry most of the "
+             "motion; scored -2",
+     BHM_BOOLEAN(fitness.constraints.reject_tentacle)},
+    {.path = "evolution.algorithm", .label = "Algorithm", .unit = "",
+     .help = "AFPO (the paper's), NEAT or novelty search (docs/evolution.md)",
+     BHM_CHOICE(evolution.algorithm, Algorithm, kAlgorithmNames)},
+    {.path = "evolution.population", .label = "Population", .unit = "",
+     .help = "individuals per generation; paper: 50", .range = {2, 100000},
+     BHM_INTEGER(evolution.population)},
+    {.path = "evolution.generations", .label = "Generations", .unit = "",
+     .help = "generations to run; paper: 2000", .range = {0, 1e8},
+     BHM_INTEGER(evolution.generations)},
+    {.path = "evolution.wall_budget_h", .label = "Wall budget", .unit = "h",
+     .help = "the run stops after this wall time; paper: 48 h", .range = {0, 1e5, kOpen},
+     BHM_NUMBER(evolution.wall_budget_h)},
+    {.path = "evolution.max_neutral_retries", .label = "Neutral retries", .unit = "",
+     .help = "mutation retries for an identical or invalid child", .range = {0, 1e7},
+     BHM_INTEGER(evolution.max_neutral_retries)},
+    {.path = "evolution.seed", .label = "Seed", .unit = "", .help = "the run's random seed",
+     .seed = [](Experiment& e) -> std::uint64_t& { return e.evolution.seed; }},
+    {.path = "evolution.threads", .label = "Threads", .unit = "",
+     .help = "evaluation threads", .range = {0, 1024}, .note = "(0 = all cores)",
+     BHM_INTEGER(evolution.threads)},
+    {.path = "evolution.crossover_rate", .label = "Crossover rate", .unit = "",
+     .help = "share of AFPO children made by crossover before mutation", .range = {0, 1},
+     .note = "(0 = mutation only, the paper's)", .format = "%.3g",
+     BHM_NUMBER(evolution.crossover_rate)},
+    {.path = "evolution.cppn.min_hidden_nodes", .label = "CPPN min hidden", .unit = "nodes",
+     .help = "fewest hidden nodes of a new CPPN; paper Table 2: 4", .range = {0, 1000},
+     BHM_INTEGER(evolution.cppn.min_hidden_nodes)},
+    {.path = "evolution.cppn.max_hidden_nodes", .label = "CPPN max hidden", .unit = "nodes",
+     .help = "most hidden nodes of a new CPPN; paper Table 2: 10", .range = {0, 1000},
+     .rule = [] { return std::string("at least min_hidden_nodes"); },
+     BHM_INTEGER(evolution.cppn.max_hidden_nodes)},
+    {.path = "evolution.cppn.weight_range", .label = "Weight range", .unit = "",
+     .help = "CPPN weights lie in [-range, range]; paper: 1", .range = {0, 100, kOpen},
+     .format = "%.3g", BHM_NUMBER(evolution.cppn.weight_range)},
+    {.path = "evolution.cppn.mutation_weight_sigma", .label = "Weight sigma", .unit = "",
+     .help = "standard deviation of a weight mutation", .range = {0, 100, kOpen},
+     .format = "%.3g", BHM_NUMBER(evolution.cppn.mutation_weight_sigma)},
+    {.path = "evolution.cppn.material_outputs", .label = "Material outputs", .unit = "",
+     .help = "how the CPPN picks a material: active or passive (the paper's two outputs), or "
+             "one output per material (needs two materials or more)",
+     BHM_CHOICE(evolution.cppn.material_outputs, MaterialOutputs, kMaterialOutputsNames)},
+    {.path = "evolution.neat.c1", .label = "NEAT c1", .unit = "",
+     .help = "compatibility distance: weight of excess genes", .range = {0, 100},
+     .format = "%.3g", BHM_NUMBER(evolution.neat.c1)},
+    {.path = "evolution.neat.c2", .label = "NEAT c2", .unit = "",
+     .help = "compatibility distance: weight of disjoint genes", .range = {0, 100},
+     .format = "%.3g", BHM_NUMBER(evolution.neat.c2)},
+    {.path = "evolution.neat.c3", .label = "NEAT c3", .unit = "",
+     .help = "compatibility distance: weight of the mean weight difference", .range = {0, 100},
+     .format = "%.3g", BHM_NUMBER(evolution.neat.c3)},
+    {.path = "evolution.neat.normalize_by_size", .label = "NEAT divide by N", .unit = "",
+     .help = "divide E and D by the larger gene count from 20 genes on (the paper's)",
+     BHM_BOOLEAN(evolution.neat.normalize_by_size)},
+    {.path = "evolution.neat.compatibility_threshold", .label = "Compat. threshold", .unit = "",
+     .help = "closer than this to a species' representative joins the species",
+     .range = {0, 1000, kOpen}, .format = "%.3g",
+     BHM_NUMBER(evolution.neat.compatibility_threshold)},
+    {.path = "evolution.neat.target_species", .label = "Target species", .unit = "",
+     .help = "the threshold moves toward this many species", .range = {0, 100000},
+     .note = "(0 = keep the threshold fixed)", BHM_INTEGER(evolution.neat.target_species)},
+    {.path = "evolution.neat.threshold_step", .label = "Threshold step", .unit = "",
+     .help = "how far the threshold moves per generation", .range = {0, 100, kOpen},
+     .format = "%.3g", BHM_NUMBER(evolution.neat.threshold_step)},
+    {.path = "evolution.neat.survival_fraction", .label = "Survival", .unit = "",
+     .help = "best share of each species that may parent", .range = {0, 1, kOpen},
+     .format = "%.3g", BHM_NUMBER(evolution.neat.survival_fraction)},
+    {.path = "evolution.neat.elitism", .label = "Elitism", .unit = "",
+     .help = "best members of each species copied unchanged", .range = {0, 100000},
+     .rule = [] { return std::string("at most evolution.population"); },
+     BHM_INTEGER(evolution.neat.elitism)},
+    {.path = "evolution.neat.stagnation_generations", .label = "Stagnation", .unit = "generations",
+     .help = "no improvement for this long: the species breeds no more", .range = {1, 1e8},
+     BHM_INTEGER(evolution.neat.stagnation_generations)},
+    {.path = "evolution.neat.crossover_rate", .label = "NEAT crossover", .unit = "",
+     .help = "share of offspring made by crossover (then mutation)", .range = {0, 1},
+     .format = "%.3g", BHM_NUMBER(evolution.neat.crossover_rate)},
+    {.path = "evolution.novelty.k", .label = "Novelty k", .unit = "",
+     .help = "nearest behaviours averaged (Lehman & Stanley's 15)", .range = {1, 1000},
+     BHM_INTEGER(evolution.novelty.k)},
+    {.path = "evolution.novelty.archive_threshold", .label = "Archive threshold",
+     .unit = "voxel lengths",
+     .help = "novelty a new individual needs to enter the archive at the start; adapts",
+     .range = {0, 1e6, kOpen}, .format = "%.3g", BHM_NUMBER(evolution.novelty.archive_threshold)},
+    {.path = "evolution.novelty.archive_capacity", .label = "Archive capacity", .unit = "",
+     .help = "the oldest entries leave beyond this", .range = {0, 100000},
+     BHM_INTEGER(evolution.novelty.archive_capacity)},
+    {.path = "evolution.novelty.with_fitness", .label = "With fitness", .unit = "",
+     .help = "fitness as a second objective beside novelty (finds better benders)",
+     BHM_BOOLEAN(evolution.novelty.with_fitness)},
+};
+
+const MaterialField kMaterialFields[] = {
+    {.path = "youngs_modulus_pa", .label = "E", .unit = "Pa",
+     .help = "Young's modulus; paper Table 1: 5e6",
+     .range = {0, lim::kMaxYoungsModulusPa, kOpen}, .note = "(beyond any real material)",
+     BHM_MATERIAL(youngs_modulus_pa)},
+    {.path = "density_kg_m3", .label = "Density", .unit = "kg/m^3", .help = "paper: 1000",
+     .range = {0, lim::kMaxDensityKgM3, kOpen}, BHM_MATERIAL(density_kg_m3)},
+    {.path = "poisson_ratio", .label = "Poisson", .unit = "", .help = "paper: 0.35",
+     .range = {lim::kMinPoissonRatio, lim::kMaxPoissonRatio},
+     .note = "(the engine's validated range)", .format = "%.3f", BHM_MATERIAL(poisson_ratio)},
+    {.path = "cte_per_c", .label = "CTE", .unit = "1/degC",
+     .help = "linear thermal expansion; > 0 makes the material active (muscle); paper: 0.01",
+     .range = {0, 1}, .note = "(> 0 makes the material active)",
+     .rule = [] {
+         return "|cte_per_c x amplitude| <= " + range_number(lim::kMaxActuationStrain) +
+                " (the engine's stable actuation strain)";
+     },
+     BHM_MATERIAL(cte_per_c)},
+    {.path = "static_friction", .label = "Static friction", .unit = "",
+     .help = "Coulomb friction against the floor; paper: 1", .range = {0}, .format = "%.3f",
+     BHM_MATERIAL(static_friction)},
+    {.path = "dynamic_friction", .label = "Dynamic friction", .unit = "",
+     .help = "Coulomb friction against the floor while sliding; paper: 0.5", .range = {0},
+     .format = "%.3f", .rule = [] { return std::string("at most static_friction"); },
+     BHM_MATERIAL(dynamic_friction)},
+};
+
+// clang-format on
+
+#undef BHM_TEXT
+#undef BHM_NUMBER
+#undef BHM_INTEGER
+#undef BHM_BOOLEAN
+#undef BHM_CHOICE
+#undef BHM_MATERIAL
+
+std::string printed(const char* format, double x) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, format, x);
+    return buf;
+}
+
+}  // namespace
+
+std::span<const ExperimentField> experiment_fields() {
+    return kExperimentFields;
+}
+
+std::span<const MaterialField> material_fields() {
+    return kMaterialFields;
+}
+
+const ExperimentField* find_experiment_field(std::string_view path) {
+    for (const auto& f : kExperimentFields)
+        if (path == f.path) return &f;
+    return nullptr;
+}
+
+const MaterialField* find_material_field(std::string_view key) {
+    for (const auto& f : kMaterialFields)
+        if (key == f.path) return &f;
+    return nullptr;
+}
+
+std::string range_number(double x) {
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    if (x == std::floor(x) && std::fabs(x) < 1e6) return printed("%.0f", x);
+    // %g, with the exponent as a person writes it: 1e+06 -> 1e6, 1e-06 -> 1e-6.
+    std::string s = printed("%g", x);
+    const auto e = s.find('e');
+    if (e == std::string::npos) return s;
+    std::string mantissa = s.substr(0, e), exponent = s.substr(e + 1);
+    const bool negative = exponent[0] == '-';
+    exponent.erase(0, exponent.find_first_not_of("+-0"));
+    return mantissa + "e" + (negative ? "-" : "") + exponent;
+}
+
+std::string range_text(const Range& r) {
+    const bool lo_open = r.lo_open || std::isinf(r.lo), hi_open = r.hi_open || std::isinf(r.hi);
+    return std::string(lo_open ? "(" : "[") + range_number(r.lo) + ", " + range_number(r.hi) +
+           (hi_open ? ")" : "]");
+}
+
+template <class Host>
+std::string range_message(const FieldOf<Host>& f) {
+    std::string s = "must be in " + range_text(f.range);
+    if (*f.unit) s += std::string(" ") + f.unit;
+    if (*f.note) s += std::string(" ") + f.note;
+    return s;
+}
+
+template <class Host>
+std::string field_value_text(const FieldOf<Host>& f, const Host& host) {
+    Host& h = const_cast<Host&>(host);  // the accessors are shared with writers; read only here
+    switch (f.kind()) {
+        case FieldKind::Text:
+            return f.text(h);
+        case FieldKind::Number:
+            return printed("%g", f.number(h));
+        case FieldKind::Integer:
+            return std::to_string(f.integer(h));
+        case FieldKind::Boolean:
+            return f.boolean(h) ? "true" : "false";
+        case FieldKind::Choice:
+            return f.choices[static_cast<std::size_t>(f.get_choice(h))];
+        case FieldKind::Seed:
+            return std::to_string(f.seed(h));
+        case FieldKind::Size3: {
+            const auto& v = f.size3(h);
+            return "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " +
+                   std::to_string(v[2]) + "]";
+        }
+    }
+    return "";
+}
+
+template <class Host>
+std::string field_tooltip(const FieldOf<Host>& f) {
+    std::string s = f.help;
+    std::string line;
+    const FieldKind kind = f.kind();
+    if (kind == FieldKind::Number || kind == FieldKind::Integer || kind == FieldKind::Size3) {
+        line = range_text(f.range);
+        if (*f.unit) line += std::string(" ") + f.unit;
+        if (*f.note) line += std::string(" ") + f.note;
+    } else if (kind == FieldKind::Choice) {
+        line = "one of";
+        for (std::size_t k = 0; k < f.choices.size(); ++k)
+            line += std::string(k ? ", " : " ") + f.choices[k];
+    }
+    if (f.rule) line += (line.empty() ? "" : "; ") + f.rule();
+    if (kind != FieldKind::Text) {
+        const Host defaults{};
+        line += (line.empty() ? "default " : "; default ") + field_value_text(f, defaults);
+    }
+    return line.empty() ? s : s + "\n" + line;
+}
+
+template std::string range_message(const ExperimentField&);
+template std::string range_message(const MaterialField&);
+template std::string field_value_text(const ExperimentField&, const Experiment&);
+template std::string field_value_text(const MaterialField&, const engine::Material&);
+template std::string field_tooltip(const ExperimentField&);
+template std::string field_tooltip(const MaterialField&);
+
+}  // namespace bhm::evo

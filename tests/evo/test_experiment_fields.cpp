@@ -1,0 +1,285 @@
+// The experiment field table (evo/experiment/experiment_fields.hpp): every field it lists is
+// written at its path and read back, every range it states is what validation refuses (and says),
+// the physics ranges are exactly the engine's (engine/limits.hpp, Model::build's check), and
+// docs/experiment-format.md documents every field.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "engine/limits.hpp"
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_fields.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "support/scratch.hpp"
+
+using namespace bhm::evo;
+using nlohmann::json;
+
+namespace {
+
+Experiment preset() {
+    return load_experiment(std::string(BHM_SOURCE_DIR) + "/assets/experiments/quick-demo.json");
+}
+
+// The JSON value at a dotted path, walked here rather than by the table's writer.
+const json* at_path(const json& root, const std::string& path) {
+    const json* j = &root;
+    std::size_t start = 0;
+    while (j) {
+        const auto dot = path.find('.', start);
+        const std::string key = path.substr(start, dot - start);
+        j = j->is_object() && j->contains(key) ? &(*j)[key] : nullptr;
+        if (dot == std::string::npos) break;
+        start = dot + 1;
+    }
+    return j;
+}
+
+// A valid value different from the current one.
+double other_number(double v, const Range& r) {
+    const double candidate =
+        v != 0.0 ? v * 1.1 : (std::isfinite(r.hi) ? r.lo + 0.1 * (r.hi - r.lo) : r.lo + 0.5);
+    return r.contains(candidate) ? candidate : 0.5 * (v + (std::isfinite(r.hi) ? r.hi : v + 1));
+}
+
+// Sets a value of `field` other than the current one; returns it as JSON (what the file holds).
+template <class Host>
+json change(const FieldOf<Host>& f, Host& h) {
+    switch (f.kind()) {
+        case FieldKind::Text:
+            return f.text(h) += " changed";
+        case FieldKind::Number:
+            return f.number(h) = other_number(f.number(h), f.range);
+        case FieldKind::Integer: {
+            int& v = f.integer(h);
+            v = f.range.contains(v + 1) ? v + 1 : v - 1;
+            return v;
+        }
+        case FieldKind::Boolean:
+            return f.boolean(h) = !f.boolean(h);
+        case FieldKind::Choice: {
+            const int next = (f.get_choice(h) + 1) % static_cast<int>(f.choices.size());
+            f.set_choice(h, next);
+            return f.choices[static_cast<std::size_t>(next)];
+        }
+        case FieldKind::Seed:
+            return f.seed(h) += 1;
+        case FieldKind::Size3:
+            for (int& n : f.size3(h))
+                n += 1;
+            return f.size3(h);
+    }
+    return nullptr;
+}
+
+// Values just outside the range (as doubles; integers step by one).
+std::vector<double> outside(const Range& r, bool integer) {
+    std::vector<double> out;
+    const double step_lo = integer ? 1.0 : (r.lo != 0.0 ? 0.5 * std::fabs(r.lo) : 1.0);
+    const double step_hi = integer ? 1.0 : (r.hi != 0.0 ? std::fabs(r.hi) : 1.0);
+    if (std::isfinite(r.lo)) out.push_back(r.lo_open && !integer ? r.lo : r.lo - step_lo);
+    if (std::isfinite(r.hi)) out.push_back(r.hi_open && !integer ? r.hi : r.hi + step_hi);
+    return out;
+}
+
+// Values at or just inside each finite end.
+std::vector<double> inside(const Range& r) {
+    std::vector<double> out;
+    if (std::isfinite(r.lo)) out.push_back(r.lo_open ? std::nextafter(r.lo, r.hi) : r.lo);
+    if (std::isfinite(r.hi)) out.push_back(r.hi_open ? std::nextafter(r.hi, r.lo) : r.hi);
+    return out;
+}
+
+bool refused_with(const std::vector<Problem>& problems, const std::string& field,
+                  const std::string& text) {
+    for (const auto& p : problems)
+        if (p.field == field && p.message.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("every field of the table is written at its path and read back unchanged") {
+    const Experiment base = preset();
+    REQUIRE(base.materials.size() == 2);
+    const auto dir = bhm::test::scratch_dir("experiment-fields");
+    int checked = 0;
+    for (const auto& f : experiment_fields()) {
+        CAPTURE(f.path);
+        Experiment e = base;
+        const json value = change(f, e);
+        REQUIRE_FALSE(e == base);
+        const json written = experiment_to_json(e);
+        const json* at = at_path(written, f.path);
+        REQUIRE(at != nullptr);
+        CHECK(*at == value);
+        const std::string file = (dir / "e.json").string();
+        save_experiment(file, e);
+        CHECK(load_experiment(file) == e);
+        ++checked;
+    }
+    for (const auto& f : material_fields()) {
+        CAPTURE(f.path);
+        Experiment e = base;
+        const json value = change(f, e.materials[1].physics);  // the active one
+        REQUIRE_FALSE(e == base);
+        const json written = experiment_to_json(e);
+        CHECK(written["materials"][1][f.path] == value);
+        CHECK(parse_experiment(written, "e.json") == e);
+        ++checked;
+    }
+    CHECK(checked == static_cast<int>(experiment_fields().size() + material_fields().size()));
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a value outside a field's range is refused, naming the field and the table's range") {
+    const Experiment base = preset();
+    REQUIRE(validate_experiment(base, "e.json").empty());
+    int refusals = 0;
+    for (const auto& f : experiment_fields()) {
+        const FieldKind kind = f.kind();
+        if (kind != FieldKind::Number && kind != FieldKind::Integer && kind != FieldKind::Size3)
+            continue;
+        CAPTURE(f.path);
+        REQUIRE(f.range.bounded());
+        const std::string field = kind == FieldKind::Size3 ? std::string(f.path) + "[0]" : f.path;
+        for (double v : outside(f.range, kind != FieldKind::Number)) {
+            CAPTURE(v);
+            Experiment e = base;
+            if (kind == FieldKind::Number) f.number(e) = v;
+            if (kind == FieldKind::Integer) f.integer(e) = static_cast<int>(v);
+            if (kind == FieldKind::Size3) f.size3(e)[0] = static_cast<int>(v);
+            const auto problems = validate_experiment(e, "e.json");
+            CHECK(refused_with(problems, field, "must be in " + range_text(f.range)));
+            ++refusals;
+        }
+        for (double v : inside(f.range)) {
+            CAPTURE(v);
+            Experiment e = base;
+            if (kind == FieldKind::Number) f.number(e) = v;
+            if (kind == FieldKind::Integer) f.integer(e) = static_cast<int>(v);
+            if (kind == FieldKind::Size3) f.size3(e)[0] = static_cast<int>(v);
+            CHECK_FALSE(refused_with(validate_experiment(e, "e.json"), field, "must be in"));
+        }
+    }
+    for (const auto& f : material_fields()) {
+        CAPTURE(f.path);
+        for (double v : outside(f.range, false)) {
+            CAPTURE(v);
+            Experiment e = base;
+            f.number(e.materials[0].physics) = v;
+            CHECK(refused_with(validate_experiment(e, "e.json"),
+                               std::string("materials[0].") + f.path,
+                               "must be in " + range_text(f.range)));
+            ++refusals;
+        }
+    }
+    CHECK(refusals > 60);
+    // A few as a person reads them (the range text itself is not derived here).
+    auto message = [&](const char* path, double v) {
+        Experiment e = base;
+        find_experiment_field(path)->number(e) = v;
+        for (const auto& p : validate_experiment(e, "e.json"))
+            if (p.field == path) return p.message;
+        return std::string();
+    };
+    CHECK(message("simulation.settle_s", -1) == "must be in [0, 10000] s");
+    CHECK(message("workspace.voxel_size_m", 0) == "must be in [1e-6, 10] m");
+    CHECK(message("evolution.novelty.archive_threshold", 0) == "must be in (0, 1e6] voxel lengths");
+    Experiment e = base;
+    e.materials[0].physics.poisson_ratio = 0.5;
+    CHECK(refused_with(validate_experiment(e, "e.json"), "materials[0].poisson_ratio",
+                       "must be in [-0.9, 0.49] (the engine's validated range)"));
+    e = base;
+    e.evolution.threads = -1;
+    CHECK(refused_with(validate_experiment(e, "e.json"), "evolution.threads",
+                       "must be in [0, 1024] (0 = all cores)"));
+}
+
+TEST_CASE("the table's physics ranges are the engine's: what it accepts, Model::build accepts") {
+    const Experiment base = preset();
+    // Fields the engine checks itself (engine::limits, called by Model::build).
+    const char* engine_checked[] = {"workspace.voxel_size_m",
+                                    "actuation.frequency_hz",
+                                    "actuation.temperature_amplitude_c",
+                                    "environment.gravity_m_s2",
+                                    "simulation.dt_fraction",
+                                    "simulation.bond_damping_ratio",
+                                    "simulation.global_damping_ratio",
+                                    "simulation.collision_damping_ratio"};
+    auto engine_refuses = [](const Experiment& e, const std::string& path) {
+        for (const auto& p : bhm::engine::limits::settings_problems(make_settings_spec(e)))
+            if (experiment_field_of(p.field) == path) return true;
+        return false;
+    };
+    for (const char* path : engine_checked) {
+        CAPTURE(path);
+        const ExperimentField* f = find_experiment_field(path);
+        REQUIRE(f != nullptr);
+        for (double v : outside(f->range, false)) {
+            Experiment e = base;
+            f->number(e) = v;
+            CHECK(engine_refuses(e, path));
+        }
+        for (double v : inside(f->range)) {
+            Experiment e = base;
+            f->number(e) = v;
+            CHECK_FALSE(engine_refuses(e, path));
+        }
+    }
+    for (const char* key : {"youngs_modulus_pa", "density_kg_m3", "poisson_ratio",
+                            "static_friction", "dynamic_friction"}) {
+        CAPTURE(key);
+        const MaterialField* f = find_material_field(key);
+        REQUIRE(f != nullptr);
+        auto refuses = [&](double v) {
+            bhm::engine::Material m;
+            f->number(m) = v;
+            for (const auto& p : bhm::engine::limits::material_problems(m, 0.0))
+                if (p.field == key) return true;
+            return false;
+        };
+        for (double v : outside(f->range, false))
+            CHECK(refuses(v));
+        for (double v : inside(f->range))
+            CHECK_FALSE(refuses(v));
+    }
+    // The amplitude's tooltip states the engine's actuation strain bound.
+    CHECK(field_tooltip(*find_experiment_field("actuation.temperature_amplitude_c"))
+              .find("<= " + range_number(bhm::engine::limits::kMaxActuationStrain)) !=
+          std::string::npos);
+}
+
+TEST_CASE("docs/experiment-format.md documents every field of the table") {
+    const std::string doc =
+        bhm::test::read_file(std::string(BHM_SOURCE_DIR) + "/docs/experiment-format.md");
+    REQUIRE_FALSE(doc.empty());
+    // Each section's table names a field by its path within the section ("constraints.min_fill_
+    // fraction" under fitness), so any dotted suffix of the path in backticks counts.
+    auto documented = [&](const std::string& path) {
+        for (std::size_t from = 0;; ++from) {
+            if (doc.find("`" + path.substr(from) + "`") != std::string::npos) return true;
+            from = path.find('.', from);
+            if (from == std::string::npos) return false;
+        }
+    };
+    for (const auto& f : experiment_fields()) {
+        CAPTURE(f.path);
+        CHECK(documented(f.path));
+    }
+    for (const auto& f : material_fields()) {
+        CAPTURE(f.path);
+        CHECK(documented(f.path));
+    }
+}
+
+TEST_CASE("range numbers read as written") {
+    CHECK(range_number(100000) == "100000");
+    CHECK(range_number(1e6) == "1e6");
+    CHECK(range_number(1e-6) == "1e-6");
+    CHECK(range_number(1e12) == "1e12");
+    CHECK(range_number(-0.9) == "-0.9");
+    CHECK(range_text({0, 1, true}) == "(0, 1]");
+    CHECK(range_text({0}) == "[0, inf)");
+}
