@@ -214,6 +214,8 @@ struct Studio {
     //! evolution, so this stays far below a frame (bench_studio reports it).
     double max_update_ms = 0.0;
     std::map<std::string, WidgetRect> widgets;
+    //! The last tooltip an experiment field showed (field_editor.hpp); tests read it.
+    std::string shown_tooltip;
     TileLayout tiles;  //!< this frame's tile sizes (fit_layout of the settings' preferences)
 };
 

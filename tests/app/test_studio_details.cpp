@@ -13,6 +13,8 @@
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/unsaved_guard.hpp"
+#include "engine/limits.hpp"
+#include "evo/experiment/experiment_fields.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -81,13 +83,19 @@ TEST_CASE("studio details: a second dialog does not show an older error") {
 TEST_CASE("studio details: the exploit flags can be rejected from the Experiment panel") {
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
-    HeadlessStudio session(studio, 1024, 900);
+    // Tall enough that the Fitness section's last controls are inside the window.
+    HeadlessStudio session(studio, 1024, 1100);
     run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2}])"));
-    for (const char* name : {"reject escaped", "reject detached motion", "reject tentacle"}) {
+    // An edit in the editor is labelled as the same edit by a script: "set <path>".
+    const std::pair<const char*, const char*> controls[] = {
+        {"reject escaped", "fitness.constraints.reject_escaped"},
+        {"reject detached motion", "fitness.constraints.reject_detached_motion"},
+        {"reject tentacle", "fitness.constraints.reject_tentacle"}};
+    for (const auto& [name, path] : controls) {
         INFO(name);
         REQUIRE(studio.widgets.count(name));
         run_script(session, json::array({{{"click", name}}, {{"frames", 1}}}));
-        CHECK(studio.document.undo_label() == name);
+        CHECK(studio.document.undo_label() == std::string("set ") + path);
     }
     const auto& c = studio.document.experiment().fitness.constraints;
     CHECK(c.reject_escaped);
@@ -201,4 +209,45 @@ TEST_CASE("studio details: the splitters show a grip at rest") {
         const auto* beside = vertical ? image.pixel(x, y + 8) : image.pixel(x + 8, y);
         CHECK(int(dot[0]) + 30 < int(beside[0]));
     }
+}
+
+TEST_CASE("studio details: an experiment field's tooltip is the field table's") {
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1024, 900);
+    run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2}])"));
+    auto hover = [&](const std::string& widget) {
+        REQUIRE(drawn_now(studio, widget));
+        const auto& r = studio.widgets.at(widget);
+        studio.shown_tooltip.clear();
+        session.input().mouse = {(r.min.x + r.max.x) / 2, (r.min.y + r.max.y) / 2};
+        session.frame();
+        session.frame();
+        return studio.shown_tooltip;
+    };
+    auto toggle = [&](const char* header) {
+        run_script(session, json::array({{{"click", header}}, {{"frames", 2}}}));
+    };
+    for (const char* path : {"workspace.size", "simulation.settle_s", "fitness.measure",
+                             "fitness.constraints.min_fill_fraction"}) {
+        CAPTURE(path);
+        const std::string shown = hover(path);
+        CHECK(shown == evo::field_tooltip(*evo::find_experiment_field(path)));
+        CHECK(shown.find(evo::find_experiment_field(path)->help) == 0);
+    }
+    // The two that had drifted (issue 22): Poisson's range and the amplitude's strain bound are
+    // now the engine's constants (engine/limits.hpp), not copies.
+    toggle("header Materials");
+    const std::string poisson = hover("materials[0].poisson_ratio");
+    CHECK(poisson == evo::field_tooltip(*evo::find_material_field("poisson_ratio")));
+    CHECK(poisson.find("[" + evo::range_number(engine::limits::kMinPoissonRatio) + ", " +
+                       evo::range_number(engine::limits::kMaxPoissonRatio) + "]") !=
+          std::string::npos);
+    toggle("header Materials");
+    toggle("header Actuation");
+    const std::string amplitude = hover("actuation.temperature_amplitude_c");
+    CHECK(amplitude ==
+          evo::field_tooltip(*evo::find_experiment_field("actuation.temperature_amplitude_c")));
+    CHECK(amplitude.find("<= " + evo::range_number(engine::limits::kMaxActuationStrain)) !=
+          std::string::npos);
 }
