@@ -12,6 +12,7 @@
 #include "app/cli/commands.hpp"
 #include "app/cli/evolve_cluster.hpp"
 #include "app/cli/path_checks.hpp"
+#include "app/cli/problem_report.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/batch.hpp"
 #include "evo/run/checkpoint.hpp"
@@ -197,9 +198,7 @@ int evolve(ArgParser& args) {
     try {
         experiment = evo::load_experiment(experiment_path);
     } catch (const evo::ValidationError& e) {
-        for (const auto& p : e.problems)
-            std::cerr << p.to_string() << "\n";
-        return 1;
+        return report_problems(e.problems);
     }
 
     if (args.has("--runs")) {

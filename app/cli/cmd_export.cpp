@@ -9,11 +9,12 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/text_file.hpp"
 #include "engine/replay.hpp"
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/surface_mesh.hpp"
 #include "evo/formats/vtk_series.hpp"
 #include "evo/formats/vxa.hpp"
@@ -171,9 +172,7 @@ int run_export(ArgParser& parser) {
     try {
         return export_body(parser);
     } catch (const evo::ValidationError& e) {
-        for (const auto& p : e.problems)
-            std::cerr << p.to_string() << "\n";
-        return 1;
+        return report_problems(e.problems);
     }
 }
 

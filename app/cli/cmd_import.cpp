@@ -4,6 +4,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa_import.hpp"
 
@@ -24,8 +25,7 @@ int import_vxa(ArgParser& parser) {
         evo::validate_body_against(imported.body, imported.experiment, source);
     problems.insert(problems.end(), body_problems.begin(), body_problems.end());
     if (!problems.empty()) {
-        for (const auto& p : problems)
-            std::cerr << p.to_string() << "\n";
+        print_problems(problems);
         std::cerr << "bhm import: " << source
                   << " maps to an experiment BHM cannot simulate; nothing written\n";
         return 1;

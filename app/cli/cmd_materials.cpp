@@ -6,6 +6,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "evo/experiment/material_library.hpp"
 
 namespace bhm::app {
@@ -24,9 +25,7 @@ int list_materials(ArgParser& parser) {
     try {
         library = evo::load_material_library(dir);
     } catch (const evo::ValidationError& e) {
-        for (const auto& p : e.problems)
-            std::cerr << p.to_string() << "\n";
-        return 1;
+        return report_problems(e.problems);
     }
     const std::string filter =
         parser.positionals().empty() ? std::string() : lower(parser.positionals().front());

@@ -5,6 +5,7 @@
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/file_kind.hpp"
+#include "app/cli/problem_report.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/validated_envelope.hpp"
 
@@ -49,11 +50,8 @@ int validate_body(ArgParser& parser) {
             }
         }
     }
-    for (const auto& p : problems)
-        std::cerr << p.to_string() << "\n";
-    if (!parser.has("--quiet"))
-        for (const auto& w : warnings)
-            std::cerr << w.to_string() << "\n";
+    print_problems(problems);
+    if (!parser.has("--quiet")) print_problems(warnings);  // file:field: warning: ...
     if (!problems.empty()) return 1;
     if (!parser.has("--quiet")) std::cout << parser.positionals().size() << " file(s) valid\n";
     return 0;

@@ -8,9 +8,15 @@
 
 namespace bhm::app {
 
-inline int report_problems(const std::vector<evo::Problem>& problems) {
+//! Every problem (or warning) on its own line on stderr.
+inline void print_problems(const std::vector<evo::Problem>& problems) {
     for (const auto& p : problems)
         std::cerr << p.to_string() << "\n";
+}
+
+//! print_problems, then the exit status of a refused input: 1.
+inline int report_problems(const std::vector<evo::Problem>& problems) {
+    print_problems(problems);
     return 1;
 }
 
