@@ -16,16 +16,14 @@
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "support/captured_command.hpp"
+#include "support/scratch.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    fs::path dir = fs::path(BHM_BINARY_DIR) / "test-output" / ("calibrate-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return bhm::test::output_dir("calibrate", name);
 }
 
 using bhm::test::CapturedRun;

@@ -3,7 +3,6 @@
 #include <doctest/doctest.h>
 
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -15,8 +14,9 @@
 
 #include "../evo/mesh_check.hpp"
 #include "app/shell_run.hpp"
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "support/scratch.hpp"
 
 namespace {
 
@@ -94,15 +94,13 @@ std::vector<std::array<std::array<double, 3>, 3>> parse_stl(const std::string& d
 }
 
 struct Fixture {
-    fs::path dir = fs::temp_directory_path() / ("bhm-export-cli-" + std::to_string(::getpid()));
+    fs::path dir = bhm::test::scratch_dir("export-cli");
     std::string body_path;
     evo::Experiment experiment = evo::load_experiment(kExperiment);
     evo::Body body;
     int voxels = 0;
 
     Fixture() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
         // An L-shaped 8 x 6 x 5 body with a second material and a voxel touching the rest only
         // along an edge (the mesh must still be a closed 2-manifold).
         body.size = experiment.workspace_size;

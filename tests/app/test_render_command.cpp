@@ -13,10 +13,11 @@
 #include "app/cli/render_scene.hpp"
 #include "app/shell_run.hpp"
 #include "engine/replay.hpp"
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"
 #include "render/replay_view.hpp"
+#include "support/scratch.hpp"
 
 namespace {
 
@@ -38,14 +39,12 @@ Result run(const std::string& args, const std::string& env = "") {
 // sags over 1 s: every voxel moves down by 2 mm x t, the free end (x = 3) also along +x.
 struct Fixture {
     // One folder per process: ctest runs test cases in parallel processes.
-    fs::path dir = fs::temp_directory_path() / ("bhm-render-cli-" + std::to_string(::getpid()));
+    fs::path dir = bhm::test::scratch_dir("render-cli");
     std::string body_path, replay_path;
     evo::Experiment experiment = evo::load_experiment(kExperiment);
     evo::Body body;
 
     Fixture() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
         body.size = {4, 3, 2};
         body.cells.assign(24, 1);
         for (int y = 0; y < 3; ++y)

@@ -12,10 +12,11 @@
 #include "app/cli/render_video.hpp"
 #include "app/shell_run.hpp"
 #include "engine/replay.hpp"
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"
 #include "render/replay_view.hpp"
+#include "support/scratch.hpp"
 
 namespace {
 
@@ -44,11 +45,9 @@ double probe(const std::string& file, const std::string& entries, const std::str
 
 // A 4 x 3 x 2 body whose replay bends its free end down over 1 s, 11 frames.
 struct Fixture {
-    fs::path dir = fs::temp_directory_path() / ("bhm-ffmpeg-" + std::to_string(::getpid()));
+    fs::path dir = bhm::test::scratch_dir("ffmpeg");
     std::string body_path, replay_path;
     Fixture() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
         const auto experiment = evo::load_experiment(kExperiment);
         evo::Body body;
         body.size = {4, 3, 2};

@@ -15,18 +15,16 @@
 #include "app/cli/commands.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/experiment_io.hpp"
-#include "support/relative_approx.hpp"
 #include "support/captured_command.hpp"
+#include "support/relative_approx.hpp"
+#include "support/scratch.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    fs::path dir = fs::path(BHM_BINARY_DIR) / "test-output" / ("simulate-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return bhm::test::output_dir("simulate", name);
 }
 
 // Paper Table 1 materials on a 3x2x2 workspace held at x-; settle 0.05 s so a 0.1 s run has both

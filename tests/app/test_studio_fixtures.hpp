@@ -9,14 +9,12 @@
 
 #include "evo/experiment/experiment.hpp"
 #include "render/image.hpp"
+#include "support/scratch.hpp"
 
 namespace bhm::app::gui::testing {
 
 inline std::filesystem::path fresh_dir(const std::string& name) {
-    auto dir = std::filesystem::path(BHM_BINARY_DIR) / "test-output" / ("studio-" + name);
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
+    return bhm::test::output_dir("studio", name);
 }
 
 //! Paper Table 1 materials on a small workspace held at x-; short times so a generation of a

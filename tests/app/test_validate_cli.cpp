@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/scratch.hpp"
+
 namespace {
 const std::string kSource = BHM_SOURCE_DIR;
 const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
@@ -66,9 +68,7 @@ TEST_CASE("bhm materials lists the library with values and sources") {
     CHECK(r.output.find("skeletal-muscle-engineered") != std::string::npos);
     CHECK(r.output.find("ecoflex") == std::string::npos);
     // A broken library file: one line naming the file and the field, exit 1.
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("bhm-materials-cli-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const auto dir = bhm::test::scratch_dir("materials-cli");
     std::ofstream(dir / "bad.json") << R"({"format_version": 1, "name": "x",
         "category": "silicone", "engine": "e", "youngs_modulus_pa": {"value": 1e5}})";
     r = run("materials --dir " + dir.string());
@@ -79,10 +79,7 @@ TEST_CASE("bhm materials lists the library with values and sources") {
 }
 
 TEST_CASE("bhm validate reports every problem of a file, one per line") {
-    // One folder per process: test runs of other build trees on the same machine share /tmp.
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("bhm-validate-cli-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const auto dir = bhm::test::scratch_dir("validate-cli");
     const auto path = (dir / "two-problems.json").string();
     std::ofstream(path) << R"({"materials": [{"name": "p", "poisson_ratio": 0.7},
         {"name": "a", "cte_per_c": 0.01, "youngs_modulus_pa": -1}]})";
@@ -123,9 +120,7 @@ TEST_CASE("usage errors exit 2 with a one-line error and a hint") {
 }
 
 TEST_CASE("mutated presets through the real binary never crash it") {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("bhm-validate-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const auto dir = bhm::test::scratch_dir("validate-fuzz");
     std::ifstream in(kSource + "/assets/experiments/paper-exp3.json");
     std::stringstream s;
     s << in.rdbuf();
@@ -157,9 +152,7 @@ TEST_CASE("bhm validate refuses endless files and folders by name instead of rea
     CHECK(r.output ==
           "/dev/zero:(file): is not a regular file (a device, pipe or socket); give a "
           "file\n");
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("bhm-validate-folder-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const auto dir = bhm::test::scratch_dir("validate-folder");
     r = run("validate " + dir.string());
     CHECK(r.status == 1);
     CHECK(r.output == dir.string() + ":(file): is a directory, not a file\n");

@@ -9,11 +9,11 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "shell_run.hpp"
+#include "support/scratch.hpp"
 
 namespace {
 
@@ -23,12 +23,10 @@ using namespace bhm;
 const std::string kBhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
 
 struct Fixture {
-    fs::path dir = fs::temp_directory_path() / ("bhm-verify-cli-" + std::to_string(::getpid()));
+    fs::path dir = bhm::test::scratch_dir("verify-cli");
     std::string experiment, free_experiment, body;
 
     Fixture() {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
         // paper-exp1-attached (x- held) on a 5x3x3 workspace, 4 individuals, short evaluations.
         evo::Experiment e = evo::load_experiment(std::string(BHM_SOURCE_DIR) +
                                                  "/assets/experiments/paper-exp1-attached.json");

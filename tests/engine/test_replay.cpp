@@ -12,6 +12,7 @@
 #include <string>
 
 #include "engine/replay.hpp"
+#include "support/scratch.hpp"
 
 namespace fs = std::filesystem;
 using bhm::engine::Replay;
@@ -20,10 +21,7 @@ using bhm::engine::VoxelPoses;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-    fs::path dir = fs::path(BHM_BINARY_DIR) / "test-output" / ("replay-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return bhm::test::output_dir("replay", name);
 }
 
 // Three voxels of a 2x2x1 lattice, two frames, with values chosen to exercise float bits

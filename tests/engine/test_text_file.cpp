@@ -12,6 +12,7 @@
 #include <random>
 
 #include "engine/io/text_file.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::engine;
 namespace fs = std::filesystem;
@@ -19,11 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-text-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return bhm::test::scratch_dir("text-" + name);
 }
 
 // The message read_text throws for path, or "" when it reads the file.

@@ -1,15 +1,15 @@
 // Experiment and body files: presets validate, round trips are exact, every broken file in
 // tests/data/bad names the field at fault, and no mutated input crashes the loader.
 #include <doctest/doctest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "support/scratch.hpp"
 
 namespace fs = std::filesystem;
 using namespace bhm::evo;
@@ -54,9 +54,7 @@ TEST_CASE("every preset validates and matches the paper's settings") {
 }
 
 TEST_CASE("experiment round trip: load, save, load is identical") {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-roundtrip-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    const fs::path dir = bhm::test::scratch_dir("roundtrip");
     for (const auto& name : kPresets) {
         CAPTURE(name);
         Experiment a = load_experiment(preset_path(name));

@@ -11,6 +11,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/material_library.hpp"
 #include "evo/experiment/validated_envelope.hpp"
+#include "support/scratch.hpp"
 
 namespace fs = std::filesystem;
 using namespace bhm::evo;
@@ -22,11 +23,7 @@ const std::string kLibrary = std::string(BHM_SOURCE_DIR) + "/assets/materials";
 
 struct ScratchDir {
     fs::path path;
-    explicit ScratchDir(const std::string& name)
-        : path(fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()))) {
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
+    explicit ScratchDir(const std::string& name) : path(bhm::test::scratch_dir(name)) {}
     ~ScratchDir() { fs::remove_all(path); }
     std::string write(const std::string& file, const std::string& text) const {
         std::ofstream(path / file) << text;
@@ -162,8 +159,7 @@ TEST_CASE("a library slot is written back faithfully and reads back the same") {
     CHECK(written["materials"][1]["youngs_modulus_pa"] == 1.5e4);  // the override, not the library's
     CHECK(parse_experiment(written, "written") == e);
     // Through a file, as the studio saves it.
-    const fs::path path = fs::temp_directory_path() /
-                          ("bhm-library-roundtrip-" + std::to_string(::getpid()) + ".json");
+    const fs::path path = bhm::test::scratch_dir("library-roundtrip") / "e.json";
     save_experiment(path.string(), e);
     CHECK(load_experiment(path.string()) == e);
     fs::remove(path);

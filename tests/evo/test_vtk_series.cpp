@@ -1,7 +1,6 @@
 // ParaView series: written files read back by a small independent parser (the XML checker of the
 // VXA tests plus number parsing): frame count, times, hexahedra, cell data and the COM path.
 #include <doctest/doctest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -9,6 +8,7 @@
 
 #include "evo/formats/vtk_series.hpp"
 #include "evo_test_support.hpp"
+#include "support/scratch.hpp"
 #include "xml_check.hpp"
 
 using namespace bhm;
@@ -68,8 +68,7 @@ engine::Replay sliding_replay() {
 }  // namespace
 
 TEST_CASE("a VTK series reads back: one .vtu per frame, hexahedra and cell data") {
-    const fs::path dir = fs::temp_directory_path() / ("bhm-vtk-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
+    const fs::path dir = bhm::test::scratch_dir("vtk", false);
     const auto replay = sliding_replay();
     auto e = bhm::evo::test::tiny_experiment({2, 1, 1});
     e.materials[1].physics.density_kg_m3 = 3000.0;  // COM weighted 1:3

@@ -1,7 +1,6 @@
 // VXA export: well-formed XML with the right palette, settings and layers; the checker itself
 // rejects malformed documents.
 #include <doctest/doctest.h>
-#include <unistd.h>
 
 #include <clocale>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include "engine/io/text_file.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo_test_support.hpp"
+#include "support/scratch.hpp"
 #include "xml_check.hpp"
 
 using namespace bhm::evo;
@@ -101,9 +101,7 @@ TEST_CASE("save_vxa writes the document atomically") {
     Body body;
     body.size = {2, 1, 1};
     body.cells = {1, 2};
-    const auto path = (std::filesystem::temp_directory_path() /
-                       ("bhm-test-champion-" + std::to_string(::getpid()) + ".vxa"))
-                          .string();
+    const auto path = (bhm::test::scratch_dir("vxa-champion") / "champion.vxa").string();
     save_vxa(path, e, body);
     std::ifstream in(path);
     std::stringstream s;

@@ -8,11 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/formats/vxa_import.hpp"
 #include "evo_test_support.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::evo;
 
@@ -284,9 +285,7 @@ TEST_CASE("broken VXA files fail with the file and the field") {
 
 TEST_CASE("a VXA over the 64 MiB cap, a folder or a device is refused by name before parsing") {
     // Before the cap, a 200 MB file was parsed with 887 MB of memory (issue 26 N3).
-    const auto dir =
-        std::filesystem::temp_directory_path() / ("bhm-test-vxa-cap-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const auto dir = bhm::test::scratch_dir("vxa-cap");
     const auto big = (dir / "huge.vxa").string();
     std::ofstream(big).close();
     std::filesystem::resize_file(big, 64 * 1024 * 1024 + 1);  // sparse: no disk used

@@ -1,7 +1,7 @@
 #pragma once
-// Scratch folders and file reading shared by every suite. ctest runs each test case in its own
-// process and several build trees may test at once on one machine, so a folder is named after
-// the test and the process id.
+// Scratch and output folders and file reading shared by every suite. ctest runs each test case in
+// its own process and several build trees may test at once on one machine, so a folder is named
+// after the test and the process id.
 #include <unistd.h>
 
 #include <filesystem>
@@ -18,6 +18,16 @@ inline std::filesystem::path scratch_dir(const std::string& name, bool create = 
                                       ("bhm-test-" + name + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     if (create) std::filesystem::create_directories(dir);
+    return dir;
+}
+
+//! An empty folder under the build tree's test-output/ (left there after the test, for a person to
+//! look at), named "<suite>-<name>"; whatever an earlier run left there is removed first.
+inline std::filesystem::path output_dir(const std::string& suite, const std::string& name) {
+    const std::filesystem::path dir =
+        std::filesystem::path(BHM_BINARY_DIR) / "test-output" / (suite + "-" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
     return dir;
 }
 
