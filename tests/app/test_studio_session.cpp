@@ -282,7 +282,7 @@ TEST_CASE("studio session: the experiment editor picks NEAT, Start runs it and s
         {"click": "Algorithm"}, {"frames": 2},
         {"click": "algorithm neat"}, {"frames": 2}])"));
     CHECK(studio.document.experiment().evolution.algorithm == evo::Algorithm::Neat);
-    CHECK(studio.document.undo_label() == "evolution algorithm");
+    CHECK(studio.document.undo_label() == "set evolution.algorithm");
     run_script(session, json::parse(R"([
         {"set": "evolution.neat.target_species", "value": 2},
         {"click": "Start"},
