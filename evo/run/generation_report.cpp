@@ -88,19 +88,9 @@ GenerationReport make_generation_report(const RunState& state, const Selection& 
     report.novelty = row.novelty;
     for (std::size_t k = 0; k < state.population.size(); ++k) {
         const auto& m = state.population[k];
-        PopulationEntry entry{
-            m.id,
-            m.report.fitness,
-            m.age,
-            m.phenotype.voxels,
-            m.phenotype.voxels > 0
-                ? static_cast<double>(m.phenotype.active_voxels) / m.phenotype.voxels
-                : 0.0,
-            state.pareto_rank[k],
-            m.report.diverged,
-            m.valid,
-            m.report.exploits,
-            k < selection.species.size() ? selection.species[k] : 0};
+        MemberSummary entry = summary_of(m);
+        entry.pareto_rank = state.pareto_rank[k];
+        entry.species = k < selection.species.size() ? selection.species[k] : 0;
         if (k < selection.novelty.size()) entry.novelty = selection.novelty[k];
         report.population.push_back(std::move(entry));
     }

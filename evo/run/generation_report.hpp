@@ -9,24 +9,11 @@
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/experiment/experiment.hpp"
 #include "evo/run/cached_evaluation.hpp"
+#include "evo/run/member_summary.hpp"
 #include "evo/run/run_state.hpp"
 #include "evo/search/search_algorithm.hpp"
 
 namespace bhm::evo {
-
-struct PopulationEntry {
-    std::int64_t id = 0;
-    double fitness = 0.0;
-    int age = 0;
-    int voxels = 0;
-    double active_fraction = 0.0;
-    int pareto_rank = 0;
-    bool diverged = false;
-    bool valid = true;
-    ExploitReport exploits;  //!< escaped / detached_motion / tentacle and their measures
-    int species = 0;         //!< NEAT: the member's species id (0 for other algorithms)
-    double novelty = 0.0;    //!< novelty search: the member's novelty (0 for other algorithms)
-};
 
 //! An immutable snapshot of one completed generation.
 struct GenerationReport {
@@ -39,7 +26,7 @@ struct GenerationReport {
     double median_fitness = 0.0;
     ChampionRecord champion;  //!< champion.individual.report.exploits: the champion's flags
     bool new_champion = false;
-    std::vector<PopulationEntry> population;  //!< in selection order
+    std::vector<MemberSummary> population;  //!< in selection order
     int evaluations = 0;
     int simulations = 0;
     int cache_hits = 0;  //!< evaluations served by the cache, a clone's parent or a twin

@@ -9,6 +9,7 @@
 
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/experiment/experiment.hpp"
+#include "evo/run/member_summary.hpp"
 #include "evo/run/run_state.hpp"
 
 namespace bhm::evo {
@@ -28,15 +29,11 @@ struct RunInfo {
 RunInfo read_run_info(const std::string& run_dir);
 
 //! champion.json: the best individual found so far, under the rules in force when it was found.
-struct ChampionFile {
-    std::int64_t id = 0;
-    double fitness = 0.0;
-    int age = 0;
-    int voxels = 0;
-    int active_voxels = 0;
+//! The member's summary (id, fitness, age, voxels, active voxels, exploit flags; what the file does
+//! not hold keeps MemberSummary's default) and what only a champion has.
+struct ChampionFile : MemberSummary {
     int generation_found = 0;
     Body body;  //!< framed, workspace-sized phenotype
-    ExploitReport exploits;
 };
 //! Reads champion.json and checks its body against the experiment (a champion of another
 //! experiment would name materials it does not define). Throws std::runtime_error naming the file.

@@ -127,17 +127,11 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
     for (std::size_t k = 0; k < state.population.size(); ++k) {
         const auto& m = state.population[k];
         PopulationMember p;
+        static_cast<evo::MemberSummary&>(p) = evo::summary_of(m);
         if (species_of[k] >= 0)
             p.species = state.neat.species[static_cast<std::size_t>(species_of[k])].id;
-        p.id = m.id;
-        p.fitness = m.report.fitness;
-        p.age = m.age;
-        p.voxels = m.phenotype.voxels;
-        p.active_voxels = m.phenotype.active_voxels;
         p.pareto_rank = k < state.pareto_rank.size() ? state.pareto_rank[k] : 0;
         p.novelty = k < state.novelty.size() ? state.novelty[k] : -1.0;
-        p.valid = m.valid;
-        p.exploits = m.report.exploits;
         p.body = std::make_shared<const evo::Body>(m.phenotype.body);
         snap->population.push_back(std::move(p));
     }
@@ -150,13 +144,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         snap->champion_generation = state.champion->generation_found;
         snap->best_fitness = c.report.fitness;
         PopulationMember& p = snap->champion;
-        p.id = c.id;
-        p.fitness = c.report.fitness;
-        p.age = c.age;
-        p.voxels = c.phenotype.voxels;
-        p.active_voxels = c.phenotype.active_voxels;
-        p.valid = c.valid;
-        p.exploits = c.report.exploits;
+        static_cast<evo::MemberSummary&>(p) = evo::summary_of(c);
         // The population's copy when the champion is in it, so the pointer is shared.
         for (const auto& m : snap->population)
             if (m.id == c.id) p.body = m.body;

@@ -9,6 +9,7 @@
 
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/experiment/experiment.hpp"
+#include "evo/run/member_summary.hpp"
 #include "evo/run/run_state.hpp"
 
 namespace bhm::app::gui {
@@ -37,21 +38,10 @@ struct RuleChangeNote {
     evo::FitnessMeasure measure = evo::FitnessMeasure::ComFinal3d;  //!< from `generation` on
 };
 
-struct PopulationMember {
-    std::int64_t id = 0;
-    double fitness = 0.0;
-    int age = 0;
-    int voxels = 0;
-    int active_voxels = 0;
-    int pareto_rank = 0;  //!< 0 = on the Pareto front of (fitness up, age down[, active down])
-    int species = 0;      //!< NEAT: its species id (0 for other algorithms)
-    bool valid = true;    //!< false: breaks the current constraints
-    //! Novelty search: its novelty in the last selection (behaviour distance, voxel lengths);
-    //! negative when unknown (other algorithms, or a resumed run before its next generation).
-    double novelty = -1.0;
-    evo::ExploitReport exploits;  //!< escaped / detached_motion / tentacle (evo/evaluate/exploit_flags.hpp)
+//! A member as the studio shows it: evo's summary (the same shape the generation report and the
+//! run directory's champion files have) and the body, shared between snapshots and the views.
+struct PopulationMember : evo::MemberSummary {
     std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)
-    double active_fraction() const { return voxels > 0 ? double(active_voxels) / voxels : 0.0; }
 };
 
 struct EvolutionSnapshot {

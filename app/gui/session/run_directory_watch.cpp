@@ -102,13 +102,8 @@ bool RunDirectoryWatch::refresh() {
         if (champion_t != champion_mtime_ && champion_t != fs::file_time_type{}) {
             const evo::ChampionFile c = evo::read_champion_file(dir_, snap->experiment);
             PopulationMember& m = snap->champion;
-            m.id = c.id;
-            m.fitness = c.fitness;
-            m.age = c.age;
-            m.voxels = c.voxels;
-            m.active_voxels = c.active_voxels;
+            static_cast<evo::MemberSummary&>(m) = c;  // the summary part of the file
             m.body = std::make_shared<const evo::Body>(c.body);
-            m.exploits = c.exploits;
             snap->has_champion = true;
             snap->champion_generation = c.generation_found;
             snap->best_fitness = m.fitness;
