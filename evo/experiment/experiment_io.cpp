@@ -317,10 +317,10 @@ Experiment parse_experiment(const json& root, const std::string& file) {
 
     if (const json* s = r.object(root, "simulation", "")) {
         auto& sim = e.simulation;
-        r.check_keys(
-            *s, "simulation",
-            {"settle_s", "evaluate_s", "dt_fraction", "bond_damping_ratio", "global_damping_ratio",
-             "collision_damping_ratio", "record_fps", "end_when_periodic", "periodic_tolerance"});
+        r.check_keys(*s, "simulation",
+                     {"settle_s", "evaluate_s", "dt_fraction", "bond_damping_ratio",
+                      "global_damping_ratio", "collision_damping_ratio", "implicit_damping_sweeps",
+                      "record_fps", "end_when_periodic", "periodic_tolerance"});
         sim.settle_s = r.number(*s, "settle_s", "simulation", sim.settle_s);
         sim.evaluate_s = r.number(*s, "evaluate_s", "simulation", sim.evaluate_s);
         sim.dt_fraction = r.number(*s, "dt_fraction", "simulation", sim.dt_fraction);
@@ -330,6 +330,9 @@ Experiment parse_experiment(const json& root, const std::string& file) {
             r.number(*s, "global_damping_ratio", "simulation", sim.global_damping_ratio);
         sim.collision_damping_ratio =
             r.number(*s, "collision_damping_ratio", "simulation", sim.collision_damping_ratio);
+        sim.implicit_damping_sweeps = static_cast<int>(
+            r.integer(*s, "implicit_damping_sweeps", "simulation", sim.implicit_damping_sweeps, 0,
+                      engine::limits::kMaxImplicitSweeps));
         sim.record_fps = r.number(*s, "record_fps", "simulation", sim.record_fps);
         sim.end_when_periodic =
             r.boolean(*s, "end_when_periodic", "simulation", sim.end_when_periodic);
@@ -560,7 +563,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         for (const auto& m : e.materials)
             physics.push_back(m.physics);
         const auto range = engine::limits::step_range(physics, e.voxel_size_m, s.dt_fraction,
-                                                      e.actuation.temperature_amplitude_c);
+                                                      e.actuation.temperature_amplitude_c,
+                                                      s.implicit_damping_sweeps);
         const std::string why = engine::limits::step_budget_problem(
             range, evaluation_seconds(e), e.actuation.frequency_hz,
             has_active && e.actuation.temperature_amplitude_c > 0, cells);
@@ -685,6 +689,7 @@ json experiment_to_json(const Experiment& e) {
                        {"bond_damping_ratio", s.bond_damping_ratio},
                        {"global_damping_ratio", s.global_damping_ratio},
                        {"collision_damping_ratio", s.collision_damping_ratio},
+                       {"implicit_damping_sweeps", s.implicit_damping_sweeps},
                        {"record_fps", s.record_fps},
                        {"end_when_periodic", s.end_when_periodic},
                        {"periodic_tolerance", s.periodic_tolerance}};
