@@ -84,6 +84,9 @@ std::vector<Problem> settings_problems(const BodySpec& spec) {
     for (const auto& [field, ratio] : ratios)
         if (!finite(ratio) || ratio < 0.0 || ratio > kMaxDampingRatio)
             out.push_back({field, "must be in [0, " + number(kMaxDampingRatio) + "]"});
+    if (d.implicit_sweeps < 0 || d.implicit_sweeps > kMaxImplicitSweeps)
+        out.push_back({"damping.implicit_sweeps",
+                       "must be in [0, " + std::to_string(kMaxImplicitSweeps) + "]"});
     const Actuation& a = spec.actuation;
     if (!finite(a.frequency_hz) || a.frequency_hz < 0.0 || a.frequency_hz > kMaxFrequencyHz)
         out.push_back(
@@ -210,8 +213,12 @@ double stable_step_for(double omega2) {
     return 1.0 / (2.0 * std::numbers::pi * std::sqrt(omega2));
 }
 
+double step_multiple(int implicit_sweeps) {
+    return implicit_sweeps > 0 ? kImplicitStepMultiple : 1.0;
+}
+
 StepRange step_range(const std::vector<Material>& materials, double L, double dt_fraction,
-                     double temperature_amplitude_c) {
+                     double temperature_amplitude_c, int implicit_sweeps) {
     const double A = temperature_amplitude_c;
     double stiffest = 0.0, softest = 0.0;
     for (std::size_t i = 0; i < materials.size(); ++i) {
@@ -222,7 +229,8 @@ StepRange step_range(const std::vector<Material>& materials, double L, double dt
             stiffest = std::max(stiffest, link_omega2(materials[i], materials[j], L, A));
     }
     if (materials.empty()) return {};
-    return {dt_fraction * stable_step_for(stiffest), dt_fraction * stable_step_for(softest)};
+    const double fraction = dt_fraction * step_multiple(implicit_sweeps);
+    return {fraction * stable_step_for(stiffest), fraction * stable_step_for(softest)};
 }
 
 std::int64_t steps_for(double total_s, double dt_s) {

@@ -35,16 +35,49 @@ double shear_modulus(const Material& m) {
     return m.youngs_modulus_pa / (2.0 * (1.0 + m.poisson_ratio));
 }
 
+// The largest relative size change a voxel's actuation reaches (|size - 1|).
+double actuation_reach(const Model::Data& d, int v) {
+    return std::sqrt(d.act_sin[v] * d.act_sin[v] + d.act_cos[v] * d.act_cos[v]);
+}
+
+// A bound on the damping rate of one link: the largest eigenvalue of M^-1/2 C M^-1/2 over the
+// link's twelve degrees of freedom (M: the masses m_a, m_b and inertias I = m L^2 / 6 of its
+// ends, C = beta K in its frame, straight, at the largest actuated size `scale`, length
+// scale L), so C <= lambda M. In the frame the modes decouple: axial k_a (1/m_a + 1/m_b),
+// torsion k_t (1/I_a + 1/I_b), and per bending plane the rank-two pair of the shear mode
+// (ta + tb - 2 omega_F, omega_F = (u_b - u_a) / l, stiffness k_s) and the curvature mode
+// (ta - tb, k_b): the largest eigenvalue of their 2 x 2 Gram matrix. Axial stiffness scales with
+// the size, bending and torsion with its square, l with it. Being proportional to M per end
+// (isotropic per 3-vector), the bound holds in any rotated frame.
+double link_damping_rate_bound(double beta, double k_axial, double k_bend, double k_torsion,
+                               double m_a, double m_b, double L, double scale) {
+    const double i_a = m_a * L * L / 6.0, i_b = m_b * L * L / 6.0;
+    const double ka = k_axial * scale, kb = k_bend * scale * scale;
+    const double kt = k_torsion * scale * scale;
+    const double ks = std::min(static_cast<double>(kShearPerTorsion) * kt, 3.0 * kb);
+    const double l = L * scale;
+    const double axial = ka * (1.0 / m_a + 1.0 / m_b);
+    const double torsion = kt * (1.0 / i_a + 1.0 / i_b);
+    const double rot = 1.0 / i_a + 1.0 / i_b;
+    const double ss = ks * (rot + 4.0 / (l * l) * (1.0 / m_a + 1.0 / m_b));
+    const double dd = kb * rot;
+    const double sd = std::sqrt(ks * kb) * (1.0 / i_a - 1.0 / i_b);
+    const double bend = 0.5 * (ss + dd) + std::sqrt(0.25 * (ss - dd) * (ss - dd) + sd * sd);
+    return beta * std::max({axial, torsion, bend});
+}
+
 void resize_voxels(Model::Data& d, int n) {
     for (auto* v :
          {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep, &d.angular_keep,
           &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic, &d.act_sin, &d.act_cos})
         v->assign(n, 0.0);
+    d.jacobi_lin.assign(n, 1.0);
+    d.jacobi_rot.assign(n, 1.0);
 }
 
 void resize_links(LinkParams& p, int n, float voxel_size) {
-    for (auto* v :
-         {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.rest_sin, &p.rest_cos})
+    for (auto* v : {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.damp_beta,
+                    &p.rest_sin, &p.rest_cos})
         v->assign(n, 0.0f);
     p.rest_base.assign(n, voxel_size);  // keeps absent slots well formed
 }
@@ -269,6 +302,11 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
 
     // Links: slot v of axis a joins v and plus[a][v] when that neighbour exists.
     std::array<std::vector<double>, 3> link_omega2;  // per link, for the damping cap (3 K)
+    // Implicit bond damping: per voxel, the sum over its links of a bound on the link's damping
+    // rate, so that P = m sum >= C in the Loewner order (link_damping_rate_bound).
+    const bool implicit = spec.damping.implicit_sweeps > 0;
+    d.implicit_sweeps = spec.damping.implicit_sweeps;
+    std::vector<double> damping_rate(implicit ? d.stored : 0, 0.0);
     const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
     const double torsion_over_l = kSquareTorsionFactor * std::pow(L, 4) / L;
     for (int axis = 0; axis < 3; ++axis) {
@@ -307,6 +345,13 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
             p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
+            if (implicit) {
+                const double lambda = link_damping_rate_bound(
+                    beta, k_axial, e * beam_inertia_over_l, g * torsion_over_l, m_a, m_b, L,
+                    1.0 + std::max(actuation_reach(d, v), actuation_reach(d, b)));
+                damping_rate[v] += lambda;
+                damping_rate[b] += lambda;
+            }
             const double amplitude_c = spec.actuation.temperature_amplitude_c;
             link_omega2[axis][v] = limits::link_damping_omega2(ma, mb, L, amplitude_c);
             max_omega2 = std::max(max_omega2, limits::link_omega2(ma, mb, L, amplitude_c));
@@ -319,7 +364,9 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     if (pp.active) finish_poisson_params(d);
 
     // Voxelyze's recommended step: 1 / (2 pi sqrt(k_max / m_min)), rotational modes included.
-    d.stable_dt_s = limits::stable_step_for(max_omega2);
+    // With the implicit bond damping the damping no longer bounds it (limits::step_multiple).
+    d.stable_dt_s =
+        limits::stable_step_for(max_omega2) * limits::step_multiple(spec.damping.implicit_sweeps);
     d.dt_s = spec.dt_fraction * d.stable_dt_s;
     const double dt = d.dt_s;
     // Explicit (velocity-lagged) Rayleigh damping is stable only while pi beta omega^2 dt stays
@@ -333,17 +380,31 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     // modulus M: at the paper's nu = 0.35 links with an active end keep 75 % of the paper's
     // zeta = 1 (pi beta omega^2 dt = 1.06 uncapped), the passive links of an actuated body 86 %.
     // (With the step from 3 K as well: 91 % and 100 %, for 1.21x the steps; docs/physics.md.)
+    // With the implicit damping (damping_pass.hpp) beta is applied in full, never capped, and the
+    // link pass's explicit term is zero.
     constexpr double kStableDampingProduct = 0.8 / std::numbers::pi;
     for (int axis = 0; axis < 3; ++axis) {
         LinkParams& p = d.links[axis];
         for (int v = 0; v < n; ++v) {
             if (p.exists[v] == 0.0f) continue;
+            if (implicit) {
+                p.damp_beta[v] = p.damp_steps[v];
+                p.damp_steps[v] = 0.0f;
+                continue;
+            }
             const double beta = std::min<double>(
                 p.damp_steps[v], kStableDampingProduct / (link_omega2[axis][v] * dt));
             p.damp_steps[v] = static_cast<float>(beta / dt);
         }
     }
 
+    // One Jacobi factor for every voxel, from the largest rate: with voxel-wise factors the
+    // sweeps scale the two ends' shares of a link's load differently, and a free body's momentum
+    // drifts (0.2 % of its internal momentum in 0.2 s, a self-propulsion that evolution would
+    // find); with one factor each sweep changes the momentum by a multiple of the loads' sum, 0.
+    double largest_rate = 0.0;
+    for (int v = 0; v < n && implicit; ++v)
+        if (!d.voxel_fixed[v]) largest_rate = std::max(largest_rate, damping_rate[v]);
     for (int v = 0; v < n; ++v) {
         const double m = d.mass[v];
         const double inertia = m * L * L / 6.0;
@@ -358,6 +419,10 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.movable[v] = 1.0;
         d.dt_inv_mass[v] = dt / m;
         d.dt_inv_inertia[v] = dt / inertia;
+        if (implicit) {
+            d.jacobi_lin[v] = 1.0 / (1.0 + dt * largest_rate);
+            d.jacobi_rot[v] = d.jacobi_lin[v];
+        }
     }
     return std::make_shared<const Model>(std::move(data));
 }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/internal/damping_pass.hpp"
 #include "engine/internal/link_pass.hpp"
 #include "engine/internal/poisson.hpp"
 #include "engine/internal/voxel_pass.hpp"
@@ -29,6 +30,13 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
         s.quat[i].assign(n, i == 0 ? 1.0 : 0.0);
         s.quat_f[i].assign(n, i == 0 ? 1.0f : 0.0f);
     }
+    if (d.implicit_sweeps > 0)
+        for (int i = 0; i < 3; ++i) {
+            s.vel_star[i].assign(n, 0.0);
+            s.omega_star[i].assign(n, 0.0);
+            s.vel_delta[i].assign(n, 0.0);
+            s.omega_delta[i].assign(n, 0.0);
+        }
     s.stuck.assign(n, 0.0);
     s.refused.assign(n, 0.0);
     // Every slot, dummies included, sits on its rest point (relative to the body's origin).
@@ -66,6 +74,7 @@ void init_links(const Model::Data& d, LinkScratch& l) {
 
 struct Phase {
     double sin_t = 0.0, cos_t = 0.0;
+    double omega = 0.0;  //!< 2 pi f once the actuation runs, else 0
 };
 
 Phase actuation_phase(const Model::Data& d, double t) {
@@ -73,7 +82,7 @@ Phase actuation_phase(const Model::Data& d, double t) {
     const double tau = t - a.start_s;
     if (!d.any_active || tau < 0.0) return {};
     const double angle = 2.0 * std::numbers::pi * a.frequency_hz * tau;
-    return {std::sin(angle), std::cos(angle)};
+    return {std::sin(angle), std::cos(angle), 2.0 * std::numbers::pi * a.frequency_hz};
 }
 
 const char* kAxisNames[3] = {"x", "y", "z"};
@@ -147,7 +156,24 @@ void World::step() {
     in.gravity_m_s2 = d.spec.environment.gravity_m_s2;
     // The floor is z = 0 in the world, -origin_z in the body's frame (model_data.hpp).
     in.floor_z = d.spec.environment.floor ? -d.origin_m[2] : -1e300;
-    const int bad_voxels = voxel_pass(d, s.voxels, s.links, in);
+    int bad_voxels = 0;
+    if (d.implicit_sweeps > 0) {
+        // Elastic and other forces give v*; the bond damping solves (M + dt C) v = M v* by
+        // Jacobi sweeps, the last of which moves the pose (damping_pass.hpp).
+        in.velocity_only = true;
+        voxel_pass(d, s.voxels, s.links, in);
+        const auto rate_sin = static_cast<float>(phase.omega * phase.cos_t);
+        const auto rate_cos = static_cast<float>(-phase.omega * phase.sin_t);
+        const PoissonScratch* poisson = d.poisson.active ? &s.poisson : nullptr;
+        for (int sweep = 1; sweep <= d.implicit_sweeps; ++sweep) {
+            for (int axis = 0; axis < 3; ++axis)
+                damping_link_pass(d, s.voxels, s.links[axis], poisson, axis, sin_t, cos_t, rate_sin,
+                                  rate_cos);
+            bad_voxels = damping_voxel_pass(d, s.voxels, s.links, sweep == d.implicit_sweeps);
+        }
+    } else {
+        bad_voxels = voxel_pass(d, s.voxels, s.links, in);
+    }
     if (bad_voxels != 0) {
         std::ostringstream why;
         why << "voxel state non-finite or moving more than one voxel (or one radian) per step";

@@ -22,6 +22,7 @@
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/periodic_end.hpp"
+#include "evo/evaluate/settle_rest.hpp"
 #include "evo/evaluate/simulate.hpp"
 #include "evo/evaluate/tracks.hpp"
 #include "evo/experiment/body_spec_of.hpp"
@@ -107,6 +108,12 @@ int simulate(ArgParser& args) {
     evo::MeasureTracker extrapolated(timed, at_start);
     evo::PeriodicEnd periodic(timed, model->dt_s(), evo::TrackSampler(timed, at_start).groups(),
                               evo::every_part_held(*model));
+    // And where its settling would have stopped being integrated, the body at rest
+    // (evo/evaluate/settle_rest.hpp; it resumes at settle_s).
+    evo::SettleRest settle(timed, evo::TrackSampler(timed, at_start).groups(),
+                           evo::every_part_held(*model));
+    bool rested = false;
+    double rest_stop_s = settle_s;
     bool repeated = false;
     double would_stop_s = total_s;
     evo::SimulationOptions options;
@@ -118,6 +125,10 @@ int simulate(ArgParser& args) {
         progress.update(w.time_s(), w.steps());
     };
     hooks.sampled = [&](const evo::TrackSample& sample) {
+        if (!rested && settle.observe(sample)) {
+            rested = true;
+            rest_stop_s = sample.t_s;
+        }
         if (repeated) return;
         extrapolated.observe(sample);
         if (periodic.observe(sample)) {
@@ -162,6 +173,10 @@ int simulate(ArgParser& args) {
         early["gate_error"] = evo::periodic_end_error(early_report, full_report);
     }
     summary["periodic_end"] = early;
+    summary["settle_rest"] = {{"applies", settle.enabled()},
+                              {"ends_early", rested && !stats.diverged},
+                              {"stop_s", rest_stop_s},
+                              {"resume_s", settle_s}};
 
     const std::filesystem::path dir(out_dir);
     engine::write_replay((dir / "replay.bin").string(), recorder.replay());

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/internal/beam_forces.hpp"
 #include "engine/internal/kernel_dispatch.hpp"
 #include "engine/internal/link_kinematics.hpp"
 
@@ -193,46 +194,21 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
         pb1[c] = f.theta_pos[1];
         pb2[c] = f.theta_pos[2];
 
-        // Absent links have zero stiffness, so everything below is exactly zero for them.
-        // Bending as its two modes: the antisymmetric one (curvature, ta = -tb) with E I / L,
-        // the symmetric one (shear, ta = tb) with 3 (2 G / E) E I / L = G L^3 / 2, taken from the
-        // torsion stiffness G J / L (kShearPerTorsion), so the lattice's shear modulus is G
-        // (E / 2 with Euler-Bernoulli beams alone, at any nu). At nu = 0 both are the beam's
-        // M_a = -k_b (4 ta + 2 tb), M_b = -k_b (2 ta + 4 tb).
         const float kb = k_bend[c] * size2;
         const float kt = k_torsion[c] * size2;
-        // (At most the Euler-Bernoulli 3 k_b: auxetic voxels, G > E / 2, keep the beam's shear,
-        // so the stable step, which knows 4 E I / L, still bounds this mode.)
-        const float ks_g = kShearPerTorsion * kt, ks_beam = 3.0f * kb;
-        const float ks = ks_g < ks_beam ? ks_g : ks_beam;  // (std::fmin would not vectorise)
-        const float twist_a = ta0 * f.ex + ta1 * f.ey + ta2 * f.ez;
-        const float twist_b = tb0 * f.ex + tb1 * f.ey + tb2 * f.ez;
-        const float kt_twist = kt * (twist_b - twist_a);
-        // Bending acts on the normal parts only: add back the e components, then torsion.
-        const float sym_e = ks * (twist_a + twist_b), anti_e = kb * (twist_a - twist_b);
-        const float along_a = kt_twist + sym_e + anti_e;
-        const float along_b = -kt_twist + sym_e - anti_e;
-        const float sym0 = ks * (ta0 + tb0), anti0 = kb * (ta0 - tb0);
-        const float sym1 = ks * (ta1 + tb1), anti1 = kb * (ta1 - tb1);
-        const float sym2 = ks * (ta2 + tb2), anti2 = kb * (ta2 - tb2);
-        const float ma0 = -(sym0 + anti0) + along_a * f.ex;
-        const float ma1 = -(sym1 + anti1) + along_a * f.ey;
-        const float ma2 = -(sym2 + anti2) + along_a * f.ez;
-        const float mb0 = -(sym0 - anti0) + along_b * f.ex;
-        const float mb1 = -(sym1 - anti1) + along_b * f.ey;
-        const float mb2 = -(sym2 - anti2) + along_b * f.ez;
-        const float s0 = ma0 + mb0, s1 = ma1 + mb1, s2 = ma2 + mb2;
         const float inv_len = 1.0f / f.length;
         const float axial = k_axial[c] * size * x;
-        f0[c] = -axial * f.ex + (f.ey * s2 - f.ez * s1) * inv_len;
-        f1[c] = -axial * f.ey + (f.ez * s0 - f.ex * s2) * inv_len;
-        f2[c] = -axial * f.ez + (f.ex * s1 - f.ey * s0) * inv_len;
-        mn0[c] = ma0;
-        mn1[c] = ma1;
-        mn2[c] = ma2;
-        mp0[c] = mb0;
-        mp1[c] = mb1;
-        mp2[c] = mb2;
+        const BeamLoads o =
+            beam_loads(f.ex, f.ey, f.ez, inv_len, axial, kb, kt, ta0, ta1, ta2, tb0, tb1, tb2);
+        f0[c] = o.f0;
+        f1[c] = o.f1;
+        f2[c] = o.f2;
+        mn0[c] = o.ma0;
+        mn1[c] = o.ma1;
+        mn2[c] = o.ma2;
+        mp0[c] = o.mb0;
+        mp1[c] = o.mb1;
+        mp2[c] = o.mb2;
     }
     return bad;
 }

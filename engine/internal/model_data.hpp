@@ -71,6 +71,9 @@ struct LinkParams {
     std::vector<float> k_bend;      //!< E I / L (N m/rad): the curvature mode's stiffness
     std::vector<float> k_torsion;   //!< G J / L (N m/rad)
     std::vector<float> damp_steps;  //!< Rayleigh beta / dt: damping term = k * beta * rate
+    //! Rayleigh beta (s) of the implicit bond damping (damping_pass.hpp); all zero, and damp_steps
+    //! used instead, when it is explicit
+    std::vector<float> damp_beta;
     std::vector<float> rest_base;   //!< rest length with no actuation (m)
     std::vector<float> rest_sin;    //!< d(rest)/d sin(2 pi f tau) (m)
     std::vector<float> rest_cos;    //!< d(rest)/d cos(2 pi f tau) (m)
@@ -159,6 +162,11 @@ struct Model::Data {
     std::vector<double> dt_inv_inertia;  //!< dt / I, I = m L^2 / 6
     std::vector<double> linear_keep;     //!< 1 / (1 + dt c_g / m): implicit global damping
     std::vector<double> angular_keep;    //!< 1 / (1 + dt c_g,rot / I)
+    //! Implicit bond damping (damping_pass.hpp): 1 / (1 + dt P / m) and 1 / (1 + dt P_rot / I),
+    //! P / m = P_rot / I the sum over the voxel's links of a bound on each link's damping rate
+    //! (so the Jacobi diagonal M + dt P bounds M + dt C); 1 for fixed voxels and dummies
+    std::vector<double> jacobi_lin;
+    std::vector<double> jacobi_rot;
     std::vector<double> floor_k;         //!< floor penalty stiffness (N/m), E L
     std::vector<double> floor_c;         //!< floor collision damping (N s/m)
     std::vector<double> mu_static;
@@ -167,6 +175,7 @@ struct Model::Data {
         act_sin;  //!< size scale = 1 + act_sin * sin(2 pi f tau) + act_cos * cos(..)
     std::vector<double> act_cos;
     bool any_active = false;
+    int implicit_sweeps = 0;  //!< 0: explicit bond damping; n: n Jacobi sweeps (damping_pass.hpp)
 
     std::array<LinkParams, 3> links;  //!< per axis, one slot per voxel slot
     PoissonParams poisson;

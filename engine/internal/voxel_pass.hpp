@@ -11,6 +11,9 @@ struct VoxelPassInput {
     double sin_t = 0.0, cos_t = 0.0;  //!< actuation phase of the step (see Model::Data::act_sin)
     double gravity_m_s2 = 0.0;
     double floor_z = 0.0;  //!< height of the floor: 0, or -1e300 without one (never touched)
+    //! The implicit bond damping follows: write only the velocities (also as VoxelState's v*),
+    //! not the pose; damping_voxel_pass's last sweep moves it
+    bool velocity_only = false;
 };
 
 //! Integrates every voxel by one dt and returns how many voxels' new state is insane: moved more
@@ -18,6 +21,12 @@ struct VoxelPassInput {
 //! VoxelState::refused marks them).
 int voxel_pass(const Model::Data& model, VoxelState& voxels,
                const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
+
+//! One Jacobi sweep of the implicit bond damping (damping_pass.hpp) on every voxel, the link
+//! scratch holding the damping loads -C v of damping_link_pass; `last`: then integrates the pose
+//! and returns the count of insane voxels as voxel_pass does (0 otherwise).
+int damping_voxel_pass(const Model::Data& model, VoxelState& voxels,
+                       const std::array<LinkScratch, 3>& links, bool last);
 
 //! The first voxel the last voxel_pass marked as refused, or -1.
 int first_refused_voxel(const Model::Data& model, const VoxelState& voxels);

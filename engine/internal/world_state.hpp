@@ -28,6 +28,12 @@ struct VoxelState {
     std::vector<double> stuck;                 //!< 1 = held by static friction
     std::array<std::vector<double>, 3> ext_force;
     std::vector<double> refused;  //!< scratch of the voxel pass: 1 = insane new state
+    //! Implicit bond damping only (damping_pass.hpp): the velocities before the damping, v*
+    std::array<std::vector<double>, 3> vel_star;
+    std::array<std::vector<double>, 3> omega_star;
+    //! The last step's damping change v - v*, the next step's first guess (v* + it)
+    std::array<std::vector<double>, 3> vel_delta;
+    std::array<std::vector<double>, 3> omega_delta;
 };
 
 //! Per link slot of one axis (slot v = the link of voxel v to its + neighbour): the forces the link

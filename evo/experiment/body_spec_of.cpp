@@ -65,6 +65,7 @@ engine::BodySpec make_settings_spec(const Experiment& e) {
     spec.damping.bond_ratio = e.simulation.bond_damping_ratio;
     spec.damping.global_ratio = e.simulation.global_damping_ratio;
     spec.damping.collision_ratio = e.simulation.collision_damping_ratio;
+    spec.damping.implicit_sweeps = e.simulation.implicit_damping_sweeps;
     spec.actuation.frequency_hz = e.actuation.frequency_hz;
     spec.actuation.temperature_amplitude_c = e.actuation.temperature_amplitude_c;
     spec.actuation.start_s = e.simulation.settle_s;
@@ -78,6 +79,7 @@ std::string experiment_field_of(const std::string& field) {
         {"damping.bond_ratio", "simulation.bond_damping_ratio"},
         {"damping.global_ratio", "simulation.global_damping_ratio"},
         {"damping.collision_ratio", "simulation.collision_damping_ratio"},
+        {"damping.implicit_sweeps", "simulation.implicit_damping_sweeps"},
         {"dt_fraction", "simulation.dt_fraction"},
         {"actuation.start_s", "simulation.settle_s"},
     };

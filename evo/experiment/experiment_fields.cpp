@@ -79,6 +79,10 @@ const ExperimentField kExperimentFields[] = {
     {.path = "simulation.collision_damping_ratio", .label = "Collision damping", .unit = "",
      .help = "damping of floor contact, as a ratio of critical", .range = {0, lim::kMaxDampingRatio},
      .format = "%.3f", BHM_NUMBER(simulation.collision_damping_ratio)},
+    {.path = "simulation.implicit_damping_sweeps", .label = "Implicit damping sweeps", .unit = "",
+     .help = "0: explicit bond damping (it bounds the step); n > 0: implicit, n Jacobi sweeps, "
+             "a longer step (docs/physics.md)",
+     .range = {0, lim::kMaxImplicitSweeps}, BHM_INTEGER(simulation.implicit_damping_sweeps)},
     {.path = "simulation.record_fps", .label = "Record rate", .unit = "frames/s",
      .help = "replay frames and fitness samples per second", .range = {0, 1000, kOpen},
      BHM_NUMBER(simulation.record_fps)},

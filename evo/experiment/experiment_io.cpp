@@ -379,7 +379,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         for (const auto& m : e.materials)
             physics.push_back(m.physics);
         const auto range = engine::limits::step_range(physics, e.voxel_size_m, s.dt_fraction,
-                                                      e.actuation.temperature_amplitude_c);
+                                                      e.actuation.temperature_amplitude_c,
+                                                      s.implicit_damping_sweeps);
         const std::string why = engine::limits::step_budget_problem(
             range, evaluation_seconds(e), e.actuation.frequency_hz,
             has_active && e.actuation.temperature_amplitude_c > 0, cells);

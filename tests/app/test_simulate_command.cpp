@@ -225,6 +225,40 @@ TEST_CASE("simulate --help documents the outputs and the diverged exit status") 
     CHECK(run.out.find("3 the simulation diverged") != std::string::npos);
 }
 
+TEST_CASE("simulate's summary says where an evaluation's settling would end at rest") {
+    // The held 3x2x2 block settling for 1 s under gravity: at rest well before (windows of
+    // 0.2 s, evo/evaluate/settle_rest.hpp), so an evaluation would stop integrating there and
+    // resume at settle_s; bhm simulate runs it all and reports the stop.
+    const fs::path dir = fresh_dir("settle_rest");
+    const fs::path experiment = dir / "experiment.json", body = dir / "body.json";
+    auto e = tiny_experiment();
+    e.simulation.settle_s = 1.0;
+    bhm::evo::save_experiment(experiment.string(), e);
+    bhm::evo::save_body(body.string(), tiny_body());
+    const CapturedRun run = run_simulate({experiment.string(), "--body", body.string(), "--seconds",
+                                          "1.5", "--out", (dir / "out").string()});
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    std::ifstream summary_file(dir / "out" / "summary.json");
+    const nlohmann::json r = nlohmann::json::parse(summary_file).at("settle_rest");
+    CHECK(r.at("applies") == true);
+    REQUIRE(r.at("ends_early") == true);
+    CHECK(r.at("stop_s").get<double>() >= 0.4);  // two windows at least
+    CHECK(r.at("stop_s").get<double>() < 1.0);
+    CHECK(r.at("resume_s").get<double>() == 1.0);
+    // Without the early ends nothing stops.
+    e.simulation.end_when_periodic = false;
+    bhm::evo::save_experiment(experiment.string(), e);
+    const CapturedRun off = run_simulate({experiment.string(), "--body", body.string(), "--seconds",
+                                          "1.5", "--out", (dir / "off").string()});
+    REQUIRE(off.exit_code == 0);
+    std::ifstream off_file(dir / "off" / "summary.json");
+    const nlohmann::json o = nlohmann::json::parse(off_file).at("settle_rest");
+    CHECK(o.at("applies") == false);
+    CHECK(o.at("ends_early") == false);
+    CHECK(o.at("stop_s").get<double>() == 1.0);
+}
+
 TEST_CASE("simulate's summary says where an evaluation would end and how far its extrapolation is") {
     // The held 3x2x2 block driven at 2 Hz, sampled at 30 fps (15 samples a period) for 3 s: its
     // motion repeats after a few periods. The summary's periodic_end block reports the stop, and

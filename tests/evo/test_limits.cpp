@@ -182,7 +182,8 @@ TEST_CASE("limits: the step range brackets every body's actual step") {
     for (const auto& m : e.materials)
         physics.push_back(m.physics);
     const auto range = engine::limits::step_range(physics, e.voxel_size_m, 0.9,
-                                                  e.actuation.temperature_amplitude_c);
+                                                  e.actuation.temperature_amplitude_c,
+                                                  e.simulation.implicit_damping_sweeps);
     for (std::uint8_t material : {1, 2}) {
         Body body = solid_workspace(e, material);
         if (material == 2) body.cells[0] = 1;  // a mixed link
