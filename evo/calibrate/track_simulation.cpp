@@ -54,13 +54,8 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
     SimulatedTrack sim;
     std::shared_ptr<const engine::Model> model;
     try {
-        auto spec = make_body_spec(e, framed_body, e.evolution.seed);
-        if (point.phase_lag_rad != 0.0) {
-            spec.phase_rad.resize(static_cast<std::size_t>(spec.cell_count()), 0.0f);
-            for (auto& phase : spec.phase_rad)
-                phase = static_cast<float>(phase + point.phase_lag_rad);
-        }
-        model = engine::Model::build(spec);
+        // The fitted phase lag is in e.actuation.phase_offset_rad (apply_fit).
+        model = engine::Model::build(make_body_spec(e, framed_body, e.evolution.seed));
     } catch (const std::invalid_argument& error) {
         // Parameters outside the engine's envelope (a trial of the fit): as good as diverged.
         sim.diverged = true;

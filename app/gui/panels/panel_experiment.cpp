@@ -144,6 +144,11 @@ void actuation_section(Studio& s) {
         a.phase = phase == 0 ? evo::PhaseMode::Uniform : evo::PhaseMode::Random;
         commit_draft(s, "actuation phase");
     }
+    if (field_double("Phase offset", a.phase_offset_rad, "rad",
+                     "[-pi, pi], added to every voxel's phase: a prototype's lag behind its drive "
+                     "(bhm calibrate's phase_lag)",
+                     "%.4g"))
+        commit_draft(s, "actuation phase offset");
     auto& env = s.draft.environment;
     if (field_double("Gravity", env.gravity_m_s2, "m/s^2",
                      "along z, [-1000, 1000]; -9.81 pulls down", "%.4g"))
