@@ -224,8 +224,11 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     out.jacobian_simulations = static_cast<int>(2 * p);
     const std::size_t n = jac.size();
     const double ssr = out.misfit_after_m * out.misfit_after_m * static_cast<double>(n);
-    out.identifiability =
-        analyse_identifiability(jac, ssr / static_cast<double>(n > p ? n - p : n));
+    // Degrees of freedom: the values less the parameters and the fitted offsets (one per point
+    // and axis, track_residuals).
+    const std::size_t offsets = track.t_s.empty() ? 0 : n / track.t_s.size();
+    const std::size_t dof = n > p + offsets ? n - p - offsets : n;
+    out.identifiability = analyse_identifiability(jac, ssr / static_cast<double>(dof));
     const auto& id = out.identifiability;
     for (std::size_t i = 0; i < p; ++i) {
         FittedParameter f;

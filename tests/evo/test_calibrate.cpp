@@ -84,6 +84,26 @@ TEST_CASE("a track of a different body is reported as a poor fit") {
                       [](const std::string& w) { return w.rfind("poor fit", 0) == 0; }));
 }
 
+TEST_CASE("the misfit fits the tracker's origin: one row's tracking error stays one row's") {
+    const Experiment e = calibration_experiment();
+    const Body body = apply_frame_and_overrides(e, bilayer(false));
+    const MeasuredTrack clean = synthetic_track(FitPoint{e, 0.0}, body, 0.0);
+    const SimulatedTrack sim = simulate_track(FitPoint{e, 0.0}, body, clean);
+    // Another origin for the whole track (a corner of the video frame): no misfit at all.
+    MeasuredTrack moved = clean;
+    for (auto& p : moved.points[0].position_m) p[0] += 0.3, p[2] -= 0.1;
+    CHECK(track_misfit(moved, sim) < 1e-12);
+    // An error of d in the first row's x only. Worked by hand, with n rows and 2 axes: the fitted
+    // offset is -d/n, so the residuals are d/n - d once and d/n n-1 times: RMS
+    // d sqrt((n-1) / (2 n^2)). Taken from the first row, every other row was off by d:
+    // d sqrt((n-1) / (2 n)), sqrt(n) times more, which is what biased E on the floor.
+    const double d = 1e-3;
+    MeasuredTrack first_off = clean;
+    first_off.points[0].position_m[0][0] += d;
+    const double n = static_cast<double>(clean.t_s.size());
+    CHECK(track_misfit(first_off, sim) == relative(d * std::sqrt((n - 1.0) / (2.0 * n * n)), 1e-6));
+}
+
 TEST_CASE("a fitted phase lag goes into the calibrated experiment, which then needs no report") {
     if (!calibration_available()) return;
     const Experiment e = calibration_experiment();
