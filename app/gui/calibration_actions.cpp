@@ -163,7 +163,7 @@ bool apply_calibration(Studio& s) {
     c.applied_job = snap->job;
     // A live run keeps the physics it started with (a rule change swaps fitness rules only):
     // the values apply to the next run.
-    if (editing_run_document(s) && run_fitness_rules(s))
+    if (run_is_live(s.evolution.phase()) && editing_run_document(s))
         set_status(s, label + " (for the next run: the live run keeps its physics)");
     return true;
 }
