@@ -204,10 +204,6 @@ int calibrate(ArgParser& args) {
         report["plot"] = nullptr;
         report["warnings"].push_back("no plot: bhm was built without libpng");
     }
-    if (r.calibrated.phase_lag_rad != 0.0)
-        report["warnings"].push_back(
-            "the experiment format has no uniform phase field: the fitted phase_lag is in this "
-            "report only, not in calibrated-experiment.json");
     evo::write_file_atomically(out_dir + "/report.json", report.dump(2) + "\n");
 
     for (const auto& f : r.fitted)

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/gui/calibration_actions.hpp"
 #include "app/gui/export_actions.hpp"
 #include "app/gui/key_bindings.hpp"
 #include "app/gui/studio_actions.hpp"
@@ -310,6 +311,29 @@ void run_step(HeadlessStudio& session, const json& step) {
                 return !s.simulator.busy() && s.shown != nullptr;
             },
             "the simulation");
+    } else if (step.contains("show_body")) {
+        if (!show_body_file(s, step.at("show_body").get<std::string>())) throw ScriptError(s.status);
+    } else if (step.contains("load_track")) {
+        if (!load_track(s, step.at("load_track").get<std::string>())) throw ScriptError(s.status);
+    } else if (step.contains("calibrate")) {
+        // The fit list as --fit names it; the boxes of the Calibrate tab follow it.
+        const std::string list = step.at("calibrate").get<std::string>();
+        auto& c = s.calibration;
+        for (std::size_t i = 0; i < c.fit_names.size(); ++i)
+            c.fit_on[i] = ("," + list + ",").find("," + c.fit_names[i] + ",") != std::string::npos;
+        if (step.contains("max_simulations")) c.max_simulations = step.at("max_simulations").get<int>();
+        if (!start_calibration(s)) throw ScriptError(s.status);
+    } else if (step.contains("wait_calibration")) {
+        frames_until(
+            session, timeout_of(step, 600.0),
+            [&] {
+                const auto snap = s.calibration.session.snapshot();
+                return !s.calibration.session.running() && snap &&
+                       snap->phase != CalibrationPhase::Running;
+            },
+            "the calibration");
+        const auto snap = s.calibration.session.snapshot();
+        if (snap->phase == CalibrationPhase::Failed) throw ScriptError(snap->error);
     } else if (step.contains("replay")) {
         const json& r = step.at("replay");
         if (!s.shown) throw ScriptError("replay: no simulated body is shown");

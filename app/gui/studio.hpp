@@ -19,6 +19,7 @@
 #include "app/gui/key_bindings.hpp"
 #include "app/gui/picking.hpp"
 #include "app/gui/session/body_simulator.hpp"
+#include "app/gui/session/calibration_session.hpp"
 #include "app/gui/session/champion_history.hpp"
 #include "app/gui/session/evolution_session.hpp"
 #include "app/gui/session/evolution_snapshot.hpp"
@@ -133,6 +134,33 @@ struct ComparedRun {
     std::shared_ptr<const EvolutionSnapshot> snapshot;
 };
 
+//! The Calibrate tab (docs/calibration.md): a measured track loaded onto the body shown, the
+//! parameters to fit and the calibration running on its own thread.
+struct CalibrationState {
+    std::string body_field;   //!< a body file to show (Show body)
+    std::string track_field;  //!< the path typed in the tab
+    std::string track_path;   //!< the track loaded (absolute)
+    std::shared_ptr<const evo::MeasuredTrack> track;
+    //! The body the track was loaded onto (the one shown then) and its experiment: what the
+    //! calibration simulates, whatever is shown later.
+    std::shared_ptr<const evo::Body> framed_body;
+    evo::Experiment experiment;
+    std::int64_t body_id = -1;
+    std::string body_label;
+    //! The --fit names offered, and which are ticked.
+    std::vector<std::string> fit_names = {"E",         "density",      "cte",
+                                          "amplitude", "frequency",    "phase_lag",
+                                          "bond_damping", "global_damping", "friction"};
+    std::vector<bool> fit_on = {true, false, false, true, false, false, false, false, false};
+    int max_simulations = 200;
+    int threads = 0;  //!< 0: all cores
+    CalibrationSession session;
+    std::shared_ptr<const CalibrationSnapshot> snapshot;  //!< taken at the start of a frame
+    CalibrationPhase seen_phase = CalibrationPhase::Idle;  //!< of the last snapshot's job
+    std::uint64_t seen_job = 0;
+    std::uint64_t applied_job = 0;  //!< the job whose values Apply last wrote (0: none)
+};
+
 struct Studio {
     ExperimentDocument document;
     //! The copy the Experiment panel's fields edit while a field is active; committed through
@@ -177,6 +205,8 @@ struct Studio {
     std::string browser_dir;  //!< folder the file browser shows (absolute; empty: the current)
     std::map<std::string, FileListing> file_listings;  //!< the Files tab's folders, re-read 2/s
     PendingAction pending;
+
+    CalibrationState calibration;
 
     BodySimulator simulator;
     std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view

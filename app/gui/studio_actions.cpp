@@ -4,6 +4,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "app/gui/calibration_actions.hpp"
 #include "app/gui/studio_paths.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
@@ -622,6 +623,7 @@ void update_studio(Studio& studio) {
     for (const BodySimulator* sim : {&studio.simulator, &studio.compare_simulator})
         if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))
             set_status(studio, "simulation failed: " + sim->last_error(), true);
+    update_calibration(studio);
     if (studio.shown) {
         const auto& frames = studio.shown->replay.frames;
         studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);

@@ -2,6 +2,7 @@
 
 #include <glm/glm.hpp>
 
+#include "app/gui/calibration_actions.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/view_scene.hpp"
 
@@ -15,6 +16,52 @@ constexpr glm::vec4 kFixedFaceTint{0.10f, 0.62f, 0.22f, 0.28f};
 
 LatticeBox workspace_box(const evo::Experiment& e) {
     return {e.workspace_size, e.voxel_size_m};
+}
+
+constexpr glm::vec4 kMeasured{0.05f, 0.05f, 0.05f, 1.0f};
+constexpr glm::vec4 kSimulatedPoint{0.93f, 0.49f, 0.13f, 1.0f};
+
+// The measured track over the replay (Calibrate tab): each tracked point's measured path up to
+// the replay time (black, drawn over the body) with a black dot where it is now, and an orange
+// dot on the simulated point, so the gap between the two is what the misfit measures. Only over
+// the body the track was loaded onto.
+void add_track_overlay(render::DrawList& list, const Studio& s) {
+    const auto& c = s.calibration;
+    const auto snap = c.snapshot;
+    if (!c.track || !s.shown || s.shown->framed_body != c.framed_body || !snap || !snap->preview ||
+        snap->track != c.track)
+        return;
+    const auto& track = *c.track;
+    const auto& preview = *snap->preview;
+    const double t = s.clock.time_s;
+    for (std::size_t i = 0; i < track.points.size(); ++i) {
+        std::optional<glm::vec3> last;
+        for (double tk : track.t_s) {
+            if (tk > t) break;
+            const auto p = measured_point_at(track, preview, i, tk);
+            if (!p) break;
+            const glm::vec3 here((*p)[0], (*p)[1], (*p)[2]);
+            if (last) {
+                list.lines_on_top.push_back({*last, kMeasured, 2.0f});
+                list.lines_on_top.push_back({here, kMeasured, 2.0f});
+            }
+            last = here;
+        }
+        if (const auto now = measured_point_at(track, preview, i, t)) {
+            render::Marker m;
+            m.position = glm::vec3((*now)[0], (*now)[1], (*now)[2]);
+            m.color = kMeasured;
+            m.shape = render::MarkerShape::Dot;
+            m.size_px = 7.0f;
+            list.markers.push_back(m);
+            if (const auto sim = simulated_point_at(track, preview, i, t)) {
+                m.position = glm::vec3((*sim)[0], (*sim)[1], (*sim)[2]);
+                m.color = kSimulatedPoint;
+                m.size_px = 5.0f;
+                list.markers.push_back(m);
+            }
+        }
+    }
 }
 
 // Appends `from` moved by `offset` (a second body beside the first).
@@ -75,6 +122,7 @@ render::DrawList build_view_draw_list(const Studio& s) {
             const float gap = static_cast<float>((se.workspace_size[1] + 2) * se.voxel_size_m);
             append_offset(list, other, {0.0f, gap, 0.0f});
         }
+        add_track_overlay(list, s);
         return list;
     }
     render::Scene scene = workspace_scene(e, s.painter, painter_context_body(s));

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 
 #include "evo/evaluate/fitness.hpp"
@@ -133,11 +134,19 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
             scan_x[static_cast<std::size_t>(j)][i] = lower[i] + u * (upper[i] - lower[i]);
         }
     std::vector<double> scan_misfit(static_cast<std::size_t>(scan));
+    // Progress from the scan too (a third of the budget): one report at a time, under a lock.
+    std::mutex scan_progress;
+    int scan_done = 0;
+    double scan_best = best;
     parallel_for(scan, resolve_thread_count(o.threads), [&](int j) {
         const auto sim = simulate_track(apply_fit(e, ps, scan_x[static_cast<std::size_t>(j)]), body,
                                         track, o.cancel);
-        scan_misfit[static_cast<std::size_t>(j)] =
-            sim.diverged ? diverged_misfit : track_misfit(track, sim);
+        const double m = sim.diverged ? diverged_misfit : track_misfit(track, sim);
+        scan_misfit[static_cast<std::size_t>(j)] = m;
+        std::lock_guard lock(scan_progress);
+        ++scan_done;
+        scan_best = std::min(scan_best, m);
+        if (o.progress) o.progress(sims + scan_done, scan_best);
     });
     sims += scan;
     out.scan_simulations = scan;
@@ -191,10 +200,14 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
                                   : r == nlopt::SUCCESS       ? "converged"
                                                               : "optimiser stopped (" +
                                                                   std::to_string(static_cast<int>(r)) + ")";
-            } catch (const EvaluationCancelled&) {
-                throw;
             } catch (const nlopt::roundoff_limited&) {
+                if (o.cancel && o.cancel->load()) throw EvaluationCancelled();
                 out.stop_reason = "optimiser limited by round-off";
+            } catch (...) {
+                // NLopt's C++ wrapper swallows the objective's exceptions and throws its own
+                // (nlopt failure): a cancelled simulation must still say it was cancelled.
+                if (o.cancel && o.cancel->load()) throw EvaluationCancelled();
+                throw;
             }
             ++out.optimiser_passes;
             if (pass > 0 && here_best > 0.99 * before_pass) break;
@@ -211,8 +224,11 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     out.jacobian_simulations = static_cast<int>(2 * p);
     const std::size_t n = jac.size();
     const double ssr = out.misfit_after_m * out.misfit_after_m * static_cast<double>(n);
-    out.identifiability =
-        analyse_identifiability(jac, ssr / static_cast<double>(n > p ? n - p : n));
+    // Degrees of freedom: the values less the parameters and the fitted offsets (one per point
+    // and axis, track_residuals).
+    const std::size_t offsets = track.t_s.empty() ? 0 : n / track.t_s.size();
+    const std::size_t dof = n > p + offsets ? n - p - offsets : n;
+    out.identifiability = analyse_identifiability(jac, ssr / static_cast<double>(dof));
     const auto& id = out.identifiability;
     for (std::size_t i = 0; i < p; ++i) {
         FittedParameter f;

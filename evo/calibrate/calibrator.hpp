@@ -26,8 +26,11 @@ struct CalibrationOptions {
     double jacobian_step = 0.01; //!< central-difference step in x
     //! A misfit below this fraction of the track's motion RMS counts as a good fit.
     double good_fit_fraction = 0.2;
+    //! Raised (a UI's Cancel): the fit throws EvaluationCancelled within one track row's
+    //! simulation.
     const std::atomic<bool>* cancel = nullptr;
-    //! After each of the optimiser's simulations: how many so far and the best misfit (metres).
+    //! After each simulation of the scan and the optimiser: how many so far and the best misfit
+    //! (metres). Called by one thread at a time, which may be a worker of the pool.
     std::function<void(int simulations, double best_misfit_m)> progress;
 };
 

@@ -113,10 +113,59 @@ FitPoint apply_fit(const Experiment& base, const std::vector<FitParameter>& para
             case FitKind::Frequency: e.actuation.frequency_hz *= f; break;
             case FitKind::BondDamping: e.simulation.bond_damping_ratio *= f; break;
             case FitKind::GlobalDamping: e.simulation.global_damping_ratio *= f; break;
-            case FitKind::PhaseLag: point.phase_lag_rad += x[i]; break;
+            case FitKind::PhaseLag:
+                // Into the experiment's uniform offset, wrapped into [-pi, pi] as it validates.
+                point.phase_lag_rad += x[i];
+                e.actuation.phase_offset_rad = std::remainder(
+                    e.actuation.phase_offset_rad + x[i], 2.0 * std::numbers::pi);
+                break;
         }
     }
     return point;
+}
+
+void copy_fitted_values(const Experiment& from, const std::vector<FitParameter>& parameters,
+                        Experiment& to) {
+    if (from.materials.size() != to.materials.size())
+        throw std::runtime_error("the experiment has " + std::to_string(to.materials.size()) +
+                                 " materials, the calibrated one " +
+                                 std::to_string(from.materials.size()));
+    for (const FitParameter& p : parameters) {
+        auto each_material = [&](auto&& copy) {
+            for (std::size_t k = 0; k < to.materials.size(); ++k)
+                if (p.material < 0 || static_cast<int>(k) == p.material)
+                    copy(from.materials[k].physics, to.materials[k].physics);
+        };
+        using M = engine::Material;
+        switch (p.kind) {
+            case FitKind::YoungsModulus:
+                each_material([](const M& a, M& b) { b.youngs_modulus_pa = a.youngs_modulus_pa; });
+                break;
+            case FitKind::Density:
+                each_material([](const M& a, M& b) { b.density_kg_m3 = a.density_kg_m3; });
+                break;
+            case FitKind::Cte: each_material([](const M& a, M& b) { b.cte_per_c = a.cte_per_c; }); break;
+            case FitKind::Friction:
+                each_material([](const M& a, M& b) {
+                    b.static_friction = a.static_friction;
+                    b.dynamic_friction = a.dynamic_friction;
+                });
+                break;
+            case FitKind::Amplitude:
+                to.actuation.temperature_amplitude_c = from.actuation.temperature_amplitude_c;
+                break;
+            case FitKind::Frequency: to.actuation.frequency_hz = from.actuation.frequency_hz; break;
+            case FitKind::BondDamping:
+                to.simulation.bond_damping_ratio = from.simulation.bond_damping_ratio;
+                break;
+            case FitKind::GlobalDamping:
+                to.simulation.global_damping_ratio = from.simulation.global_damping_ratio;
+                break;
+            case FitKind::PhaseLag:
+                to.actuation.phase_offset_rad = from.actuation.phase_offset_rad;
+                break;
+        }
+    }
 }
 
 double fit_value(const Experiment& e, const FitParameter& p, double x) {

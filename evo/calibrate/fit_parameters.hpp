@@ -36,13 +36,22 @@ std::vector<FitParameter> parse_fit_list(const std::string& list, const Experime
 //! The names --fit accepts, for --help.
 std::string fit_names_help();
 
-//! The experiment with x applied (x[i] for parameters[i]); the phase lag goes to phase_lag_rad.
+//! The experiment with x applied (x[i] for parameters[i]). The phase lag is added to the
+//! experiment's actuation.phase_offset_rad (wrapped into [-pi, pi]); phase_lag_rad keeps the
+//! lag fitted, for the report.
 struct FitPoint {
     Experiment experiment;
     double phase_lag_rad = 0.0;
 };
 FitPoint apply_fit(const Experiment& base, const std::vector<FitParameter>& parameters,
                    const std::vector<double>& x);
+
+//! Copies the values of the fitted parameters from `calibrated` (apply_fit's experiment) into
+//! `target`, leaving everything else of target as it is: the studio applies a calibration made
+//! on the body shown to the document being edited. Throws std::runtime_error when the two have
+//! different material lists (a factor on "every material" would not mean the same materials).
+void copy_fitted_values(const Experiment& calibrated, const std::vector<FitParameter>& parameters,
+                        Experiment& target);
 
 //! The physical value of parameter p at x (the first material's where it spans several) and
 //! its unit.

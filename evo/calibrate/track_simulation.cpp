@@ -54,13 +54,8 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
     SimulatedTrack sim;
     std::shared_ptr<const engine::Model> model;
     try {
-        auto spec = make_body_spec(e, framed_body, e.evolution.seed);
-        if (point.phase_lag_rad != 0.0) {
-            spec.phase_rad.resize(static_cast<std::size_t>(spec.cell_count()), 0.0f);
-            for (auto& phase : spec.phase_rad)
-                phase = static_cast<float>(phase + point.phase_lag_rad);
-        }
-        model = engine::Model::build(spec);
+        // The fitted phase lag is in e.actuation.phase_offset_rad (apply_fit).
+        model = engine::Model::build(make_body_spec(e, framed_body, e.evolution.seed));
     } catch (const std::invalid_argument& error) {
         // Parameters outside the engine's envelope (a trial of the fit): as good as diverged.
         sim.diverged = true;
@@ -103,16 +98,31 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
 
 std::vector<double> track_residuals(const MeasuredTrack& track, const SimulatedTrack& sim) {
     std::vector<double> r;
-    if (sim.diverged) return r;
+    if (sim.diverged || sim.position_m.size() < track.points.size()) return r;
+    for (std::size_t i = 0; i < track.points.size(); ++i)
+        if (sim.position_m[i].size() < track.t_s.size()) return r;  // stopped early
     r.reserve(track.compared_values());
+    const std::size_t rows = track.t_s.size();
+    // Per point and axis, the offset between the two (a tracker's origin) is the one that fits
+    // best: their mean difference. Taking both from their first row instead put that row's
+    // tracking error into every residual of its point and axis, a constant offset that a
+    // parameter with a quasi-static mark (E of a body on the floor) bent itself to absorb.
+    std::vector<double> offset(3 * track.points.size(), 0.0);
+    for (std::size_t i = 0; i < track.points.size(); ++i)
+        for (std::size_t a = 0; a < 3; ++a)
+            if (track.points[i].axes[a]) {
+                double sum = 0.0;
+                for (std::size_t k = 0; k < rows; ++k)
+                    sum += sim.position_m[i][k][a] - track.points[i].position_m[k][a];
+                offset[3 * i + a] = sum / static_cast<double>(rows);
+            }
     for (std::size_t i = 0; i < track.points.size(); ++i) {
         const auto& measured = track.points[i].position_m;
         const auto& simulated = sim.position_m[i];
-        for (std::size_t k = 0; k < track.t_s.size(); ++k)
+        for (std::size_t k = 0; k < rows; ++k)
             for (std::size_t a = 0; a < 3; ++a)
                 if (track.points[i].axes[a])
-                    r.push_back((simulated[k][a] - simulated[0][a]) -
-                                (measured[k][a] - measured[0][a]));
+                    r.push_back(simulated[k][a] - measured[k][a] - offset[3 * i + a]);
     }
     return r;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // One simulation of a body at the times of a measured track, and the misfit between the two.
-// Tracks are compared as displacements from their first row, so a tracker's origin (a corner of
-// the video frame) does not matter, only that its axes are the simulation's.
+// Tracks are compared up to a constant offset per point and axis (fitted), so a tracker's origin
+// (a corner of the video frame) does not matter, only that its axes are the simulation's.
 #include <array>
 #include <atomic>
 #include <string>
@@ -30,8 +30,10 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
                               const MeasuredTrack& track,
                               const std::atomic<bool>* cancel = nullptr);
 
-//! The residuals, simulated minus measured displacement from the first row, over every row and
-//! present axis (metres); a diverged simulation gives an empty vector.
+//! The residuals, simulated minus measured position less their mean difference (per point and
+//! axis: the tracker's origin, fitted), over every row and present axis (metres); a diverged
+//! simulation gives an empty vector. Every row's tracking error counts alike: taken from the
+//! first row, that row's error was in every residual.
 std::vector<double> track_residuals(const MeasuredTrack& track, const SimulatedTrack& sim);
 //! RMS of the residuals (metres); +infinity for a diverged simulation.
 double track_misfit(const MeasuredTrack& track, const SimulatedTrack& sim);

@@ -138,6 +138,9 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
                 static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) * 0x1.0p-53;
             spec.phase_rad[k] = static_cast<float>(2.0 * std::numbers::pi * u);
         }
+    if (e.actuation.phase_offset_rad != 0.0)
+        for (auto& phase : spec.phase_rad)
+            phase = static_cast<float>(phase + e.actuation.phase_offset_rad);
     return spec;
 }
 

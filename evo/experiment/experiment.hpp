@@ -33,6 +33,9 @@ struct ActuationSettings {
     double frequency_hz = 2.0;
     double temperature_amplitude_c = 14.47;
     PhaseMode phase = PhaseMode::Uniform;
+    //! Added to every voxel's phase, in [-pi, pi]: a prototype's lag behind its drive, as
+    //! bhm calibrate's phase_lag fits it (docs/calibration.md).
+    double phase_offset_rad = 0.0;
     bool operator==(const ActuationSettings&) const = default;
 };
 

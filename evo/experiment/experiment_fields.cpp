@@ -3,6 +3,7 @@
 #include "evo/experiment/experiment_fields.hpp"
 
 #include <cstdio>
+#include <numbers>
 
 #include "engine/limits.hpp"
 
@@ -53,6 +54,10 @@ const ExperimentField kExperimentFields[] = {
     {.path = "actuation.phase", .label = "Phase", .unit = "",
      .help = "per-voxel phase: uniform (all 0) or random (drawn per voxel)",
      BHM_CHOICE(actuation.phase, PhaseMode, kPhaseNames)},
+    {.path = "actuation.phase_offset_rad", .label = "Phase offset", .unit = "rad",
+     .help = "added to every voxel's phase: a prototype's lag behind its drive (bhm calibrate's "
+             "phase_lag)",
+     .range = {-std::numbers::pi, std::numbers::pi}, BHM_NUMBER(actuation.phase_offset_rad)},
     {.path = "environment.gravity_m_s2", .label = "Gravity", .unit = "m/s^2",
      .help = "along z; -9.81 pulls down", .range = {-lim::kMaxGravityMS2, lim::kMaxGravityMS2},
      BHM_NUMBER(environment.gravity_m_s2)},

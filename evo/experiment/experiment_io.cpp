@@ -424,6 +424,8 @@ json experiment_to_json(const Experiment& e) {
         {"enclosure",
          {{"thickness_voxels", thickness}, {"material", e.boundary.enclosure_material}}},
         {"voxel_overrides", overrides}};
+    // A phase offset only when set: experiments without one stay byte for byte as they were.
+    if (e.actuation.phase_offset_rad == 0.0) j["actuation"].erase("phase_offset_rad");
     // NEAT's and novelty's blocks only where they say something: AFPO files stay as they were.
     const auto& ev = e.evolution;
     if (ev.algorithm != Algorithm::Neat && ev.neat == NeatSettings{}) j["evolution"].erase("neat");

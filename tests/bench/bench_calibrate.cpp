@@ -6,7 +6,13 @@
 // values. One CSV row on stdout: the truth, the fit, the simulations used and the wall time.
 //
 //   bench_calibrate [--assets DIR] [--seconds T] [--threads N] [--max-simulations N]
+//                   [--profile N [--profile-span S]] [--noise F] [--clean-first-row]
 // --seconds: actuated time of the track after the settling (default 1.5 s, 3 cycles at 2 Hz).
+// --noise F: uniform noise of +-F x the motion's RMS on every position (default 0.01);
+// --clean-first-row: none on the first row (the reference every displacement is taken from).
+// --profile N: no fit; the misfit along E instead (N factors of E, log-spaced over truth x
+// e^-S .. truth x e^S, default S = ln 5, the other parameters at their truth), one CSV row each:
+// where the misfit has valleys besides the truth's (docs/calibration.md, "Bodies on the floor").
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -14,8 +20,10 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "evo/calibrate/calibrator.hpp"
+#include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
@@ -26,7 +34,9 @@ namespace {
 int run(int argc, char** argv) {
     std::string assets = "assets/experiments";
     double seconds = 1.5;
-    int threads = 2, max_sims = 200;
+    int threads = 2, max_sims = 200, profile = 0;
+    double profile_span = std::log(5.0), noise_fraction = 0.01;
+    bool clean_first_row = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -37,6 +47,10 @@ int run(int argc, char** argv) {
         else if (a == "--seconds") seconds = std::stod(value());
         else if (a == "--threads") threads = std::stoi(value());
         else if (a == "--max-simulations") max_sims = std::stoi(value());
+        else if (a == "--profile") profile = std::stoi(value());
+        else if (a == "--profile-span") profile_span = std::stod(value());
+        else if (a == "--noise") noise_fraction = std::stod(value());
+        else if (a == "--clean-first-row") clean_first_row = true;
         else throw std::runtime_error("unknown argument " + a);
     }
     if (!calibration_available()) throw std::runtime_error("built without NLopt");
@@ -66,14 +80,38 @@ int run(int argc, char** argv) {
     const auto sim = simulate_track(apply_fit(e, ps, truth), framed, track);
     if (sim.diverged) throw std::runtime_error("the truth diverged: " + sim.divergence_reason);
     for (std::size_t i = 0; i < 2; ++i) track.points[i].position_m = sim.position_m[i];
-    const double noise = 0.01 * track_motion_rms(track);
+    const double noise = noise_fraction * track_motion_rms(track);
     std::uint64_t state = 99;
     for (auto& p : track.points)
-        for (auto& row : p.position_m)
-            for (double& v : row) {
+        for (std::size_t k = 0; k < p.position_m.size(); ++k)
+            for (double& v : p.position_m[k]) {
                 state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-                v += noise * (2.0 * (static_cast<double>(state >> 11) * 0x1.0p-53) - 1.0);
+                if (k > 0 || !clean_first_row)
+                    v += noise * (2.0 * (static_cast<double>(state >> 11) * 0x1.0p-53) - 1.0);
             }
+    if (profile > 1) {
+        std::vector<double> misfit(static_cast<std::size_t>(profile));
+        std::vector<std::vector<double>> xs;
+        for (int k = 0; k < profile; ++k) {
+            auto x = truth;
+            x[0] += profile_span * (2.0 * k / (profile - 1) - 1.0);
+            xs.push_back(x);
+        }
+        parallel_for(profile, threads, [&](int k) {
+            const auto s = simulate_track(apply_fit(e, ps, xs[static_cast<std::size_t>(k)]), framed,
+                                          track);
+            misfit[static_cast<std::size_t>(k)] = track_misfit(track, s);
+        });
+        std::cout << "E_over_truth,E_pa,misfit_m,misfit_over_noise_rms\n";
+        for (int k = 0; k < profile; ++k) {
+            const auto& x = xs[static_cast<std::size_t>(k)];
+            std::cout << std::exp(x[0] - truth[0]) << "," << fit_value(e, ps[0], x[0]) << ","
+                      << misfit[static_cast<std::size_t>(k)] << ","
+                      << (noise > 0 ? misfit[static_cast<std::size_t>(k)] / (noise / std::sqrt(3.0)) : 0.0)
+                      << "\n";
+        }
+        return 0;
+    }
     CalibrationOptions o;
     o.threads = threads;
     o.max_simulations = max_sims;

@@ -4,12 +4,16 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <numbers>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
 #include "evo/calibrate/calibrator.hpp"
+#include "evo/evaluate/fitness.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo/test_support_calibrate.hpp"
 #include "support/relative_approx.hpp"
 
@@ -78,6 +82,83 @@ TEST_CASE("a track of a different body is reported as a poor fit") {
     CHECK(r.misfit_after_m > 0.5 * r.motion_rms_m);
     CHECK(std::any_of(r.warnings.begin(), r.warnings.end(),
                       [](const std::string& w) { return w.rfind("poor fit", 0) == 0; }));
+}
+
+TEST_CASE("the misfit fits the tracker's origin: one row's tracking error stays one row's") {
+    const Experiment e = calibration_experiment();
+    const Body body = apply_frame_and_overrides(e, bilayer(false));
+    const MeasuredTrack clean = synthetic_track(FitPoint{e, 0.0}, body, 0.0);
+    const SimulatedTrack sim = simulate_track(FitPoint{e, 0.0}, body, clean);
+    // Another origin for the whole track (a corner of the video frame): no misfit at all.
+    MeasuredTrack moved = clean;
+    for (auto& p : moved.points[0].position_m) p[0] += 0.3, p[2] -= 0.1;
+    CHECK(track_misfit(moved, sim) < 1e-12);
+    // An error of d in the first row's x only. Worked by hand, with n rows and 2 axes: the fitted
+    // offset is -d/n, so the residuals are d/n - d once and d/n n-1 times: RMS
+    // d sqrt((n-1) / (2 n^2)). Taken from the first row, every other row was off by d:
+    // d sqrt((n-1) / (2 n)), sqrt(n) times more, which is what biased E on the floor.
+    const double d = 1e-3;
+    MeasuredTrack first_off = clean;
+    first_off.points[0].position_m[0][0] += d;
+    const double n = static_cast<double>(clean.t_s.size());
+    CHECK(track_misfit(first_off, sim) == relative(d * std::sqrt((n - 1.0) / (2.0 * n * n)), 1e-6));
+}
+
+TEST_CASE("a fitted phase lag goes into the calibrated experiment, which then needs no report") {
+    if (!calibration_available()) return;
+    const Experiment e = calibration_experiment();
+    const Body body = apply_frame_and_overrides(e, bilayer(false));
+    const auto ps = parse_fit_list("phase_lag", e);
+    // The truth: the prototype lags its drive by 0.6 rad.
+    Experiment lagging = e;
+    lagging.actuation.phase_offset_rad = -0.6;
+    const MeasuredTrack track = synthetic_track(FitPoint{lagging, 0.0}, body, 0.005);
+    CalibrationOptions o;
+    o.threads = 2;
+    o.max_simulations = 60;
+    const CalibrationResult r = calibrate(e, body, track, ps, o);
+    CHECK(r.fitted[0].value == doctest::Approx(-0.6).epsilon(0.02));
+    CHECK(r.calibrated.experiment.actuation.phase_offset_rad == r.fitted[0].value);
+    // The calibrated experiment alone, saved and read back, moves as the track does.
+    const Experiment back =
+        parse_experiment(experiment_to_json(r.calibrated.experiment), "calibrated.json");
+    CHECK(back.actuation.phase_offset_rad == r.calibrated.experiment.actuation.phase_offset_rad);
+    const double alone = track_misfit(track, simulate_track(FitPoint{back, 0.0}, body, track));
+    MESSAGE("phase lag ", r.fitted[0].value, " rad, misfit ", r.misfit_before_m, " -> ",
+            r.misfit_after_m, " m, alone ", alone, " m");
+    CHECK(alone == relative(r.misfit_after_m, 1e-9));
+    CHECK(alone < 0.05 * r.misfit_before_m);
+    // Added to an offset already there, and wrapped into [-pi, pi].
+    Experiment near_pi = e;
+    near_pi.actuation.phase_offset_rad = 3.0;
+    CHECK(apply_fit(near_pi, ps, {0.5}).experiment.actuation.phase_offset_rad ==
+          doctest::Approx(3.5 - 2.0 * std::numbers::pi));
+}
+
+TEST_CASE("Cancel during the optimiser says cancelled, and the scan reports its progress") {
+    if (!calibration_available()) return;
+    const Experiment e = calibration_experiment();
+    const Body body = apply_frame_and_overrides(e, bilayer(false));
+    const auto ps = parse_fit_list("E,amplitude", e);
+    const MeasuredTrack track =
+        synthetic_track(apply_fit(e, ps, {std::log(1.25), std::log(0.85)}), body, 0.0);
+    std::atomic<bool> cancel{false};
+    std::vector<int> counts;
+    CalibrationOptions o;
+    o.threads = 2;
+    o.max_simulations = 500;
+    o.cancel = &cancel;
+    o.progress = [&](int simulations, double) {
+        counts.push_back(simulations);
+        // Past the scan (16 simulations for 2 parameters): inside BOBYQA's objective.
+        if (simulations >= 24) cancel.store(true);
+    };
+    // NLopt's C++ wrapper turns an exception of the objective into its own "nlopt failure":
+    // the calibrator must still say that it was cancelled.
+    CHECK_THROWS_AS(calibrate(e, body, track, ps, o), EvaluationCancelled);
+    // One report per simulation, the scan's included, counting up by one.
+    REQUIRE(counts.size() >= 24);
+    for (std::size_t k = 0; k < 16; ++k) CHECK(counts[k] == static_cast<int>(k) + 1);
 }
 
 TEST_CASE("expansion coefficient and amplitude, which only act as a product, are reported as trading off") {

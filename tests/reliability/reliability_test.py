@@ -16,10 +16,12 @@ Cases (each a ctest entry, "reliability: CASE"):
                 do; a checkpoint replaced by a folder is refused before any simulation
   replay-fuzz   damaged replays (non-finite and huge sizes, flipped bytes, truncation) through
                 bhm render --color strain|displacement: exit 0/1/2/3 only
-  mutation-fuzz >= 1000 mutated experiment, body, replay and VXA files through every subcommand
-                (import, mesh and VTK export of mutated replays included) and, with
-                --python-module, the Python module's entry points: exit 0/1/2/3 only, no
-                signal, no sanitizer report, no '[json.exception...]' text
+  mutation-fuzz >= 1000 mutated experiment, body, replay, VXA and measured-track files through
+                every subcommand (import, mesh and VTK export of mutated replays, calibrate
+                included) and, with --python-module, the Python module's entry points: exit
+                0/1/2/3 only, no signal, no sanitizer report, no '[json.exception...]' text;
+                calibrate refuses in one line and leaves no output, or writes a report that
+                parses and a calibrated experiment that validates
 
 Timings are never asserted except the documented bound of the stop (1 s, with margin for load).
 """
@@ -456,6 +458,47 @@ def mutate_bytes(data, rng):
     return bytes(data)
 
 
+TRACK_VALUES = ["nan", "inf", "-inf", "abc", "", "1e999", "412", "-0", "1e-320", "0x10", "1,2"]
+TRACK_LINES = ["# units: px", "# units: mm", "# scale_m_per_px: -1", "# scale_m_per_px: nan",
+               "# time_offset_s: inf", "# time_offset_s: 1e308", "# units: px\n# scale_m_per_px: 0.001",
+               "t_s,tip.x", "t_s,knee.x,tip.z", "t_s,tip.w,tip.z", "t_s,voxel:99999.x,tip.z",
+               "t_s,voxel:-1.x,tip.z", "t_s,com.x,com.x", ""]
+
+
+def mutate_track(text, rng):
+    """A measured track (docs/track-format.md) with one structural fault or byte damage."""
+    if rng.random() < 0.3:
+        return mutate_bytes(text.encode(), rng).decode("latin-1")
+    lines = text.split("\n")
+    data = [i for i, line in enumerate(lines) if line and line[0].isdigit()]
+    header = next((i for i, line in enumerate(lines) if line.startswith("t_s")), 0)
+    kind = rng.random()
+    if kind < 0.3 and data:  # one value
+        i = rng.choice(data)
+        cells = lines[i].split(",")
+        cells[rng.randrange(len(cells))] = rng.choice(TRACK_VALUES)
+        lines[i] = ",".join(cells)
+    elif kind < 0.45 and len(data) > 1:  # time order: two rows swapped or repeated
+        a, b = rng.sample(data, 2)
+        lines[a], lines[b] = lines[b], (lines[a] if rng.random() < 0.5 else lines[b])
+    elif kind < 0.55:  # too short
+        keep = set(data[:rng.randint(0, 2)])
+        lines = [line for i, line in enumerate(lines) if i not in data or i in keep]
+    elif kind < 0.75:  # a directive or a header
+        at = header if rng.random() < 0.5 else 0
+        lines[at:at + (1 if lines[at].startswith("t_s") and rng.random() < 0.5 else 0)] = \
+            [rng.choice(TRACK_LINES)]
+    elif kind < 0.85 and data:  # a column more or less in one row
+        i = rng.choice(data)
+        lines[i] = lines[i] + ",0" if rng.random() < 0.5 else lines[i].rsplit(",", 1)[0]
+    else:  # positions scaled (pixels read as metres, or the whole track made huge)
+        factor = rng.choice([1e3, 1e6, 1e300, -1.0, 0.0])
+        for i in data:
+            cells = lines[i].split(",")
+            lines[i] = ",".join([cells[0]] + ["%r" % (float(c) * factor) for c in cells[1:]])
+    return "\n".join(lines)
+
+
 def mutate_replay(data, rng):
     """Header doubles (voxel size, settle time) set to non-finite or huge values, or byte damage."""
     data = bytearray(data)
@@ -503,6 +546,36 @@ print("%d clean refusals" % clean)
 """
 
 
+def check_calibrate_output(result, out, inputs, label):
+    """bhm calibrate: a refusal leaves nothing in the output folder (every file is written
+    atomically, and none before the fit is done) and says why in one line ("bhm calibrate: ...")
+    or one line per problem naming the file ("FILE:field: ..."); a success writes a report that
+    parses and a calibrated experiment."""
+    rc, _, err = result
+    if rc is None:
+        return
+    written = sorted(os.listdir(out)) if os.path.isdir(out) else []
+    if rc == 0:
+        for name in ("report.json", "calibrated-experiment.json"):
+            try:
+                json.load(open(os.path.join(out, name)))
+            except (OSError, ValueError) as e:
+                fail("%s: exit 0 but %s is unreadable: %s" % (label, name, e))
+        return
+    if written:
+        fail("%s: exit %d but it wrote %s" % (label, rc, written))
+    lines = [line for line in err.splitlines() if line.strip()]
+    if rc != 1:
+        return
+    if not lines:
+        fail("%s: exit 1 with no message" % label)
+    elif lines[0].startswith("bhm calibrate: "):
+        if len(lines) > 1:
+            fail("%s: the refusal is not one line: %s" % (label, err[-500:]))
+    elif not all(any(line.startswith(path) for path in inputs) for line in lines):
+        fail("%s: a problem line names no input file: %s" % (label, err[-500:]))
+
+
 def classify(result, label, sanitizer_seen):
     rc, out, err = result
     if rc is None:
@@ -529,9 +602,18 @@ def prepare_seeds(bhm):
         raise SystemExit("cannot make the seed replay: " + err)
     vxa = os.path.join(seeds, "body.vxa")
     bhm.run(["export", EXPERIMENT, "--body", BODY, "--vxa", vxa])
+    # A measured track of the tiny body: its tip and centre of mass simulated at 5 ms steps.
+    times = os.path.join(seeds, "times.csv")
+    open(times, "w").write("t_s,tip.x,tip.z,com.z\n" +
+                           "".join("%.3f,0,0,0\n" % (0.005 * k) for k in range(9)))
+    rc, _, err = bhm.run(["calibrate", EXPERIMENT, "--body", BODY, "--track", times,
+                          "--simulate-only", "--out", os.path.join(seeds, "track")])
+    if rc != 0:
+        raise SystemExit("cannot make the seed track: " + err)
     return {"experiment": open(EXPERIMENT).read(), "body": open(BODY).read(),
             "replay": open(os.path.join(sim, "replay.bin"), "rb").read(),
-            "vxa": open(vxa, "rb").read()}
+            "vxa": open(vxa, "rb").read(),
+            "track": open(os.path.join(seeds, "track", "simulated.csv")).read()}
 
 
 def fuzz(bhm, rng, cases, plan, label):
@@ -543,7 +625,9 @@ def fuzz(bhm, rng, cases, plan, label):
         os.makedirs(d, exist_ok=True)
         exp, body, replay, vxa = EXPERIMENT, BODY, os.path.join(d, "r.bin"), os.path.join(d, "b.vxa")
         case_rng = random.Random(rng.getrandbits(64))
-        if kind in ("validate", "simulate", "evolve", "export", "render-body", "python"):
+        track = os.path.join(d, "t.csv")
+        if kind in ("validate", "simulate", "evolve", "export", "render-body", "python",
+                    "calibrate"):
             if case_rng.random() < 0.6:
                 exp = os.path.join(d, "e.json")
                 open(exp, "w", encoding="latin-1").write(mutate_json(seeds["experiment"], case_rng))
@@ -554,6 +638,12 @@ def fuzz(bhm, rng, cases, plan, label):
             open(replay, "wb").write(mutate_replay(seeds["replay"], case_rng))
         if kind == "import":
             open(vxa, "wb").write(mutate_bytes(seeds["vxa"], case_rng))
+        if kind == "calibrate":
+            # Mostly the track is at fault; the experiment and body above sometimes are.
+            mutated = exp != EXPERIMENT or body != BODY
+            text = seeds["track"] if mutated and case_rng.random() < 0.5 else \
+                mutate_track(seeds["track"], case_rng)
+            open(track, "w", encoding="latin-1").write(text)
         out = os.path.join(d, "out")
         args = {
             "validate": ["validate", exp, body],
@@ -566,6 +656,9 @@ def fuzz(bhm, rng, cases, plan, label):
             "export-vtk": ["export", EXPERIMENT, "--body", BODY, "--replay", replay, "--vtk",
                            out + "-vtk", "--mesh", out + ".stl"],
             "python": [exp, body, d],
+            "calibrate": ["calibrate", exp, "--body", body, "--track", track, "--fit",
+                          case_rng.choice(["E", "amplitude,phase_lag", "E:active,global_damping"]),
+                          "--max-simulations", "4", "--threads", "1", "--out", out],
             "import": ["import", vxa, "--experiment-out", out + "-e.json", "--body-out",
                        out + "-b.json"],
             "render-body": ["render", exp, "--body", body, "--out", out + ".png", "--size", "48x36",
@@ -583,8 +676,13 @@ def fuzz(bhm, rng, cases, plan, label):
                    (i, kind, args) for i, kind, args in jobs}
         for future in concurrent.futures.as_completed(futures):
             i, kind, args = futures[future]
-            verdict = classify(future.result(), "case %d (%s: bhm %s)" % (i, kind, " ".join(args)),
-                               True)
+            case_label = "case %d (%s: bhm %s)" % (i, kind, " ".join(args))
+            verdict = classify(future.result(), case_label, True)
+            if kind == "calibrate" and verdict == "ok":
+                check_calibrate_output(future.result(),
+                                       os.path.join(bhm.work, "case-%04d" % i, "out"),
+                                       [args[1], args[3], args[5]], case_label)
+                verdict = "exit %s" % future.result()[0]
             counts.setdefault(kind, {}).setdefault(verdict, 0)
             counts[kind][verdict] += 1
             shutil.rmtree(os.path.join(bhm.work, "case-%04d" % i), ignore_errors=True)
@@ -602,7 +700,8 @@ def case_mutation_fuzz(bhm, rng):
     # Weighted by cost: the GL renders and evolutions take longest.
     kinds = ["validate"] * 30 + ["simulate"] * 22 + ["export"] * 14 + ["import"] * 10 + \
             ["export-replay"] * 8 + ["export-vtk"] * 6 + ["evolve"] * 8 + ["render-body"] * 4 + \
-            ["render-replay"] * 4 + (["python"] * 6 if bhm.python_module else [])
+            ["render-replay"] * 4 + ["calibrate"] * 12 + \
+            (["python"] * 6 if bhm.python_module else [])
     fuzz(bhm, rng, 1000, lambda i, r: r.choice(kinds), "mutation-fuzz")
 
 

@@ -146,7 +146,8 @@ void draw_analysis_panel(Studio& s) {
     const std::pair<const char*, void (*)(Studio&)> tabs[] = {{"Population", draw_population_panel},
                                                               {"Champions", champions_tab},
                                                               {"Age vs fitness", scatter_tab},
-                                                              {"Time plots", time_plots_tab}};
+                                                              {"Time plots", time_plots_tab},
+                                                              {"Calibrate", draw_calibrate_panel}};
     for (const auto& [name, draw] : tabs) {
         const bool open = ImGui::BeginTabItem(name);
         record_widget(s, std::string("tab ") + name);

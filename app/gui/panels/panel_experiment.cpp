@@ -108,7 +108,8 @@ void materials_section(Studio& s) {
 
 void actuation_section(Studio& s) {
     for (const char* path : {"actuation.frequency_hz", "actuation.temperature_amplitude_c",
-                             "actuation.phase", "environment.gravity_m_s2", "environment.floor"})
+                             "actuation.phase", "actuation.phase_offset_rad",
+                             "environment.gravity_m_s2", "environment.floor"})
         experiment_field(s, path);
 }
 

@@ -15,6 +15,8 @@ void draw_run_panel(Studio& studio);
 void draw_fitness_panel(Studio& studio);
 void draw_population_panel(Studio& studio);
 void draw_analysis_panel(Studio& studio);
+//! The Analysis panel's Calibrate tab (panel_calibrate.cpp).
+void draw_calibrate_panel(Studio& studio);
 void draw_replay_panel(Studio& studio);
 void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
 void draw_help_window(Studio& studio);

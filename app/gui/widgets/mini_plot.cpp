@@ -82,6 +82,11 @@ std::optional<double> draw_time_plot(const char* id, const std::vector<double>& 
     std::vector<ImVec2> points;
     for (const auto& c : curves) {
         if (!c.y || c.y->size() != x.size()) continue;
+        if (c.dots) {
+            for (std::size_t k = 0; k < x.size(); ++k)
+                dl->AddCircleFilled({f.px(x[k]), f.py((*c.y)[k])}, 2.0f, c.color, 8);
+            continue;
+        }
         points.clear();
         // At most one point per pixel column: a long replay stays cheap to draw.
         const std::size_t stride =

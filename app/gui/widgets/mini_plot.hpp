@@ -14,6 +14,7 @@ struct PlotCurve {
     const std::vector<double>* y = nullptr;
     ImU32 color = IM_COL32(40, 40, 40, 255);
     const char* label = "";
+    bool dots = false;  //!< a dot per sample (measurements) instead of a line
 };
 
 //! Curves over x (same length) in a size area at the cursor, a vertical cursor at cursor_x, and

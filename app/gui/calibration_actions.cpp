@@ -1,0 +1,248 @@
+#include "app/gui/calibration_actions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <memory>
+
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/studio_paths.hpp"
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+// Status-line number: 4 significant digits.
+std::string number(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.4g", v);
+    return buffer;
+}
+
+std::string file_name(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+bool show_body_file(Studio& s, const std::string& path) {
+    try {
+        const std::string absolute = absolute_path(path);
+        const evo::Body body = evo::load_body(absolute);
+        const auto& e = s.document.experiment();
+        const auto problems = evo::validate_body_against(body, e, absolute);
+        if (!problems.empty()) {
+            set_status(s, describe_problems("", problems), true);
+            return false;
+        }
+        SimulationRequest request;
+        request.id = -2;  // a body file: not from a run
+        request.label = "body " + file_name(absolute);
+        request.experiment = e;
+        request.framed_body =
+            std::make_shared<const evo::Body>(evo::apply_frame_and_overrides(e, body));
+        s.follow_champion = false;
+        s.simulator.request(std::move(request));
+        set_status(s, "simulating " + absolute);
+        return true;
+    } catch (const std::exception& e) {
+        set_status(s, e.what(), true);
+        return false;
+    }
+}
+
+bool load_track(Studio& s, const std::string& path) {
+    auto& c = s.calibration;
+    if (!s.shown || !s.shown->framed_body) {
+        set_status(s, "load track: show a body first (a champion, an individual or a body file)",
+                   true);
+        return false;
+    }
+    if (c.session.running()) {
+        set_status(s, "load track: a calibration is running: cancel it first", true);
+        return false;
+    }
+    try {
+        const std::string absolute = absolute_path(path);
+        auto track = std::make_shared<const evo::MeasuredTrack>(evo::load_measured_track(absolute));
+        c.track = track;
+        c.track_path = absolute;
+        c.framed_body = s.shown->framed_body;
+        c.experiment = s.shown->experiment;
+        c.body_id = s.shown->id;
+        c.body_label = s.shown->label;
+        CalibrationJob job;
+        job.experiment = c.experiment;
+        job.framed_body = c.framed_body;
+        job.track = track;
+        job.threads = c.threads;
+        c.session.start(std::move(job));
+        set_status(s, "track " + file_name(absolute) + " loaded onto " + c.body_label +
+                          ": simulating it at the track's times");
+        return true;
+    } catch (const std::exception& e) {
+        set_status(s, e.what(), true);
+        return false;
+    }
+}
+
+std::string ticked_fit_list(const CalibrationState& c) {
+    std::string list;
+    for (std::size_t i = 0; i < c.fit_names.size() && i < c.fit_on.size(); ++i)
+        if (c.fit_on[i]) list += (list.empty() ? "" : ",") + c.fit_names[i];
+    return list;
+}
+
+bool start_calibration(Studio& s) {
+    auto& c = s.calibration;
+    if (!c.track) {
+        set_status(s, "calibrate: load a track first", true);
+        return false;
+    }
+    if (c.session.running()) {
+        set_status(s, "calibrate: already running", true);
+        return false;
+    }
+    if (!evo::calibration_available()) {
+        set_status(s, "calibrate: bhm was built without NLopt (Debian's libnlopt-cxx-dev)", true);
+        return false;
+    }
+    if (c.max_simulations < 1) {
+        set_status(s, "calibrate: the simulation budget must be at least 1", true);
+        return false;
+    }
+    try {
+        CalibrationJob job;
+        job.experiment = c.experiment;
+        job.framed_body = c.framed_body;
+        job.track = c.track;
+        job.parameters = evo::parse_fit_list(ticked_fit_list(c), c.experiment);
+        job.threads = c.threads;
+        job.max_simulations = c.max_simulations;
+        c.session.start(std::move(job));
+        set_status(s, "calibrating " + ticked_fit_list(c) + " against " + file_name(c.track_path));
+        return true;
+    } catch (const std::exception& e) {
+        set_status(s, std::string("calibrate: ") + e.what(), true);
+        return false;
+    }
+}
+
+bool cancel_calibration(Studio& s) {
+    if (!s.calibration.session.running()) return false;
+    s.calibration.session.cancel();
+    set_status(s, "calibration cancelled");
+    return true;
+}
+
+bool apply_calibration(Studio& s) {
+    auto& c = s.calibration;
+    const auto snap = c.snapshot;
+    if (!snap || snap->phase != CalibrationPhase::Finished || !snap->result) {
+        set_status(s, "apply: no finished calibration", true);
+        return false;
+    }
+    const auto& r = *snap->result;
+    auto next = s.document.experiment();
+    try {
+        evo::copy_fitted_values(r.calibrated.experiment, snap->parameters, next);
+    } catch (const std::exception& e) {
+        set_status(s, std::string("apply: ") + e.what(), true);
+        return false;
+    }
+    std::string label = "calibrated against " + file_name(c.track_path) + ":";
+    for (const auto& f : r.fitted)
+        label += " " + f.parameter.name + " " + number(f.initial_value) + " -> " +
+                 number(f.value) + " " + evo::fit_unit(f.parameter) + ",";
+    label.pop_back();
+    if (!apply_edit(s, next, label)) return false;
+    c.applied_job = snap->job;
+    // A live run keeps the physics it started with (a rule change swaps fitness rules only):
+    // the values apply to the next run.
+    if (run_is_live(s.evolution.phase()) && editing_run_document(s))
+        set_status(s, label + " (for the next run: the live run keeps its physics)");
+    return true;
+}
+
+void update_calibration(Studio& s) {
+    auto& c = s.calibration;
+    c.snapshot = c.session.snapshot();
+    if (!c.snapshot) return;
+    const auto& snap = *c.snapshot;
+    if (snap.job == c.seen_job && snap.phase == c.seen_phase) return;
+    c.seen_job = snap.job;
+    c.seen_phase = snap.phase;
+    if (snap.phase == CalibrationPhase::Failed) {
+        set_status(s, "calibration failed: " + snap.error, true);
+    } else if (snap.phase == CalibrationPhase::Cancelled) {
+        set_status(s, "calibration cancelled after " + std::to_string(snap.simulations) +
+                          " simulations");
+    } else if (snap.phase == CalibrationPhase::Finished && snap.result) {
+        const auto& r = *snap.result;
+        set_status(s, "calibration done: misfit " + number(r.misfit_before_m) + " m -> " +
+                          number(r.misfit_after_m) + " m, " +
+                          std::to_string(r.optimiser_simulations + r.jacobian_simulations + 2) +
+                          " simulations" +
+                          (r.warnings.empty() ? std::string()
+                                              : ", " + std::to_string(r.warnings.size()) +
+                                                    " warnings"));
+    } else if (snap.phase == CalibrationPhase::Finished && snap.preview) {
+        set_status(s, snap.preview->diverged
+                          ? "the track's body diverged: " + snap.preview->divergence_reason
+                          : "track simulated: misfit " + number(snap.best_misfit_m) +
+                                " m against a motion of " +
+                                number(evo::track_motion_rms(*snap.track)) + " m",
+                   snap.preview->diverged);
+    }
+}
+
+bool calibration_running(const Studio& s) { return s.calibration.session.running(); }
+
+namespace {
+
+std::optional<std::array<double, 3>> point_at(const evo::MeasuredTrack& track,
+                                              const evo::SimulatedTrack& preview,
+                                              std::size_t point, double t_s, bool measured_axes) {
+    const auto& t = track.t_s;
+    if (point >= track.points.size() || point >= preview.position_m.size() || t.empty() ||
+        t_s < t.front() || t_s > t.back())
+        return std::nullopt;
+    const auto& sim = preview.position_m[point];
+    // The preview stops early when it diverged: only its rows can be placed.
+    const std::size_t rows = std::min(t.size(), sim.size());
+    if (rows == 0 || t_s > t[rows - 1]) return std::nullopt;
+    const std::size_t hi = static_cast<std::size_t>(
+        std::max<std::ptrdiff_t>(1, std::upper_bound(t.begin(), t.begin() + rows, t_s) - t.begin()));
+    const std::size_t k1 = std::min(hi, rows - 1), k0 = k1 - (k1 > 0 ? 1 : 0);
+    const double w = t[k1] > t[k0] ? std::clamp((t_s - t[k0]) / (t[k1] - t[k0]), 0.0, 1.0) : 0.0;
+    const auto& measured = track.points[point].position_m;
+    std::array<double, 3> out{};
+    for (std::size_t a = 0; a < 3; ++a) {
+        auto lerp = [&](const std::vector<std::array<double, 3>>& v) {
+            return v[k0][a] + w * (v[k1][a] - v[k0][a]);
+        };
+        out[a] = measured_axes && track.points[point].axes[a] ? sim[0][a] + lerp(measured) - measured[0][a]
+                                             : lerp(sim);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::optional<std::array<double, 3>> measured_point_at(const evo::MeasuredTrack& track,
+                                                       const evo::SimulatedTrack& preview,
+                                                       std::size_t point, double t_s) {
+    return point_at(track, preview, point, t_s, true);
+}
+
+std::optional<std::array<double, 3>> simulated_point_at(const evo::MeasuredTrack& track,
+                                                        const evo::SimulatedTrack& preview,
+                                                        std::size_t point, double t_s) {
+    return point_at(track, preview, point, t_s, false);
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,49 @@
+#pragma once
+// The Calibrate tab's actions (docs/studio.md, docs/calibration.md): show a body file, load a
+// measured track onto the body shown, run the calibration on its own thread
+// (session/calibration_session.hpp), cancel it, and apply the fitted values to the document as
+// one recorded, undoable edit. Panels, scripts and tests call these; failures become the status
+// line (one line naming the file or field), never exceptions.
+#include <array>
+#include <optional>
+#include <string>
+
+#include "app/gui/studio.hpp"
+
+namespace bhm::app::gui {
+
+//! Simulates BODY.json (docs/experiment-format.md's body file) under the document's experiment
+//! and shows it, as `bhm calibrate --body` would simulate it.
+bool show_body_file(Studio& studio, const std::string& path);
+//! Reads a track (docs/track-format.md) onto the body shown now and simulates that body at the
+//! track's times (the preview drawn over the replay).
+bool load_track(Studio& studio, const std::string& path);
+//! Fits the ticked parameters (studio.calibration.fit_on) on the worker thread.
+bool start_calibration(Studio& studio);
+bool cancel_calibration(Studio& studio);
+//! Writes the fitted values into the document (evo::copy_fitted_values) as one undoable edit
+//! labelled with the values and the track; false when there is no finished calibration or the
+//! edit is refused.
+bool apply_calibration(Studio& studio);
+//! The fit list the ticked boxes make ("E,amplitude").
+std::string ticked_fit_list(const CalibrationState& calibration);
+
+//! Per frame (update_studio): takes the newest snapshot and puts the end of a job on the status
+//! line.
+void update_calibration(Studio& studio);
+//! The calibration is running (its clock, for the redraw gate).
+bool calibration_running(const Studio& studio);
+
+//! Where the measured point `point` of the track is at time t_s in the simulation's frame:
+//! the simulated point at the track's first row plus the measured displacement since that row,
+//! on the axes the track gives; on the others the simulated point at t_s. Nothing outside the
+//! track's time span.
+std::optional<std::array<double, 3>> measured_point_at(const evo::MeasuredTrack& track,
+                                                       const evo::SimulatedTrack& preview,
+                                                       std::size_t point, double t_s);
+//! The simulated point at t_s (interpolated between the preview's rows), over the same span.
+std::optional<std::array<double, 3>> simulated_point_at(const evo::MeasuredTrack& track,
+                                                        const evo::SimulatedTrack& preview,
+                                                        std::size_t point, double t_s);
+
+}  // namespace bhm::app::gui

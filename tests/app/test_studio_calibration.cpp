@@ -1,0 +1,311 @@
+// The studio's calibration (issue 28, docs/studio.md Calibrate tab): the worker-thread session
+// (progress snapshots, cancel), loading a track onto the body shown, the measured point placed
+// over the replay, and Apply writing the fitted values into the document as an undoable edit.
+// The truth is the parameters our own engine made the track with (as tests/evo/test_calibrate).
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "app/gui/calibration_actions.hpp"
+#include "app/gui/headless_session.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/session/calibration_session.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/viewport.hpp"
+#include "evo/calibrate/calibrator.hpp"
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "evo/test_support_calibrate.hpp"
+#include "support/relative_approx.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using bhm::test::relative;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The truth of every case: E x 1.25 and amplitude x 0.85 of calibration_experiment().
+constexpr double kTrueE = 5e6 * 1.25, kTrueAmplitude = 14.47 * 0.85;
+
+struct Fixture {
+    evo::Experiment experiment = evo::test::calibration_experiment();
+    std::shared_ptr<const evo::Body> body = std::make_shared<const evo::Body>(
+        evo::apply_frame_and_overrides(experiment, evo::test::bilayer(false)));
+    std::vector<evo::FitParameter> parameters = evo::parse_fit_list("E,amplitude", experiment);
+    std::shared_ptr<const evo::MeasuredTrack> track = std::make_shared<const evo::MeasuredTrack>(
+        evo::test::synthetic_track(
+            evo::apply_fit(experiment, parameters, {std::log(1.25), std::log(0.85)}), *body,
+            0.005));
+    CalibrationJob job(int budget) const {
+        CalibrationJob j;
+        j.experiment = experiment;
+        j.framed_body = body;
+        j.track = track;
+        j.parameters = parameters;
+        j.threads = 2;
+        j.max_simulations = budget;
+        return j;
+    }
+};
+
+// Polls the session's snapshots (as the UI does once a frame) until it is no longer running.
+std::vector<std::shared_ptr<const CalibrationSnapshot>> follow(const CalibrationSession& session,
+                                                               double timeout_s) {
+    std::vector<std::shared_ptr<const CalibrationSnapshot>> seen;
+    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
+    while (Clock::now() < end) {
+        const bool running = session.running();
+        auto snap = session.snapshot();
+        if (snap && (seen.empty() || seen.back() != snap)) seen.push_back(snap);
+        if (!running) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return seen;
+}
+
+}  // namespace
+
+TEST_CASE("calibration session: progress while it runs, then the fitted values") {
+    if (!evo::calibration_available()) return;
+    Fixture f;
+    CalibrationSession session;
+    const auto start = Clock::now();
+    session.start(f.job(100));
+    CHECK(session.running());
+    CHECK_THROWS_AS(session.start(f.job(100)), std::runtime_error);  // one job at a time
+    const auto seen = follow(session, 120.0);
+    REQUIRE_FALSE(session.running());
+    const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+    REQUIRE(seen.size() >= 3);
+    const auto& last = *seen.back();
+    REQUIRE(last.phase == CalibrationPhase::Finished);
+    REQUIRE(last.result);
+    // Progress: the simulation count climbs in the Running snapshots (the scan's included),
+    // the best misfit never rises, and the elapsed time is the job's own.
+    int running = 0, climbs = 0;
+    for (std::size_t k = 1; k < seen.size(); ++k) {
+        if (seen[k]->phase != CalibrationPhase::Running) continue;
+        ++running;
+        climbs += seen[k]->simulations > seen[k - 1]->simulations;
+        CHECK(seen[k]->best_misfit_m <= seen[k - 1]->best_misfit_m);
+    }
+    MESSAGE(seen.size(), " snapshots seen, ", running, " running, ", climbs, " climbs; ",
+            last.result->optimiser_simulations, " simulations in ", wall_s, " s");
+    CHECK(climbs >= 5);
+    CHECK(last.simulations == last.result->optimiser_simulations);
+    CHECK(last.elapsed_s > 0.0);
+    CHECK(last.elapsed_s <= wall_s);
+    REQUIRE(last.preview);
+    CHECK(evo::track_misfit(*f.track, *last.preview) ==
+          relative(last.result->misfit_before_m, 1e-12));
+    // Against the truth the track was made with.
+    CHECK(last.result->fitted[0].value == relative(kTrueE, 0.03));
+    CHECK(last.result->fitted[1].value == relative(kTrueAmplitude, 0.03));
+}
+
+TEST_CASE("calibration session: Cancel stops the fit within a second and leaves no result") {
+    if (!evo::calibration_available()) return;
+    Fixture f;
+    CalibrationSession session;
+    session.start(f.job(5000));
+    // Wait until the optimiser is past the scan (the scan of 2 parameters is 16 simulations).
+    const auto end = Clock::now() + std::chrono::seconds(120);
+    while (Clock::now() < end) {
+        const auto snap = session.snapshot();
+        if (snap && snap->simulations >= 20) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    REQUIRE(session.snapshot()->simulations >= 20);
+    const auto cancelled_at = Clock::now();
+    session.cancel();
+    const auto seen = follow(session, 30.0);
+    const double stop_s = std::chrono::duration<double>(Clock::now() - cancelled_at).count();
+    REQUIRE_FALSE(session.running());
+    const auto& last = *seen.back();
+    MESSAGE("stopped ", stop_s, " s after Cancel, at ", last.simulations, " simulations");
+    CHECK(last.phase == CalibrationPhase::Cancelled);
+    CHECK(last.error.empty());  // cancelled, not failed (NLopt's own exception is not the word)
+    CHECK_FALSE(last.result);
+    CHECK(last.simulations < 5000);
+    CHECK(stop_s < 1.0);
+    // And the session takes the next job.
+    session.start(f.job(30));
+    CHECK(follow(session, 120.0).back()->phase == CalibrationPhase::Finished);
+}
+
+TEST_CASE("the measured point over the replay: the simulated start plus the measured motion") {
+    evo::MeasuredTrack track;
+    track.t_s = {1.0, 2.0, 3.0};
+    evo::TrackPoint tip;
+    tip.name = "tip";
+    tip.axes = {true, false, true};  // a side view: x and z
+    tip.position_m = {{100.0, 0.0, 50.0}, {101.0, 0.0, 48.0}, {103.0, 0.0, 44.0}};
+    track.points = {tip};
+    evo::SimulatedTrack sim;
+    sim.position_m = {{{0.5, 0.2, 0.1}, {0.6, 0.3, 0.1}, {0.7, 0.4, 0.1}}};
+    // Worked by hand: at t = 2.5, measured x = 102, z = 46 -> 0.5 + 2, 0.1 - 4; y simulated 0.35.
+    const auto p = measured_point_at(track, sim, 0, 2.5);
+    REQUIRE(p);
+    CHECK((*p)[0] == relative(2.5, 1e-12));
+    CHECK((*p)[1] == relative(0.35, 1e-12));
+    CHECK((*p)[2] == relative(-3.9, 1e-12));
+    const auto q = simulated_point_at(track, sim, 0, 2.5);
+    REQUIRE(q);
+    CHECK((*q)[0] == relative(0.65, 1e-12));
+    CHECK((*q)[2] == relative(0.1, 1e-12));
+    CHECK_FALSE(measured_point_at(track, sim, 0, 0.5));  // before the track
+    CHECK_FALSE(measured_point_at(track, sim, 0, 3.5));  // after it
+    sim.position_m[0].resize(2);                          // a preview that diverged at row 3
+    CHECK_FALSE(measured_point_at(track, sim, 0, 2.5));
+    CHECK(measured_point_at(track, sim, 0, 1.5));
+}
+
+TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable edit") {
+    if (!evo::calibration_available()) return;
+    const auto dir = testing::fresh_dir("calibration");
+    Fixture f;
+    const std::string body_path = (dir / "bilayer.body.json").string();
+    const std::string track_path = (dir / "tip.csv").string();
+    evo::save_body(body_path, evo::test::bilayer(false));
+    evo::write_file_atomically(track_path, evo::measured_track_to_csv(*f.track, "test track"));
+    {
+        std::ofstream bad(dir / "bad.csv");
+        bad << "t_s,tip.x\n0.0,0.0\n0.1,0.001\n0.1,0.002\n";
+    }
+
+    Studio s;
+    s.document.reset(f.experiment, "");
+    auto frames_until = [&](auto done, double timeout_s) {
+        const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
+        while (!done() && Clock::now() < end) {
+            update_studio(s);
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        update_studio(s);
+        return done();
+    };
+    CHECK_FALSE(load_track(s, track_path));  // no body shown yet
+    CHECK(s.status_is_error);
+    REQUIRE(show_body_file(s, body_path));
+    REQUIRE(frames_until([&] { return s.shown != nullptr; }, 60.0));
+
+    // A bad track: one line naming the file and the row; nothing loaded.
+    CHECK_FALSE(load_track(s, (dir / "bad.csv").string()));
+    CHECK(s.status.find("bad.csv: row 3") != std::string::npos);
+    CHECK_FALSE(s.calibration.track);
+
+    REQUIRE(load_track(s, track_path));
+    REQUIRE(frames_until([&] { return !calibration_running(s); }, 60.0));
+    REQUIRE(s.calibration.snapshot);
+    REQUIRE(s.calibration.snapshot->preview);
+    CHECK(s.status.rfind("track simulated", 0) == 0);
+    CHECK_FALSE(apply_calibration(s));  // nothing fitted yet
+
+    s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
+    s.calibration.fit_on[0] = true;  // E
+    s.calibration.fit_on[3] = true;  // amplitude
+    CHECK(ticked_fit_list(s.calibration) == "E,amplitude");
+    s.calibration.max_simulations = 100;
+    s.calibration.threads = 2;
+    REQUIRE(start_calibration(s));
+    REQUIRE(frames_until([&] { return !calibration_running(s); }, 120.0));
+    const auto snap = s.calibration.snapshot;
+    REQUIRE(snap->phase == CalibrationPhase::Finished);
+    CHECK(s.status.rfind("calibration done", 0) == 0);
+
+    const double e_before = s.document.experiment().materials[0].physics.youngs_modulus_pa;
+    const double a_before = s.document.experiment().actuation.temperature_amplitude_c;
+    CHECK_FALSE(s.document.dirty());
+    REQUIRE(apply_calibration(s));
+    const auto& after = s.document.experiment();
+    for (const auto& m : after.materials)
+        CHECK(m.physics.youngs_modulus_pa == relative(kTrueE, 0.03));
+    CHECK(after.actuation.temperature_amplitude_c == relative(kTrueAmplitude, 0.03));
+    CHECK(after.actuation.temperature_amplitude_c ==
+          relative(snap->result->fitted[1].value, 1e-12));
+    CHECK(after.simulation == f.experiment.simulation);  // nothing else moved
+    CHECK(s.document.dirty());
+    CHECK(s.document.undo_label().rfind("calibrated against tip.csv: E 5e+06 -> ", 0) == 0);
+    CHECK(s.calibration.applied_job == snap->job);
+    REQUIRE(undo(s));
+    CHECK(s.document.experiment().materials[0].physics.youngs_modulus_pa == e_before);
+    CHECK(s.document.experiment().actuation.temperature_amplitude_c == a_before);
+}
+
+TEST_CASE("studio session: the Calibrate tab's buttons, the track plots and the 3D marker") {
+    if (!evo::calibration_available()) return;
+    const auto dir = testing::fresh_dir("calibration-ui");
+    Fixture f;
+    const std::string body_path = (dir / "bilayer.body.json").string();
+    const std::string track_path = (dir / "tip.csv").string();
+    evo::save_body(body_path, evo::test::bilayer(false));
+    evo::write_file_atomically(track_path, evo::measured_track_to_csv(*f.track, "test track"));
+    Studio s;
+    s.document.reset(f.experiment, "");
+    HeadlessStudio session(s, 1280, 800);
+    // A taller Analysis tile (the splitters above it dragged up), as one would to calibrate.
+    run_script(session, nlohmann::json::parse(R"([{"drag": "splitter plot", "by": [0, -300]},
+        {"drag": "splitter run", "by": [0, -150]}, {"click": "tab Calibrate"}, {"frames": 2}])"));
+    s.calibration.body_field = body_path;
+    s.calibration.track_field = track_path;
+    run_script(session, nlohmann::json::parse(R"([{"click": "Show body"},
+        {"wait_simulation": true}, {"click": "Load track"}, {"wait_calibration": true},
+        {"replay": {"time_s": 0.2, "playing": false}}, {"frames": 2}])"));
+    REQUIRE(s.calibration.track);
+    CHECK(s.widgets.count("track plot tip.x"));
+    CHECK(s.widgets.count("track plot tip.z"));
+    CHECK_FALSE(s.widgets.count("track plot tip.y"));  // the track has no y
+    // The measured point and the simulated one, drawn over the body at the replay time.
+    // (The scene's own markers, the star and the trail's end, come first.)
+    const auto list = build_view_draw_list(s);
+    const auto track = s.calibration.track;
+    s.calibration.track.reset();
+    const auto without = build_view_draw_list(s);
+    s.calibration.track = track;
+    REQUIRE(list.markers.size() == without.markers.size() + 2);
+    CHECK(list.lines_on_top.size() > without.lines_on_top.size());
+    const auto expected = measured_point_at(*s.calibration.track, *s.calibration.snapshot->preview,
+                                            0, s.clock.time_s);
+    const auto simulated = simulated_point_at(*s.calibration.track,
+                                              *s.calibration.snapshot->preview, 0, s.clock.time_s);
+    REQUIRE(expected);
+    REQUIRE(simulated);
+    const auto& measured_marker = list.markers[without.markers.size()];
+    const auto& simulated_marker = list.markers[without.markers.size() + 1];
+    for (int a = 0; a < 3; ++a) {
+        CHECK(measured_marker.position[a] ==
+              doctest::Approx((*expected)[static_cast<std::size_t>(a)]).epsilon(1e-6));
+        CHECK(simulated_marker.position[a] ==
+              doctest::Approx((*simulated)[static_cast<std::size_t>(a)]).epsilon(1e-6));
+    }
+    // The track was made with other parameters: the two differ, by what the misfit measures.
+    CHECK(measured_marker.position != simulated_marker.position);
+
+    // Five parameters on one thread: the scan alone is 40 simulations, seconds of work.
+    s.calibration.threads = 1;
+    run_script(session, nlohmann::json::parse(
+                            R"([{"calibrate": "E,amplitude,global_damping,bond_damping,density",
+                                 "max_simulations": 5000}, {"frames": 1}])"));
+    REQUIRE(calibration_running(s));
+    run_script(session, nlohmann::json::parse(R"([{"click": "Cancel calibration", "fast": true},
+        {"wait_calibration": true, "timeout_s": 30}, {"frames": 1}])"));
+    CHECK(s.calibration.snapshot->phase == CalibrationPhase::Cancelled);
+    CHECK(s.status.rfind("calibration cancelled", 0) == 0);
+    s.calibration.max_simulations = 40;
+    s.calibration.threads = 2;
+    s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
+    s.calibration.fit_on[0] = s.calibration.fit_on[3] = true;  // E, amplitude
+    run_script(session, nlohmann::json::parse(R"([{"click": "Calibrate"},
+        {"wait_calibration": true}, {"frames": 2}, {"screenshot": ")" + (dir / "calibrate-tab.png").string() + R"("},
+        {"click": "Apply to experiment"}, {"frames": 1}])"));
+    CHECK(s.document.undo_label().rfind("calibrated against tip.csv", 0) == 0);
+    CHECK(s.document.experiment().materials[1].physics.youngs_modulus_pa ==
+          relative(s.calibration.snapshot->result->fitted[0].value, 1e-12));
+}
