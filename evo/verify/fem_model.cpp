@@ -105,6 +105,12 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                                           corners == 8 ? 0.125 : (k < 8 ? -0.25 : 0.25)});
                 }
                 m.voxel_centre.push_back(std::move(centre));
+                std::array<int, 8> box{};
+                for (int c = 0; c < 8; ++c)
+                    box[static_cast<std::size_t>(c)] = node((x + (c & 1)) * ppv,
+                                                            (y + ((c >> 1) & 1)) * ppv,
+                                                            (z + ((c >> 2) & 1)) * ppv);
+                m.voxel_corners.push_back(box);
             }
 
     // Held nodes: on a held voxel, and at least half a voxel from every free material voxel.

@@ -32,6 +32,8 @@ struct FemModel {
     std::vector<int> voxel_cells;               //!< the body's material cells, in lattice order
     //! Per voxel: node ids and weights whose sum is the displacement of the voxel's centre.
     std::vector<std::vector<std::pair<int, double>>> voxel_centre;
+    //! Per voxel: the node ids of its 8 corners, corner (i, j, k) at index i + 2 j + 4 k.
+    std::vector<std::array<int, 8>> voxel_corners;
 
     std::array<double, 3> node_position_m(int id) const;
     int node_count() const { return static_cast<int>(node_grid.size()); }
