@@ -112,25 +112,32 @@ void result_section(Studio& s) {
     ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
                         v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
                         v->dir.c_str());
+    ImGui::TextDisabled("each cell: CalculiX / ours (relative difference); the radio button picks "
+                        "the load drawn");
+    // Fixed-width columns that scroll sideways: a narrow tile never cuts a number.
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
-                                  ImGuiTableFlags_SizingStretchProp;
-    if (ImGui::BeginTable("fem loads", 5, flags)) {
+                                  ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
+    const float height = ImGui::GetTextLineHeightWithSpacing() *
+                         (static_cast<float>(v->rows.size()) + 2.5f);
+    if (ImGui::BeginTable("fem loads", 5, flags, ImVec2(0.0f, height))) {
         ImGui::TableSetupColumn("load");
-        ImGui::TableSetupColumn("tip mm (FEM / ours)");
-        ImGui::TableSetupColumn("bend deg (FEM / ours)");
-        ImGui::TableSetupColumn("COM YZ mm (FEM / ours)");
-        ImGui::TableSetupColumn("RMS");
+        ImGui::TableSetupColumn("tip (mm)");
+        ImGui::TableSetupColumn("bend angle (deg)");
+        ImGui::TableSetupColumn("COM YZ (mm)");
+        ImGui::TableSetupColumn("voxel RMS");
         ImGui::TableHeadersRow();
         for (std::size_t k = 0; k < v->rows.size(); ++k) {
             const auto& r = v->rows[k];
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
             char label[64];
-            std::snprintf(label, sizeof label, "%s (%+.3g degC)##fem row", r.load.c_str(),
-                          r.temperature_c);
+            std::snprintf(label, sizeof label, "%s##fem row", r.load.c_str());
             if (ImGui::RadioButton(label, s.fem_load == static_cast<int>(k)))
                 s.fem_load = static_cast<int>(k);
             record_widget(s, "fem load " + r.load);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s: temperature change %+.3g degC of the active voxels",
+                                  r.load.c_str(), r.temperature_c);
             ImGui::TableNextColumn();
             pair_cell(1e3 * r.fem_tip_m, 1e3 * r.engine_tip_m, r.tip, v->tolerance, "%.3g / %.3g");
             ImGui::TableNextColumn();
