@@ -112,6 +112,15 @@ void result_section(Studio& s) {
     ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
                         v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
                         v->dir.c_str());
+    // Above the table, so that a short tile still shows it.
+    if (v->fem_shape.empty()) {
+        ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");
+    } else {
+        ImGui::Checkbox("FEM ghost in the 3D view", &s.fem_ghost);
+        record_widget(s, "fem ghost");
+        ImGui::SameLine();
+        ImGui::TextDisabled("our static shape at the chosen load, CalculiX's as the grey ghost");
+    }
     ImGui::TextDisabled("each cell: CalculiX / ours (relative difference); the radio button picks "
                         "the load drawn");
     // Fixed-width columns that scroll sideways: a narrow tile never cuts a number.
@@ -150,14 +159,6 @@ void result_section(Studio& s) {
         }
         ImGui::EndTable();
     }
-    if (v->fem_shape.empty()) {
-        ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");
-        return;
-    }
-    ImGui::Checkbox("FEM ghost in the 3D view", &s.fem_ghost);
-    record_widget(s, "fem ghost");
-    ImGui::SameLine();
-    ImGui::TextDisabled("our static shape at the chosen load, CalculiX's as the grey ghost");
 }
 
 }  // namespace
