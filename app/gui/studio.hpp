@@ -195,10 +195,10 @@ struct Studio {
     std::uint64_t fem_state_version = 0;
     std::uint64_t fem_job_reported = 0;  //!< the last ended job the status line has told of
     std::shared_ptr<const FemVerification> verification;
-    std::string verification_error;  //!< a kept report that could not be read
-    std::string verification_key;    //!< "<run dir>#<id>" the kept report was looked up for
-    int fem_load = 1;                //!< row of the verification drawn in the 3D view (+A)
-    bool fem_ghost = true;           //!< draw the FEM's shape over our static one
+    std::string verification_error;    //!< a kept report that could not be read
+    std::string verification_key;      //!< "<run dir>#<id>" the kept report was looked up for
+    int fem_load = 1;                  //!< row of the verification drawn in the 3D view (+A)
+    bool fem_ghost = true;             //!< draw the FEM's shape over our static one
     bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected

@@ -16,7 +16,8 @@ bool start_verification(Studio& studio, FemVerifyRequest request) {
         return false;
     }
     if (request.run_dir.empty()) {
-        set_status(studio, "verify in FEM: the body belongs to no run directory to keep the report in",
+        set_status(studio,
+                   "verify in FEM: the body belongs to no run directory to keep the report in",
                    true);
         return false;
     }
@@ -100,7 +101,8 @@ void update_verification(Studio& studio) {
                 if (studio.shown && studio.shown->id == st->id) {
                     studio.verification = st->result;
                     studio.verification_error.clear();
-                    studio.fem_load = std::min<int>(1, static_cast<int>(st->result->rows.size()) - 1);
+                    studio.fem_load =
+                        std::min<int>(1, static_cast<int>(st->result->rows.size()) - 1);
                 }
                 set_status(studio, st->label + ": " + st->result->verdict + " (" + seconds + ")");
             } else if (st->phase == FemVerifyPhase::Cancelled) {
@@ -121,10 +123,12 @@ void update_verification(Studio& studio) {
     studio.verification_error.clear();
     if (key.empty()) return;
     try {
-        auto kept = read_verification(verification_dir(run_dir, studio.shown->id), studio.shown->id);
+        auto kept =
+            read_verification(verification_dir(run_dir, studio.shown->id), studio.shown->id);
         if (kept) {
             studio.verification = std::make_shared<const FemVerification>(std::move(*kept));
-            studio.fem_load = std::min<int>(1, static_cast<int>(studio.verification->rows.size()) - 1);
+            studio.fem_load =
+                std::min<int>(1, static_cast<int>(studio.verification->rows.size()) - 1);
         }
     } catch (const std::exception& e) {
         studio.verification_error = e.what();

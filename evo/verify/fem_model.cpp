@@ -107,9 +107,9 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 m.voxel_centre.push_back(std::move(centre));
                 std::array<int, 8> box{};
                 for (int c = 0; c < 8; ++c)
-                    box[static_cast<std::size_t>(c)] = node((x + (c & 1)) * ppv,
-                                                            (y + ((c >> 1) & 1)) * ppv,
-                                                            (z + ((c >> 2) & 1)) * ppv);
+                    box[static_cast<std::size_t>(c)] =
+                        node((x + (c & 1)) * ppv, (y + ((c >> 1) & 1)) * ppv,
+                             (z + ((c >> 2) & 1)) * ppv);
                 m.voxel_corners.push_back(box);
             }
 
@@ -161,7 +161,8 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 for (int j = y * ppv; j <= (y + 1) * ppv; ++j)
                     for (int i = x * ppv; i <= (x + 1) * ppv; ++i) {
                         const int id = existing(i, j, k);
-                        if (id != 0 && fixed[static_cast<std::size_t>(id)]) points.push_back({i, j, k});
+                        if (id != 0 && fixed[static_cast<std::size_t>(id)])
+                            points.push_back({i, j, k});
                     }
             for (std::size_t a = 2; a < points.size(); ++a) {
                 const auto& p0 = points[0];

@@ -78,7 +78,8 @@ engine::VoxelPoses fem_voxel_shape(const FemModel& m, const NodalDisplacements& 
         }
         std::array<Vec, 8> corner;
         for (int c = 0; c < 8; ++c)
-            corner[static_cast<std::size_t>(c)] = displaced(m.voxel_corners[v][static_cast<std::size_t>(c)]);
+            corner[static_cast<std::size_t>(c)] =
+                displaced(m.voxel_corners[v][static_cast<std::size_t>(c)]);
         // Mean edge vector along each axis: the 4 edges from corners without that bit set.
         std::array<Vec, 3> edge{};
         for (int axis = 0; axis < 3; ++axis)
@@ -96,8 +97,8 @@ engine::VoxelPoses fem_voxel_shape(const FemModel& m, const NodalDisplacements& 
         const auto q = quaternion(r0, r1, r2);
         for (int a = 0; a < 3; ++a) {
             out.position_m.push_back(static_cast<float>(rest_position_m[v][a] + centre[a]));
-            out.size_m.push_back(static_cast<float>(
-                std::sqrt(dot(edge[static_cast<std::size_t>(a)], edge[static_cast<std::size_t>(a)]))));
+            out.size_m.push_back(static_cast<float>(std::sqrt(
+                dot(edge[static_cast<std::size_t>(a)], edge[static_cast<std::size_t>(a)]))));
         }
         for (double c : q)
             out.orientation.push_back(static_cast<float>(c));

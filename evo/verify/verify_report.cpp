@@ -163,9 +163,9 @@ engine::VoxelPoses poses_from_json(const nlohmann::json& j, std::size_t voxels,
             throw std::runtime_error(where + "." + name + ": expected " +
                                      std::to_string(per * voxels) + " numbers");
         auto values = j.at(name).get<std::vector<float>>();
-        (std::string(name) == "position_m" ? p.position_m
+        (std::string(name) == "position_m"    ? p.position_m
          : std::string(name) == "orientation" ? p.orientation
-                                               : p.size_m) = std::move(values);
+                                              : p.size_m) = std::move(values);
     }
     return p;
 }
@@ -181,8 +181,7 @@ nlohmann::json verification_shapes_json(const BodyVerification& v) {
     return {{"voxel_cells", v.fem_model.voxel_cells}, {"loads", loads}};
 }
 
-VerificationShapes verification_shapes_from_json(const nlohmann::json& j,
-                                                 const std::string& file) {
+VerificationShapes verification_shapes_from_json(const nlohmann::json& j, const std::string& file) {
     VerificationShapes out;
     try {
         out.voxel_cells = j.at("voxel_cells").get<std::vector<int>>();
@@ -190,10 +189,10 @@ VerificationShapes verification_shapes_from_json(const nlohmann::json& j,
         for (std::size_t k = 0; k < loads.size(); ++k) {
             const std::string where = file + ": loads[" + std::to_string(k) + "]";
             out.loads.push_back(loads[k].at("load").get<std::string>());
-            out.fem.push_back(poses_from_json(loads[k].at("fem"), out.voxel_cells.size(),
-                                              where + ".fem"));
-            out.engine.push_back(poses_from_json(loads[k].at("engine"), out.voxel_cells.size(),
-                                                 where + ".engine"));
+            out.fem.push_back(
+                poses_from_json(loads[k].at("fem"), out.voxel_cells.size(), where + ".fem"));
+            out.engine.push_back(
+                poses_from_json(loads[k].at("engine"), out.voxel_cells.size(), where + ".engine"));
         }
     } catch (const nlohmann::json::exception& e) {
         throw std::runtime_error(file + ": " + e.what());
@@ -210,12 +209,14 @@ nlohmann::json write_verification(const BodyVerification& v, const VerifyOptions
     nlohmann::json meshes = nlohmann::json::array();
     for (std::size_t k = 0; k < v.loads.size() && k < v.fem_displacements.size(); ++k) {
         const std::string load = v.loads[k].load;
-        const std::string name =
-            "fem-" + std::string(load == "rest" ? "rest" : load == "+A" ? "plus-A" : "minus-A") +
-            ".vtk";
-        write_file_atomically((dir / name).string(),
-                              fem_mesh_vtk(v.fem_model, v.fem_displacements[k],
-                                           "bhm verify: CalculiX at " + load));
+        const std::string name = "fem-" +
+                                 std::string(load == "rest" ? "rest"
+                                             : load == "+A" ? "plus-A"
+                                                            : "minus-A") +
+                                 ".vtk";
+        write_file_atomically(
+            (dir / name).string(),
+            fem_mesh_vtk(v.fem_model, v.fem_displacements[k], "bhm verify: CalculiX at " + load));
         meshes.push_back(name);
     }
     j["fem_meshes"] = meshes;

@@ -89,7 +89,8 @@ bool partial_left(const fs::path& verify_dir) {
 // Sets PATH for the scope (the missing-ccx cases), then puts it back.
 struct PathOverride {
     std::string saved;
-    explicit PathOverride(const std::string& path) : saved(std::getenv("PATH") ? std::getenv("PATH") : "") {
+    explicit PathOverride(const std::string& path)
+        : saved(std::getenv("PATH") ? std::getenv("PATH") : "") {
         ::setenv("PATH", path.c_str(), 1);
     }
     ~PathOverride() { ::setenv("PATH", saved.c_str(), 1); }
@@ -115,7 +116,8 @@ TEST_CASE("studio verify: the worker publishes its phases and lands the report i
     INFO("error: " << st->error);
     REQUIRE(st->phase == FemVerifyPhase::Finished);
     std::string seen;
-    for (const auto& s : steps) seen += s + " | ";
+    for (const auto& s : steps)
+        seen += s + " | ";
     INFO("steps seen: " << seen);
     auto position = [&](const std::string& step) {
         for (std::size_t k = 0; k < steps.size(); ++k)
@@ -129,8 +131,8 @@ TEST_CASE("studio verify: the worker publishes its phases and lands the report i
 
     const fs::path kept = dir / "verify" / "individual-7";
     CHECK(verification_dir(dir.string(), 7) == kept.string());
-    for (const char* file : {"report.json", "shapes.json", "fem-rest.vtk", "fem-plus-A.vtk",
-                             "fem-minus-A.vtk"})
+    for (const char* file :
+         {"report.json", "shapes.json", "fem-rest.vtk", "fem-plus-A.vtk", "fem-minus-A.vtk"})
         CHECK_MESSAGE(fs::exists(kept / file), file);
     CHECK_FALSE(partial_left(dir / "verify"));
     REQUIRE(st->result);
@@ -140,14 +142,15 @@ TEST_CASE("studio verify: the worker publishes its phases and lands the report i
     CHECK(v.verdict == report.at("verdict").get<std::string>());
     REQUIRE(v.rows.size() == 3);
     CHECK(v.rows[1].load == "+A");
-    CHECK(v.rows[1].fem_bend_deg == doctest::Approx(
-                                        report["loads"][1]["fem"]["bend_angle_deg"].get<double>()));
+    CHECK(v.rows[1].fem_bend_deg ==
+          doctest::Approx(report["loads"][1]["fem"]["bend_angle_deg"].get<double>()));
     // The ghost: 80 voxels per load, the FEM's tip voxel where the report's displacement puts it.
     REQUIRE(v.fem_shape.size() == 3);
     REQUIRE(v.voxel_cells.size() == 80);
     const int tip = report.at("tip_cell").get<int>();
     std::size_t k = 0;
-    while (k < v.voxel_cells.size() && v.voxel_cells[k] != tip) ++k;
+    while (k < v.voxel_cells.size() && v.voxel_cells[k] != tip)
+        ++k;
     REQUIRE(k < v.voxel_cells.size());
     const auto u = report["loads"][1]["fem"]["tip_displacement_m"].get<std::vector<double>>();
     const double l = 0.01;
@@ -165,7 +168,8 @@ TEST_CASE("studio verify: Cancel kills ccx and leaves no report, no partial fold
     REQUIRE(verifier.start(bilayer_request({20, 6, 6}, dir)));
     std::vector<std::pair<int, std::string>> solving;
     const auto start = Clock::now();
-    while (verifier.running() && solving.empty() && Clock::now() - start < std::chrono::seconds(60)) {
+    while (verifier.running() && solving.empty() &&
+           Clock::now() - start < std::chrono::seconds(60)) {
         const auto st = verifier.state();
         if (st && st->step.rfind("CalculiX solving", 0) == 0) solving = ccx_children();
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -231,9 +235,9 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
             PathOverride path(empty.string());
             run_script(session, json::parse(R"([{"click": "Verify in FEM"}, {"frames": 2}])"));
             CHECK(studio.status_is_error);
-            CHECK_MESSAGE(studio.status.find("ccx (CalculiX) is not on the PATH") !=
-                              std::string::npos,
-                          studio.status);
+            CHECK_MESSAGE(
+                studio.status.find("ccx (CalculiX) is not on the PATH") != std::string::npos,
+                studio.status);
             const auto it = studio.widgets.find("fem error");
             CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
         }

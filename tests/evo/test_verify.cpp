@@ -202,9 +202,9 @@ TEST_CASE("verify: a voxel held inside a body holds its rotation in the FEM too"
     const double sag_layer = -load_named(whole, "rest").fem.tip_m[2];
     const double sag_one = -load_named(v, "rest").fem.tip_m[2];
     const double sag_engine = -load_named(v, "rest").engine.tip_m[2];
-    MESSAGE("tip sag held by the x = 1 layer: FEM " << sag_layer << " m; held by its middle voxel: FEM "
-                                                    << sag_one << " m, engine " << sag_engine
-                                                    << " m; " << v.verdict());
+    MESSAGE("tip sag held by the x = 1 layer: FEM "
+            << sag_layer << " m; held by its middle voxel: FEM " << sag_one << " m, engine "
+            << sag_engine << " m; " << v.verdict());
     CHECK(sag_layer > 0.0);
     CHECK(sag_one > sag_layer);
     CHECK(sag_one < 10.0 * sag_layer);  // clamped at a point, it was 1e9 m (a singular solve)

@@ -105,9 +105,10 @@ void result_section(Studio& s) {
     ImGui::PopStyleColor();
     record_widget(s, "fem verdict");
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("the largest relative difference over every load and measure;\n"
-                          "agrees when at most %.0f %% (docs/verify.md)",
-                          100.0 * v->tolerance);
+        ImGui::SetTooltip(
+            "the largest relative difference over every load and measure;\n"
+            "agrees when at most %.0f %% (docs/verify.md)",
+            100.0 * v->tolerance);
     if (!v->compared) return;
     ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
                         v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
@@ -121,13 +122,14 @@ void result_section(Studio& s) {
         ImGui::SameLine();
         ImGui::TextDisabled("our static shape at the chosen load, CalculiX's as the grey ghost");
     }
-    ImGui::TextDisabled("each cell: CalculiX / ours (relative difference); the radio button picks "
-                        "the load drawn");
+    ImGui::TextDisabled(
+        "each cell: CalculiX / ours (relative difference); the radio button picks "
+        "the load drawn");
     // Fixed-width columns that scroll sideways: a narrow tile never cuts a number.
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
                                   ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
-    const float height = ImGui::GetTextLineHeightWithSpacing() *
-                         (static_cast<float>(v->rows.size()) + 2.5f);
+    const float height =
+        ImGui::GetTextLineHeightWithSpacing() * (static_cast<float>(v->rows.size()) + 2.5f);
     if (ImGui::BeginTable("fem loads", 5, flags, ImVec2(0.0f, height))) {
         ImGui::TableSetupColumn("load");
         ImGui::TableSetupColumn("tip (mm)");

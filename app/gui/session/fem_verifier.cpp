@@ -51,8 +51,8 @@ std::optional<double> optional_number(const json& j, const char* key) {
 void move_into_place(const fs::path& partial, const fs::path& final_dir) {
     std::error_code ec;
     if (fs::exists(final_dir, ec)) {
-        if (::renameat2(AT_FDCWD, partial.c_str(), AT_FDCWD, final_dir.c_str(),
-                        RENAME_EXCHANGE) != 0)
+        if (::renameat2(AT_FDCWD, partial.c_str(), AT_FDCWD, final_dir.c_str(), RENAME_EXCHANGE) !=
+            0)
             throw std::runtime_error("cannot replace " + final_dir.string());
         fs::remove_all(partial, ec);  // the old report, now under the partial name
         return;
@@ -111,8 +111,8 @@ std::optional<FemVerification> read_verification(const std::string& dir, std::in
             evo::verification_shapes_from_json(read_json(shapes_path), shapes_path.string());
         if (shapes.loads.size() != v.rows.size())
             throw std::runtime_error(shapes_path.string() + ": " +
-                                     std::to_string(shapes.loads.size()) + " loads, the report has " +
-                                     std::to_string(v.rows.size()));
+                                     std::to_string(shapes.loads.size()) +
+                                     " loads, the report has " + std::to_string(v.rows.size()));
         v.voxel_cells = shapes.voxel_cells;
         v.fem_shape = shapes.fem;
         v.engine_shape = shapes.engine;

@@ -45,9 +45,9 @@ struct FemVerification {
     int fem_nodes = 0;
     std::string element;
     std::vector<FemLoadRow> rows;
-    std::vector<int> voxel_cells;                 //!< lattice cell per voxel of the shapes
-    std::vector<engine::VoxelPoses> fem_shape;    //!< per row: the FEM's deformed voxels
-    std::vector<engine::VoxelPoses> engine_shape; //!< per row: ours at rest under that load
+    std::vector<int> voxel_cells;                  //!< lattice cell per voxel of the shapes
+    std::vector<engine::VoxelPoses> fem_shape;     //!< per row: the FEM's deformed voxels
+    std::vector<engine::VoxelPoses> engine_shape;  //!< per row: ours at rest under that load
 };
 
 //! The folder of individual `id`'s verification in a run directory.
