@@ -38,27 +38,6 @@ evo::VerifyOptions options_of(const ArgParser& parser) {
     return o;
 }
 
-// report.json and one deformed FEM mesh per load (fem-rest.vtk, fem-plus-A.vtk, fem-minus-A.vtk).
-nlohmann::json write_body_outputs(const evo::BodyVerification& v, const evo::VerifyOptions& o,
-                                  const fs::path& dir) {
-    fs::create_directories(dir);
-    nlohmann::json j = evo::verification_to_json(v, o);
-    nlohmann::json meshes = nlohmann::json::array();
-    for (std::size_t k = 0; k < v.loads.size() && k < v.fem_displacements.size(); ++k) {
-        const std::string load = v.loads[k].load;
-        const std::string name =
-            "fem-" + std::string(load == "rest" ? "rest" : load == "+A" ? "plus-A" : "minus-A") +
-            ".vtk";
-        evo::write_file_atomically((dir / name).string(),
-                                   evo::fem_mesh_vtk(v.fem_model, v.fem_displacements[k],
-                                                     "bhm verify: CalculiX at " + load));
-        meshes.push_back(name);
-    }
-    j["fem_meshes"] = meshes;
-    evo::write_file_atomically((dir / "report.json").string(), j.dump(2) + "\n");
-    return j;
-}
-
 int verify_one(ArgParser& parser, const std::string& experiment_path) {
     const std::string body_path = parser.get("--body");
     if (body_path.empty()) throw UsageError("an experiment needs --body BODY (or give a RUN_DIR)");
@@ -70,7 +49,7 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     const fs::path out =
         parser.get("--out", fs::path(body_path).stem().string() + "-verify");
     const auto v = evo::verify_body(spec, e.fitness.measure, options);
-    write_body_outputs(v, options, out);
+    evo::write_verification(v, options, out.string());
     std::cout << body_path << ": " << v.verdict() << "\n";
     if (v.status == evo::VerifyStatus::Compared) {
         std::printf("  FEM %d nodes, %.1f s CPU; engine %.1f s CPU; report %s\n", v.fem_nodes,
@@ -128,7 +107,7 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
                       << "): error: " << error.what() << "\n";
             continue;
         }
-        nlohmann::json j = write_body_outputs(v, options, out / folder);
+        nlohmann::json j = evo::write_verification(v, options, (out / folder).string());
         j["folder"] = folder;
         j["champion_id"] = c->id;
         j["generation_found"] = c->generation_found;

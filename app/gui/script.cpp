@@ -334,6 +334,12 @@ void run_step(HeadlessStudio& session, const json& step) {
             "the calibration");
         const auto snap = s.calibration.session.snapshot();
         if (snap->phase == CalibrationPhase::Failed) throw ScriptError(snap->error);
+    } else if (step.contains("wait_verify")) {
+        // Verify in FEM: until the worker has ended (finished, failed or cancelled).
+        frames_until(
+            session, timeout_of(step, 120.0), [&] { return !s.fem_verifier.running(); },
+            "the verification");
+        session.frame();  // the frame that takes its last state
     } else if (step.contains("replay")) {
         const json& r = step.at("replay");
         if (!s.shown) throw ScriptError("replay: no simulated body is shown");

@@ -13,6 +13,7 @@
 //   {"wait_run": "finished"|"paused"|"stopped", "timeout_s": 60}
 //   {"select": "champion"}                    click the champion's row in the Population panel
 //   {"wait_simulation": true, "timeout_s": 60}  frames until the body asked for is shown
+//   {"wait_verify": true, "timeout_s": 60}      frames until Verify in FEM has ended
 //   {"replay": {"time_s": 5.0, "playing": false}}  scrub the replay
 //   {"frames": 10}                            draw that many frames
 //   {"screenshot": "ui.png"}                  the whole window, as drawn

@@ -23,6 +23,7 @@
 #include "app/gui/session/champion_history.hpp"
 #include "app/gui/session/evolution_session.hpp"
 #include "app/gui/session/evolution_snapshot.hpp"
+#include "app/gui/session/fem_verifier.hpp"
 #include "app/gui/session/replay_player.hpp"
 #include "app/gui/session/run_directory_watch.hpp"
 #include "app/gui/studio_paths.hpp"
@@ -217,6 +218,17 @@ struct Studio {
     std::uint64_t compared_version = 0;
     ChampionHistory champion_history;  //!< the shown run's champions/ folder
     int fitness_plot_overlays = 0;     //!< other runs' curves drawn in the last frame
+    //! "Verify in FEM" (Analysis > FEM): the worker, its newest state, and the verification of
+    //! the body shown (just computed, or kept in the run directory from an earlier session).
+    FemVerifier fem_verifier;
+    std::shared_ptr<const FemVerifyState> fem_state;
+    std::uint64_t fem_state_version = 0;
+    std::uint64_t fem_job_reported = 0;  //!< the last ended job the status line has told of
+    std::shared_ptr<const FemVerification> verification;
+    std::string verification_error;    //!< a kept report that could not be read
+    std::string verification_key;      //!< "<run dir>#<id>" the kept report was looked up for
+    int fem_load = 1;                  //!< row of the verification drawn in the 3D view (+A)
+    bool fem_ghost = true;             //!< draw the FEM's shape over our static one
     bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected

@@ -624,6 +624,7 @@ void update_studio(Studio& studio) {
         if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))
             set_status(studio, "simulation failed: " + sim->last_error(), true);
     update_calibration(studio);
+    update_verification(studio);
     if (studio.shown) {
         const auto& frames = studio.shown->replay.frames;
         studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);

@@ -98,6 +98,22 @@ void set_view_mode(Studio& studio, ViewMode mode);
 void toggle_playback(Studio& studio);
 void step_replay(Studio& studio, int frames);
 
+// --- Verify in FEM (docs/verify.md) ------------------------------------------------------
+//! Checks the body shown against CalculiX on the verifier's worker; the report goes to the shown
+//! run's directory (verify/individual-<id>/). False (the status says why) without a body, a run
+//! directory, or while a verification is running.
+bool verify_shown_body(Studio& studio);
+//! Replays a champion of the run's history and verifies it.
+bool verify_champion(Studio& studio, const ChampionEntry& entry);
+//! Kills the solver of the verification in progress; nothing is written.
+void cancel_verification(Studio& studio);
+//! The verification of the body shown, with its shapes, when it is drawn in the 3D view now
+//! (Simulation mode, ghost on); null otherwise.
+const FemVerification* fem_overlay(const Studio& studio);
+//! Per frame (update_studio): takes the verifier's newest state, and looks up the report kept in
+//! the run directory for a body newly shown.
+void update_verification(Studio& studio);
+
 // --- Camera --------------------------------------------------------------------------------
 void set_named_view(Studio& studio, render::NamedView view);
 

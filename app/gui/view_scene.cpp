@@ -1,6 +1,7 @@
 #include "app/gui/view_scene.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "app/cli/render_scene.hpp"
 #include "app/gui/constraint_edits.hpp"
@@ -206,6 +207,42 @@ render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const
             0.0f, static_cast<float>((replay.ny + 1) * replay.voxel_size_m), 0.0f};
     }
     return scene;
+}
+
+bool apply_fem_overlay(render::Scene& scene, const FemVerification& v, int load) {
+    if (load < 0 || load >= static_cast<int>(v.fem_shape.size()) ||
+        load >= static_cast<int>(v.engine_shape.size()))
+        return false;
+    std::map<int, std::size_t> index_of;
+    for (std::size_t k = 0; k < v.voxel_cells.size(); ++k)
+        index_of[v.voxel_cells[k]] = k;
+    const auto& fem = v.fem_shape[static_cast<std::size_t>(load)];
+    const auto& ours = v.engine_shape[static_cast<std::size_t>(load)];
+    engine::VoxelPoses body, ghost;
+    auto copy = [](const engine::VoxelPoses& from, std::size_t k, engine::VoxelPoses& to) {
+        to.position_m.insert(to.position_m.end(), from.position_m.begin() + 3 * k,
+                             from.position_m.begin() + 3 * k + 3);
+        to.orientation.insert(to.orientation.end(), from.orientation.begin() + 4 * k,
+                              from.orientation.begin() + 4 * k + 4);
+        to.size_m.insert(to.size_m.end(), from.size_m.begin() + 3 * k,
+                         from.size_m.begin() + 3 * k + 3);
+    };
+    for (const int cell : scene.body.voxel_cell) {
+        const auto it = index_of.find(cell);
+        if (it == index_of.end() || 3 * it->second + 3 > fem.position_m.size() ||
+            3 * it->second + 3 > ours.position_m.size())
+            return false;
+        copy(ours, it->second, body);
+        copy(fem, it->second, ghost);
+    }
+    scene.body.poses = std::move(body);
+    scene.ghost_poses = std::move(ghost);
+    scene.options.show_ghost = true;
+    scene.options.ghost_offset_m = glm::vec3(0.0f);
+    scene.options.com_trail_m.clear();
+    scene.options.color_mode = render::ColorMode::Material;  // the replay's fields are not for it
+    scene.options.voxel_scalar.clear();
+    return true;
 }
 
 void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, double voxel_size_m,

@@ -40,6 +40,12 @@ std::vector<std::uint8_t> painter_occupancy(const evo::Experiment& experiment,
 //! optionally its start state as a ghost beside it.
 render::Scene simulation_scene(const SimulatedBody& body, double t_s, const ViewState& view);
 
+//! "Verify in FEM": the scene's body drawn at row `load` of a verification, ours at rest under
+//! that load as the body and the FEM's deformed voxels as a ghost over it (voxels matched by
+//! lattice cell; the trail and the start ghost go). False, the scene unchanged, when the
+//! verification has no shapes for these voxels.
+bool apply_fem_overlay(render::Scene& scene, const FemVerification& verification, int load);
+
 //! Highlights for the painter drawn into an existing draw list: a wire box around a cell and a
 //! tinted quad over a face.
 void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, double voxel_size_m,

@@ -104,8 +104,10 @@ render::DrawList build_view_draw_list(const Studio& s) {
     const auto& e = s.document.experiment();
     if (s.view.mode == ViewMode::Simulation && s.shown) {
         const auto& se = s.shown->experiment;
-        render::DrawList list =
-            render::build_draw_list(simulation_scene(*s.shown, s.clock.time_s, s.view));
+        render::Scene scene = simulation_scene(*s.shown, s.clock.time_s, s.view);
+        // Verify in FEM: our static shape under the chosen load, the FEM's as a ghost over it.
+        if (const FemVerification* v = fem_overlay(s)) apply_fem_overlay(scene, *v, s.fem_load);
+        render::DrawList list = render::build_draw_list(scene);
         for (int f = 0; f < 6; ++f)
             if (se.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
                 add_fixed_face_hatch(list, se.workspace_size, se.voxel_size_m,

@@ -60,6 +60,13 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
         write_ids(out, model.fixed_nodes);
         out << "*BOUNDARY\nHELD, 1, 3\n";
     }
+    if (!model.rotation_ties.empty()) {
+        out << "*EQUATION\n";
+        for (const FemTie& t : model.rotation_ties)
+            out << "2\n"
+                << t.dependent << ", " << t.dof << ", 1., " << t.independent << ", " << t.dof
+                << ", -1.\n";
+    }
     out << "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n";
     const double g = spec.environment.gravity_m_s2;
     for (const FemLoad& load : loads) {

@@ -1,13 +1,19 @@
 #include "evo/verify/ccx_run.hpp"
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "engine/io/atomic_file.hpp"
@@ -43,6 +49,21 @@ std::vector<NodalDisplacements> parse_ccx_dat(const std::string& text) {
     return blocks;
 }
 
+int ccx_steps_done(const std::string& sta_text) {
+    std::istringstream in(sta_text);
+    std::string line;
+    int done = 0;
+    while (std::getline(in, line)) {
+        std::istringstream row(line);
+        int step = 0, increment = 0, attempt = 0, iterations = 0;
+        double total_time = 0.0, step_time = 0.0;
+        if (row >> step >> increment >> attempt >> iterations >> total_time >> step_time &&
+            step_time >= 1.0 - 1e-6)
+            done = std::max(done, step);
+    }
+    return done;
+}
+
 namespace {
 
 double children_cpu_s() {
@@ -76,7 +97,7 @@ std::string read_text(const fs::path& path) {
 }  // namespace
 
 CcxResult run_ccx(const std::string& name, const std::string& deck, int threads,
-                  const std::string& keep_dir) {
+                  const std::string& keep_dir, const CcxWatch& watch) {
     if (!ccx_available())
         throw std::runtime_error("ccx (CalculiX) is not on the PATH; install the Debian package "
                                  "calculix-ccx");
@@ -100,12 +121,66 @@ CcxResult run_ccx(const std::string& name, const std::string& deck, int threads,
         }
     } cleanup{dir, keep_dir.empty()};
     engine::write_file_atomically((dir / (name + ".inp")).string(), deck);
-    const std::string cmd = "cd '" + dir.string() + "' && OMP_NUM_THREADS=" +
-                            std::to_string(threads) + " CCX_NPROC_EQUATION_SOLVER=" +
-                            std::to_string(threads) + " ccx -i " + name + " > ccx.log 2>&1";
+    // The child's arguments and environment, built before fork (after it only async-signal-safe
+    // calls are allowed in a threaded program).
+    std::vector<std::string> env_text;
+    for (char** e = environ; e && *e; ++e) {
+        const std::string entry = *e;
+        if (entry.rfind("OMP_NUM_THREADS=", 0) != 0 &&
+            entry.rfind("CCX_NPROC_EQUATION_SOLVER=", 0) != 0)
+            env_text.push_back(entry);
+    }
+    env_text.push_back("OMP_NUM_THREADS=" + std::to_string(threads));
+    env_text.push_back("CCX_NPROC_EQUATION_SOLVER=" + std::to_string(threads));
+    std::vector<char*> envp;
+    for (auto& e : env_text)
+        envp.push_back(e.data());
+    envp.push_back(nullptr);
+    std::string arg0 = "ccx", arg1 = "-i", arg2 = name;
+    char* argv[] = {arg0.data(), arg1.data(), arg2.data(), nullptr};
+    const std::string dir_text = dir.string();
     const auto start = std::chrono::steady_clock::now();
     const double cpu_before = children_cpu_s();
-    const int rc = std::system(cmd.c_str());
+    const pid_t pid = ::fork();
+    if (pid < 0) throw std::runtime_error("cannot start ccx: fork failed");
+    if (pid == 0) {
+        ::setpgid(0, 0);  // its own group: a cancel kills whatever it started too
+        if (::chdir(dir_text.c_str()) != 0) ::_exit(126);
+        const int log_fd = ::open("ccx.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int null_fd = ::open("/dev/null", O_RDONLY);
+        if (log_fd < 0 || null_fd < 0) ::_exit(126);
+        ::dup2(null_fd, 0);
+        ::dup2(log_fd, 1);
+        ::dup2(log_fd, 2);
+        ::execvpe("ccx", argv, envp.data());
+        ::_exit(127);
+    }
+    ::setpgid(pid, pid);  // also from here: no race with a kill before the child ran setpgid
+    int status = 0, reported = 0;
+    const fs::path sta = dir / (name + ".sta");
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) break;
+        if (done < 0 && errno != EINTR) throw std::runtime_error("lost the ccx child process");
+        if (watch.cancel && watch.cancel->load(std::memory_order_relaxed)) {
+            ::kill(-pid, SIGKILL);
+            ::kill(pid, SIGKILL);
+            while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+            }
+            throw VerifyCancelled();
+        }
+        if (watch.steps_done) {
+            std::error_code ec;
+            if (fs::exists(sta, ec)) {
+                const int steps = ccx_steps_done(read_text(sta));
+                if (steps > reported) watch.steps_done(reported = steps);
+            }
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    const int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (rc == 127 || rc == 126)
+        throw std::runtime_error("ccx (CalculiX) could not be started in " + dir_text);
     CcxResult result;
     result.cpu_s = children_cpu_s() - cpu_before;
     result.wall_s =

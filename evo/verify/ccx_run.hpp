@@ -3,9 +3,12 @@
 // temporary folder and reads the nodal displacements it prints to the .dat file. The one home of
 // this driver: the verification suite (tests/engine/calculix.hpp) solves through it too.
 #include <array>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "evo/verify/verify_progress.hpp"
 
 namespace bhm::evo {
 
@@ -20,12 +23,25 @@ struct CcxResult {
     double cpu_s = 0.0;  //!< the solver's CPU time (user + system), the load-independent cost
 };
 
-//! Solves `deck` (named `name` in the log) with `threads` solver threads. Throws
-//! std::runtime_error with one line: ccx missing, a failed solve (with the solver's first *ERROR
-//! line), or no displacements printed. The temporary folder is removed unless `keep_dir` is set
-//! (then the deck, .dat and log stay there and the message names it).
+//! Watching a solve: `cancel` is polled every 20 ms (raised, the solver is killed and
+//! VerifyCancelled thrown); `steps_done` hears how many load steps the solver has completed
+//! whenever that count grows (read from its .sta file).
+struct CcxWatch {
+    const std::atomic<bool>* cancel = nullptr;
+    std::function<void(int)> steps_done;
+};
+
+//! Solves `deck` (named `name` in the log) with `threads` solver threads, ccx a child process
+//! in its own process group. Throws std::runtime_error with one line: ccx missing, a failed solve
+//! (with the solver's first *ERROR line), or no displacements printed; VerifyCancelled when
+//! cancelled. The temporary folder is removed unless `keep_dir` is set (then the deck, .dat and
+//! log stay there and the message names it).
 CcxResult run_ccx(const std::string& name, const std::string& deck, int threads = 1,
-                  const std::string& keep_dir = "");
+                  const std::string& keep_dir = "", const CcxWatch& watch = {});
+
+//! Load steps completed according to the text of a ccx .sta file (a step counts once its step
+//! time reaches 1; exposed for tests).
+int ccx_steps_done(const std::string& sta_text);
 
 //! The displacement blocks of a .dat file's text (exposed for tests).
 std::vector<NodalDisplacements> parse_ccx_dat(const std::string& text);

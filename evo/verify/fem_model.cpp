@@ -105,6 +105,12 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                                           corners == 8 ? 0.125 : (k < 8 ? -0.25 : 0.25)});
                 }
                 m.voxel_centre.push_back(std::move(centre));
+                std::array<int, 8> box{};
+                for (int c = 0; c < 8; ++c)
+                    box[static_cast<std::size_t>(c)] =
+                        node((x + (c & 1)) * ppv, (y + ((c >> 1) & 1)) * ppv,
+                             (z + ((c >> 2) & 1)) * ppv);
+                m.voxel_corners.push_back(box);
             }
 
     // Held nodes: on a held voxel, and at least half a voxel from every free material voxel.
@@ -135,6 +141,60 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                     }
                 }
         if (on_held && !near_free) m.fixed_nodes.push_back(static_cast<int>(id));
+    }
+
+    // Held voxels whose rotation the fixed nodes leave free: tie their opposite face centres
+    // (only where the mesh has a node there: an even number of grid points per voxel edge).
+    if (ppv % 2 == 0 && !spec.fixed.empty()) {
+        std::vector<char> fixed(m.node_grid.size() + 1, 0);
+        for (int id : m.fixed_nodes)
+            fixed[static_cast<std::size_t>(id)] = 1;
+        auto existing = [&](int i, int j, int k) {
+            return ids[static_cast<std::size_t>(i + m.grid[0] * (j + m.grid[1] * k))];
+        };
+        const int h = ppv / 2;
+        // The voxel's fixed nodes lie on one line (or are one point): they cannot hold its
+        // rotation by themselves.
+        auto fixed_points_collinear = [&](int x, int y, int z) {
+            std::vector<std::array<int, 3>> points;
+            for (int k = z * ppv; k <= (z + 1) * ppv; ++k)
+                for (int j = y * ppv; j <= (y + 1) * ppv; ++j)
+                    for (int i = x * ppv; i <= (x + 1) * ppv; ++i) {
+                        const int id = existing(i, j, k);
+                        if (id != 0 && fixed[static_cast<std::size_t>(id)])
+                            points.push_back({i, j, k});
+                    }
+            for (std::size_t a = 2; a < points.size(); ++a) {
+                const auto& p0 = points[0];
+                const std::array<int, 3> d1{points[1][0] - p0[0], points[1][1] - p0[1],
+                                            points[1][2] - p0[2]};
+                const std::array<int, 3> d{points[a][0] - p0[0], points[a][1] - p0[1],
+                                           points[a][2] - p0[2]};
+                if (d1[1] * d[2] - d1[2] * d[1] != 0 || d1[2] * d[0] - d1[0] * d[2] != 0 ||
+                    d1[0] * d[1] - d1[1] * d[0] != 0)
+                    return false;
+            }
+            return true;
+        };
+        for (int z = 0; z < n[2]; ++z)
+            for (int y = 0; y < n[1]; ++y)
+                for (int x = 0; x < n[0]; ++x) {
+                    if (cell_at(x, y, z) == 0 || !held(x, y, z)) continue;
+                    if (!fixed_points_collinear(x, y, z)) continue;  // a fixed plane holds it
+                    const std::array<int, 3> centre{x * ppv + h, y * ppv + h, z * ppv + h};
+                    for (int axis = 0; axis < 3; ++axis) {
+                        std::array<int, 3> lo = centre, hi = centre;
+                        lo[static_cast<std::size_t>(axis)] -= h;
+                        hi[static_cast<std::size_t>(axis)] += h;
+                        const int minus = existing(lo[0], lo[1], lo[2]);
+                        const int plus = existing(hi[0], hi[1], hi[2]);
+                        if (minus == 0 || plus == 0 || fixed[static_cast<std::size_t>(minus)] ||
+                            fixed[static_cast<std::size_t>(plus)])
+                            continue;  // held already by two fixed points on this axis
+                        for (int dof = 1; dof <= 3; ++dof)
+                            if (dof != axis + 1) m.rotation_ties.push_back({plus, minus, dof});
+                    }
+                }
     }
     return m;
 }

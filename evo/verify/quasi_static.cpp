@@ -8,6 +8,7 @@
 
 #include "engine/model.hpp"
 #include "engine/world.hpp"
+#include "evo/verify/verify_progress.hpp"
 
 namespace bhm::evo {
 
@@ -38,6 +39,8 @@ QuasiStaticResult engine_quasi_static(const engine::BodySpec& body, double tempe
     QuasiStaticResult result;
     const double slice_s = 0.05;
     for (int slice = 1; slice * slice_s <= options.max_time_s + 1e-9; ++slice) {
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed))
+            throw VerifyCancelled();
         if (!world.advance_to(slice * slice_s)) {
             result.problem = "the engine diverged at t = " + std::to_string(world.time_s()) +
                              " s (" + world.divergence_reason() + ")";
@@ -65,12 +68,24 @@ QuasiStaticResult engine_quasi_static(const engine::BodySpec& body, double tempe
     if (!result.settled && result.problem.empty())
         result.problem = "the engine did not come to rest within " +
                          std::to_string(options.max_time_s) + " s";
+    engine::VoxelPoses poses;
+    world.read_poses(poses);
+    auto& shape = result.shape;
+    shape.time_s = poses.time_s;
     for (const auto& [cell, v] : by_cell) {
         (void)cell;
         std::array<double, 3> u{};
         for (int a = 0; a < 3; ++a)
             u[a] = last[static_cast<std::size_t>(v)][a] - start[static_cast<std::size_t>(v)][a];
         result.displacement_m.push_back(u);
+        result.rest_position_m.push_back(start[static_cast<std::size_t>(v)]);
+        const auto k = static_cast<std::size_t>(v);
+        shape.position_m.insert(shape.position_m.end(), poses.position_m.begin() + 3 * k,
+                                poses.position_m.begin() + 3 * k + 3);
+        shape.orientation.insert(shape.orientation.end(), poses.orientation.begin() + 4 * k,
+                                 poses.orientation.begin() + 4 * k + 4);
+        shape.size_m.insert(shape.size_m.end(), poses.size_m.begin() + 3 * k,
+                            poses.size_m.begin() + 3 * k + 3);
     }
     result.cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     return result;

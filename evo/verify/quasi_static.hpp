@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <atomic>
+
 #include "engine/body_spec.hpp"
+#include "engine/poses.hpp"
 
 namespace bhm::evo {
 
@@ -17,11 +20,17 @@ struct QuasiStaticOptions {
     double global_damping_ratio = 0.2;
     double tolerance = 1e-4;
     double max_time_s = 30.0;
+    //! Raised: the run stops at the next slice with VerifyCancelled (verify_progress.hpp).
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 struct QuasiStaticResult {
     //! Per material cell in lattice order (as FemModel::voxel_cells): centre displacement (m).
     std::vector<std::array<double, 3>> displacement_m;
+    //! The body where it came to rest, in the same order: each voxel's centre, orientation and
+    //! edge lengths (what the studio draws under the FEM's ghost).
+    engine::VoxelPoses shape;
+    std::vector<std::array<double, 3>> rest_position_m;  //!< each voxel's centre at t = 0
     bool settled = false;
     std::string problem;  //!< "" or why there is no answer (diverged, did not settle)
     double simulated_s = 0.0;

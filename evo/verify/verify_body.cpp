@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "evo/verify/ccx_deck.hpp"
+#include "evo/verify/fem_shape.hpp"
 
 namespace bhm::evo {
 
@@ -119,6 +120,21 @@ std::vector<Vec> fem_voxel_displacements(const FemModel& m, const NodalDisplacem
 
 }  // namespace
 
+std::string describe_progress(const VerifyProgress& p) {
+    const std::string of = " " + std::to_string(p.load) + " of " + std::to_string(p.loads);
+    switch (p.phase) {
+        case VerifyPhase::Meshing:
+            return "meshing";
+        case VerifyPhase::Solving:
+            return "CalculiX solving load" + of;
+        case VerifyPhase::Engine:
+            return "our engine at load" + of;
+        case VerifyPhase::Comparing:
+            return "comparing";
+    }
+    return "";
+}
+
 double Differences::worst() const {
     double w = 0.0;
     for (const auto& d : {tip, bend, com_yz, rms})
@@ -195,6 +211,9 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     }
 
     // The continuum.
+    const VerifyControl& control = options.control;
+    if (control.cancelled()) throw VerifyCancelled();
+    control.report({VerifyPhase::Meshing, 0, 0});
     out.fem_model = build_fem_model(spec, options.mesh);
     out.fem_nodes = out.fem_model.node_count();
     out.fem_elements = static_cast<int>(out.fem_model.elements.size());
@@ -203,8 +222,15 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         loads.push_back({"+A", amplitude});
         loads.push_back({"-A", -amplitude});
     }
-    const CcxResult fem = run_ccx("body", ccx_deck(out.fem_model, spec, loads, options.nlgeom),
-                                  options.threads, options.keep_dir);
+    const int load_count = static_cast<int>(loads.size());
+    const std::string deck = ccx_deck(out.fem_model, spec, loads, options.nlgeom);
+    control.report({VerifyPhase::Solving, 1, load_count});
+    CcxWatch watch;
+    watch.cancel = control.cancel;
+    watch.steps_done = [&](int done) {
+        control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+    };
+    const CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
     if (fem.blocks.size() != loads.size())
         throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
                                  " displacement blocks for " + std::to_string(loads.size()) +
@@ -216,8 +242,11 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
     out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
     const double smallest_m = 1e-4 * spec.voxel_size_m;
+    QuasiStaticOptions engine_options = options.engine;
+    if (!engine_options.cancel) engine_options.cancel = control.cancel;
     for (std::size_t k = 0; k < loads.size(); ++k) {
-        const auto ours = engine_quasi_static(spec, loads[k].temperature_c, options.engine);
+        control.report({VerifyPhase::Engine, static_cast<int>(k) + 1, load_count});
+        const auto ours = engine_quasi_static(spec, loads[k].temperature_c, engine_options);
         out.engine_cpu_s += ours.cpu_s;
         if (!ours.problem.empty())
             throw std::runtime_error("our engine has no static answer at " + loads[k].name + ": " +
@@ -248,8 +277,11 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         c.fem_rms_m = std::sqrt(f2 / n);
         c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
         out.worst = std::max(out.worst, c.differences.worst());
-        out.loads.push_back(c);
+        c.engine_shape = ours.shape;
+        c.fem_shape = fem_voxel_shape(out.fem_model, fem.blocks[k], ours.rest_position_m);
+        out.loads.push_back(std::move(c));
     }
+    control.report({VerifyPhase::Comparing, 0, load_count});
     out.agrees = out.worst <= options.tolerance;
 
     // The experiment's measure at the actuation's extremes, from the rest shape.

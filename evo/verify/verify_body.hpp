@@ -13,6 +13,7 @@
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/quasi_static.hpp"
+#include "evo/verify/verify_progress.hpp"
 
 namespace bhm::evo {
 
@@ -24,6 +25,7 @@ struct VerifyOptions {
     int threads = 1;            //!< solver threads of ccx
     QuasiStaticOptions engine;
     std::string keep_dir;       //!< where ccx works and leaves its files; "" = a temporary folder
+    VerifyControl control;      //!< progress reports and a cancel flag (the studio's worker)
 };
 
 //! The measures of one answer at one load.
@@ -47,6 +49,9 @@ struct LoadComparison {
     ResponseMeasures fem, engine;
     Differences differences;
     double fem_rms_m = 0.0;  //!< RMS of the FEM's voxel displacements
+    //! Both deformed shapes as voxel poses in the FemModel's voxel order and our engine's frame
+    //! (fem_shape.hpp): what the studio draws, ours solid and the FEM's as a ghost over it.
+    engine::VoxelPoses fem_shape, engine_shape;
 };
 
 enum class VerifyStatus { Compared, OutOfReach };
@@ -76,7 +81,8 @@ std::string continuum_reach_problem(const engine::BodySpec& spec);
 
 //! Checks one body (the engine input of a framed body, make_body_spec). Throws
 //! std::runtime_error with one line: body too large, ccx missing, a failed solve, an engine that
-//! diverged or did not settle.
+//! diverged or did not settle; VerifyCancelled when options.control's flag is raised (the ccx
+//! child is killed, its temporary folder removed).
 BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure measure,
                              const VerifyOptions& options);
 

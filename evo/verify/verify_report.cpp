@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
+
+#include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::evo {
 
@@ -137,6 +141,92 @@ std::string fem_mesh_vtk(const FemModel& model, const NodalDisplacements& u,
         out << line;
     }
     return out.str();
+}
+
+}  // namespace bhm::evo
+
+namespace bhm::evo {
+
+namespace {
+
+nlohmann::json poses_json(const engine::VoxelPoses& p) {
+    return {{"position_m", p.position_m}, {"orientation", p.orientation}, {"size_m", p.size_m}};
+}
+
+engine::VoxelPoses poses_from_json(const nlohmann::json& j, std::size_t voxels,
+                                   const std::string& where) {
+    engine::VoxelPoses p;
+    const std::pair<const char*, std::size_t> fields[] = {
+        {"position_m", 3}, {"orientation", 4}, {"size_m", 3}};
+    for (const auto& [name, per] : fields) {
+        if (!j.contains(name) || !j.at(name).is_array() || j.at(name).size() != per * voxels)
+            throw std::runtime_error(where + "." + name + ": expected " +
+                                     std::to_string(per * voxels) + " numbers");
+        auto values = j.at(name).get<std::vector<float>>();
+        (std::string(name) == "position_m"    ? p.position_m
+         : std::string(name) == "orientation" ? p.orientation
+                                              : p.size_m) = std::move(values);
+    }
+    return p;
+}
+
+}  // namespace
+
+nlohmann::json verification_shapes_json(const BodyVerification& v) {
+    nlohmann::json loads = nlohmann::json::array();
+    for (const auto& c : v.loads)
+        loads.push_back({{"load", c.load},
+                         {"fem", poses_json(c.fem_shape)},
+                         {"engine", poses_json(c.engine_shape)}});
+    return {{"voxel_cells", v.fem_model.voxel_cells}, {"loads", loads}};
+}
+
+VerificationShapes verification_shapes_from_json(const nlohmann::json& j, const std::string& file) {
+    VerificationShapes out;
+    try {
+        out.voxel_cells = j.at("voxel_cells").get<std::vector<int>>();
+        const auto& loads = j.at("loads");
+        for (std::size_t k = 0; k < loads.size(); ++k) {
+            const std::string where = file + ": loads[" + std::to_string(k) + "]";
+            out.loads.push_back(loads[k].at("load").get<std::string>());
+            out.fem.push_back(
+                poses_from_json(loads[k].at("fem"), out.voxel_cells.size(), where + ".fem"));
+            out.engine.push_back(
+                poses_from_json(loads[k].at("engine"), out.voxel_cells.size(), where + ".engine"));
+        }
+    } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error(file + ": " + e.what());
+    }
+    return out;
+}
+
+nlohmann::json write_verification(const BodyVerification& v, const VerifyOptions& o,
+                                  const std::string& dir_text) {
+    namespace fs = std::filesystem;
+    const fs::path dir = dir_text;
+    fs::create_directories(dir);
+    nlohmann::json j = verification_to_json(v, o);
+    nlohmann::json meshes = nlohmann::json::array();
+    for (std::size_t k = 0; k < v.loads.size() && k < v.fem_displacements.size(); ++k) {
+        const std::string load = v.loads[k].load;
+        const std::string name = "fem-" +
+                                 std::string(load == "rest" ? "rest"
+                                             : load == "+A" ? "plus-A"
+                                                            : "minus-A") +
+                                 ".vtk";
+        write_file_atomically(
+            (dir / name).string(),
+            fem_mesh_vtk(v.fem_model, v.fem_displacements[k], "bhm verify: CalculiX at " + load));
+        meshes.push_back(name);
+    }
+    j["fem_meshes"] = meshes;
+    if (v.status == VerifyStatus::Compared) {
+        write_file_atomically((dir / "shapes.json").string(),
+                              verification_shapes_json(v).dump() + "\n");
+        j["shapes"] = "shapes.json";
+    }
+    write_file_atomically((dir / "report.json").string(), j.dump(2) + "\n");
+    return j;
 }
 
 }  // namespace bhm::evo

@@ -30,16 +30,18 @@ void champions_tab(Studio& s) {
     if (tracked_button(s, "Clear beside")) clear_compared_body(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
-    ImGui::TextDisabled("%zu champions; click to replay, 'beside' to compare", entries.size());
+    ImGui::TextDisabled("%zu champions; click to replay, 'beside' to compare, 'FEM' to verify",
+                        entries.size());
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
-    if (!ImGui::BeginTable("champions", 6, flags, ImGui::GetContentRegionAvail())) return;
+    if (!ImGui::BeginTable("champions", 7, flags, ImGui::GetContentRegionAvail())) return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("gen");
     ImGui::TableSetupColumn("id");
     ImGui::TableSetupColumn("fitness");
     ImGui::TableSetupColumn("voxels");
     ImGui::TableSetupColumn("flags");
+    ImGui::TableSetupColumn("");
     ImGui::TableSetupColumn("");
     ImGui::TableHeadersRow();
     for (auto it = entries.rbegin(); it != entries.rend(); ++it) {  // newest first
@@ -68,6 +70,13 @@ void champions_tab(Studio& s) {
         ImGui::PushID(e.generation);
         if (ImGui::SmallButton("beside")) replay_champion(s, e, true);
         record_widget(s, "beside gen " + std::to_string(e.generation));
+        ImGui::TableNextColumn();
+        ImGui::BeginDisabled(s.fem_verifier.running());
+        if (ImGui::SmallButton("FEM")) verify_champion(s, e);
+        ImGui::EndDisabled();
+        record_widget(s, "verify gen " + std::to_string(e.generation));
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("replay it and verify it in FEM (Analysis > FEM)");
         ImGui::PopID();
     }
     ImGui::EndTable();
@@ -147,7 +156,8 @@ void draw_analysis_panel(Studio& s) {
                                                               {"Champions", champions_tab},
                                                               {"Age vs fitness", scatter_tab},
                                                               {"Time plots", time_plots_tab},
-                                                              {"Calibrate", draw_calibrate_panel}};
+                                                              {"Calibrate", draw_calibrate_panel},
+                                                              {"FEM", draw_verify_panel}};
     for (const auto& [name, draw] : tabs) {
         const bool open = ImGui::BeginTabItem(name);
         record_widget(s, std::string("tab ") + name);

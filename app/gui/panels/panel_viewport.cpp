@@ -168,8 +168,14 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
             text(dim,
                  "beside (+y): " + s.compared->label + ", fitness " +
                      format_fitness(s.compared->fitness, s.compared->experiment.fitness.measure));
-        if (s.view.color_by != ColorBy::Material && !b.replay.frames.empty())
+        if (const FemVerification* v = fem_overlay(s)) {
+            const auto& row = v->rows[static_cast<std::size_t>(s.fem_load)];
+            text(v->agrees ? IM_COL32(30, 120, 50, 255) : IM_COL32(200, 40, 30, 255),
+                 "FEM: " + v->verdict + "; static at " + row.load +
+                     ": ours solid, CalculiX as the grey ghost");
+        } else if (s.view.color_by != ColorBy::Material && !b.replay.frames.empty()) {
             color_bar(s, b, origin, size);
+        }
         std::snprintf(buf, sizeof buf, "%d voxels, simulated in %.2f s",
                       b.replay.frames.empty() ? 0 : b.replay.frames.front().voxel_count(),
                       b.wall_s);

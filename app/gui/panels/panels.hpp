@@ -17,6 +17,8 @@ void draw_population_panel(Studio& studio);
 void draw_analysis_panel(Studio& studio);
 //! The Analysis panel's Calibrate tab (panel_calibrate.cpp).
 void draw_calibrate_panel(Studio& studio);
+//! Analysis > FEM: Verify in FEM for the body shown, its progress and result (panel_verify.cpp).
+void draw_verify_panel(Studio& studio);
 void draw_replay_panel(Studio& studio);
 void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
 void draw_help_window(Studio& studio);

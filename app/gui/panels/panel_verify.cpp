@@ -1,0 +1,182 @@
+// Analysis > FEM: "Verify in FEM" for the body shown (docs/verify.md): the progress of the
+// worker (phase, elapsed time, Cancel), then the verdict, the per-load table of both answers and
+// their differences, and which load the 3D view draws with the FEM's shape as a ghost.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <imgui.h>
+
+#include "app/gui/panels/panels.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+constexpr ImU32 kGood = IM_COL32(30, 120, 50, 255);
+constexpr ImU32 kBad = IM_COL32(200, 40, 30, 255);
+
+// How far along the worker is, for the progress bar: CalculiX is most of the time.
+float progress_fraction(const FemVerifyState& st) {
+    const auto& p = st.progress;
+    const float n = static_cast<float>(std::max(p.loads, 1));
+    switch (p.phase) {
+        case evo::VerifyPhase::Meshing:
+            return 0.02f;
+        case evo::VerifyPhase::Solving:
+            return 0.05f + 0.55f * static_cast<float>(p.load - 1) / n;
+        case evo::VerifyPhase::Engine:
+            return 0.6f + 0.35f * static_cast<float>(p.load - 1) / n;
+        case evo::VerifyPhase::Comparing:
+            return 0.97f;
+    }
+    return 0.0f;
+}
+
+std::string percent(const std::optional<double>& d) {
+    if (!d) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * *d);
+    return buf;
+}
+
+void pair_cell(double fem, double ours, const std::optional<double>& difference, double tolerance,
+               const char* format) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, format, fem, ours);
+    ImGui::TextUnformatted(buf);
+    ImGui::SameLine();
+    if (!difference) {
+        ImGui::TextDisabled("(-)");
+        return;
+    }
+    ImGui::PushStyleColor(ImGuiCol_Text, *difference <= tolerance ? kGood : kBad);
+    ImGui::Text("(%s)", percent(difference).c_str());
+    ImGui::PopStyleColor();
+}
+
+void progress_section(Studio& s) {
+    const auto& st = s.fem_state;
+    if (!st) return;
+    if (st->phase == FemVerifyPhase::Running) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - st->started).count();
+        char overlay[160];
+        std::snprintf(overlay, sizeof overlay, "%s  (%.1f s)", st->step.c_str(), elapsed);
+        ImGui::TextUnformatted(st->label.c_str());
+        ImGui::ProgressBar(progress_fraction(*st), ImVec2(-1.0f, 0.0f), overlay);
+        record_widget(s, "fem progress");
+        if (tracked_button(s, "Cancel verification")) cancel_verification(s);
+        return;
+    }
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.1f s", st->elapsed_s);
+    if (st->phase == FemVerifyPhase::Failed) {
+        ImGui::PushStyleColor(ImGuiCol_Text, kBad);
+        ImGui::TextWrapped("%s", st->error.c_str());
+        ImGui::PopStyleColor();
+        record_widget(s, "fem error");
+    } else if (st->phase == FemVerifyPhase::Cancelled) {
+        ImGui::TextDisabled("verification of %s cancelled after %s; nothing was written",
+                            st->label.c_str(), seconds);
+    }
+}
+
+void result_section(Studio& s) {
+    if (!s.verification_error.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, kBad);
+        ImGui::TextWrapped("kept report unreadable: %s", s.verification_error.c_str());
+        ImGui::PopStyleColor();
+    }
+    const auto v = s.verification;  // shared: the worker may publish a newer one meanwhile
+    if (!v) {
+        if (s.shown)
+            ImGui::TextDisabled("Not verified yet: Verify in FEM checks it against CalculiX.");
+        return;
+    }
+    ImGui::PushStyleColor(ImGuiCol_Text, !v->compared ? IM_COL32(150, 100, 20, 255)
+                                         : v->agrees  ? kGood
+                                                      : kBad);
+    ImGui::TextWrapped("%s", v->verdict.c_str());
+    ImGui::PopStyleColor();
+    record_widget(s, "fem verdict");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "the largest relative difference over every load and measure;\n"
+            "agrees when at most %.0f %% (docs/verify.md)",
+            100.0 * v->tolerance);
+    if (!v->compared) return;
+    ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
+                        v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
+                        v->dir.c_str());
+    // Above the table, so that a short tile still shows it.
+    if (v->fem_shape.empty()) {
+        ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");
+    } else {
+        ImGui::Checkbox("FEM ghost in the 3D view", &s.fem_ghost);
+        record_widget(s, "fem ghost");
+        ImGui::SameLine();
+        ImGui::TextDisabled("our static shape at the chosen load, CalculiX's as the grey ghost");
+    }
+    ImGui::TextDisabled(
+        "each cell: CalculiX / ours (relative difference); the radio button picks "
+        "the load drawn");
+    // Fixed-width columns that scroll sideways: a narrow tile never cuts a number.
+    const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
+                                  ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
+    const float height =
+        ImGui::GetTextLineHeightWithSpacing() * (static_cast<float>(v->rows.size()) + 2.5f);
+    if (ImGui::BeginTable("fem loads", 5, flags, ImVec2(0.0f, height))) {
+        ImGui::TableSetupColumn("load");
+        ImGui::TableSetupColumn("tip (mm)");
+        ImGui::TableSetupColumn("bend angle (deg)");
+        ImGui::TableSetupColumn("COM YZ (mm)");
+        ImGui::TableSetupColumn("voxel RMS");
+        ImGui::TableHeadersRow();
+        for (std::size_t k = 0; k < v->rows.size(); ++k) {
+            const auto& r = v->rows[k];
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            char label[64];
+            std::snprintf(label, sizeof label, "%s##fem row", r.load.c_str());
+            if (ImGui::RadioButton(label, s.fem_load == static_cast<int>(k)))
+                s.fem_load = static_cast<int>(k);
+            record_widget(s, "fem load " + r.load);
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s: temperature change %+.3g degC of the active voxels",
+                                  r.load.c_str(), r.temperature_c);
+            ImGui::TableNextColumn();
+            pair_cell(1e3 * r.fem_tip_m, 1e3 * r.engine_tip_m, r.tip, v->tolerance, "%.3g / %.3g");
+            ImGui::TableNextColumn();
+            pair_cell(r.fem_bend_deg, r.engine_bend_deg, r.bend, v->tolerance, "%.3g / %.3g");
+            ImGui::TableNextColumn();
+            pair_cell(1e3 * r.fem_com_yz_m, 1e3 * r.engine_com_yz_m, r.com_yz, v->tolerance,
+                      "%.3g / %.3g");
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(percent(r.rms).c_str());
+        }
+        ImGui::EndTable();
+    }
+}
+
+}  // namespace
+
+void draw_verify_panel(Studio& s) {
+    const bool running = s.fem_verifier.running();
+    ImGui::BeginDisabled(running || !s.shown);
+    if (tracked_button(s, "Verify in FEM")) verify_shown_body(s);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (s.shown)
+        ImGui::TextDisabled("%s against CalculiX at rest, +A and -A", s.shown->label.c_str());
+    else
+        ImGui::TextDisabled("Select a champion or an individual to verify it.");
+    progress_section(s);
+    result_section(s);
+}
+
+}  // namespace bhm::app::gui

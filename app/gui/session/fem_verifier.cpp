@@ -1,0 +1,211 @@
+#include "app/gui/session/fem_verifier.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/verify/ccx_run.hpp"
+#include "evo/verify/verify_report.hpp"
+
+namespace bhm::app::gui {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json read_json(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error(path.string() + ": cannot be read");
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        throw std::runtime_error(path.string() + ": " + e.what());
+    }
+}
+
+double length(const json& v) {
+    double sum = 0.0;
+    for (const auto& x : v)
+        sum += x.get<double>() * x.get<double>();
+    return std::sqrt(sum);
+}
+
+std::optional<double> optional_number(const json& j, const char* key) {
+    if (!j.contains(key) || j.at(key).is_null()) return std::nullopt;
+    return j.at(key).get<double>();
+}
+
+// The finished folder replaces the one in place (if any) in one step: RENAME_EXCHANGE swaps the
+// two names atomically, so a reader sees the old report or the new one, never neither.
+void move_into_place(const fs::path& partial, const fs::path& final_dir) {
+    std::error_code ec;
+    if (fs::exists(final_dir, ec)) {
+        if (::renameat2(AT_FDCWD, partial.c_str(), AT_FDCWD, final_dir.c_str(), RENAME_EXCHANGE) !=
+            0)
+            throw std::runtime_error("cannot replace " + final_dir.string());
+        fs::remove_all(partial, ec);  // the old report, now under the partial name
+        return;
+    }
+    fs::rename(partial, final_dir);
+}
+
+}  // namespace
+
+std::string verification_dir(const std::string& run_dir, std::int64_t id) {
+    return (fs::path(run_dir) / "verify" / ("individual-" + std::to_string(id))).string();
+}
+
+std::optional<FemVerification> read_verification(const std::string& dir, std::int64_t id) {
+    const fs::path report_path = fs::path(dir) / "report.json";
+    std::error_code ec;
+    if (!fs::exists(report_path, ec)) return std::nullopt;
+    const json r = read_json(report_path);
+    FemVerification v;
+    v.id = id;
+    v.dir = dir;
+    try {
+        v.verdict = r.at("verdict").get<std::string>();
+        v.compared = r.at("status").get<std::string>() == "compared";
+        if (!v.compared) return v;
+        v.agrees = r.at("agrees").get<bool>();
+        v.worst = r.at("worst_relative_difference").get<double>();
+        v.tolerance = r.at("tolerance").get<double>();
+        v.fem_cpu_s = r.at("fem").at("cpu_s").get<double>();
+        v.fem_nodes = r.at("fem").at("nodes").get<int>();
+        v.element = r.at("fem").at("element").get<std::string>();
+        v.engine_cpu_s = r.at("engine").at("cpu_s").get<double>();
+        for (const auto& l : r.at("loads")) {
+            FemLoadRow row;
+            row.load = l.at("load").get<std::string>();
+            row.temperature_c = l.at("temperature_c").get<double>();
+            row.fem_tip_m = length(l.at("fem").at("tip_displacement_m"));
+            row.engine_tip_m = length(l.at("engine").at("tip_displacement_m"));
+            row.fem_bend_deg = l.at("fem").at("bend_angle_deg").get<double>();
+            row.engine_bend_deg = l.at("engine").at("bend_angle_deg").get<double>();
+            row.fem_com_yz_m = length(l.at("fem").at("com_yz_displacement_m"));
+            row.engine_com_yz_m = length(l.at("engine").at("com_yz_displacement_m"));
+            const auto& d = l.at("relative_difference");
+            row.tip = optional_number(d, "tip_displacement");
+            row.bend = optional_number(d, "bend_angle");
+            row.com_yz = optional_number(d, "com_yz_displacement");
+            row.rms = optional_number(d, "voxel_displacement_rms");
+            v.rows.push_back(row);
+        }
+    } catch (const json::exception& e) {
+        throw std::runtime_error(report_path.string() + ": " + e.what());
+    }
+    const fs::path shapes_path = fs::path(dir) / "shapes.json";
+    if (fs::exists(shapes_path, ec)) {
+        const auto shapes =
+            evo::verification_shapes_from_json(read_json(shapes_path), shapes_path.string());
+        if (shapes.loads.size() != v.rows.size())
+            throw std::runtime_error(shapes_path.string() + ": " +
+                                     std::to_string(shapes.loads.size()) +
+                                     " loads, the report has " + std::to_string(v.rows.size()));
+        v.voxel_cells = shapes.voxel_cells;
+        v.fem_shape = shapes.fem;
+        v.engine_shape = shapes.engine;
+    }
+    return v;
+}
+
+FemVerifier::~FemVerifier() {
+    cancel_ = true;
+    if (worker_.joinable()) worker_.join();
+}
+
+bool FemVerifier::start(FemVerifyRequest request) {
+    if (running_.load()) return false;
+    if (worker_.joinable()) worker_.join();  // the last one has ended: reap its thread
+    FemVerifyState state;
+    state.job = ++jobs_;
+    state.id = request.id;
+    state.label = request.label;
+    state.started = std::chrono::steady_clock::now();
+    if (!evo::ccx_available()) {
+        // Said at once, in the panel: no thread, no folder, no wait.
+        state.phase = FemVerifyPhase::Failed;
+        state.error = "ccx (CalculiX) is not on the PATH; install the Debian package calculix-ccx";
+        states_.publish(std::make_shared<const FemVerifyState>(state));
+        return true;
+    }
+    state.step = "starting";
+    cancel_ = false;
+    running_ = true;
+    states_.publish(std::make_shared<const FemVerifyState>(state));
+    worker_ = std::thread(
+        [this, request = std::move(request), state]() mutable { work(std::move(request), state); });
+    return true;
+}
+
+void FemVerifier::cancel() {
+    if (running_.load()) cancel_ = true;
+}
+
+void FemVerifier::work(FemVerifyRequest request, FemVerifyState state) {
+    auto publish = [&] { states_.publish(std::make_shared<const FemVerifyState>(state)); };
+    auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - state.started)
+            .count();
+    };
+    fs::path partial;
+    try {
+        evo::VerifyOptions options = request.options;
+        options.control.cancel = &cancel_;
+        options.control.on_progress = [&](const evo::VerifyProgress& p) {
+            state.progress = p;
+            state.step = evo::describe_progress(p);
+            publish();
+        };
+        const auto spec = evo::make_body_spec(request.experiment, *request.framed_body);
+        const auto verification =
+            evo::verify_body(spec, request.experiment.fitness.measure, options);
+        if (cancel_.load()) throw evo::VerifyCancelled();
+        state.step = "writing the report";
+        publish();
+        const fs::path final_dir = verification_dir(request.run_dir, request.id);
+        fs::create_directories(final_dir.parent_path());
+        std::string pattern =
+            (final_dir.parent_path() / ("." + final_dir.filename().string() + ".partial-XXXXXX"))
+                .string();
+        if (::mkdtemp(pattern.data()) == nullptr)
+            throw std::runtime_error("cannot create a folder in " +
+                                     final_dir.parent_path().string());
+        partial = pattern;
+        evo::write_verification(verification, options, partial.string());
+        if (cancel_.load()) throw evo::VerifyCancelled();
+        move_into_place(partial, final_dir);
+        partial.clear();
+        auto result = read_verification(final_dir.string(), request.id);
+        if (!result) throw std::runtime_error(final_dir.string() + ": no report.json written");
+        state.result = std::make_shared<const FemVerification>(std::move(*result));
+        state.phase = FemVerifyPhase::Finished;
+        state.step = "done";
+    } catch (const evo::VerifyCancelled&) {
+        state.phase = FemVerifyPhase::Cancelled;
+        state.step = "cancelled";
+    } catch (const std::exception& e) {
+        state.phase = FemVerifyPhase::Failed;
+        state.error = e.what();
+    }
+    if (!partial.empty()) {
+        std::error_code ignored;
+        fs::remove_all(partial, ignored);
+    }
+    state.elapsed_s = elapsed();
+    publish();  // before running_ drops: whoever sees it idle finds the final state
+    running_ = false;
+}
+
+}  // namespace bhm::app::gui

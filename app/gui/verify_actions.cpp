@@ -1,0 +1,138 @@
+// "Verify in FEM": the actions of the Analysis > FEM tab and the Champions list, and the per-frame
+// hand-off from the verifier's worker (app/gui/session/fem_verifier.hpp, docs/studio.md).
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "app/gui/studio_actions.hpp"
+
+namespace bhm::app::gui {
+
+namespace {
+
+bool start_verification(Studio& studio, FemVerifyRequest request) {
+    if (studio.fem_verifier.running()) {
+        set_status(studio, "a verification is running: cancel it first", true);
+        return false;
+    }
+    if (request.run_dir.empty()) {
+        set_status(studio,
+                   "verify in FEM: the body belongs to no run directory to keep the report in",
+                   true);
+        return false;
+    }
+    const std::string label = request.label;
+    studio.fem_verifier.start(std::move(request));
+    const auto state = studio.fem_verifier.state();
+    if (state && state->phase == FemVerifyPhase::Failed) {
+        set_status(studio, "verify in FEM: " + state->error, true);
+        return false;
+    }
+    set_status(studio, "verifying " + label + " in FEM (CalculiX)");
+    return true;
+}
+
+}  // namespace
+
+bool verify_shown_body(Studio& studio) {
+    if (!studio.shown || !studio.shown->framed_body) {
+        set_status(studio, "verify in FEM: select a champion or an individual first", true);
+        return false;
+    }
+    FemVerifyRequest request;
+    request.id = studio.shown->id;
+    request.label = studio.shown->label;
+    request.experiment = studio.shown->experiment;
+    request.framed_body = studio.shown->framed_body;
+    request.run_dir = studio.run ? studio.run->run_dir : "";
+    return start_verification(studio, std::move(request));
+}
+
+bool verify_champion(Studio& studio, const ChampionEntry& entry) {
+    if (!studio.run) return false;
+    if (studio.fem_verifier.running()) {
+        set_status(studio, "a verification is running: cancel it first", true);
+        return false;
+    }
+    if (!replay_champion(studio, entry, false)) return false;
+    try {
+        FemVerifyRequest request;
+        request.id = entry.id;
+        request.label = "champion #" + std::to_string(entry.id) + " of generation " +
+                        std::to_string(entry.generation);
+        request.experiment = studio.run->experiment;
+        request.experiment.fitness.measure = entry.measure;
+        request.framed_body = load_champion_body(entry.path);
+        request.run_dir = studio.run->run_dir;
+        return start_verification(studio, std::move(request));
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
+void cancel_verification(Studio& studio) {
+    if (!studio.fem_verifier.running()) return;
+    studio.fem_verifier.cancel();
+    set_status(studio, "cancelling the verification");
+}
+
+const FemVerification* fem_overlay(const Studio& studio) {
+    const auto& v = studio.verification;
+    if (!studio.fem_ghost || !v || !studio.shown || v->id != studio.shown->id ||
+        studio.view.mode != ViewMode::Simulation || v->fem_shape.empty())
+        return nullptr;
+    if (studio.fem_load < 0 || studio.fem_load >= static_cast<int>(v->fem_shape.size()))
+        return nullptr;
+    return v.get();
+}
+
+void update_verification(Studio& studio) {
+    if (studio.fem_verifier.version() != studio.fem_state_version) {
+        studio.fem_state_version = studio.fem_verifier.version();
+        studio.fem_state = studio.fem_verifier.state();
+        const auto& st = studio.fem_state;
+        // Each job's end once, even when it started and ended between two frames.
+        if (st && st->phase != FemVerifyPhase::Running && st->job != studio.fem_job_reported) {
+            studio.fem_job_reported = st->job;
+            char seconds[32];
+            std::snprintf(seconds, sizeof seconds, "%.1f s", st->elapsed_s);
+            if (st->phase == FemVerifyPhase::Finished && st->result) {
+                if (studio.shown && studio.shown->id == st->id) {
+                    studio.verification = st->result;
+                    studio.verification_error.clear();
+                    studio.fem_load =
+                        std::min<int>(1, static_cast<int>(st->result->rows.size()) - 1);
+                }
+                set_status(studio, st->label + ": " + st->result->verdict + " (" + seconds + ")");
+            } else if (st->phase == FemVerifyPhase::Cancelled) {
+                set_status(studio, "verification of " + st->label + " cancelled after " + seconds +
+                                       "; nothing was written");
+            } else if (st->phase == FemVerifyPhase::Failed) {
+                set_status(studio, "verify in FEM: " + st->error, true);
+            }
+        }
+    }
+    // A body newly shown: the report kept for it in its run directory, if any.
+    const std::string run_dir = studio.run ? studio.run->run_dir : "";
+    const std::string key =
+        studio.shown && !run_dir.empty() ? run_dir + "#" + std::to_string(studio.shown->id) : "";
+    if (key == studio.verification_key) return;
+    studio.verification_key = key;
+    studio.verification.reset();
+    studio.verification_error.clear();
+    if (key.empty()) return;
+    try {
+        auto kept =
+            read_verification(verification_dir(run_dir, studio.shown->id), studio.shown->id);
+        if (kept) {
+            studio.verification = std::make_shared<const FemVerification>(std::move(*kept));
+            studio.fem_load =
+                std::min<int>(1, static_cast<int>(studio.verification->rows.size()) - 1);
+        }
+    } catch (const std::exception& e) {
+        studio.verification_error = e.what();
+    }
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,283 @@
+// Verify in FEM in the studio (issue 27, docs/studio.md): the worker publishes its phases and
+// lands the report in the run directory, Cancel kills the ccx child and leaves nothing behind, a
+// missing ccx is said at once in the panel, and a headless session verifies the champion, draws
+// the FEM's shape as a ghost and finds the report again when the run is reopened.
+// The CalculiX cases skip (loudly) only where ccx is not installed.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
+
+#include "app/gui/headless_session.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/session/fem_verifier.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/view_scene.hpp"
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/verify/ccx_run.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+bool skip_without_ccx() {
+    if (evo::ccx_available()) return false;
+    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
+    WARN(false);
+    return true;
+}
+
+// An nx x ny x nz bilayer held at x-: the bottom layer muscle (cte 0.01), the rest passive.
+FemVerifyRequest bilayer_request(std::array<int, 3> size, const fs::path& run_dir) {
+    auto e = testing::tiny_experiment(size);
+    e.materials[0].physics.youngs_modulus_pa = 5e6;  // a stiff tissue: small strains, quick rest
+    e.materials[1].physics.youngs_modulus_pa = 5e6;
+    e.actuation.temperature_amplitude_c = 1.0;
+    evo::Body body;
+    body.size = size;
+    body.cells.assign(static_cast<std::size_t>(body.cell_count()), 1);
+    for (int y = 0; y < size[1]; ++y)
+        for (int x = 0; x < size[0]; ++x)
+            body.cells[static_cast<std::size_t>(body.index(x, y, 0))] = 2;
+    FemVerifyRequest r;
+    r.id = 7;
+    r.label = "bilayer";
+    r.experiment = e;
+    r.framed_body = std::make_shared<const evo::Body>(evo::apply_frame_and_overrides(e, body));
+    r.run_dir = run_dir.string();
+    return r;
+}
+
+// Children of this process named ccx (from /proc), with their working folders.
+std::vector<std::pair<int, std::string>> ccx_children() {
+    std::vector<std::pair<int, std::string>> out;
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+        const std::string name = entry.path().filename().string();
+        if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+        std::ifstream stat(entry.path() / "stat");
+        std::string pid, comm, state;
+        int ppid = 0;
+        if (!(stat >> pid >> comm >> state >> ppid)) continue;
+        if (ppid != static_cast<int>(::getpid()) || comm != "(ccx)") continue;
+        std::error_code ec;
+        out.push_back({std::stoi(pid), fs::read_symlink(entry.path() / "cwd", ec).string()});
+    }
+    return out;
+}
+
+bool partial_left(const fs::path& verify_dir) {
+    std::error_code ec;
+    if (!fs::exists(verify_dir, ec)) return false;
+    for (const auto& entry : fs::directory_iterator(verify_dir))
+        if (entry.path().filename().string().find(".partial") != std::string::npos) return true;
+    return false;
+}
+
+// Sets PATH for the scope (the missing-ccx cases), then puts it back.
+struct PathOverride {
+    std::string saved;
+    explicit PathOverride(const std::string& path)
+        : saved(std::getenv("PATH") ? std::getenv("PATH") : "") {
+        ::setenv("PATH", path.c_str(), 1);
+    }
+    ~PathOverride() { ::setenv("PATH", saved.c_str(), 1); }
+};
+
+}  // namespace
+
+TEST_CASE("studio verify: the worker publishes its phases and lands the report in the run dir") {
+    if (skip_without_ccx()) return;
+    const auto dir = testing::fresh_dir("verify-phases");
+    FemVerifier verifier;
+    REQUIRE(verifier.start(bilayer_request({20, 2, 2}, dir)));
+    std::vector<std::string> steps;  // each distinct step in the order it was seen
+    const auto start = Clock::now();
+    while (verifier.running() && Clock::now() - start < std::chrono::seconds(180)) {
+        const auto st = verifier.state();
+        if (st && (steps.empty() || steps.back() != st->step)) steps.push_back(st->step);
+        std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+    REQUIRE_FALSE(verifier.running());
+    const auto st = verifier.state();
+    REQUIRE(st);
+    INFO("error: " << st->error);
+    REQUIRE(st->phase == FemVerifyPhase::Finished);
+    std::string seen;
+    for (const auto& s : steps)
+        seen += s + " | ";
+    INFO("steps seen: " << seen);
+    auto position = [&](const std::string& step) {
+        for (std::size_t k = 0; k < steps.size(); ++k)
+            if (steps[k] == step) return static_cast<int>(k);
+        return -1;
+    };
+    CHECK(position("CalculiX solving load 1 of 3") >= 0);
+    CHECK(position("our engine at load 1 of 3") > position("CalculiX solving load 1 of 3"));
+    CHECK(position("our engine at load 3 of 3") > position("our engine at load 1 of 3"));
+    CHECK(st->elapsed_s > 0.0);
+
+    const fs::path kept = dir / "verify" / "individual-7";
+    CHECK(verification_dir(dir.string(), 7) == kept.string());
+    for (const char* file :
+         {"report.json", "shapes.json", "fem-rest.vtk", "fem-plus-A.vtk", "fem-minus-A.vtk"})
+        CHECK_MESSAGE(fs::exists(kept / file), file);
+    CHECK_FALSE(partial_left(dir / "verify"));
+    REQUIRE(st->result);
+    const auto& v = *st->result;
+    std::ifstream in(kept / "report.json");
+    const json report = json::parse(in);
+    CHECK(v.verdict == report.at("verdict").get<std::string>());
+    REQUIRE(v.rows.size() == 3);
+    CHECK(v.rows[1].load == "+A");
+    CHECK(v.rows[1].fem_bend_deg ==
+          doctest::Approx(report["loads"][1]["fem"]["bend_angle_deg"].get<double>()));
+    // The ghost: 80 voxels per load, the FEM's tip voxel where the report's displacement puts it.
+    REQUIRE(v.fem_shape.size() == 3);
+    REQUIRE(v.voxel_cells.size() == 80);
+    const int tip = report.at("tip_cell").get<int>();
+    std::size_t k = 0;
+    while (k < v.voxel_cells.size() && v.voxel_cells[k] != tip)
+        ++k;
+    REQUIRE(k < v.voxel_cells.size());
+    const auto u = report["loads"][1]["fem"]["tip_displacement_m"].get<std::vector<double>>();
+    const double l = 0.01;
+    const double rest[3] = {(tip % 20 + 0.5) * l, (tip / 20 % 2 + 0.5) * l, (tip / 40 + 0.5) * l};
+    for (int a = 0; a < 3; ++a)
+        CHECK(v.fem_shape[1].position_m[3 * k + static_cast<std::size_t>(a)] ==
+              doctest::Approx(rest[a] + u[static_cast<std::size_t>(a)]).epsilon(1e-4));
+}
+
+TEST_CASE("studio verify: Cancel kills ccx and leaves no report, no partial folder") {
+    if (skip_without_ccx()) return;
+    const auto dir = testing::fresh_dir("verify-cancel");
+    FemVerifier verifier;
+    // Large enough that CalculiX takes seconds: the cancel lands while it solves.
+    REQUIRE(verifier.start(bilayer_request({20, 6, 6}, dir)));
+    std::vector<std::pair<int, std::string>> solving;
+    const auto start = Clock::now();
+    while (verifier.running() && solving.empty() &&
+           Clock::now() - start < std::chrono::seconds(60)) {
+        const auto st = verifier.state();
+        if (st && st->step.rfind("CalculiX solving", 0) == 0) solving = ccx_children();
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    REQUIRE_MESSAGE(!solving.empty(), "ccx was never seen running");
+    const auto cancelled_at = Clock::now();
+    verifier.cancel();
+    while (verifier.running() && Clock::now() - cancelled_at < std::chrono::seconds(30))
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    const double took = std::chrono::duration<double>(Clock::now() - cancelled_at).count();
+    MESSAGE("cancel took " << took << " s");
+    CHECK(took < 2.0);
+    const auto st = verifier.state();
+    REQUIRE(st);
+    CHECK(st->phase == FemVerifyPhase::Cancelled);
+    CHECK(ccx_children().empty());
+    for (const auto& [pid, cwd] : solving) {
+        INFO("ccx pid " << pid << " worked in " << cwd);
+        CHECK_FALSE(fs::exists(fs::path("/proc") / std::to_string(pid)));
+        if (!cwd.empty()) CHECK_FALSE(fs::exists(cwd));  // its temporary folder went too
+    }
+    CHECK_FALSE(fs::exists(dir / "verify" / "individual-7"));
+    CHECK_FALSE(partial_left(dir / "verify"));
+}
+
+TEST_CASE("studio verify: a missing ccx is reported at once, nothing is started or written") {
+    const auto dir = testing::fresh_dir("verify-no-ccx");
+    const fs::path empty = dir / "empty-path";
+    fs::create_directories(empty);
+    PathOverride path(empty.string());
+    FemVerifier verifier;
+    CHECK(verifier.start(bilayer_request({4, 2, 2}, dir)));
+    CHECK_FALSE(verifier.running());
+    const auto st = verifier.state();
+    REQUIRE(st);
+    CHECK(st->phase == FemVerifyPhase::Failed);
+    CHECK(st->error ==
+          "ccx (CalculiX) is not on the PATH; install the Debian package calculix-ccx");
+    CHECK_FALSE(fs::exists(dir / "verify"));
+}
+
+TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, kept on reopen") {
+    if (skip_without_ccx()) return;
+    const auto dir = testing::fresh_dir("verify-ui");
+    const fs::path run_dir = dir / "run";
+    std::string verdict;
+    {
+        Studio studio;
+        studio.document.reset(testing::tiny_experiment({4, 2, 2}), "");
+        studio.run_dir_field = run_dir.string();
+        HeadlessStudio session(studio, 1024, 800);
+        run_script(session, json::parse(R"([{"click": "Start"},
+                                            {"wait_run": "finished", "timeout_s": 240},
+                                            {"wait_simulation": true, "timeout_s": 120},
+                                            {"click": "tab FEM"}, {"frames": 2}])"));
+        REQUIRE(studio.shown);
+        const auto id = studio.shown->id;
+        CHECK_FALSE(studio.verification);  // nothing kept yet
+        {
+            // No ccx: the panel says so in red, the status line too; nothing hangs.
+            const fs::path empty = dir / "empty-path";
+            fs::create_directories(empty);
+            PathOverride path(empty.string());
+            run_script(session, json::parse(R"([{"click": "Verify in FEM"}, {"frames": 2}])"));
+            CHECK(studio.status_is_error);
+            CHECK_MESSAGE(
+                studio.status.find("ccx (CalculiX) is not on the PATH") != std::string::npos,
+                studio.status);
+            const auto it = studio.widgets.find("fem error");
+            CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+        }
+        run_script(session, json::parse(R"([{"click": "Verify in FEM"},
+                                            {"wait_verify": true, "timeout_s": 120},
+                                            {"frames": 2}])"));
+        REQUIRE_MESSAGE(studio.verification, studio.status);
+        CHECK(studio.verification->id == id);
+        verdict = studio.verification->verdict;
+        CHECK_MESSAGE(studio.status.find(verdict) != std::string::npos, studio.status);
+        CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
+        const auto it = studio.widgets.find("fem verdict");
+        CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+
+        // The 3D view: our static shape at +A with the FEM's as a ghost over it.
+        set_view_mode(studio, ViewMode::Simulation);
+        const FemVerification* overlay = fem_overlay(studio);
+        REQUIRE(overlay);
+        CHECK(studio.verification->rows[static_cast<std::size_t>(studio.fem_load)].load == "+A");
+        render::Scene scene = simulation_scene(*studio.shown, studio.clock.time_s, studio.view);
+        REQUIRE(apply_fem_overlay(scene, *overlay, studio.fem_load));
+        REQUIRE(scene.ghost_poses);
+        CHECK(scene.options.show_ghost);
+        CHECK(scene.ghost_poses->voxel_count() == scene.body.voxel_count());
+        CHECK(scene.options.com_trail_m.empty());
+        const auto built = render::build_draw_list(scene);
+        CHECK(built.translucent_boxes.size() >= static_cast<std::size_t>(scene.body.voxel_count()));
+        run_script(session, json::parse(R"([{"click": "fem ghost"}, {"frames": 1}])"));
+        CHECK_FALSE(studio.fem_ghost);
+        CHECK_FALSE(fem_overlay(studio));
+    }
+    // Reopened: the champion shown again finds its report in the run directory.
+    Studio again;
+    HeadlessStudio session(again, 1024, 800);
+    REQUIRE(open_run_directory(again, run_dir.string()));
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"click": "tab FEM"}, {"frames": 2}])"));
+    REQUIRE(again.verification);
+    CHECK(again.verification->verdict == verdict);
+    CHECK_FALSE(again.verification->fem_shape.empty());
+    const auto it = again.widgets.find("fem verdict");
+    CHECK((it != again.widgets.end() && it->second.frame == again.frame));
+}
