@@ -215,6 +215,8 @@ struct Studio {
     double max_update_ms = 0.0;
     std::map<std::string, WidgetRect> widgets;
     TileLayout tiles;  //!< this frame's tile sizes (fit_layout of the settings' preferences)
+    //! A narrow window folds the left column into a strip: its panels open over the 3D view.
+    bool design_open = false;
 };
 
 }  // namespace bhm::app::gui

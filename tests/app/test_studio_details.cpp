@@ -187,10 +187,11 @@ TEST_CASE("studio details: idle, the window draws only after a change or once a 
 TEST_CASE("studio details: the splitters show a grip at rest") {
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
-    HeadlessStudio session(studio, 800, 500);
+    HeadlessStudio session(studio, 1280, 800);  // wide: the left column is not folded
     run_script(session, json::parse(R"([{"frames": 2}])"));
     const render::Image image = session.capture();  // top row first
-    for (const char* name : {"splitter left", "splitter right", "splitter replay"}) {
+    for (const char* name : {"splitter left", "splitter right", "splitter replay", "splitter run",
+                             "splitter plot"}) {
         INFO(name);
         const WidgetRect r = studio.widgets.at(name);
         const int x = static_cast<int>(std::lround((r.min.x + r.max.x) * 0.5f));
