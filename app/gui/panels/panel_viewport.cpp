@@ -153,10 +153,20 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     const ImU32 dark = IM_COL32(30, 34, 40, 255), dim = IM_COL32(90, 96, 106, 255);
     const auto& e = s.document.experiment();
     char buf[256];
+    // A body asked for and not simulated yet (a new champion, a selected row): said first, so
+    // the body still playing is never taken for it (issue 25 item 6).
+    const std::string pending = s.simulator.pending_label();
+    const bool waiting = !pending.empty() && (!s.shown || s.shown->label != pending);
+    if (s.view.mode == ViewMode::Simulation && waiting) {
+        const ImVec2 from = at;
+        text(IM_COL32(190, 110, 0, 255), "simulating " + pending + " ...");
+        s.widgets["simulating note"] =
+            WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, at.y}, s.frame};
+    }
     if (s.view.mode == ViewMode::Simulation && s.shown) {
         const auto& b = *s.shown;
         const auto measure = b.experiment.fitness.measure;
-        text(dark, b.label);
+        text(dark, waiting ? "shown until then: " + b.label : b.label);
         std::snprintf(buf, sizeof buf, "t = %.3f s   fitness %s   bend angle %.2f deg",
                       s.clock.time_s, format_fitness(b.fitness, measure).c_str(),
                       b.bend_angle_deg());
@@ -184,7 +194,7 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
                       : std::string("Voxels tool: click paints '") +
                             kPaintKindNames[static_cast<std::size_t>(s.painter.brush)] +
                             "', Shift+click clears");
-        if (s.view.mode == ViewMode::Simulation) text(dim, "no simulated body yet");
+        if (s.view.mode == ViewMode::Simulation && !waiting) text(dim, "no simulated body yet");
     }
     // Bottom line: what is under the cursor.
     std::string under;
