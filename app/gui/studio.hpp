@@ -190,6 +190,10 @@ struct Studio {
     bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected
+    //! Simulation mode: the voxel clicked (index into the replay of inspected_body), read at the
+    //! replay time while that body is the one shown.
+    int inspected_voxel = -1;
+    std::shared_ptr<const SimulatedBody> inspected_body;
 
     std::string status;  //!< one-line message in the status bar
     bool status_is_error = false;

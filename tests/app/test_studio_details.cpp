@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <filesystem>
 
 #include "app/cli/render_video.hpp"
@@ -13,6 +14,8 @@
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/unsaved_guard.hpp"
+#include "app/gui/viewport.hpp"
+#include "engine/replay.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -202,4 +205,85 @@ TEST_CASE("studio details: the splitters show a grip at rest") {
         const auto* beside = vertical ? image.pixel(x, y + 8) : image.pixel(x + 8, y);
         CHECK(int(dot[0]) + 30 < int(beside[0]));
     }
+}
+
+TEST_CASE("studio details: a click on the replayed body reads that voxel at the replay time") {
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    SimulationRequest request;
+    request.id = 3;
+    request.label = "test body";
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"replay": {"time_s": 0.35, "playing": false}},
+                                        {"frames": 3}])"));
+    REQUIRE(studio.shown);
+    REQUIRE(studio.view.mode == ViewMode::Simulation);
+    const auto& replay = studio.shown->replay;
+    const auto poses = engine::pose_at(replay, studio.clock.time_s);
+    // The voxel nearest the eye: nothing hides its centre.
+    const glm::vec3 eye = studio.view.camera.eye_position();
+    int nearest = -1;
+    float best = 1e9f;
+    for (int v = 0; v < poses.voxel_count(); ++v) {
+        const auto i = static_cast<std::size_t>(v);
+        const glm::vec3 p{poses.position_m[3 * i], poses.position_m[3 * i + 1],
+                          poses.position_m[3 * i + 2]};
+        if (glm::length(p - eye) < best) {
+            best = glm::length(p - eye);
+            nearest = v;
+        }
+    }
+    const auto i = static_cast<std::size_t>(nearest);
+    const glm::vec3 centre{poses.position_m[3 * i], poses.position_m[3 * i + 1],
+                           poses.position_m[3 * i + 2]};
+    const auto pixel = project_to_pixel(studio.view.camera, centre, studio.view.size_px);
+    REQUIRE(pixel);
+    // Through the mouse, as a person clicks: over the pixel, press, release.
+    auto& input = session.input();
+    input.mouse = studio.view.origin_px + *pixel;
+    session.frame();
+    input.buttons[0] = true;
+    session.frame();
+    input.buttons[0] = false;
+    session.frame();
+    session.frame();
+    REQUIRE(studio.inspected_voxel == nearest);
+    CHECK(drawn_now(studio, "voxel inspector"));
+    const auto reading = inspected_voxel(studio);
+    REQUIRE(reading);
+    // Against the replay itself: the recorded frame at the clock, its first frame, the material.
+    const auto& frame = replay.frames[static_cast<std::size_t>(
+        frame_index_at(replay, studio.clock.time_s))];
+    const auto& first = replay.frames.front();
+    const float L = static_cast<float>(replay.voxel_size_m);
+    glm::vec3 d{0.0f};
+    for (int a = 0; a < 3; ++a) d[a] = frame.position_m[3 * i + a] - first.position_m[3 * i + a];
+    CHECK(reading->displacement_vox == doctest::Approx(glm::length(d) / L).epsilon(1e-4));
+    CHECK(reading->strain == doctest::Approx(frame.size_m[3 * i] * frame.size_m[3 * i + 1] *
+                                                 frame.size_m[3 * i + 2] / (L * L * L) -
+                                             1.0f)
+                                 .epsilon(1e-4));
+    CHECK(reading->material == replay.voxel_material[i]);
+    CHECK(reading->material_name ==
+          e.materials[static_cast<std::size_t>(reading->material - 1)].name);
+    const int cell = replay.voxel_cell[i];
+    CHECK(reading->cell == std::array<int, 3>{cell % replay.nx, (cell / replay.nx) % replay.ny,
+                                              cell / (replay.nx * replay.ny)});
+    // A click beside the body clears it.
+    input.mouse = studio.view.origin_px + glm::vec2(3.0f, 3.0f);
+    session.frame();
+    input.buttons[0] = true;
+    session.frame();
+    input.buttons[0] = false;
+    session.frame();
+    CHECK(studio.inspected_voxel == -1);
+    CHECK_FALSE(inspected_voxel(studio));
 }
