@@ -89,6 +89,8 @@ struct ExportState {
     std::string frames_folder = "bhm-frames";
     int frames_width = 1280, frames_height = 720;
     double frames_fps = 30.0;
+    //! Burn a caption into frames and videos: experiment, body (generation), fitness, time.
+    bool caption = true;
     std::string champion_vxa_path = "champion.vxa";
     std::string champion_json_path = "champion.json";
     std::string mesh_path = "champion.stl";  //!< .stl or .obj (+ .mtl beside it)

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "app/cli/render_video.hpp"
+#include "app/gui/export_actions.hpp"
 #include "app/gui/headless_session.hpp"
 #include "app/gui/redraw_gate.hpp"
 #include "app/gui/script.hpp"
@@ -24,6 +25,12 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
+
+template <class Done>
+void frames_until_done(HeadlessStudio& session, Done done) {
+    for (int i = 0; i < 2000 && !done(); ++i) session.frame();
+    REQUIRE(done());
+}
 
 bool drawn_now(const Studio& s, const std::string& widget) {
     const auto it = s.widgets.find(widget);
@@ -286,4 +293,48 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     session.frame();
     CHECK(studio.inspected_voxel == -1);
     CHECK_FALSE(inspected_voxel(studio));
+}
+
+TEST_CASE("studio details: exported frames carry a caption: experiment, body, fitness, time") {
+    const auto dir = testing::fresh_dir("details-caption");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.name = "caption test";
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    SimulationRequest request;
+    request.id = 3;
+    request.label = "champion #3, generation 2";
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"frames": 2}])"));
+    REQUIRE(studio.shown);
+    const auto lines = export_caption_lines(*studio.shown, 0.25);
+    REQUIRE(lines.size() == 4);
+    CHECK(lines[0] == "caption test");
+    CHECK(lines[1] == "champion 3, generation 2");  // no '#': the dot font lacks it
+    CHECK(lines[2].find("(bend_angle_deg)") != std::string::npos);
+    CHECK(lines[3] == "t = 0.250 s");
+    // With and without: the caption's box darkens the top-left corner of every frame.
+    auto corner_mean = [](const render::Image& image) {
+        double sum = 0.0;
+        int n = 0;
+        for (int y = 4; y < 24; ++y)
+            for (int x = 4; x < 60; ++x, ++n) sum += image.pixel(x, y)[1];
+        return sum / n;
+    };
+    double mean[2] = {0.0, 0.0};
+    for (int with = 0; with < 2; ++with) {
+        studio.exports.caption = with == 1;
+        const auto folder = dir / (with ? "with" : "without");
+        REQUIRE(start_frame_export(studio, folder.string(), 320, 200, 5.0));
+        frames_until_done(session, [&] { return !studio.exports.frame_job.active; });
+        mean[with] = corner_mean(render::read_png((folder / "frame_00000.png").string()));
+    }
+    CHECK(mean[1] < 0.7 * mean[0]);
 }
