@@ -10,8 +10,10 @@
 #include "app/gui/view_renderer.hpp"
 #include "app/gui/view_scene.hpp"
 #include "app/gui/viewport.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
+#include "render/caption.hpp"
 
 namespace bhm::app::gui {
 
@@ -128,6 +130,18 @@ bool start_frame_export(Studio& s, const std::string& folder, int width, int hei
     return true;
 }
 
+std::vector<std::string> export_caption_lines(const SimulatedBody& b, double t_s) {
+    std::string label;  // the dot font has no '#'
+    for (char c : b.label)
+        if (c != '#') label += c;
+    const auto measure = b.experiment.fitness.measure;
+    char fitness[96], time[48];
+    std::snprintf(fitness, sizeof fitness, "fitness %.4g %s (%s)", b.fitness,
+                  fitness_unit(measure), evo::kFitnessNames[static_cast<std::size_t>(measure)]);
+    std::snprintf(time, sizeof time, "t = %.3f s", t_s);
+    return {b.experiment.name, label, fitness, time};
+}
+
 void continue_frame_export(Studio& s, ViewRenderer& renderer) {
     auto& job = s.exports.frame_job;
     if (!job.active) {
@@ -145,8 +159,11 @@ void continue_frame_export(Studio& s, ViewRenderer& renderer) {
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%05d.png", job.next);
     try {
-        const render::Image image =
+        render::Image image =
             renderer.draw_to_image(list, s.view.camera, job.width, job.height, 4);
+        if (s.exports.caption)
+            render::draw_caption(image, export_caption_lines(*s.shown, t),
+                                 render::caption_scale_for(job.height));
         if (job.video)
             job.video->write(image);
         else

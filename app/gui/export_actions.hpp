@@ -2,6 +2,7 @@
 // Exports: a screenshot of the 3D view at any size (rendered off-screen, not read from the
 // window), a replay as a numbered PNG sequence, and the champion as VXA (VoxCAD) and body JSON.
 #include <string>
+#include <vector>
 
 #include "app/gui/studio.hpp"
 #include "render/image.hpp"
@@ -31,6 +32,11 @@ void continue_frame_export(Studio& studio, ViewRenderer& renderer);
 //! path's ending; it replaces path only once ffmpeg's output is verified.
 bool start_video_export(Studio& studio, const std::string& path, int width, int height,
                         double fps);
+
+//! The caption burnt into exported frames at time t (render/caption.hpp, as `bhm render
+//! --caption`): the experiment, the body ("champion 412, generation 37"), its fitness under the
+//! experiment's measure over the whole simulation, and the time.
+std::vector<std::string> export_caption_lines(const SimulatedBody& body, double t_s);
 
 //! The shown body (the champion while following it) as VXA / body JSON.
 bool export_champion_vxa(Studio& studio, const std::string& path);

@@ -51,6 +51,9 @@ const std::vector<std::pair<const char*, const char*>>& mouse_gestures() {
         {"Left click (Faces tool)", "cycle the face under the cursor: free / fixed"},
         {"Left click (Voxels tool)", "paint the cell under the cursor with the brush"},
         {"Shift + left click (Voxels)", "clear the cell's override"},
+        {"Left click (Simulation)",
+         "read the voxel under the cursor at the replay time: cell, material, displacement, "
+         "strain, actuation (a click beside the body clears it)"},
     };
     return table;
 }

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
+
+#include "render/face_culling.hpp"
 
 namespace bhm::app::gui {
 
@@ -155,6 +158,47 @@ std::optional<CellHit> pick_cell(const Ray& ray, const LatticeBox& box, const Sl
     if (hit) return hit;
     if (first_in_top_layer) return first_in_top_layer;
     return first_visible;
+}
+
+std::optional<float> ray_box_distance(const Ray& ray, glm::vec3 centre, const float* q,
+                                      glm::vec3 size) {
+    // The ray in the box's own frame: rotated by the inverse of q (w, x, y, z) as the renderer
+    // rotates the box by q (a degenerate q is the identity there too), then slabs.
+    glm::vec4 inverse{q[0], -q[1], -q[2], -q[3]};
+    const float norm = glm::length(inverse);
+    inverse = norm > 1e-6f && std::isfinite(norm) ? inverse / norm : glm::vec4(1, 0, 0, 0);
+    const glm::vec3 origin = render::rotate_vector(inverse, ray.origin - centre);
+    const glm::vec3 direction = render::rotate_vector(inverse, ray.direction);
+    const glm::vec3 half = 0.5f * size;
+    float enter = -std::numeric_limits<float>::infinity();
+    float leave = std::numeric_limits<float>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(direction[a]) < 1e-12f) {
+            if (origin[a] < -half[a] || origin[a] > half[a]) return std::nullopt;
+            continue;
+        }
+        float t0 = (-half[a] - origin[a]) / direction[a];
+        float t1 = (half[a] - origin[a]) / direction[a];
+        if (t0 > t1) std::swap(t0, t1);
+        enter = std::max(enter, t0);
+        leave = std::min(leave, t1);
+    }
+    if (enter > leave || leave < 0.0f) return std::nullopt;
+    return std::max(0.0f, enter);
+}
+
+std::optional<VoxelHit> pick_posed_voxel(const Ray& ray, const engine::VoxelPoses& poses) {
+    std::optional<VoxelHit> best;
+    for (int v = 0; v < poses.voxel_count(); ++v) {
+        const auto i = static_cast<std::size_t>(v);
+        const glm::vec3 centre{poses.position_m[3 * i], poses.position_m[3 * i + 1],
+                               poses.position_m[3 * i + 2]};
+        const glm::vec3 size{poses.size_m[3 * i], poses.size_m[3 * i + 1],
+                             poses.size_m[3 * i + 2]};
+        const auto d = ray_box_distance(ray, centre, &poses.orientation[4 * i], size);
+        if (d && (!best || *d < best->distance_m)) best = VoxelHit{v, *d};
+    }
+    return best;
 }
 
 }  // namespace bhm::app::gui

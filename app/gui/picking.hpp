@@ -9,6 +9,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "engine/poses.hpp"
 #include "evo/experiment/experiment.hpp"
 #include "render/camera.hpp"
 
@@ -64,6 +65,19 @@ struct CellHit {
 //! first visible cell it enters. Empty when the ray misses every visible cell.
 std::optional<CellHit> pick_cell(const Ray& ray, const LatticeBox& box, const Slice& slice,
                                  const std::function<bool(const std::array<int, 3>&)>& occupied);
+
+//! Distance along the ray to an oriented box (centre, unit quaternion w x y z, edge lengths
+//! along its own axes); empty when it misses. A ray starting inside hits at 0.
+std::optional<float> ray_box_distance(const Ray& ray, glm::vec3 centre, const float* quaternion,
+                                      glm::vec3 size);
+
+struct VoxelHit {
+    int voxel = -1;  //!< index into the poses
+    float distance_m = 0.0f;
+};
+//! The first voxel of a replayed pose the ray hits (each voxel an oriented box of its current
+//! size), as drawn; empty when it hits none.
+std::optional<VoxelHit> pick_posed_voxel(const Ray& ray, const engine::VoxelPoses& poses);
 
 //! Calls visit(cell) for every cell the ray crosses inside the box, in order, until it returns
 //! false.

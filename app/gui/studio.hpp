@@ -91,6 +91,8 @@ struct ExportState {
     std::string frames_folder = "bhm-frames";
     int frames_width = 1280, frames_height = 720;
     double frames_fps = 30.0;
+    //! Burn a caption into frames and videos: experiment, body (generation), fitness, time.
+    bool caption = true;
     std::string champion_vxa_path = "champion.vxa";
     std::string champion_json_path = "champion.json";
     std::string mesh_path = "champion.stl";  //!< .stl or .obj (+ .mtl beside it)
@@ -232,6 +234,10 @@ struct Studio {
     bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected
+    //! Simulation mode: the voxel clicked (index into the replay of inspected_body), read at the
+    //! replay time while that body is the one shown.
+    int inspected_voxel = -1;
+    std::shared_ptr<const SimulatedBody> inspected_body;
 
     std::string status;  //!< one-line message in the status bar
     bool status_is_error = false;
@@ -259,6 +265,8 @@ struct Studio {
     //! The last tooltip an experiment field showed (field_editor.hpp); tests read it.
     std::string shown_tooltip;
     TileLayout tiles;  //!< this frame's tile sizes (fit_layout of the settings' preferences)
+    //! A narrow window folds the left column into a strip: its panels open over the 3D view.
+    bool design_open = false;
 };
 
 }  // namespace bhm::app::gui

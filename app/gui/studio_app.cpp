@@ -80,6 +80,42 @@ void splitter(Studio& s, const char* name, ImVec2 pos, ImVec2 size, Splitter whi
     ImGui::PopStyleVar(3);
 }
 
+// The left column's tabs: Experiment, Constraints, Files, Export.
+void draw_design_tabs(Studio& s, ViewRenderer& renderer) {
+    if (!ImGui::BeginTabBar("design tabs")) return;
+    const bool experiment_open = ImGui::BeginTabItem("Experiment");
+    record_widget(s, "tab Experiment");
+    if (experiment_open) {
+        draw_experiment_panel(s);
+        ImGui::EndTabItem();
+    }
+    const bool constraints_open = ImGui::BeginTabItem("Constraints");
+    record_widget(s, "tab Constraints");
+    if (constraints_open) {
+        draw_constraints_panel(s);
+        ImGui::EndTabItem();
+    }
+    const bool files_open = ImGui::BeginTabItem("Files");
+    record_widget(s, "tab Files");
+    if (files_open) {
+        draw_files_panel(s);
+        ImGui::EndTabItem();
+    }
+    const bool export_open = ImGui::BeginTabItem("Export");
+    record_widget(s, "tab Export");
+    if (export_open) {
+        draw_export_panel(s, renderer);
+        ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+}
+
+// Records the current window's rectangle under `name`.
+void record_widget_window(Studio& s, const std::string& name) {
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    s.widgets[name] = WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+}
+
 }  // namespace
 
 std::string apply_studio_style(float scale) {
@@ -172,36 +208,32 @@ void StudioApp::layout_and_panels() {
     s.tiles = t;
     const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoResize;
 
-    // Left column: the design problem.
-    begin_tile("Design", {0, top}, {t.left, height}, fixed);
-    if (ImGui::BeginTabBar("design tabs")) {
-        const bool experiment_open = ImGui::BeginTabItem("Experiment");
-        record_widget(s, "tab Experiment");
-        if (experiment_open) {
-            draw_experiment_panel(s);
-            ImGui::EndTabItem();
+    // Left column: the design problem (in a narrow window a strip that opens it over the view,
+    // drawn after the view so it lies on top).
+    if (!t.left_collapsed) {
+        s.design_open = false;
+        begin_tile("Design", {0, top}, {t.left, height}, fixed);
+        draw_design_tabs(s, renderer_);
+        ImGui::End();
+    } else {
+        ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(2.0f, 4.0f));
+        begin_tile("Design strip", {0, top}, {t.left, height},
+                   fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar);
+        ImGui::PopStyleVar();
+        const bool clicked = ImGui::Button(s.design_open ? "<###design" : ">###design",
+                                           ImVec2(-1.0f, ImGui::GetFrameHeight() * 2.0f));
+        record_widget(s, "design strip");
+        if (clicked) {
+            s.design_open = !s.design_open;
+            design_just_opened_ = s.design_open;
         }
-        const bool constraints_open = ImGui::BeginTabItem("Constraints");
-        record_widget(s, "tab Constraints");
-        if (constraints_open) {
-            draw_constraints_panel(s);
-            ImGui::EndTabItem();
-        }
-        const bool files_open = ImGui::BeginTabItem("Files");
-        record_widget(s, "tab Files");
-        if (files_open) {
-            draw_files_panel(s);
-            ImGui::EndTabItem();
-        }
-        const bool export_open = ImGui::BeginTabItem("Export");
-        record_widget(s, "tab Export");
-        if (export_open) {
-            draw_export_panel(s, renderer_);
-            ImGui::EndTabItem();
-        }
-        ImGui::EndTabBar();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(s.design_open ? "fold the Experiment, Constraints, Files and Export "
+                                              "panels"
+                                            : "Experiment, Constraints, Files, Export (the window "
+                                              "is narrow: they open over the 3D view)");
+        ImGui::End();
     }
-    ImGui::End();
 
     // Centre: the 3D view over the replay timeline.
     const float centre_x = t.left, centre_w = std::max(16.0f, width - t.left - t.right);
@@ -221,18 +253,36 @@ void StudioApp::layout_and_panels() {
     begin_tile("Run", {right_x, top}, {t.right, t.run}, fixed);
     draw_run_panel(s);
     ImGui::End();
-    begin_tile("Fitness", {right_x, top + t.run}, {t.right, t.plot},
-               fixed | ImGuiWindowFlags_NoScrollbar);
+    begin_tile("Fitness", {right_x, top + t.run}, {t.right, t.plot}, fixed);
     draw_fitness_panel(s);
     ImGui::End();
     begin_tile("Analysis", {right_x, top + t.run + t.plot}, {t.right, t.population}, fixed);
     draw_analysis_panel(s);
     ImGui::End();
 
+    if (t.left_collapsed && s.design_open) {
+        const float w = std::min(std::max(kMinSide, s.settings.layout.left_px),
+                                 std::max(kMinSide, width * 0.75f - t.left));
+        ImGui::SetNextWindowPos({t.left, top}, ImGuiCond_Always);
+        ImGui::SetNextWindowSize({w, height}, ImGuiCond_Always);
+        // Brought to the front once, as it opens (focused every frame it would take the mouse
+        // from every other window's widgets).
+        if (design_just_opened_) ImGui::SetNextWindowFocus();
+        design_just_opened_ = false;
+        ImGui::Begin("Design##open", nullptr,
+                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoResize |
+                         ImGuiWindowFlags_NoTitleBar);
+        record_widget_window(s, "design panel");
+        draw_design_tabs(s, renderer_);
+        ImGui::End();
+    }
+
     // The inner edges: drawn over the tiles, dragged to resize (bounded, remembered).
     constexpr float grip = 6.0f;
-    splitter(s, "splitter left", {t.left - grip * 0.5f, top}, {grip, height}, Splitter::Left, width,
-             height);
+    if (!t.left_collapsed)
+        splitter(s, "splitter left", {t.left - grip * 0.5f, top}, {grip, height}, Splitter::Left,
+                 width, height);
     splitter(s, "splitter right", {right_x - grip * 0.5f, top}, {grip, height}, Splitter::Right,
              width, height);
     splitter(s, "splitter replay", {centre_x, top + t.view - grip * 0.5f}, {centre_w, grip},

@@ -37,6 +37,7 @@ class StudioApp {
     void layout_and_panels();
     Studio& studio_;
     ViewRenderer renderer_;
+    bool design_just_opened_ = false;  //!< the folded left column opened this frame
 };
 
 //! Camera and layout into the settings (before they are saved).

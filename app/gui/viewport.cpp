@@ -5,6 +5,7 @@
 #include "app/gui/calibration_actions.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/view_scene.hpp"
+#include "engine/replay.hpp"
 
 namespace bhm::app::gui {
 
@@ -175,6 +176,18 @@ void update_hover(Studio& s, std::optional<glm::vec2> pixel) {
 }
 
 bool click_in_view(Studio& s, glm::vec2 pixel, bool shift) {
+    if (s.view.mode == ViewMode::Simulation) {
+        s.inspected_voxel = -1;
+        s.inspected_body.reset();
+        if (!s.shown || s.shown->replay.frames.empty() || s.view.size_px.x < 1.0f) return false;
+        const Ray ray = ray_through_pixel(s.view.camera, pixel, s.view.size_px);
+        const auto poses = engine::pose_at(s.shown->replay, s.clock.time_s);
+        if (const auto hit = pick_posed_voxel(ray, poses)) {
+            s.inspected_voxel = hit->voxel;
+            s.inspected_body = s.shown;
+        }
+        return false;
+    }
     if (s.view.mode != ViewMode::Workspace) return false;
     update_hover(s, pixel);
     const auto& p = s.painter;
@@ -186,6 +199,31 @@ bool click_in_view(Studio& s, glm::vec2 pixel, bool shift) {
                           paint_edit_label(cell, PaintKind::Clear, 0));
     }
     return paint_cell(s, *p.hovered_cell);
+}
+
+std::optional<VoxelReading> inspected_voxel(const Studio& s) {
+    if (s.inspected_voxel < 0 || !s.inspected_body || s.inspected_body != s.shown) return {};
+    const SimulatedBody& b = *s.shown;
+    const engine::Replay& r = b.replay;
+    const auto v = static_cast<std::size_t>(s.inspected_voxel);
+    if (v >= r.voxel_cell.size() || r.frames.empty()) return {};
+    VoxelReading out;
+    out.voxel = s.inspected_voxel;
+    const int cell = r.voxel_cell[v];
+    out.cell = {cell % r.nx, (cell / r.nx) % r.ny, cell / (r.nx * r.ny)};
+    out.material = r.voxel_material[v];
+    if (out.material >= 1 && out.material <= static_cast<int>(b.experiment.materials.size()))
+        out.material_name = b.experiment.materials[static_cast<std::size_t>(out.material - 1)].name;
+    out.held = v < r.voxel_fixed.size() && r.voxel_fixed[v] != 0;
+    // The values the colour modes show at this time (one source for both).
+    const int frame = frame_index_at(r, s.clock.time_s);
+    auto value = [&](ColorBy by) {
+        return voxel_scalars(by, b.experiment, r, frame, b.series, b.voxel_phase_rad).values[v];
+    };
+    out.displacement_vox = value(ColorBy::Displacement);
+    out.strain = value(ColorBy::Strain);
+    out.actuation = value(ColorBy::Actuation);
+    return out;
 }
 
 }  // namespace bhm::app::gui

@@ -1,7 +1,9 @@
 #pragma once
 // The 3D view's scene and mouse handling, apart from the ImGui window that hosts it so scripts and
 // tests can use the same picking: what is drawn, what is under a pixel, what a click does.
+#include <array>
 #include <optional>
+#include <string>
 
 #include <glm/vec2.hpp>
 
@@ -23,7 +25,23 @@ const evo::Body* painter_context_body(const Studio& studio);
 void update_hover(Studio& studio, std::optional<glm::vec2> pixel);
 
 //! What a left click at `pixel` (view coordinates, top-left origin) does: cycle a face or paint a
-//! cell in Workspace mode. Returns true when it changed the experiment.
+//! cell in Workspace mode; in Simulation mode pick the voxel of the shown body under it, as posed
+//! at the replay time (studio.inspected_voxel; a click beside the body clears it). Returns true
+//! when it changed the experiment.
 bool click_in_view(Studio& studio, glm::vec2 pixel, bool shift);
+
+//! The clicked voxel at the replay time: what the colour modes show for it (body_analysis.hpp).
+struct VoxelReading {
+    int voxel = -1;
+    std::array<int, 3> cell{0, 0, 0};  //!< lattice cell of the body
+    int material = 0;                  //!< 1-based
+    std::string material_name;
+    bool held = false;
+    float displacement_vox = 0.0f;  //!< from t = 0, voxel lengths
+    float strain = 0.0f;            //!< volumetric
+    float actuation = 0.0f;         //!< the signal, -1 .. 1 (0 for passive voxels, settling)
+};
+//! Empty when no voxel is inspected or the body shown is no longer the one it was picked on.
+std::optional<VoxelReading> inspected_voxel(const Studio& studio);
 
 }  // namespace bhm::app::gui

@@ -169,8 +169,12 @@ GenerationProgress EvolutionRun::progress() const {
 void EvolutionRun::progress_begin(int generation) {
     const double paused = paused_seconds();
     std::lock_guard lock(progress_mutex_);
-    // Another attempt at the same generation keeps the time of the abandoned ones.
-    const double abandoned = progress_.generation == generation ? progress_.abandoned_s : 0.0;
+    // Another attempt at the same generation keeps the time of the abandoned ones (unless a
+    // stop already put it into the run's elapsed time).
+    const double abandoned = progress_.generation == generation && !abandoned_time_kept_
+                                 ? progress_.abandoned_s
+                                 : 0.0;
+    abandoned_time_kept_ = false;
     progress_ = GenerationProgress{true, generation, 0, 0, 0.0, abandoned};
     progress_start_ = std::chrono::steady_clock::now();
     progress_paused_at_start_s_ = paused;
@@ -197,6 +201,24 @@ void EvolutionRun::progress_abandoned() {
     std::lock_guard lock(progress_mutex_);
     progress_.abandoned_s += progress_.elapsed_s;
     progress_.elapsed_s = 0.0;
+}
+
+void EvolutionRun::keep_stopped_time() {
+    double spent = 0.0;
+    {
+        std::lock_guard lock(progress_mutex_);
+        if (abandoned_time_kept_ || progress_.generation != state_.generation + 1) return;
+        spent = progress_.abandoned_s;
+        abandoned_time_kept_ = true;
+    }
+    if (!(spent > 0.0)) return;
+    state_.elapsed_s += spent;
+    if (output_ && state_.generation >= 0) {
+        const bool resumed_from_backup =
+            fs::path(checkpoint_path_).filename() == kPreviousCheckpointFile;
+        output_->write_checkpoint(state_, resumed_from_backup);
+        checkpoint_path_ = output_->path(kCheckpointFile);
+    }
 }
 
 void EvolutionRun::request_fitness_change(const Fitness& fitness) {

@@ -118,6 +118,13 @@ class EvolutionRun {
         user_stop_.store(true);
         stop_.store(true);
     }
+    //! After run() returned StopRequested: the time of the generation the stop abandoned counts
+    //! in the run's elapsed time (as an attempt abandoned for new rules does) and the checkpoint
+    //! is written again with it, so a resumed run's clock goes on from where this one stopped
+    //! instead of going back. The live progress keeps its figures (a reader that adds them to an
+    //! older snapshot stays right); the next generation starts from zero. Once per stop, on the
+    //! thread that ran run(). Throws what writing the checkpoint throws.
+    void keep_stopped_time();
     //! Lets run() go on after a stop request was honoured (the studio's "continue").
     void clear_stop() {
         user_stop_.store(false);
@@ -228,6 +235,7 @@ class EvolutionRun {
     GenerationProgress progress_;  //!< elapsed_s unused while running: from the two below
     std::chrono::steady_clock::time_point progress_start_;
     double progress_paused_at_start_s_ = 0.0;
+    bool abandoned_time_kept_ = false;  //!< keep_stopped_time: progress_.abandoned_s is in state_
 
     std::chrono::steady_clock::time_point session_start_;
     int session_generations_ = 0;

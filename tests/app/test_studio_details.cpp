@@ -5,9 +5,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <filesystem>
 
 #include "app/cli/render_video.hpp"
+#include "app/gui/export_actions.hpp"
 #include "app/gui/headless_session.hpp"
 #include "app/gui/redraw_gate.hpp"
 #include "app/gui/script.hpp"
@@ -15,6 +17,8 @@
 #include "app/gui/unsaved_guard.hpp"
 #include "engine/limits.hpp"
 #include "evo/experiment/experiment_fields.hpp"
+#include "app/gui/viewport.hpp"
+#include "engine/replay.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -23,6 +27,12 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
+
+template <class Done>
+void frames_until_done(HeadlessStudio& session, Done done) {
+    for (int i = 0; i < 2000 && !done(); ++i) session.frame();
+    REQUIRE(done());
+}
 
 bool drawn_now(const Studio& s, const std::string& widget) {
     const auto it = s.widgets.find(widget);
@@ -195,10 +205,11 @@ TEST_CASE("studio details: idle, the window draws only after a change or once a 
 TEST_CASE("studio details: the splitters show a grip at rest") {
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
-    HeadlessStudio session(studio, 800, 500);
+    HeadlessStudio session(studio, 1280, 800);  // wide: the left column is not folded
     run_script(session, json::parse(R"([{"frames": 2}])"));
     const render::Image image = session.capture();  // top row first
-    for (const char* name : {"splitter left", "splitter right", "splitter replay"}) {
+    for (const char* name : {"splitter left", "splitter right", "splitter replay", "splitter run",
+                             "splitter plot"}) {
         INFO(name);
         const WidgetRect r = studio.widgets.at(name);
         const int x = static_cast<int>(std::lround((r.min.x + r.max.x) * 0.5f));
@@ -250,4 +261,129 @@ TEST_CASE("studio details: an experiment field's tooltip is the field table's") 
           evo::field_tooltip(*evo::find_experiment_field("actuation.temperature_amplitude_c")));
     CHECK(amplitude.find("<= " + evo::range_number(engine::limits::kMaxActuationStrain)) !=
           std::string::npos);
+}
+
+TEST_CASE("studio details: a click on the replayed body reads that voxel at the replay time") {
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    SimulationRequest request;
+    request.id = 3;
+    request.label = "test body";
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"replay": {"time_s": 0.35, "playing": false}},
+                                        {"frames": 3}])"));
+    REQUIRE(studio.shown);
+    REQUIRE(studio.view.mode == ViewMode::Simulation);
+    const auto& replay = studio.shown->replay;
+    const auto poses = engine::pose_at(replay, studio.clock.time_s);
+    // The voxel nearest the eye: nothing hides its centre.
+    const glm::vec3 eye = studio.view.camera.eye_position();
+    int nearest = -1;
+    float best = 1e9f;
+    for (int v = 0; v < poses.voxel_count(); ++v) {
+        const auto i = static_cast<std::size_t>(v);
+        const glm::vec3 p{poses.position_m[3 * i], poses.position_m[3 * i + 1],
+                          poses.position_m[3 * i + 2]};
+        if (glm::length(p - eye) < best) {
+            best = glm::length(p - eye);
+            nearest = v;
+        }
+    }
+    const auto i = static_cast<std::size_t>(nearest);
+    const glm::vec3 centre{poses.position_m[3 * i], poses.position_m[3 * i + 1],
+                           poses.position_m[3 * i + 2]};
+    const auto pixel = project_to_pixel(studio.view.camera, centre, studio.view.size_px);
+    REQUIRE(pixel);
+    // Through the mouse, as a person clicks: over the pixel, press, release.
+    auto& input = session.input();
+    input.mouse = studio.view.origin_px + *pixel;
+    session.frame();
+    input.buttons[0] = true;
+    session.frame();
+    input.buttons[0] = false;
+    session.frame();
+    session.frame();
+    REQUIRE(studio.inspected_voxel == nearest);
+    CHECK(drawn_now(studio, "voxel inspector"));
+    const auto reading = inspected_voxel(studio);
+    REQUIRE(reading);
+    // Against the replay itself: the recorded frame at the clock, its first frame, the material.
+    const auto& frame = replay.frames[static_cast<std::size_t>(
+        frame_index_at(replay, studio.clock.time_s))];
+    const auto& first = replay.frames.front();
+    const float L = static_cast<float>(replay.voxel_size_m);
+    glm::vec3 d{0.0f};
+    for (int a = 0; a < 3; ++a) d[a] = frame.position_m[3 * i + a] - first.position_m[3 * i + a];
+    CHECK(reading->displacement_vox == doctest::Approx(glm::length(d) / L).epsilon(1e-4));
+    CHECK(reading->strain == doctest::Approx(frame.size_m[3 * i] * frame.size_m[3 * i + 1] *
+                                                 frame.size_m[3 * i + 2] / (L * L * L) -
+                                             1.0f)
+                                 .epsilon(1e-4));
+    CHECK(reading->material == replay.voxel_material[i]);
+    CHECK(reading->material_name ==
+          e.materials[static_cast<std::size_t>(reading->material - 1)].name);
+    const int cell = replay.voxel_cell[i];
+    CHECK(reading->cell == std::array<int, 3>{cell % replay.nx, (cell / replay.nx) % replay.ny,
+                                              cell / (replay.nx * replay.ny)});
+    // A click beside the body clears it.
+    input.mouse = studio.view.origin_px + glm::vec2(3.0f, 3.0f);
+    session.frame();
+    input.buttons[0] = true;
+    session.frame();
+    input.buttons[0] = false;
+    session.frame();
+    CHECK(studio.inspected_voxel == -1);
+    CHECK_FALSE(inspected_voxel(studio));
+}
+
+TEST_CASE("studio details: exported frames carry a caption: experiment, body, fitness, time") {
+    const auto dir = testing::fresh_dir("details-caption");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.name = "caption test";
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    SimulationRequest request;
+    request.id = 3;
+    request.label = "champion #3, generation 2";
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
+                                        {"frames": 2}])"));
+    REQUIRE(studio.shown);
+    const auto lines = export_caption_lines(*studio.shown, 0.25);
+    REQUIRE(lines.size() == 4);
+    CHECK(lines[0] == "caption test");
+    CHECK(lines[1] == "champion 3, generation 2");  // no '#': the dot font lacks it
+    CHECK(lines[2].find("(bend_angle_deg)") != std::string::npos);
+    CHECK(lines[3] == "t = 0.250 s");
+    // With and without: the caption's box darkens the top-left corner of every frame.
+    auto corner_mean = [](const render::Image& image) {
+        double sum = 0.0;
+        int n = 0;
+        for (int y = 4; y < 24; ++y)
+            for (int x = 4; x < 60; ++x, ++n) sum += image.pixel(x, y)[1];
+        return sum / n;
+    };
+    double mean[2] = {0.0, 0.0};
+    for (int with = 0; with < 2; ++with) {
+        studio.exports.caption = with == 1;
+        const auto folder = dir / (with ? "with" : "without");
+        REQUIRE(start_frame_export(studio, folder.string(), 320, 200, 5.0));
+        frames_until_done(session, [&] { return !studio.exports.frame_job.active; });
+        mean[with] = corner_mean(render::read_png((folder / "frame_00000.png").string()));
+    }
+    CHECK(mean[1] < 0.7 * mean[0]);
 }

@@ -122,3 +122,44 @@ TEST_CASE("studio picking: the lattice walk visits exactly the cells a dense ray
     REQUIRE(sampled.size() >= 4);
     CHECK(walked == sampled);
 }
+
+TEST_CASE("studio picking: a replayed voxel is hit as the oriented box it is drawn as") {
+    // A 1 cm voxel at the origin; rays along +x at heights worked out by hand.
+    const float axis_aligned[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    const float s = std::sqrt(0.5f);
+    const float turned_90_about_z[4] = {s, 0.0f, 0.0f, s};  // cos 45, sin 45: 90 degrees
+    const glm::vec3 cube{0.01f, 0.01f, 0.01f};
+    Ray ray;
+    ray.origin = {-1.0f, 0.0065f, 0.0f};
+    ray.direction = {1.0f, 0.0f, 0.0f};
+    // Axis-aligned, the half edge is 5 mm: a ray 6.5 mm off the axis misses.
+    CHECK_FALSE(ray_box_distance(ray, {0, 0, 0}, axis_aligned, cube));
+    // 90 degrees about z: the same cube, still missed; a box long along its own x is long along y.
+    CHECK_FALSE(ray_box_distance(ray, {0, 0, 0}, turned_90_about_z, cube));
+    const glm::vec3 long_x{0.02f, 0.01f, 0.01f};  // 2 cm along its own x, which now points along y
+    const auto hit = ray_box_distance(ray, {0, 0, 0}, turned_90_about_z, long_x);
+    REQUIRE(hit);
+    CHECK(*hit == doctest::Approx(1.0f - 0.005f).epsilon(1e-4));  // enters its 1 cm wide side
+    // 45 degrees about z: the half diagonal, 7.07 mm, reaches the ray.
+    const float c = std::cos(0.5f * 0.7853982f), sn = std::sin(0.5f * 0.7853982f);
+    const float turned[4] = {c, 0.0f, 0.0f, sn};
+    const auto diagonal = ray_box_distance(ray, {0, 0, 0}, turned, cube);
+    REQUIRE(diagonal);
+    // The faces at 45 degrees: x + y = 7.07 mm on the near side, so x = -(7.07 - 6.5) mm.
+    CHECK(*diagonal == doctest::Approx(1.0f - (0.0070711f - 0.0065f)).epsilon(1e-4));
+
+    // Two voxels one behind the other along the ray: the nearer one is picked.
+    engine::VoxelPoses poses;
+    poses.position_m = {0.03f, 0.0f, 0.0f, 0.01f, 0.0f, 0.0f};
+    poses.orientation = {1, 0, 0, 0, 1, 0, 0, 0};
+    poses.size_m = {0.01f, 0.01f, 0.01f, 0.01f, 0.01f, 0.01f};
+    Ray along;
+    along.origin = {-1.0f, 0.001f, 0.002f};
+    along.direction = {1.0f, 0.0f, 0.0f};
+    const auto first = pick_posed_voxel(along, poses);
+    REQUIRE(first);
+    CHECK(first->voxel == 1);
+    CHECK(first->distance_m == doctest::Approx(1.005f).epsilon(1e-4));
+    along.origin.y = 0.02f;
+    CHECK_FALSE(pick_posed_voxel(along, poses));
+}

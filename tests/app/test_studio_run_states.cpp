@@ -156,6 +156,52 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     run_script(session, json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
 }
 
+TEST_CASE("studio run states: after Stop and a resume of the folder the clock goes on, never back") {
+    const auto dir = testing::fresh_dir("states-stop-clock");
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 6;
+    e.evolution.population = 12;  // a generation long enough to stop inside it
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_generations": 1, "timeout_s": 240}])"));
+    frames_until(session, 240.0, [&] {
+        const auto p = studio.evolution.progress();
+        return p.running && p.simulations_done >= 2;
+    });
+    double last = live_elapsed(studio);
+    double worst_step = 0.0;
+    auto watch = [&] {
+        const double now = live_elapsed(studio);
+        worst_step = std::min(worst_step, now - last);
+        last = now;
+    };
+    run_script(session, json::parse(R"([{"click": "Stop"}])"));
+    frames_until(session, 120.0, [&] {
+        watch();
+        return studio.evolution.phase() == RunPhase::Stopped;
+    });
+    for (int i = 0; i < 3; ++i) {
+        session.frame();
+        watch();
+    }
+    const double at_stop = last;
+    // The checkpoint holds the stopped generation's time: what a resume goes on from.
+    const auto state = evo::load_checkpoint((dir / "run").string());
+    CHECK(state.state.elapsed_s == doctest::Approx(at_stop).epsilon(1e-9));
+    REQUIRE(resume_run_directory(studio, (dir / "run").string()));
+    frames_until(session, 240.0, [&] {
+        const auto run = studio.evolution.snapshot();
+        if (run && run->loaded) watch();
+        return run && run->loaded && studio.evolution.progress().simulations_done >= 1;
+    });
+    CHECK(last >= at_stop);
+    CHECK_MESSAGE(worst_step >= -1e-9, "the elapsed time went back by " << -worst_step << " s");
+    run_script(session, json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
+}
+
 TEST_CASE("studio run states: a new run never plays the last run's champion under its name") {
     const auto dir = testing::fresh_dir("states-champion");
     Studio studio;

@@ -73,6 +73,12 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
             start_frame_export(s, x.frames_folder, x.frames_width, x.frames_height, x.frames_fps);
         ImGui::EndDisabled();
     }
+    ImGui::SameLine();
+    ImGui::Checkbox("caption", &x.caption);
+    record_widget(s, "caption");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("burn the experiment, the body and its generation, its fitness and the "
+                          "time into every frame (and video)");
     hint("frame_00000.png ... over the whole simulated time");
     path_field(s, "##video path", x.video_path);
     ImGui::BeginDisabled(!s.shown || x.frame_job.active);

@@ -123,7 +123,14 @@ void draw_help_window(Studio& s) {
         ImGui::TextWrapped(
             "Green faces are fixed, purple faces free. Hatched voxels are held; dark "
             "translucent cells are forbidden; grey translucent cells are the enclosure frame. "
-            "The orange line is the centre-of-mass trail.");
+            "The yellow star marks the body's first voxel, cell (0, 0, 0), the lattice's "
+            "origin. The orange line is the centre-of-mass trail.");
+        ImGui::TextWrapped(
+            "Simulation mode: fixed faces are hatched green just outside the workspace. The "
+            "colour menu paints the body by material, displacement from t = 0 (voxel lengths), "
+            "volumetric strain or the muscles' actuation signal; the bar at the right gives "
+            "the range. An orange \"simulating ...\" line means the body shown is not yet "
+            "the one asked for.");
         ImGui::EndTable();
     }
     ImGui::End();

@@ -43,19 +43,50 @@ void draw_fitness_panel(Studio& s) {
     const std::vector<RuleChangeNote> no_changes;
     const auto& changes = s.run ? s.run->rule_changes : no_changes;
     const float line = ImGui::GetTextLineHeightWithSpacing();
-    const float each = (ImGui::GetContentRegionAvail().y - line * plots.size()) / plots.size();
+    const float min_height = ImGui::GetFontSize() * kMinPlotFonts;
+    const float avail = ImGui::GetContentRegionAvail().y;
+    const float each = (avail - line * plots.size()) / plots.size();
     s.fitness_plot_overlays = 0;
     for (const auto& o : overlays)
         s.fitness_plot_overlays += static_cast<int>(o.size());
-    for (std::size_t k = 0; k < plots.size(); ++k) {
+    auto draw_plot = [&](std::size_t k, float height) {
         const auto measure = plots[k].measure;
         const char* name = evo::kFitnessNames[static_cast<std::size_t>(measure)];
-        ImGui::PushID(static_cast<int>(measure));
-        ImGui::TextDisabled("%s (%s)", name, fitness_unit(measure));
         const float width = ImGui::GetContentRegionAvail().x;
-        s.fitness_plot.draw(plots[k].records, changes, ImVec2(width, std::max(60.0f, each)),
+        s.fitness_plot.draw(plots[k].records, changes, ImVec2(width, height),
                             fitness_unit(measure), overlays[k]);
         record_widget(s, std::string("fitness plot ") + name);
+    };
+    // Stacked while each keeps its minimum height (at most two); else one tab per measure, the
+    // newest measure's selected when it appears.
+    const bool tabs = plots.size() > 2 || (plots.size() > 1 && each < min_height);
+    const bool new_measure = plots.size() != s.fitness_plot.measures_seen;
+    s.fitness_plot.measures_seen = plots.size();
+    if (tabs) {
+        if (ImGui::BeginTabBar("measures")) {
+            for (std::size_t k = 0; k < plots.size(); ++k) {
+                const auto measure = plots[k].measure;
+                const char* name = evo::kFitnessNames[static_cast<std::size_t>(measure)];
+                const std::string label = std::string(name) + " (" + fitness_unit(measure) + ")";
+                const ImGuiTabItemFlags flags =
+                    new_measure && k + 1 == plots.size() ? ImGuiTabItemFlags_SetSelected : 0;
+                const bool open = ImGui::BeginTabItem(label.c_str(), nullptr, flags);
+                record_widget(s, std::string("fitness tab ") + name);
+                if (open) {
+                    draw_plot(k, std::max(min_height, ImGui::GetContentRegionAvail().y));
+                    ImGui::EndTabItem();
+                }
+            }
+            ImGui::EndTabBar();
+        }
+        return;
+    }
+    for (std::size_t k = 0; k < plots.size(); ++k) {
+        const auto measure = plots[k].measure;
+        ImGui::PushID(static_cast<int>(measure));
+        ImGui::TextDisabled("%s (%s)", evo::kFitnessNames[static_cast<std::size_t>(measure)],
+                            fitness_unit(measure));
+        draw_plot(k, std::max(min_height, each));
         ImGui::PopID();
     }
 }

@@ -43,26 +43,36 @@ void controls(Studio& s) {
     if (tracked_button(s, "Stop", ImVec2(w, 0))) stop_run(s);
     ImGui::EndDisabled();
 
-    if (!live) {
-        sync_draft(s);
-        auto& ev = s.draft.evolution;
+    // The same fields whether a run is live or not (issue 25 item 7: the panel jumped when a
+    // run finished and they came back): while it runs they show its own values, greyed.
+    sync_draft(s);
+    const bool show_run = live && s.run && s.run->loaded;
+    evo::Evolution run_params = show_run ? s.run->experiment.evolution : s.draft.evolution;
+    std::string run_dir = show_run ? s.run->run_dir : s.run_dir_field;
+    auto& ev = live ? run_params : s.draft.evolution;
+    ImGui::BeginDisabled(live);
+    {
         ImGui::PushItemWidth(ImGui::GetFontSize() * 5.0f);
         ImGui::InputInt("threads", &ev.threads, 0);
-        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "threads");
+        if (!live && ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "threads");
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("worker threads; 0 = all hardware threads");
         ImGui::SameLine();
         ImGui::InputScalar("seed", ImGuiDataType_U64, &ev.seed);
-        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "seed");
+        if (!live && ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "seed");
         ImGui::InputInt("generations", &ev.generations, 0);
-        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "generations");
+        if (!live && ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "generations");
         ImGui::SameLine();
         ImGui::InputDouble("h budget", &ev.wall_budget_h, 0.0, 0.0, "%.3g");
-        if (ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
+        if (!live && ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
         ImGui::PopItemWidth();
         text_field(s, "##run dir", "run directory (empty: a new folder in the data folder)",
-                   s.run_dir_field);
+                   live ? run_dir : s.run_dir_field);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("empty: %s/<name>-<time>", default_runs_root().c_str());
+    }
+    ImGui::EndDisabled();
+    if (!live) {
+        // nothing to say: the fields above are the next run's
     } else if (s.run && s.run->loaded && !s.showing_run_directory && !editing_run_document(s)) {
         // The run owns its experiment: say so, so nobody expects these edits to reach it.
         ImGui::TextDisabled(
@@ -187,8 +197,14 @@ void status(Studio& s) {
         ImGui::ProgressBar(total > 0 ? float(progress.simulations_done) / float(total) : 0.0f,
                            ImVec2(-1.0f, 0.0f), text);
         record_widget(s, "generation progress");
+    } else if (!s.showing_run_directory) {
+        // The bar's line stays when no generation is in progress: nothing under it moves.
+        ImGui::Dummy(ImVec2(1.0f, ImGui::GetFrameHeight()));
     }
-    if (!run->run_dir.empty()) ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
+    if (!run->run_dir.empty()) {
+        ImGui::TextDisabled("folder: %s", run->run_dir.c_str());
+        record_widget(s, "run folder");
+    }
     // The message says what the run is doing now: the session's phase moves at once (Pause,
     // Stop), the snapshot's message only when the run thread publishes.
     std::string message = run->message;

@@ -1,5 +1,6 @@
 // The 3D view: a toolbar (mode, named views, display toggles), the scene rendered into a texture
 // shown as an ImGui image, camera gestures, painter clicks and a small text overlay.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -153,10 +154,20 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     const ImU32 dark = IM_COL32(30, 34, 40, 255), dim = IM_COL32(90, 96, 106, 255);
     const auto& e = s.document.experiment();
     char buf[256];
+    // A body asked for and not simulated yet (a new champion, a selected row): said first, so
+    // the body still playing is never taken for it (issue 25 item 6).
+    const std::string pending = s.simulator.pending_label();
+    const bool waiting = !pending.empty() && (!s.shown || s.shown->label != pending);
+    if (s.view.mode == ViewMode::Simulation && waiting) {
+        const ImVec2 from = at;
+        text(IM_COL32(190, 110, 0, 255), "simulating " + pending + " ...");
+        s.widgets["simulating note"] =
+            WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, at.y}, s.frame};
+    }
     if (s.view.mode == ViewMode::Simulation && s.shown) {
         const auto& b = *s.shown;
         const auto measure = b.experiment.fitness.measure;
-        text(dark, b.label);
+        text(dark, waiting ? "shown until then: " + b.label : b.label);
         std::snprintf(buf, sizeof buf, "t = %.3f s   fitness %s   bend angle %.2f deg",
                       s.clock.time_s, format_fitness(b.fitness, measure).c_str(),
                       b.bend_angle_deg());
@@ -190,7 +201,7 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
                       : std::string("Voxels tool: click paints '") +
                             kPaintKindNames[static_cast<std::size_t>(s.painter.brush)] +
                             "', Shift+click clears");
-        if (s.view.mode == ViewMode::Simulation) text(dim, "no simulated body yet");
+        if (s.view.mode == ViewMode::Simulation && !waiting) text(dim, "no simulated body yet");
     }
     // Bottom line: what is under the cursor.
     std::string under;
@@ -216,6 +227,26 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     }
     if (!under.empty())
         dl->AddText({origin.x + 10.0f, origin.y + size.y - line - 4.0f}, dark, under.c_str());
+    // The clicked voxel, read at the replay time (it follows the clock).
+    if (s.view.mode == ViewMode::Simulation) {
+        if (const auto r = inspected_voxel(s)) {
+            char first[160], second[160];
+            std::snprintf(first, sizeof first, "voxel (%d, %d, %d): material %d %s%s",
+                          r->cell[0], r->cell[1], r->cell[2], r->material,
+                          r->material_name.c_str(), r->held ? ", held" : "");
+            std::snprintf(second, sizeof second,
+                          "displacement %.3f voxels   strain %+.4f   actuation %+.3f",
+                          r->displacement_vox, r->strain, r->actuation);
+            const float w = std::max(ImGui::CalcTextSize(first).x, ImGui::CalcTextSize(second).x);
+            const ImVec2 lo{origin.x + 8.0f, origin.y + size.y - 4.0f * line - 6.0f};
+            const ImVec2 hi{lo.x + w + 12.0f, lo.y + 2.0f * line + 6.0f};
+            dl->AddRectFilled(lo, hi, IM_COL32(255, 255, 255, 225), 3.0f);
+            dl->AddRect(lo, hi, IM_COL32(190, 110, 0, 255), 3.0f);
+            dl->AddText({lo.x + 6.0f, lo.y + 3.0f}, dark, first);
+            dl->AddText({lo.x + 6.0f, lo.y + 3.0f + line}, dark, second);
+            s.widgets["voxel inspector"] = WidgetRect{{lo.x, lo.y}, {hi.x, hi.y}, s.frame};
+        }
+    }
 }
 
 }  // namespace

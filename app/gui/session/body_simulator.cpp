@@ -84,6 +84,7 @@ void BodySimulator::request(SimulationRequest request) {
     {
         std::lock_guard lock(mutex_);
         pending_id_ = request.id;
+        pending_label_ = request.label;
         queued_ = std::move(request);
         busy_ = true;
         cancel_ = true;  // the running one, if any, gives way
@@ -97,7 +98,13 @@ void BodySimulator::cancel() {
     queued_.reset();
     cancel_ = true;
     pending_id_ = -1;
+    pending_label_.clear();
     ++epoch_;
+}
+
+std::string BodySimulator::pending_label() const {
+    std::lock_guard lock(mutex_);
+    return pending_label_;
 }
 
 std::string BodySimulator::last_error() const {
@@ -124,6 +131,7 @@ void BodySimulator::worker_loop() {
             if (epoch == epoch_) {  // not cancelled while it finished
                 results_.publish(std::move(result));
                 last_error_.clear();
+                if (!queued_) pending_label_.clear();  // with the result: never both shown
             }
         } catch (const evo::EvaluationCancelled&) {
             // A newer request is queued (or we are quitting): nothing to publish.
@@ -135,6 +143,7 @@ void BodySimulator::worker_loop() {
         if (!queued_) {
             busy_ = false;
             pending_id_ = -1;
+            pending_label_.clear();
         }
     }
 }

@@ -82,6 +82,9 @@ class BodySimulator {
     bool busy() const { return busy_.load(); }
     //! Id of the request queued or running (-1 when idle).
     std::int64_t pending_id() const { return pending_id_.load(); }
+    //! Label of the request queued or running ("" when idle or cancelled): the view says what
+    //! is being simulated instead of letting the last body pass for it.
+    std::string pending_label() const;
     //! The last failure ("" after a success).
     std::string last_error() const;
 
@@ -96,6 +99,7 @@ class BodySimulator {
     std::atomic<std::int64_t> pending_id_{-1};
     std::uint64_t epoch_ = 0;  //!< under mutex_: raised by cancel()
     std::string last_error_;
+    std::string pending_label_;  //!< under mutex_
     LatestSlot<SimulatedBody> results_;
     std::thread worker_;  //!< started by the first request
 };

@@ -309,12 +309,19 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
                 case evo::StopReason::StopRequested: break;
             }
             const int done = run.state().generation;
-            publish(RunPhase::Stopped,
-                    done >= 0 ? "stopped: the checkpoint of generation " + std::to_string(done) +
-                                    " is kept; resume it from " + shared->run_dir
-                              : std::string("stopped during generation 0: no generation was "
-                                            "completed, so there is no checkpoint to resume "
-                                            "(its empty folder is removed)"));
+            // The abandoned generation's time stays on the clock, in the checkpoint too: a
+            // resumed run's elapsed time goes on from here instead of going back.
+            run.keep_stopped_time();
+            auto stopped = snapshot_of(
+                *shared, RunPhase::Stopped,
+                done >= 0 ? "stopped: the checkpoint of generation " + std::to_string(done) +
+                                " is kept; resume it from " + shared->run_dir
+                          : std::string("stopped during generation 0: no generation was "
+                                        "completed, so there is no checkpoint to resume "
+                                        "(its empty folder is removed)"));
+            stopped->stopped_time_kept = true;
+            phase_ = RunPhase::Stopped;
+            slot_.publish(std::move(stopped));
         } catch (const std::exception& e) {
             publish(RunPhase::Failed, std::string("run failed: ") + e.what());
         }
@@ -365,6 +372,7 @@ LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& p, Ru
     const bool running = phase == RunPhase::Running;
     f.eta_s = running ? run.eta_s : -1.0;
     if (p.generation < run.generation) return f;  // no generation after the snapshot's yet
+    if (run.stopped_time_kept) return f;          // the stopped generation's time is in it
     // The next generation's time so far, its attempts abandoned for new rules included, also
     // once an attempt has ended: without them the clock would jump back when one is abandoned.
     f.elapsed_s += p.abandoned_s + p.generation_s;

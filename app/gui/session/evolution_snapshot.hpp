@@ -61,6 +61,9 @@ struct EvolutionSnapshot {
     std::int64_t evaluations = 0;
     int species = 0;  //!< NEAT: species in the population (0 for other algorithms)
     std::optional<evo::NoveltyRow> novelty;  //!< novelty search: novelty and archive figures
+    //! Stopped: the abandoned generation's time is in elapsed_s (EvolutionRun::keep_stopped_time),
+    //! so the live progress, which still holds it, is not added again.
+    bool stopped_time_kept = false;
     std::vector<GenerationRecord> history;
     std::vector<RuleChangeNote> rule_changes;
     evo::FitnessMeasure initial_measure = evo::FitnessMeasure::ComFinal3d;  //!< before any change

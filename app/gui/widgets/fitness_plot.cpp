@@ -82,7 +82,8 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
     auto py = [&](double v) { return hi.y - float((v - yr.min) / yr.span()) * (hi.y - lo.y); };
 
     // Grid and tick labels.
-    const auto yticks = nice_ticks(yr, 5);
+    // Thinned to what the axis has room for: a squeezed plot shows fewer labels, never overlapping.
+    const auto yticks = spaced_ticks(yr, hi.y - lo.y, font * 1.4f, 5);
     const double ystep = yticks.size() > 1 ? yticks[1] - yticks[0] : 1.0;
     for (double t : yticks) {
         const float y = py(t);
@@ -91,7 +92,8 @@ void FitnessPlot::draw(const std::vector<GenerationRecord>& history,
         const ImVec2 ts = ImGui::CalcTextSize(label.c_str());
         dl->AddText({lo.x - ts.x - 4.0f, y - ts.y * 0.5f}, kTextColor, label.c_str());
     }
-    auto xticks = nice_ticks(xr, 6);
+    const float x_label = ImGui::CalcTextSize(format_tick(xr.max, 1.0).c_str()).x + font;
+    auto xticks = spaced_ticks(xr, hi.x - lo.x, x_label, 6);
     std::erase_if(xticks, [](double t) { return std::abs(t - std::round(t)) > 1e-9; });
     for (double t : xticks) {
         const float x = px(t);

@@ -19,8 +19,13 @@ struct OverlayCurve {
     std::vector<GenerationRecord> records;
 };
 
+//! A fitness plot is never drawn lower than this many font heights: several measures go to tabs
+//! instead (issue 25 item 7: after a rule change each plot had about 30 px).
+inline constexpr float kMinPlotFonts = 8.0f;
+
 struct FitnessPlot {
     std::optional<int> hovered_generation;  //!< set by draw() while the mouse is over the plot
+    std::size_t measures_seen = 0;  //!< plots drawn last frame: a new measure's tab is selected
 
     //! Draws into a size x height area at the cursor; y_unit labels the axis ("deg", "voxels").
     //! Overlays (other runs, same measure) are drawn thin; the axes fit all curves.

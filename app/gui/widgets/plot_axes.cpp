@@ -45,6 +45,33 @@ std::vector<double> nice_ticks(const AxisRange& range, int target) {
     return ticks;
 }
 
+std::vector<double> spaced_ticks(const AxisRange& range, float length_px, float min_gap_px,
+                                 int most) {
+    const double span = range.span();
+    if (!(span > 0.0) || !std::isfinite(span) || !(length_px > 0.0f)) return {};
+    const double gap = std::max(1.0f, min_gap_px);
+    // nice_step may round the step down (by up to 1.5x, 0..2000 in 6 gives 11 ticks): try fewer
+    // ticks until they fit and number at most `most` + 1.
+    for (int target = std::clamp(static_cast<int>(length_px / gap), 1, std::max(1, most));
+         target >= 1; --target) {
+        auto ticks = nice_ticks(range, target);
+        if (ticks.size() < 2) return ticks;
+        if ((ticks[1] - ticks[0]) / span * length_px >= gap &&
+            ticks.size() <= static_cast<std::size_t>(most) + 1)
+            return ticks;
+    }
+    // Even one step is too short: the tick nearest the middle alone.
+    const double middle = 0.5 * (range.min + range.max);
+    double nearest = middle;
+    double distance = std::numeric_limits<double>::infinity();
+    for (double t : nice_ticks(range, 1))
+        if (std::abs(t - middle) < distance) {
+            distance = std::abs(t - middle);
+            nearest = t;
+        }
+    return {nearest};
+}
+
 std::string format_tick(double value, double step) {
     char text[32];
     const double magnitude = std::abs(value) > std::abs(step) ? std::abs(value) : std::abs(step);
