@@ -7,8 +7,8 @@
 // the CPU time ratio on stderr. Exit status 1 when a body fails the gate.
 //
 //   bench_periodic_end [--corpus DIR] [--assets DIR] [--min-voxels N] [--max-voxels N] [--every K]
-//                      [--tolerance-scale X] [FILE-STEM...]
-// --every K keeps every K-th body of each file (a spread of sizes in less time); FILE-STEMs pick
+//                      [--tolerance-scale X] [--body NAME]... [FILE-STEM...]
+// --body NAME keeps only the bodies of that name (repeatable: random-05 of paper-exp3). --every K keeps every K-th body of each file (a spread of sizes in less time); FILE-STEMs pick
 // corpus files (e.g. paper-exp1 paper-exp3-champions), all by default. --tolerance-scale
 // multiplies the presets' periodic_tolerance (10 shows what a tenfold looser one does).
 #include <time.h>
@@ -42,7 +42,7 @@ int run(int argc, char** argv) {
     std::string corpus_dir = "tests/bench/corpus", assets = "assets/experiments";
     int min_voxels = 0, max_voxels = 1 << 30, every = 1;
     double tolerance_scale = 1.0;
-    std::vector<std::string> stems;
+    std::vector<std::string> stems, only_bodies;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -61,10 +61,12 @@ int run(int argc, char** argv) {
             every = std::max(1, std::stoi(value()));
         else if (a == "--tolerance-scale")
             tolerance_scale = std::stod(value());
+        else if (a == "--body")
+            only_bodies.push_back(value());
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: bench_periodic_end [--corpus DIR] [--assets DIR] [--min-voxels N] "
                          "[--max-voxels N]"
-                         " [--every K] [--tolerance-scale X] [FILE-STEM...]\n";
+                         " [--every K] [--tolerance-scale X] [--body NAME]... [FILE-STEM...]\n";
             return 0;
         } else
             stems.push_back(a);
@@ -92,6 +94,10 @@ int run(int argc, char** argv) {
         int index = 0;
         for (const auto& entry : corpus.at("bodies")) {
             if (index++ % every != 0) continue;
+            if (!only_bodies.empty() &&
+                std::find(only_bodies.begin(), only_bodies.end(),
+                          entry.at("name").get<std::string>()) == only_bodies.end())
+                continue;
             const Body body =
                 apply_frame_and_overrides(on, parse_body(entry.at("body"), path.string()));
             const int voxels = static_cast<int>(
