@@ -56,6 +56,7 @@ PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const Exploi
     last_sample_ = whole(total_s_ * fps);
     if (per_period < 2 || last_sample_ == 0) return;
     samples_per_period_ = static_cast<int>(per_period);
+    decay_window_ = std::max(1, samples_per_period_ / 2);
 }
 
 double PeriodicEnd::due_time(std::int64_t k) const {
@@ -66,15 +67,21 @@ namespace {
 
 //! A transient that shrinks by less than this a period is not trusted to keep decaying.
 constexpr double kTrustedDecay = 0.9;
+//! The longest baseline, in periods, over which a decay ratio is measured.
+constexpr int kDecayBaselinePeriods = 3;
 
-//! What a transient that went from `before` to `now` in one period still has to go, as a multiple
-//! of `now` (r / (1 - r), r = now / before, at least 1); infinite when it does not decay.
-double transient_left(double now, double before) {
-    if (now == 0.0) return 1.0;
-    if (!(before > 0.0)) return std::numeric_limits<double>::infinity();
-    const double r = now / before;
-    if (r >= kTrustedDecay) return std::numeric_limits<double>::infinity();
+//! What a transient that decays by r a period still has to go, as a multiple of its last
+//! period's change (r / (1 - r), at least 1); infinite when it is not trusted to decay.
+double transient_left(double r) {
+    if (!(r < kTrustedDecay)) return std::numeric_limits<double>::infinity();
     return std::max(1.0, r / (1.0 - r));
+}
+
+//! The decay ratio of one comparison: now / before (0 when nothing changes now, infinite when
+//! something changes now after nothing did).
+double decay_ratio(double now, double before) {
+    if (now == 0.0) return 0.0;
+    return before > 0.0 ? now / before : std::numeric_limits<double>::infinity();
 }
 
 //! Period-to-period comparisons of one track x(i) (any units) over the window ending at sample e:
@@ -108,7 +115,8 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
     }
     settled_.push_back(sample);
     const int S = samples_per_period_;
-    if (settled_.size() > static_cast<std::size_t>(3 * S + 1)) settled_.pop_front();
+    if (settled_.size() > static_cast<std::size_t>((kDecayBaselinePeriods + 2) * S + 1))
+        settled_.pop_front();
     const auto n = static_cast<std::int64_t>(settled_.size());
     if (n < 2 * S + 1 || k >= last_sample_) return false;
     const bool have_before = n >= 3 * S + 1;  // the comparison one period earlier
@@ -120,29 +128,47 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
         return settled_[static_cast<std::size_t>(i)];
     };
     // One track's verdict, its comparisons scaled by `scale` into the units of `allowed`.
-    auto within = [&](const auto& x, double scale, double allowed, double* worst) {
+    auto within = [&](int index, const auto& x, double scale, double allowed, double* worst) {
         const PeriodChange now = period_change(x, n - 1, S);
         const PeriodChange before = have_before ? period_change(x, n - 1 - S, S) : PeriodChange{};
         if (worst) *worst = std::max(*worst, (held_ ? now.change : now.residual) * scale);
         if (held_) {
+            // The decay ratio trusted is the largest of the last few comparisons, each the
+            // geometric mean over the longest baseline the kept samples allow (up to 3 periods):
+            // a period's largest change moves with the window's phase, and a slow decay under a
+            // jittering one can look fast from one pair of periods (paper-exp3/random-05).
+            auto& ratios = recent_ratios_[static_cast<std::size_t>(index)];
+            if (have_before) {
+                double r = decay_ratio(now.change, before.change);
+                for (int L = 2; L <= kDecayBaselinePeriods && n >= (L + 2) * S + 1; ++L) {
+                    const double earlier = period_change(x, n - 1 - L * S, S).change;
+                    r = std::max(r, std::pow(decay_ratio(now.change, earlier), 1.0 / L));
+                }
+                ratios.push_back(r);
+                if (ratios.size() > static_cast<std::size_t>(decay_window_)) ratios.pop_front();
+            }
             // Kept up unchanged over the periods left (no decay assumed), or decaying.
             const double change = now.change * scale;
             if (change * (M + 1.0) <= allowed) return true;
-            return have_before && change * transient_left(now.change, before.change) <= allowed;
+            if (!have_before || change == 0.0) return change == 0.0;
+            return change * transient_left(*std::max_element(ratios.begin(), ratios.end())) <=
+                   allowed;
         }
         return now.residual * scale * kept_up <= allowed;
     };
+    // Every track is compared at every sample (no early out), so each one's recent decay ratios
+    // are consecutive.
     bool repeats = true;
     double worst = 0.0;
-    for (int t = 0; t < TrackSample::kTracks && repeats; ++t) {
+    for (int t = 0; t < TrackSample::kTracks; ++t) {
         // Mass moments (kg m) read as the centre-of-mass shift they make.
         const double to_voxels =
             t >= 6 ? 1.0 / (total_mass_kg_ * voxel_size_m_) : 1.0 / voxel_size_m_;
         auto track = [&](std::int64_t i) { return at(i).track(t); };
         // Absolute (voxel lengths): a measure may be a small projection of a long track.
-        repeats = within(track, to_voxels, tolerance_, &worst);
+        repeats = within(t, track, to_voxels, tolerance_, &worst) && repeats;
     }
-    if (repeats && can_bend_) {
+    if (can_bend_) {
         // The bend angle follows the direction base -> tip: its changes as an angle (radians per
         // unit length of the line), against 1 degree + the largest angle of the last period.
         const Vec3 dir0 = minus(reference_.bend_tip_m, reference_.bend_base_m);
@@ -153,7 +179,9 @@ bool PeriodicEnd::observe(const TrackSample& sample) {
         for (int j = 0; j <= S; ++j)
             largest_deg = std::max(largest_deg, angle_deg(dir0, dir(n - 1 - S + j)));
         const double to_deg = length > 0.0 ? 180.0 / std::numbers::pi / length : 0.0;
-        repeats = within(dir, to_deg, tolerance_ * (1.0 + largest_deg), nullptr);
+        repeats = within(TrackSample::kTracks, dir, to_deg, tolerance_ * (1.0 + largest_deg),
+                         nullptr) &&
+                  repeats;
     }
     residual_voxels_ = worst;
     return repeats;

@@ -12,7 +12,10 @@
 //   a_p r / (1 - r) left to go, so the evaluation stops when
 //     a_p max(1, r / (1 - r)) <= periodic_tolerance,  r < 0.9
 //   (the transient in the last period, which the rest of the run repeats with D = 0), or, with M
-//   periods left and no decay assumed, a_p (M + 1) <= periodic_tolerance.
+//   periods left and no decay assumed, a_p (M + 1) <= periodic_tolerance. The r trusted is the
+//   largest of (a_p / a_{p-L})^(1/L), L = 1..3 as far as the kept samples reach, over the last S/2
+//   comparisons: a_p jitters with the window's phase, and one lucky pair of periods made a slow
+//   decay (r ~ 0.9) look like r = 0.6 (paper-exp3/random-05 ended with 1.6x the allowed error).
 // - Free: the drift's change residual = max_j |d_j - D| (d_j = x_p[j] - x_{p-1}[j], D the last
 //   whole period's drift), with M periods left. A change kept up over the periods left adds up to
 //   residual (1 + 2 + ... + (M + 1)); one that decays by r a period to residual (1 + M r / (1 - r)).
@@ -27,6 +30,7 @@
 // descriptor) is what the full run would have measured, within the tolerance.
 // It applies only when a period and the whole run are each a whole number of samples; otherwise
 // (and when switched off) the evaluation runs the full time.
+#include <array>
 #include <deque>
 #include <functional>
 #include <vector>
@@ -70,10 +74,14 @@ class PeriodicEnd {
     bool can_bend_ = false;
     bool held_ = false;
     TrackSample reference_;  //!< the first settled sample
-    //! The last 3S + 1 settled samples (all a comparison and the extrapolation read): memory stays
+    //! The last 5S + 1 settled samples (all a comparison and the extrapolation read): memory stays
     //! bounded however long the evaluation.
     std::deque<TrackSample> settled_;
     double residual_voxels_ = 0.0;
+    //! Each track's (and the bend direction's, last) decay ratios of the last decay_window_
+    //! comparisons, a held body's trusted ratio being their largest.
+    std::array<std::deque<double>, TrackSample::kTracks + 1> recent_ratios_;
+    int decay_window_ = 1;
 };
 
 //! True when every connected part of the body (voxels joined through shared faces) holds a fixed
