@@ -13,6 +13,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/evolve_cluster.hpp"
 #include "app/cli/problem_report.hpp"
 #include "app/cli/track_plot.hpp"
 #include "evo/calibrate/calibrator.hpp"
@@ -126,6 +127,9 @@ nlohmann::json report_json(const evo::CalibrationResult& r, const std::string& e
             {"wall_s", r.wall_s}};
 }
 
+//! Set by cmd_calibrate for the command's duration: the MPI ranks when started by mpirun.
+EvolveCluster* g_cluster = nullptr;
+
 int calibrate(ArgParser& args) {
     const std::string experiment_path = args.positionals().at(0);
     if (!args.has("--body")) throw UsageError("missing --body BODY.json");
@@ -183,6 +187,19 @@ int calibrate(ArgParser& args) {
         else if (sims % 20 == 0)
             std::fprintf(stderr, "calibrate: %d simulations, best misfit %.4g m\n", sims, best);
     };
+    if (g_cluster && g_cluster->size() > 1) {
+        // Under mpirun: the scan's and the Jacobian's simulations spread over the ranks
+        // (docs/cluster.md); each rank rebuilds the fit from the same setup, so results are
+        // those of one process, bit for bit.
+        evo::TrackSetupMessage setup;
+        setup.requested_threads = static_cast<std::int32_t>(threads_arg);
+        setup.fit_list = args.get("--fit");
+        setup.experiment = experiment;
+        setup.framed_body = framed;
+        setup.track = track;
+        options.batches = g_cluster->connect_calibration(options.threads, setup);
+        std::cerr << "bhm calibrate: " << g_cluster->describe() << "\n";
+    }
     const evo::CalibrationResult r =
         evo::calibrate(experiment, framed, track, parameters, options);
     if (tty) std::fprintf(stderr, "\n");
@@ -232,7 +249,19 @@ int cmd_calibrate(const Args& args) {
         .option("--threads", "N", "simulations at once in the scan and the uncertainty (default: all cores)")
         .option("--max-simulations", "N", "budget of the scan's and the optimiser's simulations (default 200)")
         .flag("--simulate-only", "only simulate the experiment as given at the track's times");
-    return run_command(parser, args, calibrate);
+    // Under mpirun every rank but 0 only simulates what rank 0 sends (docs/cluster.md).
+    std::unique_ptr<EvolveCluster> cluster;
+    try {
+        cluster = EvolveCluster::join();
+    } catch (const std::exception& e) {
+        std::cerr << "bhm calibrate: " << e.what() << "\n";
+        return 1;
+    }
+    if (cluster->rank() > 0) return cluster->serve_calibration();
+    g_cluster = cluster.get();
+    const int status = run_command(parser, args, calibrate);
+    g_cluster = nullptr;
+    return status;
 }
 
 }  // namespace bhm::app

@@ -161,10 +161,51 @@ bool apply_calibration(Studio& s) {
     label.pop_back();
     if (!apply_edit(s, next, label)) return false;
     c.applied_job = snap->job;
-    // A live run keeps the physics it started with (a rule change swaps fitness rules only):
-    // the values apply to the next run.
+    // The live run keeps its physics until Apply to the live run sends them.
     if (run_is_live(s.evolution.phase()) && editing_run_document(s))
-        set_status(s, label + " (for the next run: the live run keeps its physics)");
+        set_status(s, label + " (the live run keeps its physics: Apply to the live run changes it)");
+    return true;
+}
+
+bool apply_calibration_to_run(Studio& s) {
+    auto& c = s.calibration;
+    const auto snap = c.snapshot;
+    if (!snap || snap->phase != CalibrationPhase::Finished || !snap->result) {
+        set_status(s, "apply to the live run: no finished calibration", true);
+        return false;
+    }
+    const auto run = s.evolution.snapshot();
+    if (!run || !run->loaded || !run_is_live(s.evolution.phase())) {
+        set_status(s, "apply to the live run: no live run", true);
+        return false;
+    }
+    // The run's own rules (its physics as last committed) with the fitted values in place.
+    evo::Experiment next = run->experiment;
+    std::string what;
+    try {
+        evo::copy_fitted_values(snap->result->calibrated.experiment, snap->parameters, next);
+        const evo::PhysicsRules physics = evo::physics_of(next);
+        what = evo::describe_physics_change(run->experiment, physics);
+        s.evolution.change_physics(physics);
+    } catch (const std::exception& e) {
+        set_status(s, std::string("apply to the live run: ") + e.what(), true);
+        return false;
+    }
+    c.applied_run_job = snap->job;
+    if (editing_run_document(s)) {
+        auto doc = s.document.experiment();
+        try {
+            evo::copy_fitted_values(snap->result->calibrated.experiment, snap->parameters, doc);
+        } catch (const std::exception&) {
+            doc = s.document.experiment();  // the run has it; the document stays as it is
+        }
+        if (!(doc == s.document.experiment()) &&
+            apply_edit(s, doc, "calibrated against " + file_name(c.track_path) + " (live run)"))
+            c.applied_job = snap->job;
+    }
+    set_status(s, "live run, from generation " + std::to_string(run->generation) + ": " + what +
+                      " (calibrated against " + file_name(c.track_path) +
+                      "); every member is simulated again under it");
     return true;
 }
 

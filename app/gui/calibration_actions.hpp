@@ -25,6 +25,14 @@ bool cancel_calibration(Studio& studio);
 //! labelled with the values and the track; false when there is no finished calibration or the
 //! edit is refused.
 bool apply_calibration(Studio& studio);
+//! Sends the fitted values to the live run as a rule change with physics
+//! (EvolutionSession::change_physics): the run's physics with the fitted values in place, so
+//! from the next generation every member is simulated again under them, the change is in
+//! run.json, the checkpoint and the Fitness plot, and the status line says what changed. When
+//! the editor shows the run's own document, the values also go into it as one undoable edit (so
+//! the editor and the run agree). False (status line) without a finished calibration or a live
+//! run, or when the run refuses the physics.
+bool apply_calibration_to_run(Studio& studio);
 //! The fit list the ticked boxes make ("E,amplitude").
 std::string ticked_fit_list(const CalibrationState& calibration);
 

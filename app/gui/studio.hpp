@@ -162,6 +162,7 @@ struct CalibrationState {
     CalibrationPhase seen_phase = CalibrationPhase::Idle;  //!< of the last snapshot's job
     std::uint64_t seen_job = 0;
     std::uint64_t applied_job = 0;  //!< the job whose values Apply last wrote (0: none)
+    std::uint64_t applied_run_job = 0;  //!< the job last sent to the live run (0: none)
 };
 
 struct Studio {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "app/mpi/mpi_evaluator.hpp"
+#include "app/mpi/mpi_track_batches.hpp"
 #include "app/mpi/mpi_transport.hpp"
 #include "app/mpi/mpi_worker.hpp"
 
@@ -52,6 +53,14 @@ class MpiCluster final : public EvolveCluster {
     int rank() const override { return rank_; }
     int size() const override { return size_; }
     int serve() override { return mpi::serve_evaluations(rank_, host_); }
+    int serve_calibration() override { return mpi::serve_track_batches(rank_, host_); }
+
+    std::shared_ptr<evo::TrackBatches> connect_calibration(
+        int local_threads, const evo::TrackSetupMessage& setup) override {
+        if (size_ == 1) return nullptr;
+        track_batches_ = std::make_shared<mpi::MpiTrackBatches>(size_, local_threads, setup, 60.0);
+        return track_batches_;
+    }
 
     std::shared_ptr<evo::Evaluator> connect(const ClusterSettings& settings) override {
         if (size_ == 1) return nullptr;
@@ -61,6 +70,7 @@ class MpiCluster final : public EvolveCluster {
     }
 
     std::string describe() const override {
+        if (track_batches_) return track_batches_->describe(host_);
         if (!evaluator_) return "";
         std::ostringstream out;
         out << size_ << " MPI ranks, " << evaluator_->concurrency()
@@ -82,6 +92,7 @@ class MpiCluster final : public EvolveCluster {
     int size_ = 1;
     std::string host_;
     std::shared_ptr<mpi::MpiEvaluator> evaluator_;
+    std::shared_ptr<mpi::MpiTrackBatches> track_batches_;
 };
 
 }  // namespace

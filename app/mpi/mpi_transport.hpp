@@ -22,6 +22,10 @@ enum class Tag : int {
     Heartbeat = 8,  //!< r -> 0: empty, every second: the rank is alive
     Failure = 9,    //!< r -> 0: text of an error the rank cannot recover from
     Pause = 10,     //!< 0 -> r: "1" holds the running simulations where they are, "0" resumes
+    // bhm calibrate (app/mpi/mpi_track_batches.*); Hello, Failure and Stop as above.
+    TrackSetup = 11,   //!< 0 -> r: evo::TrackSetupMessage, once
+    TrackJob = 12,     //!< 0 -> r: evo::TrackJobMessage
+    TrackResult = 13,  //!< r -> 0: evo::TrackResultMessage
 };
 
 struct Message {

@@ -39,11 +39,12 @@ std::string join_names(const std::vector<FitParameter>& ps, const std::vector<in
 
 // Jacobian of the residuals by central differences (one-sided at a bound), 2p simulations on
 // the worker pool. Returns jac[k][i].
-std::vector<std::vector<double>> residual_jacobian(const Experiment& e, const Body& body,
-                                                   const MeasuredTrack& track,
-                                                   const std::vector<FitParameter>& ps,
+std::vector<std::vector<double>> residual_jacobian(const TrackProblem& problem,
+                                                   TrackBatches& batches,
                                                    const std::vector<double>& x,
                                                    const CalibrationOptions& o) {
+    const auto& ps = *problem.parameters;
+    const auto& track = *problem.track;
     const std::size_t p = ps.size();
     std::vector<std::vector<double>> xs(2 * p, x);
     std::vector<double> span(p);
@@ -54,15 +55,15 @@ std::vector<std::vector<double>> residual_jacobian(const Experiment& e, const Bo
         xs[2 * i + 1][i] = lo;
         span[i] = hi - lo;
     }
+    std::vector<SimulatedTrack> sims;
+    batches.simulate(problem, xs, sims, o.cancel, nullptr);
     std::vector<std::vector<double>> r(2 * p);
-    parallel_for(static_cast<int>(2 * p), resolve_thread_count(o.threads), [&](int j) {
-        const auto sim = simulate_track(apply_fit(e, ps, xs[static_cast<std::size_t>(j)]), body,
-                                        track, o.cancel);
-        if (sim.diverged)
+    for (std::size_t j = 0; j < sims.size(); ++j) {
+        if (sims[j].diverged)
             throw std::runtime_error("the simulation diverged next to the optimum (" +
-                                     sim.divergence_reason + "): no uncertainty");
-        r[static_cast<std::size_t>(j)] = track_residuals(track, sim);
-    });
+                                     sims[j].divergence_reason + "): no uncertainty");
+        r[j] = track_residuals(track, sims[j]);
+    }
     const std::size_t n = r[0].size();
     std::vector<std::vector<double>> jac(n, std::vector<double>(p, 0.0));
     for (std::size_t k = 0; k < n; ++k)
@@ -83,6 +84,10 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
 #else
     const auto start = std::chrono::steady_clock::now();
     const std::size_t p = ps.size();
+    const TrackProblem problem{&e, &ps, &body, &track};
+    const std::shared_ptr<TrackBatches> batches =
+        o.batches ? o.batches
+                  : std::make_shared<ThreadTrackBatches>(resolve_thread_count(o.threads));
     CalibrationResult out;
     out.motion_rms_m = track_motion_rms(track);
     std::vector<double> x(p, 0.0);
@@ -135,19 +140,19 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
         }
     std::vector<double> scan_misfit(static_cast<std::size_t>(scan));
     // Progress from the scan too (a third of the budget): one report at a time, under a lock.
-    std::mutex scan_progress;
     int scan_done = 0;
     double scan_best = best;
-    parallel_for(scan, resolve_thread_count(o.threads), [&](int j) {
-        const auto sim = simulate_track(apply_fit(e, ps, scan_x[static_cast<std::size_t>(j)]), body,
-                                        track, o.cancel);
-        const double m = sim.diverged ? diverged_misfit : track_misfit(track, sim);
-        scan_misfit[static_cast<std::size_t>(j)] = m;
-        std::lock_guard lock(scan_progress);
-        ++scan_done;
-        scan_best = std::min(scan_best, m);
-        if (o.progress) o.progress(sims + scan_done, scan_best);
-    });
+    std::vector<SimulatedTrack> scan_sims;
+    batches->simulate(problem, scan_x, scan_sims, o.cancel,
+                      [&](std::size_t, const SimulatedTrack& sim) {  // one call at a time
+                          const double m = sim.diverged ? diverged_misfit : track_misfit(track, sim);
+                          ++scan_done;
+                          scan_best = std::min(scan_best, m);
+                          if (o.progress) o.progress(sims + scan_done, scan_best);
+                      });
+    for (std::size_t j = 0; j < scan_sims.size(); ++j)
+        scan_misfit[j] =
+            scan_sims[j].diverged ? diverged_misfit : track_misfit(track, scan_sims[j]);
     sims += scan;
     out.scan_simulations = scan;
     std::vector<int> order(static_cast<std::size_t>(scan));
@@ -220,7 +225,7 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     out.misfit_after_m = track_misfit(track, out.after);
     out.good_fit = out.misfit_after_m <= o.good_fit_fraction * out.motion_rms_m;
 
-    const auto jac = residual_jacobian(e, body, track, ps, out.x, o);
+    const auto jac = residual_jacobian(problem, *batches, out.x, o);
     out.jacobian_simulations = static_cast<int>(2 * p);
     const std::size_t n = jac.size();
     const double ssr = out.misfit_after_m * out.misfit_after_m * static_cast<double>(n);

@@ -6,12 +6,14 @@
 // optimum (evo/calibrate/identifiability.hpp), its 2p simulations run at once on the worker pool.
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "evo/calibrate/fit_parameters.hpp"
 #include "evo/calibrate/identifiability.hpp"
 #include "evo/calibrate/measured_track.hpp"
+#include "evo/calibrate/track_batches.hpp"
 #include "evo/calibrate/track_simulation.hpp"
 
 namespace bhm::evo {
@@ -32,6 +34,10 @@ struct CalibrationOptions {
     //! After each simulation of the scan and the optimiser: how many so far and the best misfit
     //! (metres). Called by one thread at a time, which may be a worker of the pool.
     std::function<void(int simulations, double best_misfit_m)> progress;
+    //! Where the scan's and the Jacobian's batches run (MPI ranks under mpirun, app/mpi/); null:
+    //! this process's worker pool with `threads` threads. The optimiser's one-at-a-time
+    //! simulations and the before/after ones run on the calling thread either way.
+    std::shared_ptr<TrackBatches> batches;
 };
 
 struct FittedParameter {

@@ -246,8 +246,9 @@ json run_state_to_json(const RunState& s) {
     for (const auto& c : s.rule_changes) {
         Experiment e = s.experiment;
         e.fitness = c.fitness;
-        changes.push_back(
-            {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}});
+        json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
+        if (c.physics) change["physics"] = physics_to_json(*c.physics, s.experiment);
+        changes.push_back(std::move(change));
     }
     json cache = json::array();
     for (const auto hash : s.cache.insertion_order()) {
@@ -352,9 +353,13 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         const auto& changes = f.array("rule_changes");
         for (std::size_t i = 0; i < changes.size(); ++i) {
             const Fields c(changes[i], item("rule_changes", i));
-            s.rule_changes.push_back(
-                {static_cast<int>(c.integer("generation")),
-                 fitness_from_json(c.at("fitness"), s.experiment, c.join("fitness"))});
+            RuleChange change{static_cast<int>(c.integer("generation")),
+                              fitness_from_json(c.at("fitness"), s.experiment, c.join("fitness")),
+                              std::nullopt};
+            if (changes[i].contains("physics"))
+                change.physics =
+                    physics_from_json(c.at("physics"), s.experiment, c.join("physics"));
+            s.rule_changes.push_back(std::move(change));
         }
 
         if (s.experiment.evolution.algorithm == Algorithm::Neat && s.generation >= 0)

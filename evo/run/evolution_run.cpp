@@ -233,6 +233,21 @@ void EvolutionRun::change_fitness_now(const Fitness& fitness) {
     stop_.store(true);  // abandons the simulations in flight within milliseconds
 }
 
+void EvolutionRun::request_physics_change(const PhysicsRules& physics) {
+    // Checked against the experiment the run started with: materials, the active ones and
+    // everything but the physics are the same in every generation's rules.
+    (void)with_physics(original_experiment_, physics);
+    std::lock_guard lock(control_mutex_);
+    pending_physics_ = physics;
+    ++pending_serial_;
+}
+
+void EvolutionRun::change_physics_now(const PhysicsRules& physics) {
+    request_physics_change(physics);
+    restart_.store(true);
+    stop_.store(true);
+}
+
 std::shared_ptr<const GenerationReport> EvolutionRun::latest_report() const {
     std::lock_guard lock(report_mutex_);
     return latest_;
@@ -302,6 +317,32 @@ bool EvolutionRun::run_generation() {
     const auto algorithm = make_search_algorithm(rules.evolution.algorithm);
     const GenerationContext context{rules, developer_, g};
     SearchState search{state_.neat, state_.novelty_archive};
+
+    EvaluationBatch controls;
+    controls.cancel = &stop_;
+    controls.pause = &paused_;
+    controls.on_result = [this](std::size_t) { progress_count_one(); };
+    // New physics: every member is simulated again before anything compares fitnesses, and
+    // the cache (keyed by phenotype alone) is replaced by these results.
+    CachedEvaluation reevaluation;
+    std::optional<FitnessCache> physics_cache;
+    if (rescored.physics_changed) {
+        for (auto& m : rescored.population)
+            m.evaluated = false;
+        const FitnessCache none(0);
+        try {
+            reevaluation = evaluate_fresh(rescored.population, rules, none, *evaluator_, controls,
+                                          [this](int total) { progress_set_total(total); });
+        } catch (const EvaluationCancelled&) {
+            return false;
+        }
+        for (auto& m : rescored.population)
+            rescore_member(m, rules);
+        physics_cache.emplace(state_.cache.capacity());
+        for (std::size_t j = 0; j < reevaluation.simulated_hashes.size(); ++j)
+            physics_cache->insert(reevaluation.simulated_hashes[j],
+                                  reevaluation.simulated_reports[j]);
+    }
     if (rescored.changed) algorithm->rules_changed(context, rescored.population, search);
 
     Rng rng;
@@ -309,14 +350,12 @@ bool EvolutionRun::run_generation() {
     std::int64_t next_id = state_.next_id;
     Brood brood = algorithm->breed(context, std::move(rescored.population), search, rng, next_id);
 
-    EvaluationBatch controls;
-    controls.cancel = &stop_;
-    controls.pause = &paused_;
-    controls.on_result = [this](std::size_t) { progress_count_one(); };
     CachedEvaluation evaluation;
+    const int reevaluated = reevaluation.simulations();
     try {
-        evaluation = evaluate_fresh(brood.fresh, rules, state_.cache, *evaluator_, controls,
-                                    [this](int total) { progress_set_total(total); });
+        evaluation = evaluate_fresh(
+            brood.fresh, rules, physics_cache ? *physics_cache : state_.cache, *evaluator_,
+            controls, [this, reevaluated](int total) { progress_set_total(reevaluated + total); });
     } catch (const EvaluationCancelled&) {
         return false;
     }
@@ -341,6 +380,7 @@ bool EvolutionRun::run_generation() {
     tally.rules_version = rescored.rules_version;
     tally.evaluations = evaluations;
     tally.evaluation = &evaluation;
+    if (rescored.physics_changed) tally.reevaluation = &reevaluation;
     tally.clones = brood.clones;
     tally.newcomers_skipped = brood.newcomers_skipped;
     // The generation's clock stops here, before its files are written: it kept running in
@@ -350,7 +390,9 @@ bool EvolutionRun::run_generation() {
     const GenerationProgress spent = progress();
     tally.generation_wall_s = spent.elapsed_s;  // paused time excluded
     tally.wall_s = state_.elapsed_s + spent.abandoned_s + tally.generation_wall_s;
-    commit_generation(rules, rescored.changed, applied_serial, next_id, rng, std::move(selection),
+    commit_generation(rules, rescored.changed, applied_serial,
+                      physics_cache ? &*physics_cache : nullptr, rescored.physics_changed,
+                      next_id, rng, std::move(selection),
                       std::move(search), std::move(*champion), tally, new_champion);
     return true;
 }
@@ -366,23 +408,35 @@ EvolutionRun::Rescored EvolutionRun::rescore_for_pending_rules(
             applied_serial = pending_serial_;
             out.changed = true;
         }
+        // Physics equal to the run's changes nothing (a studio that sends the same values twice
+        // must not make every member be simulated again).
+        if (pending_physics_ && *pending_physics_ != physics_of(out.rules)) {
+            out.rules = with_physics(out.rules, *pending_physics_);
+            applied_serial = pending_serial_;
+            out.changed = true;
+            out.physics_changed = true;
+        }
     }
     if (!out.changed) return out;
     ++out.rules_version;
-    const Experiment& rules = out.rules;
-    for (auto& m : out.population) {
-        m.valid = constraint_violation(rules.fitness.constraints, rules.boundary,
-                                       developer_.space(), m.phenotype)
-                      .empty();
-        m.report.fitness = m.valid ? fitness_under(m.report, rules.fitness) : kInvalidFitness;
-        m.valid = m.valid && !rejected_by_exploit(m.report.exploits, rules.fitness.constraints);
-    }
+    for (auto& m : out.population)
+        rescore_member(m, out.rules);
     out.champion.reset();  // re-established from the re-scored population
     return out;
 }
 
+void EvolutionRun::rescore_member(Individual& m, const Experiment& rules) const {
+    m.valid = constraint_violation(rules.fitness.constraints, rules.boundary, developer_.space(),
+                                   m.phenotype)
+                  .empty();
+    m.report.fitness = m.valid ? fitness_under(m.report, rules.fitness) : kInvalidFitness;
+    m.valid = m.valid && !rejected_by_exploit(m.report.exploits, rules.fitness.constraints);
+}
+
 void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed,
-                                     std::uint64_t applied_serial, std::int64_t next_id,
+                                     std::uint64_t applied_serial,
+                                     const FitnessCache* physics_cache, bool physics_changed,
+                                     std::int64_t next_id,
                                      const Rng& rng, Selection selection, SearchState search,
                                      ChampionRecord champion, const GenerationTally& tally,
                                      bool new_champion) {
@@ -401,13 +455,20 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
     state_.neat = std::move(search.neat);
     state_.novelty_archive = std::move(search.novelty_archive);
     state_.history.push_back(row);
-    if (rules_changed) state_.rule_changes.push_back({tally.generation, rules.fitness});
+    if (rules_changed)
+        state_.rule_changes.push_back(
+            {tally.generation, rules.fitness,
+             physics_changed ? std::optional<PhysicsRules>(physics_of(rules)) : std::nullopt});
+    if (physics_cache) state_.cache = *physics_cache;  // no result of the old physics is kept
     const CachedEvaluation& evaluation = *tally.evaluation;
     for (std::size_t j = 0; j < evaluation.simulated_hashes.size(); ++j)
         state_.cache.insert(evaluation.simulated_hashes[j], evaluation.simulated_reports[j]);
     {
         std::lock_guard lock(control_mutex_);
-        if (rules_changed && pending_serial_ == applied_serial) pending_fitness_.reset();
+        if (rules_changed && pending_serial_ == applied_serial) {
+            pending_fitness_.reset();
+            pending_physics_.reset();
+        }
     }
     ++session_generations_;
 

@@ -21,7 +21,11 @@
 // request_fitness_change() swaps the fitness rules before the next generation and re-scores the
 // population under them (all measures are kept, so no new simulation is needed; members that now
 // break a constraint get kInvalidFitness); change_fitness_now() also abandons the generation in
-// flight, which run() computes again under the new rules. Reports are immutable snapshots handed
+// flight, which run() computes again under the new rules. request_physics_change() (a
+// calibration applied to the live run, evo/run/physics_rules.hpp) is a rule change too: from the
+// generation it applies to, every member of the population is simulated again under the new
+// physics before breeding (no fitness measured under the old physics is compared with a new
+// one) and the fitness cache, keyed by phenotype alone, starts afresh. Reports are immutable snapshots handed
 // to a callback and kept as latest_report(); run() also tells an event callback when it holds,
 // goes on and restarts a generation, so a UI follows the run's own loop instead of a copy of it;
 // progress() says how far the generation in progress is.
@@ -40,6 +44,7 @@
 #include "evo/evaluate/evaluator.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/generation_report.hpp"
+#include "evo/run/physics_rules.hpp"
 #include "evo/run/run_output.hpp"
 #include "evo/run/run_state.hpp"
 
@@ -143,6 +148,13 @@ class EvolutionRun {
     //! computes it again under the new rules (its state is untouched, so the run stays what an
     //! uninterrupted run with the change at that generation would be).
     void change_fitness_now(const Fitness& fitness);
+    //! New physics from the next generation on (recorded as a rule change with its physics):
+    //! the population is simulated again under it and the cache cleared. Physics equal to the
+    //! run's changes nothing. Throws std::invalid_argument (with_physics) for physics that would
+    //! change the run's bodies or does not validate, before anything is queued.
+    void request_physics_change(const PhysicsRules& physics);
+    //! As request_physics_change, abandoning the generation in flight (as change_fitness_now).
+    void change_physics_now(const PhysicsRules& physics);
 
     std::shared_ptr<const GenerationReport> latest_report() const;
     //! Thread-safe: from any thread at any time, also while run() executes.
@@ -150,6 +162,8 @@ class EvolutionRun {
     //! The state after the last completed generation. Only while run() is not executing.
     const RunState& state() const { return state_; }
     const Experiment& experiment() const { return state_.experiment; }
+    //! The experiment as the run was started (run.json's), before any rule change. Immutable.
+    const Experiment& started_experiment() const { return original_experiment_; }
     const Developer& developer() const { return developer_; }
     const std::vector<std::string>& resume_warnings() const { return resume_warnings_; }
     //! The checkpoint file that holds state(): the one loaded on resume or the last one written;
@@ -179,11 +193,17 @@ class EvolutionRun {
         std::optional<ChampionRecord> champion;
         int rules_version = 0;
         bool changed = false;
+        bool physics_changed = false;  //!< every member must be simulated again
     };
     Rescored rescore_for_pending_rules(std::uint64_t& applied_serial) const;
+    //! m's fitness, validity and exploit rejection under rules (its report's measures kept).
+    void rescore_member(Individual& m, const Experiment& rules) const;
     //! The generation's results become the run's state: history, cache, checkpoint and files,
     //! then the report is published.
+    //! physics_cache: after a physics change, the cache that replaces the run's (the
+    //! re-evaluated population's results); null otherwise.
     void commit_generation(const Experiment& rules, bool rules_changed, std::uint64_t applied_serial,
+                           const FitnessCache* physics_cache, bool physics_changed,
                            std::int64_t next_id, const Rng& rng, Selection selection,
                            SearchState search, ChampionRecord champion,
                            const GenerationTally& tally, bool new_champion);
@@ -225,6 +245,7 @@ class EvolutionRun {
     std::chrono::steady_clock::time_point pause_began_;  //!< under control_mutex_
     double paused_s_ = 0.0;                              //!< completed pauses, under control_mutex_
     std::optional<Fitness> pending_fitness_;
+    std::optional<PhysicsRules> pending_physics_;
     std::uint64_t pending_serial_ = 0;
 
     mutable std::mutex report_mutex_;

@@ -32,7 +32,8 @@ HistoryRow make_history_row(const GenerationTally& tally, const Selection& selec
     HistoryRow row;
     row.generation = tally.generation;
     row.evaluations = tally.evaluations;
-    row.simulations = tally.evaluation->simulations();
+    row.simulations = tally.evaluation->simulations() +
+                      (tally.reevaluation ? tally.reevaluation->simulations() : 0);
     row.best_fitness = best.report.fitness;
     std::vector<double> fitness;
     for (const auto& m : population)
@@ -40,7 +41,8 @@ HistoryRow make_history_row(const GenerationTally& tally, const Selection& selec
     row.median_fitness = median(fitness);
     row.best_age = best.age;
     row.best_id = best.id;
-    row.diverged = tally.evaluation->diverged;
+    row.diverged = tally.evaluation->diverged +
+                   (tally.reevaluation ? tally.reevaluation->diverged : 0);
     // Where the simulations stopped (evaluations that end when the motion repeats).
     const auto& simulated = tally.evaluation->simulated_reports;
     double simulated_s = 0.0;

@@ -50,6 +50,9 @@ struct GenerationTally {
     int rules_version = 0;
     int evaluations = 0;  //!< new individuals that needed a result
     const CachedEvaluation* evaluation = nullptr;
+    //! After a physics change: the population simulated again before breeding (null otherwise);
+    //! its simulations count in the generation's simulations and diverged.
+    const CachedEvaluation* reevaluation = nullptr;
     int clones = 0;
     int newcomers_skipped = 0;
     double generation_wall_s = 0.0;  //!< this generation, paused time excluded

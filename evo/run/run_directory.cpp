@@ -51,6 +51,12 @@ Experiment with_fitness(const Experiment& experiment, const json& fitness,
 Experiment RunInfo::current() const {
     Experiment e = started;
     if (!rule_changes.empty()) e.fitness = rule_changes.back().fitness;
+    // The physics of the last change that set it (a calibration applied to the live run).
+    for (auto it = rule_changes.rbegin(); it != rule_changes.rend(); ++it) {
+        if (!it->physics) continue;
+        e = with_physics(e, *it->physics);
+        break;
+    }
     return e;
 }
 
@@ -69,8 +75,11 @@ RunInfo read_run_info(const std::string& run_dir) {
         if (!c.is_object() || !c.contains("fitness") || !c.contains("generation") ||
             !c["generation"].is_number_integer())
             throw std::runtime_error(where + ": expected {generation, fitness}");
-        info.rule_changes.push_back(
-            {c["generation"].get<int>(), with_fitness(info.started, c["fitness"], where).fitness});
+        RuleChange change{c["generation"].get<int>(),
+                          with_fitness(info.started, c["fitness"], where).fitness, std::nullopt};
+        if (c.contains("physics"))
+            change.physics = physics_from_json(c["physics"], info.started, where + ".physics");
+        info.rule_changes.push_back(std::move(change));
     }
     return info;
 }

@@ -18,11 +18,13 @@ inline constexpr const char* kRunInfoFile = "run.json";
 inline constexpr const char* kFitnessCsvFile = "fitness.csv";
 inline constexpr const char* kChampionFile = "champion.json";
 
-//! run.json: the experiment as the run was started and every change of fitness rules since.
+//! run.json: the experiment as the run was started and every change of rules since (fitness,
+//! and physics where a change set it).
 struct RunInfo {
     Experiment started;
     std::vector<RuleChange> rule_changes;  //!< in order
-    //! The rules in force now: the started experiment with the last change's fitness section.
+    //! The rules in force now: the started experiment with the last change's fitness section
+    //! and the physics of the last change that set physics.
     Experiment current() const;
 };
 //! Throws std::runtime_error "PATH: field: message" when run.json is missing or malformed.

@@ -81,8 +81,9 @@ json run_info_json(const Experiment& original, const RunState& state) {
     for (const auto& c : state.rule_changes) {
         Experiment e = original;
         e.fitness = c.fitness;
-        changes.push_back(
-            {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}});
+        json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
+        if (c.physics) change["physics"] = physics_to_json(*c.physics, original);
+        changes.push_back(std::move(change));
     }
     return {{"bhm_version", BHM_VERSION_STRING},
             {"seed", state.seed},

@@ -11,6 +11,7 @@
 #include "evo/search/individual.hpp"
 #include "evo/search/neat_species.hpp"
 #include "evo/search/novelty_archive.hpp"
+#include "evo/run/physics_rules.hpp"
 
 namespace bhm::evo {
 
@@ -57,10 +58,14 @@ struct ChampionRecord {
     int generation_found = 0;
 };
 
-//! A change of the fitness rules (measure, constraints, objectives) applied before `generation`.
+//! A change of the rules applied before `generation`: the fitness rules (measure, constraints,
+//! objectives) in force from then on and, when the change also set the physics (a calibration
+//! applied to the live run, evo/run/physics_rules.hpp), that physics: from that generation every
+//! member was simulated again under it.
 struct RuleChange {
     int generation = 0;
     Fitness fitness;
+    std::optional<PhysicsRules> physics;
 };
 
 struct RunState {

@@ -1,6 +1,7 @@
 // The studio's calibration (issue 28, docs/studio.md Calibrate tab): the worker-thread session
 // (progress snapshots, cancel), loading a track onto the body shown, the measured point placed
-// over the replay, and Apply writing the fitted values into the document as an undoable edit.
+// over the replay, Apply writing the fitted values into the document as an undoable edit, and
+// Apply to the live run recording them in the run as a rule change with physics.
 // The truth is the parameters our own engine made the track with (as tests/evo/test_calibrate).
 #include <doctest/doctest.h>
 
@@ -19,6 +20,7 @@
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/run/run_directory.hpp"
 #include "evo/test_support_calibrate.hpp"
 #include "support/relative_approx.hpp"
 #include "test_studio_fixtures.hpp"
@@ -308,4 +310,86 @@ TEST_CASE("studio session: the Calibrate tab's buttons, the track plots and the 
     CHECK(s.document.undo_label().rfind("calibrated against tip.csv", 0) == 0);
     CHECK(s.document.experiment().materials[1].physics.youngs_modulus_pa ==
           relative(s.calibration.snapshot->result->fitted[0].value, 1e-12));
+}
+
+TEST_CASE("studio: Apply to the live run records a physics rule change in the run") {
+    if (!evo::calibration_available()) return;
+    const auto dir = testing::fresh_dir("calibration-live-run");
+    Fixture f;
+    const std::string body_path = (dir / "bilayer.body.json").string();
+    const std::string track_path = (dir / "tip.csv").string();
+    evo::save_body(body_path, evo::test::bilayer(false));
+    evo::write_file_atomically(track_path, evo::measured_track_to_csv(*f.track, "test track"));
+
+    Studio s;
+    evo::Experiment e = f.experiment;
+    e.evolution.generations = 1000;  // stopped below, once the change is in
+    s.document.reset(e, "");
+    auto frames_until = [&](auto done, double timeout_s) {
+        const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
+        while (!done() && Clock::now() < end) {
+            update_studio(s);
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        update_studio(s);
+        return done();
+    };
+    REQUIRE(show_body_file(s, body_path));
+    REQUIRE(frames_until([&] { return s.shown != nullptr; }, 60.0));
+    REQUIRE(load_track(s, track_path));
+    REQUIRE(frames_until([&] { return !calibration_running(s); }, 60.0));
+    s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
+    s.calibration.fit_on[0] = true;  // E
+    s.calibration.max_simulations = 16;
+    s.calibration.threads = 2;
+    REQUIRE(start_calibration(s));
+    REQUIRE(frames_until([&] { return !calibration_running(s); }, 120.0));
+    const auto snap = s.calibration.snapshot;
+    REQUIRE(snap->phase == CalibrationPhase::Finished);
+    const double fitted_e = snap->result->fitted[0].value;
+    REQUIRE(fitted_e != e.materials[0].physics.youngs_modulus_pa);
+
+    CHECK_FALSE(apply_calibration_to_run(s));  // no run yet
+    CHECK(s.status.find("no live run") != std::string::npos);
+
+    s.run_dir_field = (dir / "run").string();
+    REQUIRE(start_run(s));
+    REQUIRE(frames_until(
+        [&] {
+            const auto r = s.evolution.snapshot();
+            return r && r->loaded && !r->history.empty();
+        },
+        240.0));
+    REQUIRE(pause_run(s));
+    REQUIRE(apply_calibration_to_run(s));
+    CHECK(s.status.rfind("live run, from generation ", 0) == 0);
+    CHECK(s.status.find("physics: E[passive] 5e+06 -> ") != std::string::npos);
+    CHECK(s.calibration.applied_run_job == snap->job);
+    // The editor shows the run's document: it takes the values too, as one undoable edit.
+    CHECK(s.document.experiment().materials[0].physics.youngs_modulus_pa == fitted_e);
+    CHECK(s.document.undo_label().find("(live run)") != std::string::npos);
+    REQUIRE(resume_run(s));
+    REQUIRE(frames_until(
+        [&] {
+            const auto r = s.evolution.snapshot();
+            return r && !r->rule_changes.empty() &&
+                   static_cast<int>(r->history.size()) > r->rule_changes[0].generation + 1;
+        },
+        240.0));
+    REQUIRE(stop_run(s));
+    REQUIRE(frames_until([&] { return !run_is_live(s.evolution.phase()); }, 120.0));
+
+    const auto run = s.evolution.snapshot();
+    const evo::RunInfo info = evo::read_run_info(run->run_dir);
+    REQUIRE(info.rule_changes.size() == 1);
+    REQUIRE(info.rule_changes[0].physics);
+    for (const auto& m : info.rule_changes[0].physics->materials)
+        CHECK(m.youngs_modulus_pa == fitted_e);
+    CHECK(info.current().materials[1].physics.youngs_modulus_pa == fitted_e);
+    CHECK(info.current().actuation == e.actuation);  // only what was fitted changed
+    // The Fitness plot's marker: at the change's generation, saying what changed.
+    REQUIRE(run->rule_changes.size() == 1);
+    CHECK(run->rule_changes[0].generation == info.rule_changes[0].generation);
+    CHECK(run->rule_changes[0].description.rfind("physics: E[passive] 5e+06 -> ", 0) == 0);
+    CHECK(run->experiment.materials[0].physics.youngs_modulus_pa == fitted_e);
 }

@@ -170,6 +170,17 @@ void report(Studio& s) {
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("Writes the fitted values into the experiment being edited as one "
                           "undoable edit (Ctrl+Z reverts it)");
+    if (!run_is_live(s.evolution.phase())) return;
+    const bool sent = s.calibration.applied_run_job == snap->job;
+    ImGui::SameLine();
+    ImGui::BeginDisabled(sent);
+    if (tracked_button(s, sent ? "Applied to the live run" : "Apply to the live run"))
+        apply_calibration_to_run(s);
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("Changes the live run's physics to the fitted values from the next "
+                          "generation (a rule change: every member is simulated again under "
+                          "them, and the Fitness plot marks the generation)");
 }
 
 void plots(Studio& s) {

@@ -60,6 +60,24 @@ std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitne
     return what.empty() ? "rules re-applied" : what;
 }
 
+std::string describe_rule_change(const evo::Experiment& started, const evo::Fitness& initial,
+                                 const std::vector<evo::RuleChange>& changes, std::size_t i) {
+    const evo::RuleChange& c = changes[i];
+    const evo::Fitness& before = i == 0 ? initial : changes[i - 1].fitness;
+    if (!c.physics) return describe_fitness_change(before, c.fitness);
+    evo::Experiment was = started;
+    for (std::size_t j = i; j-- > 0;) {
+        if (!changes[j].physics) continue;
+        try {
+            was = evo::with_physics(started, *changes[j].physics);
+        } catch (const std::exception&) {  // read from a file: say what changed against the start
+        }
+        break;
+    }
+    const std::string physics = evo::describe_physics_change(was, *c.physics);
+    return before == c.fitness ? physics : describe_fitness_change(before, c.fitness) + "; " + physics;
+}
+
 // Shared with the run thread. The run thread owns `run`; the UI thread only calls its
 // thread-safe controls (request_stop, request_fitness_change) and our own flags below.
 struct EvolutionSession::Shared {
@@ -107,13 +125,11 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         sh.history.push_back(
             {row.generation, row.best_fitness, row.median_fitness, row.wall_s, sh.simulations});
     }
-    for (std::size_t i = sh.changes.size(); i < state.rule_changes.size(); ++i) {
-        const evo::Fitness& before =
-            i == 0 ? sh.initial_fitness : state.rule_changes[i - 1].fitness;
+    for (std::size_t i = sh.changes.size(); i < state.rule_changes.size(); ++i)
         sh.changes.push_back({state.rule_changes[i].generation,
-                              describe_fitness_change(before, state.rule_changes[i].fitness),
+                              describe_rule_change(run.started_experiment(), sh.initial_fitness,
+                                                   state.rule_changes, i),
                               state.rule_changes[i].fitness.measure});
-    }
     snap->history = sh.history;
     snap->rule_changes = sh.changes;
     snap->species = state.history.empty() ? 0 : state.history.back().species;
@@ -419,6 +435,18 @@ void EvolutionSession::stop() {
             shared_->run->set_paused(false);
         }
     }
+}
+
+void EvolutionSession::change_physics(const evo::PhysicsRules& physics) {
+    if (!shared_ || !run_is_live(phase_.load())) throw std::runtime_error("no live run");
+    std::lock_guard lock(shared_->mutex);
+    if (!shared_->run) throw std::runtime_error("the run is still loading its checkpoint");
+    // As change_rules: a generation in progress is abandoned and computed again under the new
+    // physics. Throws std::invalid_argument for physics the run cannot take.
+    if (shared_->stop)
+        shared_->run->request_physics_change(physics);
+    else
+        shared_->run->change_physics_now(physics);
 }
 
 void EvolutionSession::change_rules(const evo::Experiment& experiment) {

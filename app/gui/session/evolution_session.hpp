@@ -47,6 +47,11 @@ class EvolutionSession {
     //! re-scores the population under them (evo::EvolutionRun::request_fitness_change) and the
     //! history marks the change. The boundary cannot change within a run (it changes the bodies).
     void change_rules(const evo::Experiment& experiment);
+    //! New physics (a calibration applied to the live run) from the next generation on, recorded
+    //! as a rule change: every member is simulated again under it
+    //! (evo::EvolutionRun::request_physics_change). Throws std::runtime_error when no run is
+    //! live or loaded, std::invalid_argument for physics the run cannot take.
+    void change_physics(const evo::PhysicsRules& physics);
     //! The rules last sent by change_rules to this run (null before any): in force from the next
     //! generation, while the snapshot still shows the old ones. UI thread only.
     const evo::Experiment* sent_rules() const { return sent_rules_ ? &*sent_rules_ : nullptr; }

@@ -102,6 +102,11 @@ LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progr
 //! "measure com_final_3d, min fill 0.2, reject tentacle": what changes from `before` to `after`
 //! ("rules re-applied" when nothing does), for the plots' markers and the Run panel.
 std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitness& after);
+//! The note of changes[i] (its fitness change against the one before, or `initial` for the
+//! first; and, where it set physics, what changed in it against the physics in force before:
+//! `started`'s or an earlier change's).
+std::string describe_rule_change(const evo::Experiment& started, const evo::Fitness& initial,
+                                 const std::vector<evo::RuleChange>& changes, std::size_t i);
 
 //! "escaped (12 % unanchored), tentacle (thin share 0.62)"; "" when nothing is flagged or the
 //! result predates exploit detection.

@@ -77,12 +77,18 @@ bool RunDirectoryWatch::refresh() {
             const evo::RunInfo info = evo::read_run_info(dir_);
             snap->initial_measure = info.started.fitness.measure;
             snap->rule_changes.clear();
-            for (const auto& change : info.rule_changes)
+            for (std::size_t i = 0; i < info.rule_changes.size(); ++i) {
+                const auto& change = info.rule_changes[i];
                 snap->rule_changes.push_back(
                     {change.generation,
-                     std::string("fitness rules changed (") +
-                         evo::kFitnessNames[static_cast<std::size_t>(change.fitness.measure)] + ")",
+                     change.physics
+                         ? describe_rule_change(info.started, info.started.fitness,
+                                                info.rule_changes, i)
+                         : std::string("fitness rules changed (") +
+                               evo::kFitnessNames[static_cast<std::size_t>(change.fitness.measure)] +
+                               ")",
                      change.fitness.measure});
+            }
             snap->experiment = info.current();
             snap->generation_budget = snap->experiment.evolution.generations;
         }
