@@ -6,6 +6,7 @@
 // The CalculiX cases skip (loudly) only where ccx is not installed.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -423,4 +424,36 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
     const auto kept = read_verification(verification_dir(run_dir.string(), id), id);
     REQUIRE(kept);
     CHECK(kept->verdict == verdict);
+}
+
+TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {
+    // A report as Verify in FEM writes it (the 20x2x2 bilayer of the phases case above, kept in
+    // tests/data): the panel draws it without solving anything, so the picture is the same on
+    // every machine. Only the Analysis tile is compared: the other tiles have their own goldens.
+    auto kept = read_verification(
+        (fs::path(BHM_SOURCE_DIR) / "tests" / "data" / "verify" / "individual-7").string(), 7);
+    REQUIRE(kept);
+    REQUIRE(kept->rows.size() == 3);
+    kept->dir = "RUN_DIR/verify/individual-7";  // the checkout's path would differ per machine
+    Studio studio;
+    studio.verification = std::make_shared<const FemVerification>(std::move(*kept));
+    studio.fem_load = 1;
+    HeadlessStudio session(studio, 1280, 900);
+    run_script(session, json::parse(R"([{"click": "tab FEM"}, {"frames": 3}])"));
+    for (const char* widget : {"fem verdict", "fem ghost", "fem load rest", "fem load +A",
+                               "fem load -A"}) {
+        const auto it = studio.widgets.find(widget);
+        CHECK_MESSAGE((it != studio.widgets.end() && it->second.frame == studio.frame), widget);
+    }
+    const auto tile = studio.widgets.at("analysis panel");
+    const render::Image screen = session.capture();
+    const int x0 = static_cast<int>(tile.min.x), y0 = static_cast<int>(tile.min.y);
+    const int x1 = std::min(screen.width, static_cast<int>(tile.max.x));
+    const int y1 = std::min(screen.height, static_cast<int>(tile.max.y));
+    REQUIRE(x1 - x0 > 100);
+    REQUIRE(y1 - y0 > 100);
+    render::Image panel(x1 - x0, y1 - y0);
+    for (int y = y0; y < y1; ++y)
+        std::copy_n(screen.pixel(x0, y), 4 * panel.width, panel.pixel(0, y - y0));
+    testing::check_studio_golden("fem", panel, session.font());
 }
