@@ -86,8 +86,8 @@ bool verify_individual(Studio& studio, std::int64_t id) {
     const PopulationMember& m = *it;
     FemVerifyRequest request;
     request.id = id;
-    request.label = "individual #" + std::to_string(id) + " of generation " +
-                    std::to_string(run->generation);
+    request.label =
+        "individual #" + std::to_string(id) + " of generation " + std::to_string(run->generation);
     request.experiment = run->experiment;
     request.framed_body = m.body;
     request.run_dir = run->run_dir;

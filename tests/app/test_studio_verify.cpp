@@ -348,8 +348,8 @@ TEST_CASE("studio verify: stale partial folders are removed, a live writer's and
         return p;
     };
     const std::string me = std::to_string(::getpid());
-    const auto dead = make_folder(v / (".individual-3.partial-" + std::to_string(dead_pid()) +
-                                       "-aB3dE9"));
+    const auto dead =
+        make_folder(v / (".individual-3.partial-" + std::to_string(dead_pid()) + "-aB3dE9"));
     const auto mine = make_folder(v / (".individual-4.partial-" + me + "-aB3dE9"));
     const auto live = make_folder(v / ".individual-5.partial-1-aB3dE9");  // pid 1 lives
     const auto old_unnamed = aged(make_folder(v / ".individual-6.partial-Xy12Zw"));
@@ -414,9 +414,8 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
         CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
     }
     // A crash's leftover beside the report: opening the run clears it, the report stays.
-    const auto crashed = make_folder(run_dir / "verify" /
-                                     (".individual-99.partial-" + std::to_string(dead_pid()) +
-                                      "-zZ9zZ9"));
+    const auto crashed = make_folder(
+        run_dir / "verify" / (".individual-99.partial-" + std::to_string(dead_pid()) + "-zZ9zZ9"));
     Studio again;
     REQUIRE(open_run_directory(again, run_dir.string()));
     CHECK_FALSE(fs::exists(crashed));
@@ -441,8 +440,8 @@ TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {
     studio.fem_load = 1;
     HeadlessStudio session(studio, 1280, 900);
     run_script(session, json::parse(R"([{"click": "tab FEM"}, {"frames": 3}])"));
-    for (const char* widget : {"fem verdict", "fem ghost", "fem load rest", "fem load +A",
-                               "fem load -A"}) {
+    for (const char* widget :
+         {"fem verdict", "fem ghost", "fem load rest", "fem load +A", "fem load -A"}) {
         const auto it = studio.widgets.find(widget);
         CHECK_MESSAGE((it != studio.widgets.end() && it->second.frame == studio.frame), widget);
     }

@@ -1,8 +1,9 @@
 // bhm verify's continuum check (evo/verify/): the CalculiX model of a body against closed-form
-// beam answers and against the CalculiX suite's own deck (tests/engine/calculix.hpp), our engine against it on the bodies where the two agree, a body held by a single
-// voxel where they do not (so the check can fail), bodies outside the continuum's reach, and the
-// pieces of the report (the .dat parser, Spearman's rank correlation).
-// Each case solves in seconds; the CalculiX cases skip (loudly) only where ccx is not installed.
+// beam answers and against the CalculiX suite's own deck (tests/engine/calculix.hpp), our engine
+// against it on the bodies where the two agree, a body held by a single voxel where they do not (so
+// the check can fail), bodies outside the continuum's reach, and the pieces of the report (the .dat
+// parser, Spearman's rank correlation). Each case solves in seconds; the CalculiX cases skip
+// (loudly) only where ccx is not installed.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -54,8 +55,9 @@ engine::BodySpec held_box(int nx, int ny, int nz, int active_layers, double e_pa
 }
 
 // The CalculiX suite's model of an nx x ny x nz cantilever (tests/engine/test_engine_calculix.cpp):
-// its own C3D20R box from the clamp plane x = 0 (the held voxels' centres) to the free end, E 5 MPa,
-// nu 0.35; the mean vertical displacement of the section through the last voxels' centres.
+// its own C3D20R box from the clamp plane x = 0 (the held voxels' centres) to the free end,
+// E = 5 MPa, nu = 0.35; the mean vertical displacement of the section through the last voxels'
+// centres.
 // `bilayer`: its z = 0 element layer has cte 0.01 and the box is heated 1 degC, without gravity;
 // else the whole box is passive under its own weight.
 double suite_cantilever(int nx, int ny, int nz, bool bilayer) {
@@ -135,8 +137,8 @@ TEST_CASE("verify: the solid and bilayer cantilevers agree with the CalculiX sui
     // The same bodies through bhm verify's model (C3D8I, 2 per voxel edge, clamped at the held
     // voxels' centres by its own rule) and through the suite's deck (C3D20R, clamped at x = 0):
     // two independent meshings of one continuum, compared at the tip voxel's centre.
-    const auto solid = evo::verify_body(held_box(20, 4, 4, 0, 5e6), evo::FitnessMeasure::ComMaxYz,
-                                        {});
+    const auto solid =
+        evo::verify_body(held_box(20, 4, 4, 0, 5e6), evo::FitnessMeasure::ComMaxYz, {});
     const double solid_suite = suite_cantilever(20, 4, 4, false);
     const double solid_ours = load_named(solid, "rest").fem.tip_m[2];
     auto s = held_box(20, 2, 2, 1, 5e6);
@@ -145,13 +147,11 @@ TEST_CASE("verify: the solid and bilayer cantilevers agree with the CalculiX sui
     const auto bilayer = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, {});
     const double bilayer_suite = suite_cantilever(20, 2, 2, true);
     const double bilayer_ours = load_named(bilayer, "+A").fem.tip_m[2];
-    MESSAGE("20x4x4 solid under gravity: tip " << solid_ours << " m, suite " << solid_suite
-                                               << " m (" << 100.0 * (solid_ours / solid_suite - 1.0)
-                                               << " %); 20x2x2 bilayer heated 1 degC: tip "
-                                               << bilayer_ours << " m, suite " << bilayer_suite
-                                               << " m ("
-                                               << 100.0 * (bilayer_ours / bilayer_suite - 1.0)
-                                               << " %)");
+    MESSAGE("20x4x4 solid under gravity: tip "
+            << solid_ours << " m, suite " << solid_suite << " m ("
+            << 100.0 * (solid_ours / solid_suite - 1.0) << " %); 20x2x2 bilayer heated 1 degC: tip "
+            << bilayer_ours << " m, suite " << bilayer_suite << " m ("
+            << 100.0 * (bilayer_ours / bilayer_suite - 1.0) << " %)");
     CHECK(solid_suite < 0.0);
     CHECK(bilayer_suite > 0.0);
     // Measured -0.1 % and +0.7 % (docs/verify.md): 2 % leaves room for ccx versions, not for a

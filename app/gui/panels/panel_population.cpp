@@ -151,9 +151,9 @@ void draw_population_panel(Studio& s) {
         std::snprintf(id, sizeof id, "#%lld", static_cast<long long>(m.id));
         const bool selected = s.shown && s.shown->id == m.id;
         // The row shows it; the "FEM" button at its end (drawn over the row) verifies it.
-        if (ImGui::Selectable(id, selected,
-                              ImGuiSelectableFlags_SpanAllColumns |
-                                  ImGuiSelectableFlags_AllowItemOverlap))
+        if (ImGui::Selectable(
+                id, selected,
+                ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap))
             select_individual(s, m.id);
         record_widget(s, std::string("individual ") + id);
         ImGui::TableNextColumn();

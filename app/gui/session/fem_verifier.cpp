@@ -100,8 +100,8 @@ int remove_stale_partials(const std::string& run_dir) {
         const auto modified = fs::last_write_time(entry.path(), ec);
         const bool old =
             !ec && std::chrono::duration<double>(now - modified).count() > kStalePartialAge_s;
-        const bool orphan = owner > 0 && owner != static_cast<long>(::getpid()) &&
-                            process_gone(owner);
+        const bool orphan =
+            owner > 0 && owner != static_cast<long>(::getpid()) && process_gone(owner);
         if (!old && !orphan) continue;
         if (fs::remove_all(entry.path(), ec) != static_cast<std::uintmax_t>(-1) && !ec) ++removed;
     }
@@ -224,10 +224,10 @@ void FemVerifier::work(FemVerifyRequest request, FemVerifyState state) {
         const fs::path final_dir = verification_dir(request.run_dir, request.id);
         fs::create_directories(final_dir.parent_path());
         // The pid in the name: a later session removes it only once this process is gone.
-        std::string pattern = (final_dir.parent_path() /
-                               ("." + final_dir.filename().string() + ".partial-" +
-                                std::to_string(::getpid()) + "-XXXXXX"))
-                                  .string();
+        std::string pattern =
+            (final_dir.parent_path() / ("." + final_dir.filename().string() + ".partial-" +
+                                        std::to_string(::getpid()) + "-XXXXXX"))
+                .string();
         if (::mkdtemp(pattern.data()) == nullptr)
             throw std::runtime_error("cannot create a folder in " +
                                      final_dir.parent_path().string());
