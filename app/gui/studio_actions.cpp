@@ -362,6 +362,8 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
         studio.follow_champion = true;
         studio.requested_champion = -1;
         studio.run = studio.run_directory.snapshot();
+        // The hidden folders of verifications a crash interrupted (never a finished report).
+        remove_stale_partials(run_dir);
         std::string note;
         if (studio.run && !studio.document.dirty()) {
             // Show the run's experiment in the editor (a copy; the run directory is never written).

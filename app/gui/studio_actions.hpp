@@ -105,6 +105,8 @@ void step_replay(Studio& studio, int frames);
 bool verify_shown_body(Studio& studio);
 //! Replays a champion of the run's history and verifies it.
 bool verify_champion(Studio& studio, const ChampionEntry& entry);
+//! Shows a member of the current population (select_individual) and verifies it.
+bool verify_individual(Studio& studio, std::int64_t id);
 //! Kills the solver of the verification in progress; nothing is written.
 void cancel_verification(Studio& studio);
 //! The verification of the body shown, with its shapes, when it is drawn in the 3D view now

@@ -257,6 +257,7 @@ void StudioApp::layout_and_panels() {
     draw_fitness_panel(s);
     ImGui::End();
     begin_tile("Analysis", {right_x, top + t.run + t.plot}, {t.right, t.population}, fixed);
+    record_widget_window(s, "analysis panel");  // its screenshot: the FEM tab's golden
     draw_analysis_panel(s);
     ImGui::End();
 

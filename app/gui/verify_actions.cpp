@@ -1,5 +1,6 @@
-// "Verify in FEM": the actions of the Analysis > FEM tab and the Champions list, and the per-frame
-// hand-off from the verifier's worker (app/gui/session/fem_verifier.hpp, docs/studio.md).
+// "Verify in FEM": the actions of the Analysis > FEM tab and the Champions and Population lists,
+// and the per-frame hand-off from the verifier's worker (app/gui/session/fem_verifier.hpp,
+// docs/studio.md).
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -69,6 +70,28 @@ bool verify_champion(Studio& studio, const ChampionEntry& entry) {
         set_status(studio, e.what(), true);
         return false;
     }
+}
+
+bool verify_individual(Studio& studio, std::int64_t id) {
+    if (!studio.run) return false;
+    if (studio.fem_verifier.running()) {
+        set_status(studio, "a verification is running: cancel it first", true);
+        return false;
+    }
+    // The member's own framed body, as its row simulates it; select_individual says why not.
+    const auto run = studio.run;  // held: the snapshot outlives a newer one taken meanwhile
+    const auto it = std::find_if(run->population.begin(), run->population.end(),
+                                 [id](const PopulationMember& m) { return m.id == id; });
+    if (!select_individual(studio, id) || it == run->population.end() || !it->body) return false;
+    const PopulationMember& m = *it;
+    FemVerifyRequest request;
+    request.id = id;
+    request.label =
+        "individual #" + std::to_string(id) + " of generation " + std::to_string(run->generation);
+    request.experiment = run->experiment;
+    request.framed_body = m.body;
+    request.run_dir = run->run_dir;
+    return start_verification(studio, std::move(request));
 }
 
 void cancel_verification(Studio& studio) {

@@ -18,7 +18,7 @@
 namespace bhm::evo {
 
 struct VerifyOptions {
-    FemMeshOptions mesh;  // C3D8I, 2 per voxel edge: 0.2 % of a mesh 8x finer (docs/verify.md)
+    FemMeshOptions mesh;  // C3D8I, 2 per voxel edge: 0.3 % of a mesh 8x finer (docs/verify.md)
     bool nlgeom = false;  //!< geometrically nonlinear steps (slow: off by default, docs/verify.md)
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)

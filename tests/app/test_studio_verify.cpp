@@ -1,10 +1,12 @@
 // Verify in FEM in the studio (issue 27, docs/studio.md): the worker publishes its phases and
-// lands the report in the run directory, Cancel kills the ccx child and leaves nothing behind, a
-// missing ccx is said at once in the panel, and a headless session verifies the champion, draws
-// the FEM's shape as a ghost and finds the report again when the run is reopened.
+// lands the report in the run directory, Cancel kills the ccx child (or stops our engine's run)
+// and leaves nothing behind, a missing ccx is said at once in the panel, a headless session
+// verifies the champion or a Population row, draws the FEM's shape as a ghost and finds the
+// report again when the run is reopened, and a crash's partial folders are cleared.
 // The CalculiX cases skip (loudly) only where ccx is not installed.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "app/gui/headless_session.hpp"
@@ -84,6 +87,22 @@ bool partial_left(const fs::path& verify_dir) {
     for (const auto& entry : fs::directory_iterator(verify_dir))
         if (entry.path().filename().string().find(".partial") != std::string::npos) return true;
     return false;
+}
+
+// A pid that is surely gone: a child that has exited and been reaped.
+long dead_pid() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    REQUIRE(child > 0);
+    ::waitpid(child, nullptr, 0);
+    return static_cast<long>(child);
+}
+
+// A folder holding one file, as a half-written report is.
+fs::path make_folder(const fs::path& path) {
+    fs::create_directories(path);
+    std::ofstream(path / "report.json") << "{}";
+    return path;
 }
 
 // Sets PATH for the scope (the missing-ccx cases), then puts it back.
@@ -280,4 +299,161 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
     CHECK_FALSE(again.verification->fem_shape.empty());
     const auto it = again.widgets.find("fem verdict");
     CHECK((it != again.widgets.end() && it->second.frame == again.frame));
+}
+
+TEST_CASE("studio verify: Cancel during our engine's run stops within a slice, writes nothing") {
+    if (skip_without_ccx()) return;
+    const auto dir = testing::fresh_dir("verify-cancel-engine");
+    auto request = bilayer_request({20, 4, 4}, dir);
+    // One C3D8I per voxel: CalculiX is done in about a second. Our engine is asked for a rest
+    // closer than it comes within a slice for seconds (no relative tolerance), so that its phase
+    // lasts long enough for the cancel to land in it, not after it: uncancelled, its three loads
+    // took 24 s on the shared 2-core build machine.
+    request.options.mesh.subdivision = 1;
+    request.options.engine.tolerance = 0.0;
+    request.options.engine.max_time_s = 30.0;
+    FemVerifier verifier;
+    REQUIRE(verifier.start(request));
+    bool in_engine = false;
+    const auto start = Clock::now();
+    while (verifier.running() && !in_engine && Clock::now() - start < std::chrono::seconds(120)) {
+        const auto st = verifier.state();
+        in_engine = st && st->progress.phase == evo::VerifyPhase::Engine;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    REQUIRE_MESSAGE(in_engine, "our engine's phase was never seen");
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // well inside its slices
+    REQUIRE(verifier.running());
+    const auto before = verifier.state();
+    REQUIRE(before->progress.phase == evo::VerifyPhase::Engine);
+    const auto cancelled_at = Clock::now();
+    verifier.cancel();
+    while (verifier.running() && Clock::now() - cancelled_at < std::chrono::seconds(60))
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const double took = std::chrono::duration<double>(Clock::now() - cancelled_at).count();
+    MESSAGE("cancel during '" << before->step << "' took " << took << " s");
+    const auto st = verifier.state();
+    REQUIRE(st);
+    CHECK(st->phase == FemVerifyPhase::Cancelled);  // not Finished: the run did not go on
+    CHECK(took < 1.0);
+    CHECK_FALSE(fs::exists(dir / "verify" / "individual-7"));
+    CHECK_FALSE(partial_left(dir / "verify"));
+}
+
+TEST_CASE("studio verify: stale partial folders are removed, a live writer's and reports kept") {
+    const auto dir = testing::fresh_dir("verify-stale");
+    const fs::path v = dir / "verify";
+    const auto aged = [](const fs::path& p) {
+        fs::last_write_time(p, fs::file_time_type::clock::now() - std::chrono::hours(2));
+        return p;
+    };
+    const std::string me = std::to_string(::getpid());
+    const auto dead =
+        make_folder(v / (".individual-3.partial-" + std::to_string(dead_pid()) + "-aB3dE9"));
+    const auto mine = make_folder(v / (".individual-4.partial-" + me + "-aB3dE9"));
+    const auto live = make_folder(v / ".individual-5.partial-1-aB3dE9");  // pid 1 lives
+    const auto old_unnamed = aged(make_folder(v / ".individual-6.partial-Xy12Zw"));
+    const auto young_unnamed = make_folder(v / ".individual-8.partial-Xy12Zw");
+    const auto old_mine = aged(make_folder(v / (".individual-10.partial-" + me + "-Qq1Qq1")));
+    const auto report = aged(make_folder(v / "individual-9"));
+    const auto hidden = aged(make_folder(v / ".notes"));
+    CHECK(remove_stale_partials(dir.string()) == 3);
+    CHECK_FALSE(fs::exists(dead));         // its writer is gone
+    CHECK_FALSE(fs::exists(old_unnamed));  // older than any write
+    CHECK_FALSE(fs::exists(old_mine));
+    CHECK(fs::exists(mine / "report.json"));  // this process may be writing it
+    CHECK(fs::exists(live / "report.json"));
+    CHECK(fs::exists(young_unnamed / "report.json"));
+    CHECK(fs::exists(report / "report.json"));  // a finished report is never touched
+    CHECK(fs::exists(hidden / "report.json"));
+    CHECK(remove_stale_partials(dir.string()) == 0);
+    CHECK(remove_stale_partials((dir / "nowhere").string()) == 0);
+    CHECK(remove_stale_partials("") == 0);
+}
+
+TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept on disk") {
+    if (skip_without_ccx()) return;
+    const auto dir = testing::fresh_dir("verify-population");
+    const fs::path run_dir = dir / "run";
+    std::int64_t id = -1;
+    std::string verdict;
+    {
+        Studio studio;
+        studio.document.reset(testing::tiny_experiment({4, 2, 2}), "");
+        studio.run_dir_field = run_dir.string();
+        HeadlessStudio session(studio, 1024, 800);
+        run_script(session, json::parse(R"([{"click": "Start"},
+                                            {"wait_run": "finished", "timeout_s": 240},
+                                            {"click": "tab Population"}, {"frames": 2}])"));
+        REQUIRE(studio.run);
+        // A member other than the champion: its row, not the champion's, is what is verified.
+        for (const auto& m : studio.run->population)
+            if (m.body && !(studio.run->has_champion && m.id == studio.run->champion.id)) {
+                id = m.id;
+                break;
+            }
+        REQUIRE(id >= 0);
+        const std::string button = "verify #" + std::to_string(id);
+        run_script(session, json::array({{{"click", button}},
+                                         {{"wait_verify", true}, {"timeout_s", 120}},
+                                         {{"wait_simulation", true}, {"timeout_s", 120}},
+                                         {{"click", "tab FEM"}},
+                                         {{"frames", 2}}}));
+        REQUIRE(studio.fem_state);
+        INFO("error: " << studio.fem_state->error);
+        CHECK(studio.fem_state->phase == FemVerifyPhase::Finished);
+        CHECK(studio.fem_state->id == id);
+        CHECK(studio.fem_state->label.rfind("individual #" + std::to_string(id), 0) == 0);
+        REQUIRE(studio.shown);
+        CHECK(studio.shown->id == id);  // the row's body is shown as well
+        REQUIRE_MESSAGE(studio.verification, studio.status);
+        CHECK(studio.verification->id == id);
+        verdict = studio.verification->verdict;
+        CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
+        const auto it = studio.widgets.find("fem verdict");
+        CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+    }
+    // A crash's leftover beside the report: opening the run clears it, the report stays.
+    const auto crashed = make_folder(
+        run_dir / "verify" / (".individual-99.partial-" + std::to_string(dead_pid()) + "-zZ9zZ9"));
+    Studio again;
+    REQUIRE(open_run_directory(again, run_dir.string()));
+    CHECK_FALSE(fs::exists(crashed));
+    // A reopened run directory lists only its champions (the population is in the checkpoint),
+    // so the member's report is read back here as the panel would read it.
+    const auto kept = read_verification(verification_dir(run_dir.string(), id), id);
+    REQUIRE(kept);
+    CHECK(kept->verdict == verdict);
+}
+
+TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {
+    // A report as Verify in FEM writes it (the 20x2x2 bilayer of the phases case above, kept in
+    // tests/data): the panel draws it without solving anything, so the picture is the same on
+    // every machine. Only the Analysis tile is compared: the other tiles have their own goldens.
+    auto kept = read_verification(
+        (fs::path(BHM_SOURCE_DIR) / "tests" / "data" / "verify" / "individual-7").string(), 7);
+    REQUIRE(kept);
+    REQUIRE(kept->rows.size() == 3);
+    kept->dir = "RUN_DIR/verify/individual-7";  // the checkout's path would differ per machine
+    Studio studio;
+    studio.verification = std::make_shared<const FemVerification>(std::move(*kept));
+    studio.fem_load = 1;
+    HeadlessStudio session(studio, 1280, 900);
+    run_script(session, json::parse(R"([{"click": "tab FEM"}, {"frames": 3}])"));
+    for (const char* widget :
+         {"fem verdict", "fem ghost", "fem load rest", "fem load +A", "fem load -A"}) {
+        const auto it = studio.widgets.find(widget);
+        CHECK_MESSAGE((it != studio.widgets.end() && it->second.frame == studio.frame), widget);
+    }
+    const auto tile = studio.widgets.at("analysis panel");
+    const render::Image screen = session.capture();
+    const int x0 = static_cast<int>(tile.min.x), y0 = static_cast<int>(tile.min.y);
+    const int x1 = std::min(screen.width, static_cast<int>(tile.max.x));
+    const int y1 = std::min(screen.height, static_cast<int>(tile.max.y));
+    REQUIRE(x1 - x0 > 100);
+    REQUIRE(y1 - y0 > 100);
+    render::Image panel(x1 - x0, y1 - y0);
+    for (int y = y0; y < y1; ++y)
+        std::copy_n(screen.pixel(x0, y), 4 * panel.width, panel.pixel(0, y - y0));
+    testing::check_studio_golden("fem", panel, session.font());
 }

@@ -1,5 +1,6 @@
 // The Fitness panel (the plot) and the Population panel: the current population with the Pareto
-// front marked; a click on a row simulates that individual for the 3D view.
+// front marked; a click on a row simulates that individual for the 3D view, its "FEM" button
+// verifies it (Analysis > FEM).
 #include <algorithm>
 #include <cstdio>
 
@@ -129,7 +130,7 @@ void draw_population_panel(Studio& s) {
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
     // Novelty search selects on novelty: its members show it beside their fitness.
     const bool novelty = run.experiment.evolution.algorithm == evo::Algorithm::Novelty;
-    if (!ImGui::BeginTable("population", novelty ? 8 : 7, flags, ImGui::GetContentRegionAvail()))
+    if (!ImGui::BeginTable("population", novelty ? 9 : 8, flags, ImGui::GetContentRegionAvail()))
         return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("id");
@@ -141,6 +142,7 @@ void draw_population_panel(Studio& s) {
     ImGui::TableSetupColumn("active");
     ImGui::TableSetupColumn(neat ? "species" : "front");
     ImGui::TableSetupColumn("flags");
+    ImGui::TableSetupColumn("");
     ImGui::TableHeadersRow();
     for (const auto& m : run.population) {
         ImGui::TableNextRow();
@@ -148,7 +150,10 @@ void draw_population_panel(Studio& s) {
         char id[48];
         std::snprintf(id, sizeof id, "#%lld", static_cast<long long>(m.id));
         const bool selected = s.shown && s.shown->id == m.id;
-        if (ImGui::Selectable(id, selected, ImGuiSelectableFlags_SpanAllColumns))
+        // The row shows it; the "FEM" button at its end (drawn over the row) verifies it.
+        if (ImGui::Selectable(
+                id, selected,
+                ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap))
             select_individual(s, m.id);
         record_widget(s, std::string("individual ") + id);
         ImGui::TableNextColumn();
@@ -179,6 +184,15 @@ void draw_population_panel(Studio& s) {
             ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
         ImGui::TableNextColumn();
         exploit_cell(s, m.exploits, std::string("flags ") + id);
+        ImGui::TableNextColumn();
+        ImGui::PushID(id);
+        ImGui::BeginDisabled(s.fem_verifier.running() || !m.body);
+        if (ImGui::SmallButton("FEM")) verify_individual(s, m.id);
+        ImGui::EndDisabled();
+        record_widget(s, std::string("verify ") + id);
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("show it and verify it in FEM (Analysis > FEM)");
+        ImGui::PopID();
     }
     ImGui::EndTable();
 }

@@ -7,7 +7,10 @@
 #include <stdexcept>
 #include <system_error>
 
+#include <cerrno>
+
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -60,7 +63,50 @@ void move_into_place(const fs::path& partial, const fs::path& final_dir) {
     fs::rename(partial, final_dir);
 }
 
+// The writer's pid in a partial folder's name (".individual-7.partial-1234-AbC123"); -1 when the
+// name has none (written before the pid was part of it).
+long partial_owner(const std::string& name) {
+    const std::string tag = ".partial-";
+    const auto at = name.find(tag);
+    if (name.empty() || name[0] != '.' || at == std::string::npos) return -1;
+    const auto digits = at + tag.size();
+    const auto dash = name.find('-', digits);
+    if (dash == std::string::npos || dash == digits) return -1;
+    const std::string pid = name.substr(digits, dash - digits);
+    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) return -1;
+    return std::stol(pid);
+}
+
+bool process_gone(long pid) {
+    return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
 }  // namespace
+
+int remove_stale_partials(const std::string& run_dir) {
+    if (run_dir.empty()) return 0;
+    const fs::path verify_dir = fs::path(run_dir) / "verify";
+    std::error_code ec;
+    fs::directory_iterator it(verify_dir, ec);
+    if (ec) return 0;
+    const auto now = fs::file_time_type::clock::now();
+    int removed = 0;
+    for (const auto& entry : it) {
+        const std::string name = entry.path().filename().string();
+        if (name.empty() || name[0] != '.' || name.find(".partial-") == std::string::npos ||
+            !entry.is_directory(ec))
+            continue;
+        const long owner = partial_owner(name);
+        const auto modified = fs::last_write_time(entry.path(), ec);
+        const bool old =
+            !ec && std::chrono::duration<double>(now - modified).count() > kStalePartialAge_s;
+        const bool orphan =
+            owner > 0 && owner != static_cast<long>(::getpid()) && process_gone(owner);
+        if (!old && !orphan) continue;
+        if (fs::remove_all(entry.path(), ec) != static_cast<std::uintmax_t>(-1) && !ec) ++removed;
+    }
+    return removed;
+}
 
 std::string verification_dir(const std::string& run_dir, std::int64_t id) {
     return (fs::path(run_dir) / "verify" / ("individual-" + std::to_string(id))).string();
@@ -160,6 +206,7 @@ void FemVerifier::work(FemVerifyRequest request, FemVerifyState state) {
             .count();
     };
     fs::path partial;
+    remove_stale_partials(request.run_dir);  // what a crash of an earlier one left
     try {
         evo::VerifyOptions options = request.options;
         options.control.cancel = &cancel_;
@@ -176,8 +223,10 @@ void FemVerifier::work(FemVerifyRequest request, FemVerifyState state) {
         publish();
         const fs::path final_dir = verification_dir(request.run_dir, request.id);
         fs::create_directories(final_dir.parent_path());
+        // The pid in the name: a later session removes it only once this process is gone.
         std::string pattern =
-            (final_dir.parent_path() / ("." + final_dir.filename().string() + ".partial-XXXXXX"))
+            (final_dir.parent_path() / ("." + final_dir.filename().string() + ".partial-" +
+                                        std::to_string(::getpid()) + "-XXXXXX"))
                 .string();
         if (::mkdtemp(pattern.data()) == nullptr)
             throw std::runtime_error("cannot create a folder in " +

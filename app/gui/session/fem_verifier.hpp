@@ -56,6 +56,19 @@ std::string verification_dir(const std::string& run_dir, std::int64_t id);
 //! naming the file when one is unreadable.
 std::optional<FemVerification> read_verification(const std::string& dir, std::int64_t id);
 
+//! A partial folder this old is stale whoever wrote it: one lives only while a finished
+//! verification's report is written (about a second), never during the solve.
+inline constexpr double kStalePartialAge_s = 600.0;
+
+//! Removes what a crash left in RUN_DIR/verify/: the hidden folders a report is written into
+//! (`.individual-<id>.partial-<pid>-XXXXXX`) whose writer process is gone, and any (also of the
+//! older name without a pid) last modified more than kStalePartialAge_s ago. This process's own
+//! young ones are kept (its worker removes them itself), as are those of a live process; the
+//! finished reports are never touched. Errors are ignored (a read-only run directory stays as it
+//! is). Returns how many it removed. Called when a run directory is opened and when a
+//! verification starts.
+int remove_stale_partials(const std::string& run_dir);
+
 struct FemVerifyRequest {
     std::int64_t id = -1;
     std::string label;  //!< "champion #412 of generation 37"
