@@ -212,6 +212,10 @@ bool start_run(Studio& studio) {
         set_status(studio, "a run is already going: stop it first", true);
         return false;
     }
+    if (studio.welcome_open) {  // F5 too: the newcomer chooses an experiment first
+        set_status(studio, "choose an experiment in the welcome first (or close it)", true);
+        return false;
+    }
     // Absolute, so the run is found again whatever folder the studio was started from.
     std::string dir = studio.run_dir_field.empty()
                           ? fresh_run_dir(studio.document.experiment(), default_runs_root())
