@@ -25,10 +25,14 @@ std::optional<std::string> choose(FileDialog& d, const std::string& path) {
 
 const char* file_dialog_title(FileDialogPurpose purpose) {
     switch (purpose) {
-        case FileDialogPurpose::OpenExperiment: return "Open experiment";
-        case FileDialogPurpose::SaveExperimentAs: return "Save experiment as";
-        case FileDialogPurpose::OpenRun: return "Open run directory";
-        case FileDialogPurpose::CompareRun: return "Compare with run directory";
+        case FileDialogPurpose::OpenExperiment:
+            return "Open experiment";
+        case FileDialogPurpose::SaveExperimentAs:
+            return "Save experiment as";
+        case FileDialogPurpose::OpenRun:
+            return "Open run directory";
+        case FileDialogPurpose::CompareRun:
+            return "Compare with run directory";
     }
     return "";
 }
@@ -50,8 +54,8 @@ std::vector<FileDialogEntry> file_dialog_entries(const std::string& dir, FileDia
                        fs::path(path).filename().string() + "/", path});
     if (!purpose_wants_run(purpose))
         for (const auto& path : listing.experiments)
-            out.push_back({FileDialogEntry::Kind::Experiment, fs::path(path).filename().string(),
-                           path});
+            out.push_back(
+                {FileDialogEntry::Kind::Experiment, fs::path(path).filename().string(), path});
     return out;
 }
 
@@ -149,9 +153,9 @@ std::optional<std::string> file_dialog_key(FileDialog& d, FileDialogKey key) {
             return std::nullopt;
         case FileDialogKey::Enter: {
             // A typed name wins unless it is the selected file's own name (Save As fills it).
-            const bool typed = !d.name.empty() &&
-                               (d.selected < 0 || d.selected >= n ||
-                                d.entries[static_cast<std::size_t>(d.selected)].name != d.name);
+            const bool typed =
+                !d.name.empty() && (d.selected < 0 || d.selected >= n ||
+                                    d.entries[static_cast<std::size_t>(d.selected)].name != d.name);
             if (typed) return file_dialog_accept_typed(d);
             if (d.selected >= 0 && d.selected < n)
                 return file_dialog_activate(d, static_cast<std::size_t>(d.selected));

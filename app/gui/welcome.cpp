@@ -20,14 +20,12 @@ namespace {
 // needs one line a newcomer can choose from. Their full text stays in the card's tooltip.
 const std::map<std::string, std::string>& shipped_captions() {
     static const std::map<std::string, std::string> captions = {
-        {"quick-demo",
-         "a small bending actuator: 5 generations in about two minutes"},
+        {"quick-demo", "a small bending actuator: 5 generations in about two minutes"},
         {"multi-material", "the quick demo with a third, stiffer scaffold material"},
         {"biohybrid-catheter",
          "a catheter tip of Ecoflex and engineered muscle that bends (quick budget)"},
         {"paper-exp1", "paper experiment 1: move the centre of mass, 8x8x7 (48 h)"},
-        {"paper-exp1-attached",
-         "paper experiment 1, the body attached to the fixed face (48 h)"},
+        {"paper-exp1-attached", "paper experiment 1, the body attached to the fixed face (48 h)"},
         {"paper-exp2", "paper experiment 2: a longer 20x8x7 workspace, tentacles may cheat (48 h)"},
         {"paper-exp3", "paper experiment 3: inside a passive enclosure, YZ displacement (48 h)"},
     };
@@ -96,10 +94,12 @@ bool open_welcome(Studio& s) {
 const std::vector<LegendEntry>& view_legend() {
     using namespace render::palette;
     static const std::vector<LegendEntry> legend = {
-        {{kFixedFace.r, kFixedFace.g, kFixedFace.b}, "face",
+        {{kFixedFace.r, kFixedFace.g, kFixedFace.b},
+         "face",
          "green face: fixed (the body is held there)"},
         {{kFreeFace.r, kFreeFace.g, kFreeFace.b}, "face", "purple face: free"},
-        {{kEnclosure.r * 0.8f, kEnclosure.g * 0.8f, kEnclosure.b * 0.8f}, "cell",
+        {{kEnclosure.r * 0.8f, kEnclosure.g * 0.8f, kEnclosure.b * 0.8f},
+         "cell",
          "grey translucent cell: the enclosure frame"},
         {{0.25f, 0.25f, 0.28f}, "cell", "dark cell: forbidden, evolution may not fill it"},
         {{kFixedHatch.r, kFixedHatch.g, kFixedHatch.b}, "hatch", "hatched: held voxels"},
@@ -107,8 +107,7 @@ const std::vector<LegendEntry>& view_legend() {
         {{kPassive.r, kPassive.g, kPassive.b}, "cell", "blue voxel: passive tissue"},
         {{kStar.r, kStar.g, kStar.b}, "star", "yellow star: the body's cell (0, 0, 0)"},
         {{kComTrail.r, kComTrail.g, kComTrail.b}, "line", "orange line: centre-of-mass trail"},
-        {{0.93f, 0.49f, 0.13f}, "box",
-         "orange box: the voxel clicked in Simulation mode"},
+        {{0.93f, 0.49f, 0.13f}, "box", "orange box: the voxel clicked in Simulation mode"},
     };
     return legend;
 }

@@ -13,8 +13,8 @@ void WelcomeThumbnails::ensure(ViewRenderer& renderer, const std::vector<PresetC
         const render::DrawList list =
             workspace_draw_list(card.experiment, PainterState{}, nullptr, true);
         render::Camera camera = iso_camera();
-        render::frame_bounds(camera, list.workspace_bounds.valid ? list.workspace_bounds
-                                                                 : list.bounds,
+        render::frame_bounds(camera,
+                             list.workspace_bounds.valid ? list.workspace_bounds : list.bounds,
                              static_cast<float>(width_px) / static_cast<float>(height_px));
         auto target = std::make_unique<GlFramebuffer>();
         renderer.draw_to_framebuffer(list, camera, *target, width_px, height_px, 4);

@@ -26,7 +26,10 @@ std::size_t colours_in(const render::Image& image, const WidgetRect& r) {
     std::set<std::uint32_t> seen;
     for (int y = static_cast<int>(r.min.y) + 2; y < static_cast<int>(r.max.y) - 2; ++y)
         for (int x = static_cast<int>(r.min.x) + 2; x < static_cast<int>(r.max.x) - 2; ++x) {
-            const auto* p = &image.rgba[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x))];
+            const std::size_t at =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                static_cast<std::size_t>(x);
+            const auto* p = &image.rgba[4 * at];
             seen.insert(static_cast<std::uint32_t>(p[0] | (p[1] << 8) | (p[2] << 16)));
         }
     return seen.size();

@@ -21,10 +21,6 @@ namespace {
 
 constexpr int kThumbW = 168, kThumbH = 104;
 
-void record_last(Studio& s, const std::string& name) {
-    record_widget(s, name);
-}
-
 // One card: the thumbnail over the name and its line; the whole card is one button.
 void card(Studio& s, std::size_t i, unsigned texture, float width) {
     const PresetCard& c = s.welcome_cards[i];
@@ -35,7 +31,7 @@ void card(Studio& s, std::size_t i, unsigned texture, float width) {
     const float text_h = ImGui::GetTextLineHeightWithSpacing() * 4.0f;
     const bool chosen =
         ImGui::Selectable("##card", false, 0, ImVec2(width, kThumbH + text_h + 6.0f));
-    record_last(s, "welcome preset " + c.stem);
+    record_widget(s, "welcome preset " + c.stem);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s\n\n%s", c.path.c_str(), c.description.c_str());
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -47,8 +43,8 @@ void card(Studio& s, std::size_t i, unsigned texture, float width) {
             WidgetRect{{img.x, img.y}, {img.x + kThumbW, img.y + kThumbH}, s.frame};
     }
     dl->AddRect(img, {img.x + kThumbW, img.y + kThumbH},
-                start_here ? IM_COL32(190, 110, 0, 255) : IM_COL32(0, 0, 0, 40),
-                3.0f, 0, start_here ? 2.0f : 1.0f);
+                start_here ? IM_COL32(190, 110, 0, 255) : IM_COL32(0, 0, 0, 40), 3.0f, 0,
+                start_here ? 2.0f : 1.0f);
     const ImU32 dark = IM_COL32(30, 34, 40, 255);
     const std::string title = start_here ? "start here: quick demo" : c.stem;
     dl->AddText({at.x + 4.0f, img.y + kThumbH + 4.0f},
@@ -77,7 +73,8 @@ void legend(Studio& s) {
     for (std::size_t k = 0; k < entries.size(); ++k) {
         const auto& e = entries[k];
         const ImVec2 at{start.x + (k < rows ? 0.0f : column), start.y + line * float(k % rows)};
-        const ImU32 colour = ImGui::ColorConvertFloat4ToU32(ImVec4(e.rgb[0], e.rgb[1], e.rgb[2], 1));
+        const ImU32 colour =
+            ImGui::ColorConvertFloat4ToU32(ImVec4(e.rgb[0], e.rgb[1], e.rgb[2], 1));
         const ImVec2 lo{at.x, at.y + 2.0f}, hi{at.x + box, at.y + 2.0f + box};
         const std::string mark = e.mark;
         if (mark == "star") {
@@ -88,9 +85,11 @@ void legend(Studio& s) {
                 const float a = -1.5708f + 0.6283f * float(j);
                 p[j] = {c.x + r * std::cos(a), c.y + r * std::sin(a)};
             }
-            for (int j = 0; j < 10; j += 2)
-                dl->AddTriangleFilled(c, p[j], p[(j + 1) % 10], colour),
-                    dl->AddTriangleFilled(c, p[(j + 9) % 10], p[j], colour);
+            // Each point: the triangles to the inner corners on either side of it.
+            for (int j = 0; j < 10; j += 2) {
+                dl->AddTriangleFilled(c, p[j], p[(j + 1) % 10], colour);
+                dl->AddTriangleFilled(c, p[(j + 9) % 10], p[j], colour);
+            }
         } else if (mark == "line") {
             dl->AddLine({lo.x, (lo.y + hi.y) * 0.5f}, {hi.x, (lo.y + hi.y) * 0.5f}, colour, 3.0f);
         } else if (mark == "box") {
@@ -147,15 +146,14 @@ void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& t
         "evolution, watch the champion bend. Choose an experiment to start from (the quick demo "
         "is open behind this window); Start waits until you have chosen.");
     // The gallery and legend scroll; the buttons under them stay in sight.
-    const float footer = ImGui::GetFrameHeightWithSpacing() + ImGui::GetStyle().ItemSpacing.y * 2.0f;
+    const float footer =
+        ImGui::GetFrameHeightWithSpacing() + ImGui::GetStyle().ItemSpacing.y * 2.0f;
     ImGui::BeginChild("welcome body", ImVec2(0, -footer));
     section_title("Presets");
-    if (s.welcome_cards.empty())
-        ImGui::TextDisabled("no presets in %s", s.presets_dir.c_str());
+    if (s.welcome_cards.empty()) ImGui::TextDisabled("no presets in %s", s.presets_dir.c_str());
     const float card_w = kThumbW + 24.0f;
-    const int per_row =
-        std::max(1, static_cast<int>(ImGui::GetContentRegionAvail().x /
-                                     (card_w + ImGui::GetStyle().ItemSpacing.x)));
+    const int per_row = std::max(1, static_cast<int>(ImGui::GetContentRegionAvail().x /
+                                                     (card_w + ImGui::GetStyle().ItemSpacing.x)));
     for (std::size_t i = 0; i < s.welcome_cards.size() && s.welcome_open; ++i) {
         if (i % static_cast<std::size_t>(per_row) != 0) ImGui::SameLine();
         card(s, i, thumbnails.texture(i), card_w);
@@ -168,8 +166,9 @@ void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& t
         request_new_experiment(s);
     }
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("the paper's materials on an 8x8x7 workspace held at x- "
-                          "(the paper's 2000 generations and 48 h: set the budget first)");
+        ImGui::SetTooltip(
+            "the paper's materials on an 8x8x7 workspace held at x- "
+            "(the paper's 2000 generations and 48 h: set the budget first)");
     ImGui::SameLine();
     if (tracked_button(s, "Close")) s.welcome_open = false;
     if (!open) s.welcome_open = false;

@@ -45,10 +45,14 @@ std::string parent_of(const std::string& path) {
 
 const char* ok_label(FileDialogPurpose purpose) {
     switch (purpose) {
-        case FileDialogPurpose::OpenExperiment: return "Open";
-        case FileDialogPurpose::SaveExperimentAs: return "Save";
-        case FileDialogPurpose::OpenRun: return "View";
-        case FileDialogPurpose::CompareRun: return "Compare";
+        case FileDialogPurpose::OpenExperiment:
+            return "Open";
+        case FileDialogPurpose::SaveExperimentAs:
+            return "Save";
+        case FileDialogPurpose::OpenRun:
+            return "View";
+        case FileDialogPurpose::CompareRun:
+            return "Compare";
     }
     return "OK";
 }
@@ -86,13 +90,24 @@ void take_file_dialog_keys(Studio& s) {
     for (const KeyChord& k : presses) {
         std::optional<FileDialogKey> key;
         switch (k.key) {
-            case GLFW_KEY_UP: key = FileDialogKey::Up; break;
-            case GLFW_KEY_DOWN: key = FileDialogKey::Down; break;
+            case GLFW_KEY_UP:
+                key = FileDialogKey::Up;
+                break;
+            case GLFW_KEY_DOWN:
+                key = FileDialogKey::Down;
+                break;
             case GLFW_KEY_ENTER:
-            case GLFW_KEY_KP_ENTER: key = FileDialogKey::Enter; break;
-            case GLFW_KEY_BACKSPACE: key = FileDialogKey::Backspace; break;
-            case GLFW_KEY_ESCAPE: key = FileDialogKey::Escape; break;
-            default: break;
+            case GLFW_KEY_KP_ENTER:
+                key = FileDialogKey::Enter;
+                break;
+            case GLFW_KEY_BACKSPACE:
+                key = FileDialogKey::Backspace;
+                break;
+            case GLFW_KEY_ESCAPE:
+                key = FileDialogKey::Escape;
+                break;
+            default:
+                break;
         }
         if (!key) continue;
         const FileDialogPurpose purpose = s.file_dialog.purpose;
@@ -123,13 +138,16 @@ void draw_file_dialog(Studio& s) {
     }
     {
         const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-        s.widgets["file dialog"] = WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+        s.widgets["file dialog"] =
+            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
     }
     ImGui::TextWrapped("%s", d.dir.c_str());
-    ImGui::TextDisabled(purpose_wants_run(d.purpose)
-                            ? "run directories [run]; Up/Down, Enter, Backspace: parent, Esc"
-                            : "folders and *.json experiments; Up/Down, Enter, Backspace: parent, Esc");
-    const float footer = ImGui::GetFrameHeightWithSpacing() * 2.0f + ImGui::GetTextLineHeightWithSpacing();
+    ImGui::TextDisabled(
+        purpose_wants_run(d.purpose)
+            ? "run directories [run]; Up/Down, Enter, Backspace: parent, Esc"
+            : "folders and *.json experiments; Up/Down, Enter, Backspace: parent, Esc");
+    const float footer =
+        ImGui::GetFrameHeightWithSpacing() * 2.0f + ImGui::GetTextLineHeightWithSpacing();
     std::optional<std::string> chosen;
     const FileDialogPurpose purpose = d.purpose;
     ImGui::BeginChild("entries", ImVec2(0, -footer), true);
@@ -155,9 +173,10 @@ void draw_file_dialog(Studio& s) {
         char buffer[1024];
         std::snprintf(buffer, sizeof buffer, "%s", d.name.c_str());
         ImGui::SetNextItemWidth(-1.0f);
-        if (ImGui::InputTextWithHint("##dialog name", purpose == FileDialogPurpose::SaveExperimentAs
-                                                           ? "file name (.json)"
-                                                           : "or type a path",
+        if (ImGui::InputTextWithHint("##dialog name",
+                                     purpose == FileDialogPurpose::SaveExperimentAs
+                                         ? "file name (.json)"
+                                         : "or type a path",
                                      buffer, sizeof buffer))
             d.name = buffer;
         record_widget(s, "dialog name");
