@@ -7,7 +7,7 @@
 namespace bhm::app::gui {
 
 void WelcomeThumbnails::ensure(ViewRenderer& renderer, const std::vector<PresetCard>& cards,
-                               int width_px, int height_px) {
+                               int width_px, int height_px, int samples) {
     while (targets_.size() < cards.size()) {
         const PresetCard& card = cards[targets_.size()];
         const render::DrawList list =
@@ -17,7 +17,7 @@ void WelcomeThumbnails::ensure(ViewRenderer& renderer, const std::vector<PresetC
                              list.workspace_bounds.valid ? list.workspace_bounds : list.bounds,
                              static_cast<float>(width_px) / static_cast<float>(height_px));
         auto target = std::make_unique<GlFramebuffer>();
-        renderer.draw_to_framebuffer(list, camera, *target, width_px, height_px, 4);
+        renderer.draw_to_framebuffer(list, camera, *target, width_px, height_px, samples);
         targets_.push_back(std::move(target));
     }
 }

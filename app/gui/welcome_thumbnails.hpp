@@ -15,8 +15,9 @@ class ViewRenderer;
 class WelcomeThumbnails {
   public:
     //! Renders the cards not rendered yet (needs the current GL context); cheap afterwards.
+    //! `samples`: the 3D view's (1 on a software rasterizer, where 4 cost about twice as much).
     void ensure(ViewRenderer& renderer, const std::vector<PresetCard>& cards, int width_px,
-                int height_px);
+                int height_px, int samples);
     //! The GL texture of card i (bottom row first), 0 when not rendered.
     unsigned texture(std::size_t i) const;
     std::size_t rendered() const { return targets_.size(); }

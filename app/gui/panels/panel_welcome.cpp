@@ -120,7 +120,7 @@ void legend(Studio& s) {
 
 void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& thumbnails) {
     if (!s.welcome_open) return;
-    thumbnails.ensure(renderer, s.welcome_cards, kThumbW, kThumbH);
+    thumbnails.ensure(renderer, s.welcome_cards, kThumbW, kThumbH, s.view.samples);
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     const float font = ImGui::GetFontSize();
     ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always,
