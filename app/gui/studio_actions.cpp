@@ -622,7 +622,9 @@ void update_studio(Studio& studio) {
         studio.compared = studio.compare_simulator.latest();
         studio.view.camera_needs_framing = true;  // two bodies: frame both
         if (studio.compared && simulating_status(studio))
-            set_status(studio, "beside it (+y): " + studio.compared->label);
+            set_status(studio, std::string(studio.view.split ? "beside it (the right pane): "
+                                                             : "beside it (+y): ") +
+                                   studio.compared->label);
     }
     for (const BodySimulator* sim : {&studio.simulator, &studio.compare_simulator})
         if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))
