@@ -220,7 +220,7 @@ def case_stop_time(bhm, rng):
     experiment = os.path.join(bhm.work, "stop-time.json")
     json.dump(slow, open(experiment, "w"))
     started = time.time()
-    run = bhm.start(["evolve", experiment, "--out", d, "--threads", "1"])
+    run = bhm.start(["evolve", experiment, "--out", d, "--threads", "1", "--generations", "100"])
     checkpoint = os.path.join(d, "checkpoint.json")
     deadline = time.time() + 120
     while not os.path.exists(checkpoint) and time.time() < deadline:
@@ -231,7 +231,8 @@ def case_stop_time(bhm, rng):
     seen = time.time()
     time.sleep(0.05)  # the rename is atomic; the file we read is whole
     first = json.load(open(checkpoint))["payload"]
-    time.sleep(1.5)  # well inside generation 1
+    # Well inside generation 1, whatever the machine's speed: 40 % of generation 0's time.
+    time.sleep(0.4 * (seen - started))
     signalled = time.time()
     run.send_signal(signal.SIGINT)
     run.wait(timeout=60)
