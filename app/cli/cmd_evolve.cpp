@@ -272,6 +272,15 @@ int evolve(ArgParser& args) {
                       << clock_text(run->wall_budget_s()) << ")\n";
             break;
         case evo::StopReason::StopRequested: {
+            // The abandoned generation's time stays on the clock, in the checkpoint too (as the
+            // studio's Stop does): a resumed run's elapsed time goes on from here, not back.
+            try {
+                run->keep_stopped_time();
+            } catch (const std::exception& e) {
+                std::cerr << "bhm evolve: warning: the stopped generation's time is not in the "
+                             "checkpoint: "
+                          << e.what() << "\n";
+            }
             // Say only what is on disk: the checkpoint of the last complete generation, if any.
             std::error_code ec;
             const std::string& checkpoint = run->checkpoint_path();

@@ -43,6 +43,9 @@ int studio_main(ArgParser& p) {
     } else if (!p.has("--headless")) {
         studio.settings_path = gui::default_settings_path();
     }
+    std::error_code exists_ec;
+    const bool settings_existed = !studio.settings_path.empty() &&
+                                  std::filesystem::exists(studio.settings_path, exists_ec);
     if (!studio.settings_path.empty()) {
         std::string warning;
         studio.settings = gui::load_settings(studio.settings_path, &warning);
@@ -61,6 +64,11 @@ int studio_main(ArgParser& p) {
             return 1;
         }
     }
+    // A first start (no settings file, or no recent experiment): the welcome, over the quick
+    // demo instead of an untitled paper-sized experiment.
+    if (p.positionals().empty() &&
+        gui::is_first_start(studio.settings_path, settings_existed, studio.settings))
+        gui::open_welcome(studio);
     const long long frames = p.get_int("--frames", 0);
     if (frames < 0 || frames > 10'000'000) throw UsageError("--frames: expected 0..10000000");
 

@@ -78,6 +78,7 @@ std::optional<KeyChord> parse_key_chord(const std::string& text) {
         {"space", GLFW_KEY_SPACE},   {"left", GLFW_KEY_LEFT},   {"right", GLFW_KEY_RIGHT},
         {"home", GLFW_KEY_HOME},     {"end", GLFW_KEY_END},     {"tab", GLFW_KEY_TAB},
         {"escape", GLFW_KEY_ESCAPE}, {"enter", GLFW_KEY_ENTER}, {"delete", GLFW_KEY_DELETE},
+        {"up", GLFW_KEY_UP},         {"down", GLFW_KEY_DOWN},   {"backspace", GLFW_KEY_BACKSPACE},
     };
     for (const auto& [name, key] : named)
         if (s == name) {

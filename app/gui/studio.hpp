@@ -16,6 +16,7 @@
 
 #include "app/gui/constraint_edits.hpp"
 #include "app/gui/experiment_document.hpp"
+#include "app/gui/file_dialog.hpp"
 #include "app/gui/key_bindings.hpp"
 #include "app/gui/picking.hpp"
 #include "app/gui/session/body_simulator.hpp"
@@ -28,6 +29,7 @@
 #include "app/gui/session/run_directory_watch.hpp"
 #include "app/gui/studio_paths.hpp"
 #include "app/gui/studio_settings.hpp"
+#include "app/gui/welcome.hpp"
 #include "app/gui/widgets/fitness_plot.hpp"
 #include "app/gui/widgets/tile_layout.hpp"
 #include "evo/experiment/material_library.hpp"
@@ -83,6 +85,19 @@ struct ViewState {
     bool show_start_beside = false;        //!< the t = 0 state as a ghost beside the current one
     ColorBy color_by = ColorBy::Material;  //!< simulation mode: material or a scalar field
     int samples = 4;                       //!< MSAA samples of the 3D view
+    //! A compared body (Analysis > Champions > beside) in a pane of its own right of the main
+    //! one, with its own camera; off: drawn one workspace further along +y in the same view.
+    bool split = true;
+    //! The compared pane shows the main camera's view, and its gestures move both.
+    bool link_cameras = true;
+    struct Pane {
+        render::Camera camera = iso_camera();
+        bool needs_framing = true;
+        float zoom = 1.0f;
+        glm::vec2 origin_px{0.0f}, size_px{0.0f};
+        bool dragging = false;
+        int drag_button = -1;
+    } second;
 };
 
 struct ExportState {
@@ -268,6 +283,12 @@ struct Studio {
     TileLayout tiles;  //!< this frame's tile sizes (fit_layout of the settings' preferences)
     //! A narrow window folds the left column into a strip: its panels open over the 3D view.
     bool design_open = false;
+    //! The welcome of a first start (welcome.hpp): the presets' gallery and the legend; Start
+    //! waits until it is closed.
+    bool welcome_open = false;
+    std::vector<PresetCard> welcome_cards;
+    //! Open... / Save As... / Open run... / Compare... (file_dialog.hpp).
+    FileDialog file_dialog;
 };
 
 }  // namespace bhm::app::gui

@@ -212,6 +212,10 @@ bool start_run(Studio& studio) {
         set_status(studio, "a run is already going: stop it first", true);
         return false;
     }
+    if (studio.welcome_open) {  // F5 too: the newcomer chooses an experiment first
+        set_status(studio, "choose an experiment in the welcome first (or close it)", true);
+        return false;
+    }
     // Absolute, so the run is found again whatever folder the studio was started from.
     std::string dir = studio.run_dir_field.empty()
                           ? fresh_run_dir(studio.document.experiment(), default_runs_root())
@@ -620,7 +624,9 @@ void update_studio(Studio& studio) {
         studio.compared = studio.compare_simulator.latest();
         studio.view.camera_needs_framing = true;  // two bodies: frame both
         if (studio.compared && simulating_status(studio))
-            set_status(studio, "beside it (+y): " + studio.compared->label);
+            set_status(studio, std::string(studio.view.split ? "beside it (the right pane): "
+                                                             : "beside it (+y): ") +
+                                   studio.compared->label);
     }
     for (const BodySimulator* sim : {&studio.simulator, &studio.compare_simulator})
         if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))

@@ -13,6 +13,7 @@
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/unsaved_guard.hpp"
+#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/tile_layout.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -183,6 +184,7 @@ void StudioApp::build_frame(double wall_dt_s) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - update_start).count();
     s.max_update_ms = std::max(s.max_update_ms, update_ms);
     update_pending_action(s);
+    take_file_dialog_keys(s);  // an open dialog takes the keys first
     dispatch_key_bindings(s);
     layout_and_panels();
     draw_confirm_dialogs(s);
@@ -303,6 +305,8 @@ void StudioApp::layout_and_panels() {
     ImGui::End();
 
     draw_help_window(s);
+    draw_welcome_window(s, renderer_, thumbnails_);
+    draw_file_dialog(s);
 }
 
 void store_view_settings(Studio& s) {

@@ -9,6 +9,7 @@
 
 #include "app/gui/studio.hpp"
 #include "app/gui/view_renderer.hpp"
+#include "app/gui/welcome_thumbnails.hpp"
 
 namespace bhm::app::gui {
 
@@ -37,6 +38,7 @@ class StudioApp {
     void layout_and_panels();
     Studio& studio_;
     ViewRenderer renderer_;
+    WelcomeThumbnails thumbnails_;  //!< the welcome's, rendered once
     bool design_just_opened_ = false;  //!< the folded left column opened this frame
 };
 

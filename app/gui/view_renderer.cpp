@@ -28,13 +28,25 @@ struct FramebufferRestore {
 ViewRenderer::ViewRenderer() = default;
 
 unsigned ViewRenderer::draw_to_texture(const render::DrawList& list, const render::Camera& camera,
-                                       int width_px, int height_px, int samples) {
+                                       int width_px, int height_px, int samples, int pane) {
     FramebufferRestore restore;
-    view_.ensure(width_px, height_px, samples);
-    view_.bind_for_drawing();
-    renderer_.draw(list, camera, view_.width(), view_.height());
-    view_.resolve();
-    return view_.texture();
+    GlFramebuffer& view = views_[pane == 1 ? 1 : 0];
+    view.ensure(width_px, height_px, samples);
+    view.bind_for_drawing();
+    renderer_.draw(list, camera, view.width(), view.height());
+    view.resolve();
+    return view.texture();
+}
+
+unsigned ViewRenderer::draw_to_framebuffer(const render::DrawList& list,
+                                           const render::Camera& camera, GlFramebuffer& target,
+                                           int width_px, int height_px, int samples) {
+    FramebufferRestore restore;
+    target.ensure(width_px, height_px, samples);
+    target.bind_for_drawing();
+    renderer_.draw(list, camera, target.width(), target.height());
+    target.resolve();
+    return target.texture();
 }
 
 namespace {
@@ -61,14 +73,16 @@ void blit_view(const ImDrawList*, const ImDrawCmd* command) {
 
 }  // namespace
 
-void ViewRenderer::add_view_blit(ImDrawList* list, ImVec2 min, ImVec2 max) {
-    blit_.framebuffer = view_.read_framebuffer();
-    blit_.width = view_.width();
-    blit_.height = view_.height();
-    blit_.min = min;
-    blit_.max = max;
-    blit_.scale = ImGui::GetIO().DisplayFramebufferScale;
-    list->AddCallback(blit_view, &blit_);
+void ViewRenderer::add_view_blit(ImDrawList* list, ImVec2 min, ImVec2 max, int pane) {
+    const int k = pane == 1 ? 1 : 0;
+    Blit& blit = blits_[k];
+    blit.framebuffer = views_[k].read_framebuffer();
+    blit.width = views_[k].width();
+    blit.height = views_[k].height();
+    blit.min = min;
+    blit.max = max;
+    blit.scale = ImGui::GetIO().DisplayFramebufferScale;
+    list->AddCallback(blit_view, &blit);
 }
 
 render::Image ViewRenderer::draw_to_image(const render::DrawList& list,

@@ -17,8 +17,9 @@ class ViewRenderer {
   public:
     ViewRenderer();
     //! Draws into the view texture (resized as needed) and returns its GL name for ImGui::Image.
+    //! Pane 1 is the split view's second pane (a compared body), with a texture of its own.
     unsigned draw_to_texture(const render::DrawList& list, const render::Camera& camera,
-                             int width_px, int height_px, int samples);
+                             int width_px, int height_px, int samples, int pane = 0);
     //! Draws off-screen at any size and reads the pixels back (screenshots, frame sequences).
     render::Image draw_to_image(const render::DrawList& list, const render::Camera& camera,
                                 int width_px, int height_px, int samples = 4);
@@ -26,7 +27,12 @@ class ViewRenderer {
     //! rectangle [min, max] (ImGui coordinates), in the draw order of `list` (an ImDrawList
     //! callback, so ImGui draws its overlays after it). On a software rasterizer a framebuffer
     //! blit costs a fraction of a textured, blended quad of the same size.
-    void add_view_blit(ImDrawList* list, ImVec2 min, ImVec2 max);
+    void add_view_blit(ImDrawList* list, ImVec2 min, ImVec2 max, int pane = 0);
+
+    //! Draws into a framebuffer the caller keeps (the welcome's thumbnails) and returns its
+    //! texture (bottom row first).
+    unsigned draw_to_framebuffer(const render::DrawList& list, const render::Camera& camera,
+                                 GlFramebuffer& target, int width_px, int height_px, int samples);
 
     //! Frees the export buffer (large screenshots allocate a lot).
     void release_export_buffer() { export_ = std::make_unique<GlFramebuffer>(); }
@@ -40,8 +46,8 @@ class ViewRenderer {
 
   private:
     render::Renderer renderer_;
-    Blit blit_;
-    GlFramebuffer view_;
+    Blit blits_[2];
+    GlFramebuffer views_[2];
     std::unique_ptr<GlFramebuffer> export_ = std::make_unique<GlFramebuffer>();
 };
 

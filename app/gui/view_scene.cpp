@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "app/cli/render_scene.hpp"
 #include "app/gui/constraint_edits.hpp"
 #include "app/gui/session/replay_player.hpp"
@@ -258,6 +260,30 @@ void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, 
     for (const auto& edge : edges) {
         list.lines.push_back({c[edge[0]], color, 3.0f});
         list.lines.push_back({c[edge[1]], color, 3.0f});
+    }
+}
+
+void add_posed_voxel_highlight(render::DrawList& list, const engine::VoxelPoses& poses, int voxel,
+                               glm::vec4 color) {
+    if (voxel < 0 || voxel >= poses.voxel_count()) return;
+    const auto i = static_cast<std::size_t>(voxel);
+    const glm::vec3 centre{poses.position_m[3 * i], poses.position_m[3 * i + 1],
+                           poses.position_m[3 * i + 2]};
+    const glm::quat q{poses.orientation[4 * i], poses.orientation[4 * i + 1],
+                      poses.orientation[4 * i + 2], poses.orientation[4 * i + 3]};
+    const glm::vec3 half = 0.54f * glm::vec3{poses.size_m[3 * i], poses.size_m[3 * i + 1],
+                                              poses.size_m[3 * i + 2]};
+    glm::vec3 c[8];
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 local{(k & 1) ? half.x : -half.x, (k & 2) ? half.y : -half.y,
+                              (k & 4) ? half.z : -half.z};
+        c[k] = centre + q * local;
+    }
+    const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                              {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    for (const auto& edge : edges) {
+        list.lines_on_top.push_back({c[edge[0]], color, 3.0f});
+        list.lines_on_top.push_back({c[edge[1]], color, 3.0f});
     }
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/gui/session/body_simulator.hpp"
 #include "app/gui/studio.hpp"
+#include "engine/poses.hpp"
 #include "render/draw_list.hpp"
 #include "render/scene.hpp"
 
@@ -52,6 +53,11 @@ void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, 
                         glm::vec4 color);
 void add_face_highlight(render::DrawList& list, const std::array<int, 3>& workspace,
                         double voxel_size_m, evo::Face face, glm::vec4 color);
+//! Simulation mode: the picked voxel (index into `poses`) as a wire box drawn over everything,
+//! placed, turned and sized as it is posed, a little larger so its edges are not inside the
+//! neighbours' faces. Nothing when the index is out of range.
+void add_posed_voxel_highlight(render::DrawList& list, const engine::VoxelPoses& poses, int voxel,
+                               glm::vec4 color);
 //! Simulation mode: a fixed face as an opaque green outline with diagonal hatching, a tenth of a
 //! voxel outside the workspace (no tint over the body, no z-fighting with the voxels on it).
 void add_fixed_face_hatch(render::DrawList& list, const std::array<int, 3>& workspace,

@@ -13,6 +13,7 @@ namespace {
 
 constexpr glm::vec4 kHoverFace{1.0f, 0.78f, 0.10f, 0.30f};
 constexpr glm::vec4 kHoverCell{1.0f, 0.62f, 0.0f, 1.0f};
+constexpr glm::vec4 kPickedVoxel{0.93f, 0.49f, 0.13f, 1.0f};  // the inspector box's orange
 constexpr glm::vec4 kFixedFaceTint{0.10f, 0.62f, 0.22f, 0.28f};
 
 LatticeBox workspace_box(const evo::Experiment& e) {
@@ -101,6 +102,20 @@ const evo::Body* painter_context_body(const Studio& s) {
     return s.run->champion.body.get();
 }
 
+render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterState& painter,
+                                     const evo::Body* context_body, bool show_edges) {
+    render::Scene scene = workspace_scene(e, painter, context_body);
+    scene.options.show_edges = show_edges;
+    render::DrawList list = render::build_draw_list(scene);
+    // The renderer's fixed-face tint is faint over a light background; the painter's job is to
+    // show which faces hold the body, so fixed faces get a second green layer here.
+    for (int f = 0; f < 6; ++f)
+        if (e.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
+            add_face_highlight(list, e.workspace_size, e.voxel_size_m, static_cast<evo::Face>(f),
+                               kFixedFaceTint);
+    return list;
+}
+
 render::DrawList build_view_draw_list(const Studio& s) {
     const auto& e = s.document.experiment();
     if (s.view.mode == ViewMode::Simulation && s.shown) {
@@ -113,30 +128,21 @@ render::DrawList build_view_draw_list(const Studio& s) {
             if (se.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
                 add_fixed_face_hatch(list, se.workspace_size, se.voxel_size_m,
                                      static_cast<evo::Face>(f));
-        if (s.compared) {
+        if (s.compared && !s.view.split) {
             // Side by side: the compared body on the same clock, one workspace further along +y.
-            const auto& ce = s.compared->experiment;
-            render::DrawList other =
-                render::build_draw_list(simulation_scene(*s.compared, s.clock.time_s, s.view));
-            for (int f = 0; f < 6; ++f)
-                if (ce.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
-                    add_fixed_face_hatch(other, ce.workspace_size, ce.voxel_size_m,
-                                         static_cast<evo::Face>(f));
+            const render::DrawList other = compared_view_draw_list(s);
             const float gap = static_cast<float>((se.workspace_size[1] + 2) * se.voxel_size_m);
             append_offset(list, other, {0.0f, gap, 0.0f});
         }
+        // The voxel clicked (read at the bottom of the view), as posed now.
+        if (inspected_voxel(s) && !fem_overlay(s))
+            add_posed_voxel_highlight(list, engine::pose_at(s.shown->replay, s.clock.time_s),
+                                      s.inspected_voxel, kPickedVoxel);
         add_track_overlay(list, s);
         return list;
     }
-    render::Scene scene = workspace_scene(e, s.painter, painter_context_body(s));
-    scene.options.show_edges = s.view.show_edges;
-    render::DrawList list = render::build_draw_list(scene);
-    // The renderer's fixed-face tint is faint over a light background; the painter's job is to
-    // show which faces hold the body, so fixed faces get a second green layer here.
-    for (int f = 0; f < 6; ++f)
-        if (e.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
-            add_face_highlight(list, e.workspace_size, e.voxel_size_m, static_cast<evo::Face>(f),
-                               kFixedFaceTint);
+    render::DrawList list =
+        workspace_draw_list(e, s.painter, painter_context_body(s), s.view.show_edges);
     if (s.painter.tool == PainterTool::Faces && s.painter.hovered_face)
         add_face_highlight(list, e.workspace_size, e.voxel_size_m, *s.painter.hovered_face,
                            kHoverFace);
@@ -145,10 +151,27 @@ render::DrawList build_view_draw_list(const Studio& s) {
     return list;
 }
 
+bool split_view_active(const Studio& s) {
+    return s.view.mode == ViewMode::Simulation && s.view.split && s.compared && s.shown;
+}
+
+render::DrawList compared_view_draw_list(const Studio& s) {
+    if (!s.compared) return {};
+    const auto& ce = s.compared->experiment;
+    render::DrawList list =
+        render::build_draw_list(simulation_scene(*s.compared, s.clock.time_s, s.view));
+    for (int f = 0; f < 6; ++f)
+        if (ce.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
+            add_fixed_face_hatch(list, ce.workspace_size, ce.voxel_size_m,
+                                 static_cast<evo::Face>(f));
+    return list;
+}
+
 void frame_view_camera(Studio& s, const render::DrawList& list, float aspect) {
     if (!s.view.camera_needs_framing) return;
     render::Bounds bounds = list.workspace_bounds.valid ? list.workspace_bounds : list.bounds;
-    if (s.view.mode == ViewMode::Simulation && (s.view.show_start_beside || s.compared))
+    if (s.view.mode == ViewMode::Simulation &&
+        (s.view.show_start_beside || (s.compared && !s.view.split)))
         bounds.add(list.bounds);
     render::frame_bounds(s.view.camera, bounds, aspect);
     s.view.camera.distance_m /= std::max(0.05f, s.view.zoom);

@@ -12,8 +12,20 @@
 
 namespace bhm::app::gui {
 
+//! The painter's draw list of an experiment's workspace: faces (fixed ones tinted green again),
+//! frame, overrides and the context body (the 3D view in Workspace mode, the welcome's thumbnails).
+render::DrawList workspace_draw_list(const evo::Experiment& experiment,
+                                     const PainterState& painter, const evo::Body* context_body,
+                                     bool show_edges);
+
 //! The draw list of the 3D view in its current mode (painter highlights included).
 render::DrawList build_view_draw_list(const Studio& studio);
+
+//! The split view shows the compared body in a pane of its own (Simulation mode, a compared body
+//! and split on).
+bool split_view_active(const Studio& studio);
+//! The compared body's draw list for the split view's second pane (no offset); empty without one.
+render::DrawList compared_view_draw_list(const Studio& studio);
 
 //! Frames the camera on the view's bounds when asked (camera_needs_framing), keeping its angles.
 void frame_view_camera(Studio& studio, const render::DrawList& list, float aspect);

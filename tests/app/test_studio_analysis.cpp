@@ -137,11 +137,47 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     session.frame();
     CHECK(studio.status.find("beside it") == 0);  // no stale "simulating ..." line
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
+    // Split (the default): the compared body in a pane of its own, right of the first, as wide.
+    REQUIRE(split_view_active(studio));
+    const auto left_pane = build_view_draw_list(studio).voxel_instance_count();
+    {
+        const auto& left = studio.widgets.at("3d view");
+        const auto& right = studio.widgets.at("3d view compared");
+        CHECK(right.frame == studio.frame);
+        CHECK(right.min.x >= left.max.x);
+        CHECK(std::abs((right.max.x - right.min.x) - (left.max.x - left.min.x)) < 2.0f);
+        CHECK(compared_view_draw_list(studio).voxel_instance_count() > 0);
+        // Linked cameras: a drag in the second pane turns both.
+        const float yaw0 = studio.view.camera.yaw_rad;
+        drag_widget(session, "3d view compared", {80.0f, 0.0f});
+        session.frame();
+        CHECK(studio.view.camera.yaw_rad != yaw0);
+        CHECK(studio.view.second.camera.yaw_rad == studio.view.camera.yaw_rad);
+        // Unlinked: the second pane's camera turns alone, the first stays.
+        run_script(session, json::parse(R"([{"click": "link cameras"}, {"frames": 1}])"));
+        REQUIRE_FALSE(studio.view.link_cameras);
+        const float yaw1 = studio.view.camera.yaw_rad;
+        drag_widget(session, "3d view compared", {-120.0f, 0.0f});
+        session.frame();
+        CHECK(studio.view.camera.yaw_rad == yaw1);
+        CHECK(studio.view.second.camera.yaw_rad != yaw1);
+        // The first pane's drag leaves the second alone.
+        const float yaw2 = studio.view.second.camera.yaw_rad;
+        drag_widget(session, "3d view", {60.0f, 0.0f});
+        session.frame();
+        CHECK(studio.view.camera.yaw_rad != yaw1);
+        CHECK(studio.view.second.camera.yaw_rad == yaw2);
+    }
+    // Split off: beside it along +y in one view.
+    run_script(session, json::parse(R"([{"click": "split"}, {"frames": 1}])"));
+    REQUIRE_FALSE(studio.view.split);
+    CHECK_FALSE(split_view_active(studio));
     const auto both = build_view_draw_list(studio);
     studio.compared.reset();
     const auto one = build_view_draw_list(studio);
     CHECK(both.voxel_instance_count() > one.voxel_instance_count());
     CHECK(both.bounds.max.y > one.bounds.max.y);  // beside it along +y
+    CHECK(left_pane == one.voxel_instance_count());  // split: the first pane has one body
 
     // Colour by displacement: the drawn voxels take the sequential map's colours of their
     // displacement from t = 0 (the material colours at t = 0, where nothing has moved).

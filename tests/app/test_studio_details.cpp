@@ -315,6 +315,28 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     CHECK(drawn_now(studio, "voxel inspector"));
     const auto reading = inspected_voxel(studio);
     REQUIRE(reading);
+    // The picked voxel is outlined in the 3D view as it is posed now: twelve edges of a box a
+    // little larger than the voxel, centred on the replay's position of it.
+    auto picked_box = [&]() {
+        std::vector<glm::vec3> corners;
+        for (const auto& v : build_view_draw_list(studio).lines_on_top)
+            if (std::abs(v.color.r - 0.93f) < 1e-3f && std::abs(v.color.g - 0.49f) < 1e-3f)
+                corners.push_back(v.position);
+        return corners;
+    };
+    {
+        const auto corners = picked_box();
+        REQUIRE(corners.size() == 24);
+        const glm::vec3 size{poses.size_m[3 * i], poses.size_m[3 * i + 1],
+                             poses.size_m[3 * i + 2]};
+        glm::vec3 mean{0.0f};
+        for (const auto& p : corners) {
+            mean += p / 24.0f;
+            CHECK(glm::length(p - centre) ==
+                  doctest::Approx(0.54f * glm::length(size)).epsilon(1e-3));
+        }
+        CHECK(glm::length(mean - centre) < 1e-3f * glm::length(size));
+    }
     // Against the replay itself: the recorded frame at the clock, its first frame, the material.
     const auto& frame = replay.frames[static_cast<std::size_t>(
         frame_index_at(replay, studio.clock.time_s))];
@@ -342,6 +364,7 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     session.frame();
     CHECK(studio.inspected_voxel == -1);
     CHECK_FALSE(inspected_voxel(studio));
+    CHECK(picked_box().empty());
 }
 
 TEST_CASE("studio details: exported frames carry a caption: experiment, body, fitness, time") {

@@ -79,9 +79,10 @@ TEST_CASE("studio integrity: New, Open, recent files and Ctrl+Q ask before unsav
     CHECK(studio.document.experiment() == edited);
     CHECK(studio.document.undo_label() == "set simulation.evaluate_s");
 
-    // Open (the path field) asks; Discard opens the file.
+    // Open... with a typed path (the dialog takes it with Enter) asks; Discard opens the file.
     studio.path_field = other_path;
-    run_script(session, json::parse(R"([{"click": "Open"}, {"frames": 2}])"));
+    run_script(session,
+               json::parse(R"([{"click": "Open..."}, {"key": "enter"}, {"frames": 2}])"));
     CHECK(asking_unsaved(studio));
     CHECK(studio.document.experiment() == edited);
     run_script(session, json::parse(R"([{"click": "Discard changes"}])"));
@@ -320,7 +321,7 @@ TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, pre
     CHECK(studio.path_field.find("quick-demo-edited.json") != std::string::npos);
     CHECK(studio.document.dirty());
     run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2},
-                                        {"click": "Save As"}])"));
+                                        {"click": "Save As..."}, {"key": "enter"}])"));
     CHECK_FALSE(studio.document.dirty());
     CHECK(evo::load_experiment(studio.path_field).simulation.settle_s == 0.3);
     CHECK(read_text(presets / "quick-demo.json") == shipped);

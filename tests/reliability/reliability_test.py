@@ -7,6 +7,7 @@ Cases (each a ctest entry, "reliability: CASE"):
   kill9         kill -9 at random moments, resume until done: the same run as an uninterrupted one
   busy          a second writer of a run directory is refused naming the owner; SIGINT stops the
                 first within a second with its checkpoint named; then the second may resume
+  stop-time     Ctrl+C in a generation keeps its time in the checkpoint's elapsed time
   enospc        a full disk (or EIO) injected into write(2) for PNG, frames, replay, VXA, checkpoint,
                 video, GIF (inside ffmpeg) and screenshot: exit 1, the system's reason, the old
                 file untouched, no "wrote"
@@ -206,6 +207,54 @@ def case_busy(bhm, rng):
     check(rc == 0, "a run after the stop was refused: " + err)
     print("busy: second writers refused naming pid %d; SIGINT stopped a 30 s simulation in %.3f s"
           % (first.pid, waited))
+
+
+def case_stop_time(bhm, rng):
+    """Ctrl+C in the middle of a generation keeps its time on the clock (as the studio's Stop
+    does): the checkpoint written at the stop holds the elapsed time up to the signal, so a
+    resumed run's clock does not go back to the last complete generation."""
+    d = fresh(bhm.work, "stop-time")
+    slow = json.load(open(EXPERIMENT))
+    slow["simulation"]["evaluate_s"] = STOP_TIME_EVALUATE_S  # generations of a few seconds
+    slow["simulation"]["record_fps"] = 1.0
+    experiment = os.path.join(bhm.work, "stop-time.json")
+    json.dump(slow, open(experiment, "w"))
+    started = time.time()
+    run = bhm.start(["evolve", experiment, "--out", d, "--threads", "1", "--generations", "100"])
+    checkpoint = os.path.join(d, "checkpoint.json")
+    deadline = time.time() + 120
+    while not os.path.exists(checkpoint) and time.time() < deadline:
+        time.sleep(0.02)
+    if not check(os.path.exists(checkpoint), "no checkpoint after generation 0"):
+        run.kill()
+        return
+    seen = time.time()
+    time.sleep(0.05)  # the rename is atomic; the file we read is whole
+    first = json.load(open(checkpoint))["payload"]
+    # Well inside generation 1, whatever the machine's speed: 40 % of generation 0's time.
+    time.sleep(0.4 * (seen - started))
+    signalled = time.time()
+    run.send_signal(signal.SIGINT)
+    run.wait(timeout=60)
+    err = run.stderr.read().decode(errors="replace")
+    check(run.returncode == 0, "stopped run exit %s: %s" % (run.returncode, err))
+    last = json.load(open(checkpoint))["payload"]
+    gen_time = seen - started
+    print("stop-time: generation 0 took about %.2f s; checkpoint elapsed %.3f s after it, "
+          "%.3f s after the stop %.2f s later" % (gen_time, first["elapsed_s"], last["elapsed_s"],
+                                                   signalled - seen))
+    check(last["generation"] == first["generation"] or last["elapsed_s"] > first["elapsed_s"],
+          "the checkpoint went back")
+    # The time from the first checkpoint to the signal is on the clock (less a margin for the
+    # moments between the checkpoint's writing and our seeing it).
+    check(last["elapsed_s"] >= first["elapsed_s"] + 0.8 * (signalled - seen),
+          "Ctrl+C lost the stopped generation's time: elapsed %.3f s, was %.3f s %.2f s before "
+          "the signal" % (last["elapsed_s"], first["elapsed_s"], signalled - seen))
+    check(last["elapsed_s"] <= first["elapsed_s"] + (signalled - seen) + 1.0,
+          "elapsed time larger than the wall time: %.3f s" % last["elapsed_s"])
+
+
+STOP_TIME_EVALUATE_S = 3.0
 
 
 def expect_enospc(label, result, before, path, reason="No space left on device"):
@@ -705,7 +754,7 @@ def case_mutation_fuzz(bhm, rng):
     fuzz(bhm, rng, 1000, lambda i, r: r.choice(kinds), "mutation-fuzz")
 
 
-CASES = {"kill9": case_kill9, "busy": case_busy, "enospc": case_enospc,
+CASES = {"kill9": case_kill9, "busy": case_busy, "stop-time": case_stop_time, "enospc": case_enospc,
          "unwritable": case_unwritable, "checkpoint": case_checkpoint,
          "replay-fuzz": case_replay_fuzz, "mutation-fuzz": case_mutation_fuzz}
 

@@ -11,6 +11,7 @@
 #include "app/gui/unsaved_guard.hpp"
 #include "app/gui/widgets/field_editor.hpp"
 #include "app/gui/widgets/material_picker.hpp"
+#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/validated_envelope.hpp"
@@ -23,16 +24,23 @@ void file_section(Studio& s) {
     ImGui::SetNextItemWidth(-1.0f);
     char buffer[1024];
     std::snprintf(buffer, sizeof buffer, "%s", s.path_field.c_str());
-    if (ImGui::InputTextWithHint("##path", "experiment file path (.json)", buffer, sizeof buffer))
+    if (ImGui::InputTextWithHint("##path", "experiment file path (.json)", buffer, sizeof buffer,
+                                 ImGuiInputTextFlags_EnterReturnsTrue)) {
         s.path_field = buffer;
+        request_open_experiment(s, s.path_field);
+    } else if (ImGui::IsItemEdited()) {
+        s.path_field = buffer;
+    }
     record_widget(s, "path");
     if (tracked_button(s, "New")) request_new_experiment(s);
     ImGui::SameLine();
-    if (tracked_button(s, "Open")) request_open_experiment(s, s.path_field);
+    // "Open..." and "Save As..." browse (file_dialog.hpp); a path typed above is taken by the
+    // dialog's name field too, and Enter in the path field opens it.
+    if (tracked_button(s, "Open...")) show_file_dialog(s, FileDialogPurpose::OpenExperiment);
     ImGui::SameLine();
     if (tracked_button(s, "Save")) save_experiment(s);
     ImGui::SameLine();
-    if (tracked_button(s, "Save As")) save_experiment_as(s, s.path_field);
+    if (tracked_button(s, "Save As...")) show_file_dialog(s, FileDialogPurpose::SaveExperimentAs);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-1.0f);
     if (ImGui::BeginCombo("##recent", "Recent", ImGuiComboFlags_HeightLarge)) {

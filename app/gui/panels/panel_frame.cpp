@@ -8,6 +8,7 @@
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/unsaved_guard.hpp"
+#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {
@@ -16,7 +17,12 @@ void draw_menu_bar(Studio& s) {
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("New experiment", "Ctrl+N")) run_action(s, Action::NewExperiment);
+        if (ImGui::MenuItem("Open...")) show_file_dialog(s, FileDialogPurpose::OpenExperiment);
         if (ImGui::MenuItem("Save", "Ctrl+S")) run_action(s, Action::SaveExperiment);
+        if (ImGui::MenuItem("Save As..."))
+            show_file_dialog(s, FileDialogPurpose::SaveExperimentAs);
+        if (ImGui::MenuItem("Open run..."))
+            show_file_dialog(s, FileDialogPurpose::OpenRun);
         if (ImGui::BeginMenu("Open recent", !s.settings.recent_files.empty())) {
             for (const auto& path : s.settings.recent_files)
                 if (ImGui::MenuItem(path.c_str())) {
@@ -124,7 +130,8 @@ void draw_help_window(Studio& s) {
             "Green faces are fixed, purple faces free. Hatched voxels are held; dark "
             "translucent cells are forbidden; grey translucent cells are the enclosure frame. "
             "The yellow star marks the body's first voxel, cell (0, 0, 0), the lattice's "
-            "origin. The orange line is the centre-of-mass trail.");
+            "origin. The orange line is the centre-of-mass trail; an orange box outlines the "
+            "voxel clicked in Simulation mode.");
         ImGui::TextWrapped(
             "Simulation mode: fixed faces are hatched green just outside the workspace. The "
             "colour menu paints the body by material, displacement from t = 0 (voxel lengths), "

@@ -9,6 +9,7 @@
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/studio_paths.hpp"
+#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {
@@ -27,9 +28,11 @@ void controls(Studio& s) {
     const RunPhase phase = s.evolution.phase();
     const bool live = run_is_live(phase);
     const float w = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4.0f;
-    ImGui::BeginDisabled(live);
+    ImGui::BeginDisabled(live || s.welcome_open);
     if (tracked_button(s, "Start", ImVec2(w, 0))) start_run(s);
     ImGui::EndDisabled();
+    if (s.welcome_open && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("choose an experiment in the welcome first");
     ImGui::SameLine();
     ImGui::BeginDisabled(phase != RunPhase::Running);
     if (tracked_button(s, "Pause", ImVec2(w, 0))) pause_run(s);
@@ -228,6 +231,12 @@ void status(Studio& s) {
 void run_directory(Studio& s) {
     if (!ImGui::TreeNode("Run directory (bhm evolve)")) return;
     text_field(s, "##open run", "run directory", s.open_run_field);
+    if (tracked_button(s, "Open run...")) show_file_dialog(s, FileDialogPurpose::OpenRun);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("browse for a run directory to view");
+    ImGui::SameLine();
+    if (tracked_button(s, "Compare...")) show_file_dialog(s, FileDialogPurpose::CompareRun);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("browse for a run directory whose fitness history to overlay");
     if (tracked_button(s, "View")) open_run_directory(s, s.open_run_field);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("inspect, plot and replay it; refreshed as it grows");

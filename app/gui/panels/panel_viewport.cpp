@@ -72,7 +72,102 @@ void toolbar(Studio& s) {
             ImGui::SetTooltip(
                 "colour the body by material, displacement from t = 0, volumetric "
                 "strain, or the actuation signal of its muscle voxels");
+        if (s.compared) {
+            next_item(item_width("split", true));
+            if (ImGui::Checkbox("split", &s.view.split)) s.view.camera_needs_framing = true;
+            record_widget(s, "split");
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("the compared body in a pane of its own, with its own camera "
+                                  "(off: beside the first, along +y, in one view)");
+            if (s.view.split) {
+                next_item(item_width("link cameras", true));
+                if (ImGui::Checkbox("link cameras", &s.view.link_cameras) &&
+                    !s.view.link_cameras)
+                    s.view.second.camera = s.view.camera;  // unlinked where it was
+                record_widget(s, "link cameras");
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("both panes look from the same camera; a drag in either "
+                                      "moves both");
+            }
+        }
     }
+}
+
+// The split view's second pane: orbit, pan and zoom of its own camera (or of the main one when
+// the cameras are linked); clicks pick nothing there.
+void pane_mouse(Studio& s, bool hovered) {
+    ImGuiIO& io = ImGui::GetIO();
+    auto& p = s.view.second;
+    render::Camera& camera = s.view.link_cameras ? s.view.camera : p.camera;
+    if (hovered && !p.dragging) {
+        for (int b = 0; b < 3; ++b)
+            if (ImGui::IsMouseClicked(b)) {
+                p.dragging = true;
+                p.drag_button = b;
+            }
+        if (io.MouseWheel != 0.0f) {
+            const float factor = std::pow(1.12f, io.MouseWheel);
+            render::zoom(camera, factor);
+            (s.view.link_cameras ? s.view.zoom : p.zoom) *= factor;
+        }
+    }
+    if (!p.dragging) return;
+    const ImVec2 from_press = ImGui::GetMouseDragDelta(p.drag_button, 0.0f);
+    const ImVec2 d = ImGui::IsMouseClicked(p.drag_button) ? ImVec2(0.0f, 0.0f) : io.MouseDelta;
+    if (std::abs(from_press.x) + std::abs(from_press.y) > kClickSlopPx &&
+        (d.x != 0.0f || d.y != 0.0f)) {
+        if (p.drag_button == 0)
+            render::orbit(camera, d.x, d.y);
+        else
+            render::pan(camera, d.x, d.y, static_cast<int>(p.size_px.y));
+    }
+    if (!ImGui::IsMouseDown(p.drag_button)) {
+        p.dragging = false;
+        p.drag_button = -1;
+    }
+}
+
+void pane_overlay(const Studio& s, ImVec2 origin) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const auto& c = *s.compared;
+    const std::string first = "compared: " + c.label;
+    const std::string second =
+        "fitness " + format_fitness(c.fitness, c.experiment.fitness.measure) +
+        (s.view.link_cameras ? "   (cameras linked)" : "   (own camera)");
+    const float line = ImGui::GetTextLineHeightWithSpacing();
+    dl->AddText({origin.x + 10.0f, origin.y + 8.0f}, IM_COL32(30, 34, 40, 255), first.c_str());
+    dl->AddText({origin.x + 10.0f, origin.y + 8.0f + line}, IM_COL32(90, 96, 106, 255),
+                second.c_str());
+}
+
+// The second pane of the split view at [origin, origin + size].
+void draw_second_pane(Studio& s, ViewRenderer& renderer, ImVec2 origin, ImVec2 size) {
+    auto& p = s.view.second;
+    p.origin_px = {origin.x, origin.y};
+    p.size_px = {size.x, size.y};
+    const render::DrawList list = compared_view_draw_list(s);
+    if (s.view.link_cameras) {
+        p.camera = s.view.camera;
+    } else if (p.needs_framing) {
+        const render::Bounds b = list.workspace_bounds.valid ? list.workspace_bounds : list.bounds;
+        render::frame_bounds(p.camera, b, size.x / size.y);
+        p.camera.distance_m /= std::max(0.05f, p.zoom);
+        p.needs_framing = false;
+    }
+    const ImGuiIO& io = ImGui::GetIO();
+    renderer.draw_to_texture(list, p.camera,
+                             static_cast<int>(size.x * io.DisplayFramebufferScale.x),
+                             static_cast<int>(size.y * io.DisplayFramebufferScale.y),
+                             s.view.samples, 1);
+    ImGui::SetCursorScreenPos(origin);
+    area_button("3d view compared", size,
+                ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                    ImGuiButtonFlags_MouseButtonMiddle);
+    renderer.add_view_blit(ImGui::GetWindowDrawList(), origin,
+                           ImVec2(origin.x + size.x, origin.y + size.y), 1);
+    record_widget(s, "3d view compared");
+    pane_mouse(s, ImGui::IsItemHovered());
+    pane_overlay(s, origin);
 }
 
 void mouse(Studio& s, glm::vec2 local, bool hovered) {
@@ -175,7 +270,7 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
         if (b.diverged) text(IM_COL32(200, 40, 30, 255), "diverged: " + b.divergence_reason);
         if (const auto* flags = shown_exploits(s); flags && flags->any())
             text(IM_COL32(200, 40, 30, 255), "exploit flags: " + exploit_summary(*flags));
-        if (s.compared)
+        if (s.compared && !s.view.split)
             text(dim,
                  "beside (+y): " + s.compared->label + ", fitness " +
                      format_fitness(s.compared->fitness, s.compared->experiment.fitness.measure));
@@ -254,8 +349,12 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
 void draw_viewport_panel(Studio& s, ViewRenderer& renderer) {
     toolbar(s);
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const ImVec2 size{std::max(avail.x, 16.0f), std::max(avail.y, 16.0f)};
+    const ImVec2 full{std::max(avail.x, 16.0f), std::max(avail.y, 16.0f)};
     const ImVec2 origin = ImGui::GetCursorScreenPos();
+    // Split: the shown body on the left, the compared one on the right, a thin gap between.
+    const bool split = split_view_active(s);
+    constexpr float kGap = 4.0f;
+    const ImVec2 size{split ? std::max(8.0f, (full.x - kGap) * 0.5f) : full.x, full.y};
     s.view.origin_px = {origin.x, origin.y};
     s.view.size_px = {size.x, size.y};
 
@@ -284,6 +383,14 @@ void draw_viewport_panel(Studio& s, ViewRenderer& renderer) {
     const bool hovered = ImGui::IsItemHovered();
     mouse(s, local, hovered);
     overlay(s, origin, size);
+    if (split) {
+        draw_second_pane(s, renderer, ImVec2(origin.x + size.x + kGap, origin.y),
+                         ImVec2(std::max(8.0f, full.x - size.x - kGap), size.y));
+        // Leave the cursor where one full-width view would have left it.
+        ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + full.y));
+    } else {
+        s.view.second.needs_framing = true;
+    }
 }
 
 }  // namespace bhm::app::gui

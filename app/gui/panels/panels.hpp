@@ -5,6 +5,7 @@
 namespace bhm::app::gui {
 
 class ViewRenderer;
+class WelcomeThumbnails;
 
 void draw_menu_bar(Studio& studio);
 void draw_experiment_panel(Studio& studio);
@@ -22,6 +23,9 @@ void draw_verify_panel(Studio& studio);
 void draw_replay_panel(Studio& studio);
 void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
 void draw_help_window(Studio& studio);
+//! The first start's welcome (welcome.hpp): the presets with thumbnails, the quick demo first,
+//! and the 3D view's legend. Renders missing thumbnails (UI thread).
+void draw_welcome_window(Studio& studio, ViewRenderer& renderer, WelcomeThumbnails& thumbnails);
 void draw_status_bar(Studio& studio);
 //! A table cell with the exploit flags' letters in red (E escaped, D detached motion, T
 //! tentacle), their measures on hover; recorded under `widget` for scripts.

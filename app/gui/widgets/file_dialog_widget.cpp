@@ -1,0 +1,196 @@
+#include "app/gui/widgets/file_dialog_widget.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#define GLFW_INCLUDE_NONE  // GL comes from glad only
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/studio_paths.hpp"
+#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/widgets/ui_widgets.hpp"
+
+namespace bhm::app::gui {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void apply_choice(Studio& s, FileDialogPurpose purpose, const std::string& path) {
+    switch (purpose) {
+        case FileDialogPurpose::OpenExperiment:
+            s.path_field = path;
+            request_open_experiment(s, path);
+            break;
+        case FileDialogPurpose::SaveExperimentAs:
+            s.path_field = path;
+            save_experiment_as(s, path);
+            break;
+        case FileDialogPurpose::OpenRun:
+            s.open_run_field = path;
+            open_run_directory(s, path);
+            break;
+        case FileDialogPurpose::CompareRun:
+            s.compare_field = path;
+            add_compared_run(s, path);
+            break;
+    }
+}
+
+std::string parent_of(const std::string& path) {
+    return path.empty() ? std::string() : fs::path(path).parent_path().string();
+}
+
+const char* ok_label(FileDialogPurpose purpose) {
+    switch (purpose) {
+        case FileDialogPurpose::OpenExperiment:
+            return "Open";
+        case FileDialogPurpose::SaveExperimentAs:
+            return "Save";
+        case FileDialogPurpose::OpenRun:
+            return "View";
+        case FileDialogPurpose::CompareRun:
+            return "Compare";
+    }
+    return "OK";
+}
+
+}  // namespace
+
+void show_file_dialog(Studio& s, FileDialogPurpose purpose) {
+    std::string dir = s.browser_dir;
+    std::string name;
+    const bool experiment = purpose == FileDialogPurpose::SaveExperimentAs ||
+                            purpose == FileDialogPurpose::OpenExperiment;
+    // A path typed in the panel's field goes into the dialog's name field: Enter takes it.
+    const std::string& typed = experiment ? s.path_field : s.open_run_field;
+    if (experiment) {
+        if (!s.document.path().empty()) dir = parent_of(s.document.path());
+        if (purpose == FileDialogPurpose::SaveExperimentAs)
+            name = s.document.path().empty() ? s.document.experiment().name + ".json"
+                                             : fs::path(s.document.path()).filename().string();
+    } else if (s.run && !s.run->run_dir.empty()) {
+        dir = parent_of(s.run->run_dir);
+    }
+    if (!typed.empty() && typed != s.document.path()) {
+        name = typed;
+        std::error_code ec;
+        const std::string parent = parent_of(absolute_path(typed));
+        if (fs::is_directory(parent, ec)) dir = parent;
+    }
+    open_file_dialog(s.file_dialog, purpose, dir, name);
+}
+
+void take_file_dialog_keys(Studio& s) {
+    if (!s.file_dialog.open) return;
+    std::vector<KeyChord> presses;
+    presses.swap(s.key_presses);
+    for (const KeyChord& k : presses) {
+        std::optional<FileDialogKey> key;
+        switch (k.key) {
+            case GLFW_KEY_UP:
+                key = FileDialogKey::Up;
+                break;
+            case GLFW_KEY_DOWN:
+                key = FileDialogKey::Down;
+                break;
+            case GLFW_KEY_ENTER:
+            case GLFW_KEY_KP_ENTER:
+                key = FileDialogKey::Enter;
+                break;
+            case GLFW_KEY_BACKSPACE:
+                key = FileDialogKey::Backspace;
+                break;
+            case GLFW_KEY_ESCAPE:
+                key = FileDialogKey::Escape;
+                break;
+            default:
+                break;
+        }
+        if (!key) continue;
+        const FileDialogPurpose purpose = s.file_dialog.purpose;
+        if (const auto chosen = file_dialog_key(s.file_dialog, *key)) {
+            apply_choice(s, purpose, *chosen);
+            return;
+        }
+        if (!s.file_dialog.open) return;
+    }
+}
+
+void draw_file_dialog(Studio& s) {
+    FileDialog& d = s.file_dialog;
+    if (!d.open) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float font = ImGui::GetFontSize();
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing,
+                            ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 40.0f),
+                                    std::min(display.y - 60.0f, font * 30.0f)),
+                             ImGuiCond_Appearing);
+    ImGui::SetNextWindowFocus();
+    bool open = true;
+    const std::string title = std::string(file_dialog_title(d.purpose)) + "###file dialog";
+    if (!ImGui::Begin(title.c_str(), &open, ImGuiWindowFlags_NoCollapse)) {
+        ImGui::End();
+        return;
+    }
+    {
+        const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+        s.widgets["file dialog"] =
+            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+    }
+    ImGui::TextWrapped("%s", d.dir.c_str());
+    ImGui::TextDisabled(
+        purpose_wants_run(d.purpose)
+            ? "run directories [run]; Up/Down, Enter, Backspace: parent, Esc"
+            : "folders and *.json experiments; Up/Down, Enter, Backspace: parent, Esc");
+    const float footer =
+        ImGui::GetFrameHeightWithSpacing() * 2.0f + ImGui::GetTextLineHeightWithSpacing();
+    std::optional<std::string> chosen;
+    const FileDialogPurpose purpose = d.purpose;
+    ImGui::BeginChild("entries", ImVec2(0, -footer), true);
+    for (std::size_t i = 0; i < d.entries.size() && d.open; ++i) {
+        const auto& e = d.entries[i];
+        const bool run = e.kind == FileDialogEntry::Kind::Run;
+        const std::string label = (run ? "[run] " : "") + e.name + "##" + std::to_string(i);
+        const bool is_selected = static_cast<int>(i) == d.selected;
+        if (ImGui::Selectable(label.c_str(), is_selected)) {
+            d.selected = static_cast<int>(i);
+            chosen = file_dialog_activate(d, i);
+        }
+        record_widget(s, "dialog entry " + e.name);
+        if (is_selected && d.scroll_to_selected) {
+            ImGui::SetScrollHereY();
+            d.scroll_to_selected = false;
+        }
+        if (chosen || !d.open) break;
+        if (i >= d.entries.size()) break;
+    }
+    ImGui::EndChild();
+    if (!chosen && d.open) {
+        char buffer[1024];
+        std::snprintf(buffer, sizeof buffer, "%s", d.name.c_str());
+        ImGui::SetNextItemWidth(-1.0f);
+        if (ImGui::InputTextWithHint("##dialog name",
+                                     purpose == FileDialogPurpose::SaveExperimentAs
+                                         ? "file name (.json)"
+                                         : "or type a path",
+                                     buffer, sizeof buffer))
+            d.name = buffer;
+        record_widget(s, "dialog name");
+        if (!d.error.empty())
+            ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", d.error.c_str());
+        if (ImGui::Button(ok_label(purpose))) chosen = file_dialog_key(d, FileDialogKey::Enter);
+        record_widget(s, "dialog ok");
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel##dialog")) d.open = false;
+        record_widget(s, "dialog cancel");
+    }
+    if (!open) d.open = false;
+    ImGui::End();
+    if (chosen) apply_choice(s, purpose, *chosen);
+}
+
+}  // namespace bhm::app::gui

@@ -1,0 +1,125 @@
+// The first start (issue 25 item 9): a welcome with the presets' gallery (thumbnails drawn by our
+// renderer, one line each, the quick demo first), a legend of the 3D view, the quick demo in the
+// editor instead of an untitled paper-sized experiment, and Start held until the welcome closes.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "app/gui/headless_session.hpp"
+#include "app/gui/script.hpp"
+#include "app/gui/studio_actions.hpp"
+#include "app/gui/welcome.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kPresets = std::string(BHM_SOURCE_DIR) + "/assets/experiments";
+
+// Distinct colours inside a widget's rectangle of a capture (top row first).
+std::size_t colours_in(const render::Image& image, const WidgetRect& r) {
+    std::set<std::uint32_t> seen;
+    for (int y = static_cast<int>(r.min.y) + 2; y < static_cast<int>(r.max.y) - 2; ++y)
+        for (int x = static_cast<int>(r.min.x) + 2; x < static_cast<int>(r.max.x) - 2; ++x) {
+            const std::size_t at =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                static_cast<std::size_t>(x);
+            const auto* p = &image.rgba[4 * at];
+            seen.insert(static_cast<std::uint32_t>(p[0] | (p[1] << 8) | (p[2] << 16)));
+        }
+    return seen.size();
+}
+
+}  // namespace
+
+TEST_CASE("studio welcome: every shipped preset has one line, the quick demo comes first") {
+    std::vector<std::string> skipped;
+    const auto cards = read_preset_cards(kPresets, &skipped);
+    CHECK(skipped.empty());
+    REQUIRE(cards.size() == list_experiment_files(kPresets).size());
+    REQUIRE(cards.size() >= 2);
+    CHECK(cards.front().stem == "quick-demo");
+    for (const auto& c : cards) {
+        CAPTURE(c.stem);
+        CHECK_FALSE(c.summary.empty());
+        CHECK(c.summary.size() <= 110);
+        CHECK(c.summary.find('\n') == std::string::npos);
+        CHECK(c.summary != c.description);  // the paragraphs are the tooltip, not the line
+    }
+    // A preset of the user's own: the first sentence, cut to the line.
+    CHECK(preset_summary("mine", "Bends well. Then more text.") == "Bends well.");
+    const std::string long_text(300, 'a');
+    CHECK(preset_summary("mine", long_text, 50) == std::string(47, 'a') + "...");
+    CHECK(preset_summary("mine", "") == "(no description)");
+}
+
+TEST_CASE("studio welcome: a first start is a settings path without a file or a recent file") {
+    StudioSettings settings;
+    CHECK_FALSE(is_first_start("", false, settings));  // headless, no settings kept
+    CHECK(is_first_start("/x/settings.json", false, settings));
+    CHECK(is_first_start("/x/settings.json", true, settings));  // no recent experiment
+    settings.remember("/x/a.json");
+    CHECK_FALSE(is_first_start("/x/settings.json", true, settings));
+}
+
+TEST_CASE("studio welcome: the gallery, thumbnails, legend, and Start held until a choice") {
+    Studio studio;
+    studio.presets_dir = kPresets;
+    REQUIRE(open_welcome(studio));
+    // Not "untitled" with 2000 generations and 48 h: the quick demo, not a recent file.
+    const auto& e = studio.document.experiment();
+    CHECK(e.name == "quick-demo");
+    CHECK(e.evolution.generations <= 10);
+    CHECK(e.evolution.wall_budget_h <= 1.0);
+    CHECK(studio.settings.recent_files.empty());
+
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"frames": 2}])"));
+    REQUIRE(studio.welcome_open);
+    const auto& w = studio.widgets;
+    REQUIRE(w.count("welcome preset quick-demo"));
+    REQUIRE(w.count("welcome legend"));
+    const float first_y = w.at("welcome preset quick-demo").min.y;
+    const float first_x = w.at("welcome preset quick-demo").min.x;
+    const render::Image image = session.capture();
+    for (const auto& c : studio.welcome_cards) {
+        CAPTURE(c.stem);
+        REQUIRE(w.count("welcome preset " + c.stem));
+        const auto& r = w.at("welcome preset " + c.stem);
+        CHECK(r.frame == studio.frame);
+        if (c.stem != "quick-demo")  // reading order: the demo is the first card
+            CHECK((r.min.y > first_y || (r.min.y == first_y && r.min.x > first_x)));
+        // A thumbnail drawn by the renderer: shaded faces, edges and floor, not a flat box.
+        REQUIRE(w.count("welcome thumbnail " + c.stem));
+        CHECK(colours_in(image, w.at("welcome thumbnail " + c.stem)) > 40);
+    }
+
+    // Start (the button and F5) waits for a choice.
+    run_script(session, json::parse(R"([{"click": "Start"}, {"key": "f5"}, {"frames": 2}])"));
+    CHECK(studio.evolution.phase() == RunPhase::Idle);
+    CHECK_FALSE(start_run(studio));
+    CHECK(studio.status.find("welcome") != std::string::npos);
+
+    // A preset's card opens it and closes the welcome.
+    run_script(session, json::parse(R"([{"click": "welcome preset paper-exp3"}, {"frames": 2}])"));
+    CHECK_FALSE(studio.welcome_open);
+    CHECK(studio.document.experiment().name == "paper-exp3");
+    CHECK(studio.widgets.at("welcome window").frame < studio.frame);
+    CHECK(studio.settings.recent_files.size() == 1);  // chosen by the user: recent
+}
+
+TEST_CASE("studio welcome: Close keeps the quick demo, and Start is offered again") {
+    Studio studio;
+    studio.presets_dir = kPresets;
+    REQUIRE(open_welcome(studio));
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Close"}, {"frames": 2}])"));
+    CHECK_FALSE(studio.welcome_open);
+    CHECK(studio.document.experiment().name == "quick-demo");
+    CHECK_FALSE(studio.document.dirty());
+}
