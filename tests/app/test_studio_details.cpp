@@ -283,15 +283,7 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     auto e = testing::tiny_experiment();
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest request;
-    request.id = 3;
-    request.label = "test body";
-    request.experiment = e;
-    auto body = std::make_shared<evo::Body>();
-    body->size = {2, 2, 1};
-    body->cells = {1, 2, 1, 2};
-    request.framed_body = body;
-    studio.simulator.request(request);
+    testing::request_tiny_body(studio, e, 3, "test body");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"replay": {"time_s": 0.35, "playing": false}},
                                         {"frames": 3}])"));
@@ -366,15 +358,7 @@ TEST_CASE("studio details: exported frames carry a caption: experiment, body, fi
     e.name = "caption test";
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest request;
-    request.id = 3;
-    request.label = "champion #3, generation 2";
-    request.experiment = e;
-    auto body = std::make_shared<evo::Body>();
-    body->size = {2, 2, 1};
-    body->cells = {1, 2, 1, 2};
-    request.framed_body = body;
-    studio.simulator.request(request);
+    testing::request_tiny_body(studio, e, 3, "champion #3, generation 2");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"frames": 2}])"));
     REQUIRE(studio.shown);
