@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/io/text_file.hpp"
+
 namespace bhm::evo {
 
 namespace {
@@ -206,11 +208,8 @@ MeasuredTrack parse_measured_track(const std::string& text, const std::string& l
 }
 
 MeasuredTrack load_measured_track(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error(path + ": cannot read the track file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_measured_track(text.str(), path);
+    // engine::read_text's FileReadError is "PATH: reason" (missing, not a regular file, too big).
+    return parse_measured_track(engine::read_text(path), path);
 }
 
 std::string measured_track_to_csv(const MeasuredTrack& track, const std::string& comment) {

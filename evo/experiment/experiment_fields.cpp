@@ -4,8 +4,10 @@
 
 #include <cstdio>
 #include <numbers>
+#include <type_traits>
 
 #include "engine/limits.hpp"
+#include "evo/experiment/field_rules.hpp"
 
 namespace bhm::evo {
 
@@ -13,6 +15,8 @@ namespace {
 
 namespace lim = engine::limits;
 constexpr bool kOpen = true;  // Range{lo, hi, kOpen}: lo excluded
+// BoundaryKind's names in the file, in the enum's order.
+constexpr std::array<const char*, 2> kBoundaryKindNames = {"free", "fixed"};
 
 // One accessor per row, written as the member's path (MuJoCo's mjxmacro.h does the same). The
 // rows are laid out by hand, a few designators a line, so the table reads as one.
@@ -25,6 +29,15 @@ constexpr bool kOpen = true;  // Range{lo, hi, kOpen}: lo excluded
     .get_choice = [](const Experiment& e) { return static_cast<int>(e.expr); },      \
     .set_choice = [](Experiment& e, int v) { e.expr = static_cast<Enum>(v); }, \
     .choices = names
+// One face of the workspace (kFaceNames[i] = name): held or free, and its frame's thickness.
+#define BHM_FACE(i, name)                                                                  \
+    {.path = "boundary.faces." name, .label = "Face " name, .unit = "",                   \
+     .help = "fixed holds all six degrees of freedom of every voxel in the face layer",    \
+     BHM_CHOICE(boundary.faces[i], BoundaryKind, kBoundaryKindNames)}
+#define BHM_FRAME(i, name)                                                                 \
+    {.path = "boundary.enclosure.thickness_voxels." name, .label = "Frame " name,         \
+     .unit = "voxels", .help = "thickness of the passive frame (enclosure) on this face",  \
+     .range = {0, kMaxWorkspaceDimension}, BHM_INTEGER(boundary.enclosure_thickness[i])}
 #define BHM_MATERIAL(member) .number = [](engine::Material& m) -> double& { return m.member; }
 
 const ExperimentField kExperimentFields[] = {
@@ -46,10 +59,6 @@ const ExperimentField kExperimentFields[] = {
     {.path = "actuation.temperature_amplitude_c", .label = "Amplitude", .unit = "degC",
      .help = "temperature swing of the active material; Kriegman 2020: 14.47",
      .range = {0, lim::kMaxTemperatureAmplitudeC},
-     .rule = [] {
-         return "|cte_per_c x amplitude| <= " + range_number(lim::kMaxActuationStrain) +
-                " (the engine's stable actuation strain)";
-     },
      BHM_NUMBER(actuation.temperature_amplitude_c)},
     {.path = "actuation.phase", .label = "Phase", .unit = "",
      .help = "per-voxel phase: uniform (all 0) or random (drawn per voxel)",
@@ -63,6 +72,13 @@ const ExperimentField kExperimentFields[] = {
      BHM_NUMBER(environment.gravity_m_s2)},
     {.path = "environment.floor", .label = "Floor at z = 0", .unit = "",
      .help = "penalty contact with Coulomb friction", BHM_BOOLEAN(environment.floor)},
+    BHM_FACE(0, "x-"), BHM_FACE(1, "x+"), BHM_FACE(2, "y-"),
+    BHM_FACE(3, "y+"), BHM_FACE(4, "z-"), BHM_FACE(5, "z+"),
+    BHM_FRAME(0, "x-"), BHM_FRAME(1, "x+"), BHM_FRAME(2, "y-"),
+    BHM_FRAME(3, "y+"), BHM_FRAME(4, "z-"), BHM_FRAME(5, "z+"),
+    {.path = "boundary.enclosure.material", .label = "Frame material", .unit = "",
+     .help = "the frame's material, 1-based (paper section 4.3)", .range = {0, kMaxMaterials},
+     .note = "(0 = none)", BHM_INTEGER(boundary.enclosure_material)},
     {.path = "simulation.settle_s", .label = "Settle", .unit = "s",
      .help = "gravity only, actuation off; paper: 1 s", .range = {0, 1e4},
      BHM_NUMBER(simulation.settle_s)},
@@ -111,7 +127,6 @@ const ExperimentField kExperimentFields[] = {
      BHM_NUMBER(fitness.constraints.min_fill_fraction)},
     {.path = "fitness.constraints.min_active_voxels", .label = "Min active", .unit = "voxels",
      .help = "active voxels a body needs", .range = {0, kMaxWorkspaceCells},
-     .rule = [] { return std::string("at most the workspace's voxel count"); },
      BHM_INTEGER(fitness.constraints.min_active_voxels)},
     {.path = "fitness.constraints.reject_escaped", .label = "escaped (E)", .unit = "",
      .help = "reject voxels not held by a fixed face, directly or through neighbours; checked "
@@ -155,7 +170,6 @@ const ExperimentField kExperimentFields[] = {
      BHM_INTEGER(evolution.cppn.min_hidden_nodes)},
     {.path = "evolution.cppn.max_hidden_nodes", .label = "CPPN max hidden", .unit = "nodes",
      .help = "most hidden nodes of a new CPPN; paper Table 2: 10", .range = {0, 1000},
-     .rule = [] { return std::string("at least min_hidden_nodes"); },
      BHM_INTEGER(evolution.cppn.max_hidden_nodes)},
     {.path = "evolution.cppn.weight_range", .label = "Weight range", .unit = "",
      .help = "CPPN weights lie in [-range, range]; paper: 1", .range = {0, 100, kOpen},
@@ -165,7 +179,7 @@ const ExperimentField kExperimentFields[] = {
      .format = "%.3g", BHM_NUMBER(evolution.cppn.mutation_weight_sigma)},
     {.path = "evolution.cppn.material_outputs", .label = "Material outputs", .unit = "",
      .help = "how the CPPN picks a material: active or passive (the paper's two outputs), or "
-             "one output per material (needs two materials or more)",
+             "one output per material",
      BHM_CHOICE(evolution.cppn.material_outputs, MaterialOutputs, kMaterialOutputsNames)},
     {.path = "evolution.neat.c1", .label = "NEAT c1", .unit = "",
      .help = "compatibility distance: weight of excess genes", .range = {0, 100},
@@ -194,7 +208,6 @@ const ExperimentField kExperimentFields[] = {
      .format = "%.3g", BHM_NUMBER(evolution.neat.survival_fraction)},
     {.path = "evolution.neat.elitism", .label = "Elitism", .unit = "",
      .help = "best members of each species copied unchanged", .range = {0, 100000},
-     .rule = [] { return std::string("at most evolution.population"); },
      BHM_INTEGER(evolution.neat.elitism)},
     {.path = "evolution.neat.stagnation_generations", .label = "Stagnation", .unit = "generations",
      .help = "no improvement for this long: the species breeds no more", .range = {1, 1e8},
@@ -230,17 +243,13 @@ const MaterialField kMaterialFields[] = {
     {.path = "cte_per_c", .label = "CTE", .unit = "1/degC",
      .help = "linear thermal expansion; > 0 makes the material active (muscle); paper: 0.01",
      .range = {0, 1}, .note = "(> 0 makes the material active)",
-     .rule = [] {
-         return "|cte_per_c x amplitude| <= " + range_number(lim::kMaxActuationStrain) +
-                " (the engine's stable actuation strain)";
-     },
      BHM_MATERIAL(cte_per_c)},
     {.path = "static_friction", .label = "Static friction", .unit = "",
      .help = "Coulomb friction against the floor; paper: 1", .range = {0}, .format = "%.3f",
      BHM_MATERIAL(static_friction)},
     {.path = "dynamic_friction", .label = "Dynamic friction", .unit = "",
      .help = "Coulomb friction against the floor while sliding; paper: 0.5", .range = {0},
-     .format = "%.3f", .rule = [] { return std::string("at most static_friction"); },
+     .format = "%.3f",
      BHM_MATERIAL(dynamic_friction)},
 };
 
@@ -251,6 +260,8 @@ const MaterialField kMaterialFields[] = {
 #undef BHM_INTEGER
 #undef BHM_BOOLEAN
 #undef BHM_CHOICE
+#undef BHM_FACE
+#undef BHM_FRAME
 #undef BHM_MATERIAL
 
 std::string printed(const char* format, double x) {
@@ -333,6 +344,12 @@ std::string field_value_text(const FieldOf<Host>& f, const Host& host) {
     return "";
 }
 
+// How field_rules.hpp names a field of Host: materials' fields as "materials[].<key>".
+template <class Host>
+constexpr const char* rule_prefix() {
+    return std::is_same_v<Host, engine::Material> ? "materials[]." : "";
+}
+
 template <class Host>
 std::string field_tooltip(const FieldOf<Host>& f) {
     std::string s = f.help;
@@ -347,7 +364,8 @@ std::string field_tooltip(const FieldOf<Host>& f) {
         for (std::size_t k = 0; k < f.choices.size(); ++k)
             line += std::string(k ? ", " : " ") + f.choices[k];
     }
-    if (f.rule) line += (line.empty() ? "" : "; ") + f.rule();
+    const std::string rules = rules_text(std::string(rule_prefix<Host>()) + f.path);
+    if (!rules.empty()) line += (line.empty() ? "" : "; ") + rules;
     if (kind != FieldKind::Text) {
         const Host defaults{};
         line += (line.empty() ? "default " : "; default ") + field_value_text(f, defaults);

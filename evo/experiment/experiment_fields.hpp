@@ -5,9 +5,11 @@
 // (app/gui/widgets/field_editor.hpp) all walk this table, so they cannot drift apart (MuJoCo's
 // mjxmacro.h plays the same part for mjModel). The default of a field is the default member
 // initializer of its struct (experiment.hpp, engine/body_spec.hpp), read through the accessor.
-// Not in the table, hand-written because they are not one value: materials' name, library and
-// colour, boundary (faces, enclosure, voxel overrides) and cross-field rules such as
-// max_hidden_nodes >= min_hidden_nodes (validate_experiment).
+// The boundary's faces, frame thicknesses and frame material are rows too. Not in the table,
+// because they are not one value: materials' name, library and colour, and the boundary's voxel
+// overrides (lists, read and written by experiment_io.cpp). Rules between fields
+// (max_hidden_nodes >= min_hidden_nodes) live in field_rules.hpp, which the validator runs and
+// field_tooltip quotes.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -52,7 +54,6 @@ struct FieldOf {
     Range range{};      //!< Number, Integer, Size3 (each component)
     const char* note = "";            //!< said after the range in a refusal: "(0 = all cores)"
     const char* format = "%.4g";      //!< the editor's printf format (Number)
-    std::string (*rule)() = nullptr;  //!< a bound beyond the range, from the constant it uses
     std::string& (*text)(Host&) = nullptr;
     double& (*number)(Host&) = nullptr;
     int& (*integer)(Host&) = nullptr;
@@ -103,7 +104,8 @@ std::string range_text(const Range& range);
 //! "must be in [0, 10000] s" and the field's note: what a refusal says.
 template <class Host>
 std::string range_message(const FieldOf<Host>& field);
-//! The studio's tooltip: help, range and unit (or the choices), the rule, and the default.
+//! The studio's tooltip: help, range and unit (or the choices), the rules on the field
+//! (field_rules.hpp), and the default.
 template <class Host>
 std::string field_tooltip(const FieldOf<Host>& field);
 //! The value as text ("0.9", "true", "afpo", "[8, 8, 7]").

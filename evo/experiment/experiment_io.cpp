@@ -19,6 +19,7 @@
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/field_io.hpp"
+#include "evo/experiment/field_rules.hpp"
 #include "evo/experiment/json_reader.hpp"
 #include "evo/experiment/material_library.hpp"
 
@@ -35,16 +36,6 @@ std::string problems_summary(const std::vector<Problem>& problems) {
         s += problems[i].to_string();
     }
     return s;
-}
-
-std::string short_number(double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", x);
-    return buf;
-}
-
-std::vector<std::string> face_names() {
-    return {kFaceNames.begin(), kFaceNames.end()};
 }
 
 std::string read_text(const std::string& path) {
@@ -159,29 +150,8 @@ class LibraryFill {
     std::string error_;
 };
 
-void parse_boundary(JsonReader& r, const json& b, const std::string& path, Boundary& out) {
-    r.check_keys(b, path, {"faces", "enclosure", "voxel_overrides"});
-    if (const json* faces = r.object(b, "faces", path)) {
-        const std::string fpath = JsonReader::join(path, "faces");
-        r.check_keys(*faces, fpath, face_names());
-        for (int f = 0; f < 6; ++f)
-            out.faces[f] = static_cast<BoundaryKind>(r.choice(
-                *faces, kFaceNames[f], fpath, {"free", "fixed"}, static_cast<int>(out.faces[f])));
-    }
-    if (const json* enc = r.object(b, "enclosure", path)) {
-        const std::string epath = JsonReader::join(path, "enclosure");
-        r.check_keys(*enc, epath, {"thickness_voxels", "material"});
-        if (const json* t = r.object(*enc, "thickness_voxels", epath)) {
-            const std::string tpath = JsonReader::join(epath, "thickness_voxels");
-            r.check_keys(*t, tpath, face_names());
-            for (int f = 0; f < 6; ++f)
-                out.enclosure_thickness[f] =
-                    static_cast<int>(r.integer(*t, kFaceNames[f], tpath, out.enclosure_thickness[f],
-                                               0, kMaxWorkspaceDimension));
-        }
-        out.enclosure_material =
-            static_cast<int>(r.integer(*enc, "material", epath, out.enclosure_material, 0, 255));
-    }
+// The boundary's faces and frame are the table's rows; its voxel overrides, a list, are read here.
+void parse_voxel_overrides(JsonReader& r, const json& b, const std::string& path, Boundary& out) {
     if (auto it = b.find("voxel_overrides"); it != b.end()) {
         const std::string opath = JsonReader::join(path, "voxel_overrides");
         if (!it->is_array()) {
@@ -224,7 +194,7 @@ Experiment parse_experiment(const json& root, const std::string& file) {
     // Every scalar field from the table first: materials below need the actuation amplitude (a
     // library's active tissue sets cte_per_c from it).
     read_fields(r, root, "", experiment_fields(), e,
-                {{"", {"format_version", "materials", "boundary"}}});
+                {{"", {"format_version", "materials"}}, {"boundary", {"voxel_overrides"}}});
     r.integer(root, "format_version", "", 1, 1, 1);
 
     if (auto it = root.find("materials"); it != root.end()) {
@@ -247,8 +217,9 @@ Experiment parse_experiment(const json& root, const std::string& file) {
         r.problem("materials", "is required (at least one material)");
     }
 
-    if (const json* b = r.object(root, "boundary", ""))
-        parse_boundary(r, *b, "boundary", e.boundary);
+    // A boundary that is not an object was reported by read_fields.
+    if (auto b = root.find("boundary"); b != root.end() && b->is_object())
+        parse_voxel_overrides(r, *b, "boundary", e.boundary);
 
     auto more = validate_experiment(e, file);
     problems.insert(problems.end(), more.begin(), more.end());
@@ -265,20 +236,9 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         return std::any_of(problems.begin(), problems.end(),
                            [&](const Problem& p) { return p.field == field; });
     };
-    auto finite = [](double v) { return std::isfinite(v); };
 
     // Every scalar field's range, from the table (experiment_fields.cpp).
     check_ranges(e, experiment_fields(), "", file, problems);
-    long long cells = 1;
-    bool size_ok = true;
-    for (int n : e.workspace_size) {
-        size_ok = size_ok && n >= 1 && n <= kMaxWorkspaceDimension;
-        cells *= size_ok ? n : 1;
-    }
-    if (size_ok && cells > kMaxWorkspaceCells)
-        bad("workspace.size", "workspace of " + std::to_string(cells) +
-                                  " voxels is too large to simulate in memory (at most " +
-                                  std::to_string(kMaxWorkspaceCells) + ")");
     // The physics envelope is the engine's (engine/limits.hpp): the same functions refuse a
     // BodySpec in Model::build, so what validates here always runs. The table's ranges are the
     // engine's constants; a field the table already refused is not reported twice.
@@ -291,103 +251,21 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
     if (e.materials.size() > static_cast<size_t>(kMaxMaterials))
         bad("materials", "at most " + std::to_string(kMaxMaterials) +
                              " materials (body layers use one character '1'..'9' per voxel)");
-    bool has_active = false, has_passive = false;
     for (size_t i = 0; i < e.materials.size(); ++i) {
         const auto& m = e.materials[i].physics;
         const std::string p = "materials[" + std::to_string(i) + "]";
         if (e.materials[i].name.empty()) bad(p + ".name", "is required");
         check_ranges(m, material_fields(), p, file, problems);
+        // The engine's own refusals; cte_per_c's, which depends on the amplitude, is a rule.
         for (const auto& problem :
-             engine::limits::material_problems(m, e.actuation.temperature_amplitude_c)) {
-            const std::string field = p + "." + problem.field;
-            if (reported(field)) continue;
-            if (problem.field == "cte_per_c")  // cte in range: the amplitude makes it too much
-                bad("actuation.temperature_amplitude_c",
-                    "with " + p + ".cte_per_c " + problem.message);
-            else
+             engine::limits::material_problems(m, e.actuation.temperature_amplitude_c))
+            if (const std::string field = p + "." + problem.field;
+                problem.field != "cte_per_c" && !reported(field))
                 bad(field, problem.message);
-        }
-        if (finite(m.static_friction) && finite(m.dynamic_friction) && m.dynamic_friction >= 0 &&
-            m.dynamic_friction > m.static_friction)
-            bad(p + ".dynamic_friction", "must not exceed static_friction");
-        (m.cte_per_c > 0 ? has_active : has_passive) = true;
-    }
-    if (!e.materials.empty() && !(has_active && has_passive))
-        bad("materials",
-            "evolution needs a passive material (cte_per_c = 0) and an active one "
-            "(cte_per_c > 0)");
-
-    const int nmat = static_cast<int>(e.materials.size());
-    const auto& b = e.boundary;
-    bool any_enclosure = false;
-    for (int axis = 0; axis < 3 && size_ok; ++axis) {
-        int lo = b.enclosure_thickness[2 * axis], hi = b.enclosure_thickness[2 * axis + 1];
-        any_enclosure = any_enclosure || lo > 0 || hi > 0;
-        if (lo < 0 || hi < 0 || lo + hi >= e.workspace_size[axis])
-            bad("boundary.enclosure.thickness_voxels",
-                std::string("frame thickness ") + kFaceNames[2 * axis] + " + " +
-                    kFaceNames[2 * axis + 1] + " leaves no design space along " + "xyz"[axis]);
-    }
-    if (any_enclosure) {
-        if (b.enclosure_material < 1 || b.enclosure_material > nmat)
-            bad("boundary.enclosure.material", "must name a material 1.." + std::to_string(nmat) +
-                                                   " when the frame has a thickness");
-        else if (e.materials[b.enclosure_material - 1].active())
-            bad("boundary.enclosure.material", "the enclosure frame must be a passive material");
-    } else if (b.enclosure_material < 0 || b.enclosure_material > nmat) {
-        bad("boundary.enclosure.material",
-            "must be 0 (none) or a material 1.." + std::to_string(nmat));
-    }
-    for (size_t i = 0; i < b.voxel_overrides.size(); ++i) {
-        const auto& o = b.voxel_overrides[i];
-        const std::string p = "boundary.voxel_overrides[" + std::to_string(i) + "]";
-        for (int a = 0; a < 3; ++a)
-            if (o.voxel[a] < 0 || o.voxel[a] >= e.workspace_size[a]) {
-                bad(p + ".voxel", "lies outside the workspace");
-                break;
-            }
-        if (o.kind == OverrideKind::Material && (o.material < 1 || o.material > nmat))
-            bad(p + ".material", "must name a material 1.." + std::to_string(nmat));
     }
 
-    // Rules between fields (the table's `rule` says each in the studio's tooltip).
-    const auto& c = e.fitness.constraints;
-    if (c.attached_to_fixed_face && !b.any_fixed_face())
-        bad("fitness.constraints.attached_to_fixed_face",
-            "is on but no face of boundary.faces is \"fixed\"");
-    if (size_ok && c.min_active_voxels > cells)
-        bad("fitness.constraints.min_active_voxels",
-            "must not exceed the workspace's " + std::to_string(cells) + " voxels");
-    const auto& ev = e.evolution;
-    if (ev.cppn.max_hidden_nodes < ev.cppn.min_hidden_nodes)
-        bad("evolution.cppn.max_hidden_nodes", "must be at least min_hidden_nodes");
-    if (ev.cppn.material_outputs == MaterialOutputs::PerMaterial && e.materials.size() < 2)
-        bad("evolution.cppn.material_outputs",
-            "\"per_material\" needs at least two materials to choose between");
-    if (ev.neat.elitism > ev.population)
-        bad("evolution.neat.elitism", "must not exceed evolution.population");
-
-    // The step budget, only once every input it depends on is valid (else it would mislead):
-    // fitness and evolution settings do not enter it.
-    const auto& s = e.simulation;
-    const bool budget_inputs_valid =
-        std::all_of(problems.begin(), problems.end(), [](const Problem& p) {
-            return p.field.starts_with("fitness.") || p.field.starts_with("evolution.");
-        });
-    if (budget_inputs_valid && size_ok) {
-        std::vector<engine::Material> physics;
-        for (const auto& m : e.materials)
-            physics.push_back(m.physics);
-        const auto range = engine::limits::step_range(physics, e.voxel_size_m, s.dt_fraction,
-                                                      e.actuation.temperature_amplitude_c,
-                                                      s.implicit_damping_sweeps);
-        const std::string why = engine::limits::step_budget_problem(
-            range, evaluation_seconds(e), e.actuation.frequency_hz,
-            has_active && e.actuation.temperature_amplitude_c > 0, cells);
-        if (!why.empty())
-            bad("simulation",
-                "settle_s + evaluate_s = " + short_number(evaluation_seconds(e)) + " s " + why);
-    }
+    // The rules between fields (field_rules.cpp; the studio's tooltips quote them).
+    check_rules(e, file, problems);
     return problems;
 }
 
@@ -407,11 +285,6 @@ json experiment_to_json(const Experiment& e) {
         if (!m.library.empty()) mj["library"] = m.library;
         j["materials"].push_back(mj);
     }
-    json faces, thickness;
-    for (int f = 0; f < 6; ++f) {
-        faces[kFaceNames[f]] = e.boundary.faces[f] == BoundaryKind::Fixed ? "fixed" : "free";
-        thickness[kFaceNames[f]] = e.boundary.enclosure_thickness[f];
-    }
     json overrides = json::array();
     for (const auto& o : e.boundary.voxel_overrides) {
         static const char* kinds[] = {"fixed", "empty", "material"};
@@ -419,11 +292,7 @@ json experiment_to_json(const Experiment& e) {
         if (o.kind == OverrideKind::Material) oj["material"] = o.material;
         overrides.push_back(oj);
     }
-    j["boundary"] = {
-        {"faces", faces},
-        {"enclosure",
-         {{"thickness_voxels", thickness}, {"material", e.boundary.enclosure_material}}},
-        {"voxel_overrides", overrides}};
+    j["boundary"]["voxel_overrides"] = overrides;
     // A phase offset only when set: experiments without one stay byte for byte as they were.
     if (e.actuation.phase_offset_rad == 0.0) j["actuation"].erase("phase_offset_rad");
     // NEAT's and novelty's blocks only where they say something: AFPO files stay as they were.

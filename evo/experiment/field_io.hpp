@@ -1,7 +1,8 @@
 #pragma once
 // The field table (experiment_fields.hpp) applied to JSON: reading with type and unknown-key
 // checks, writing, and range checks. experiment_io.cpp calls these for the experiment and for each
-// material; what is not in the table (materials' name and colour, boundary) it does by hand.
+// material; what is not in the table (materials' name and colour, voxel overrides) it does by
+// hand.
 #include <map>
 #include <span>
 #include <string>

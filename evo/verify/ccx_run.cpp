@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/text_file.hpp"
 
 namespace bhm::evo {
 
@@ -87,11 +88,11 @@ std::string first_error(const fs::path& log) {
     return last;
 }
 
+// What ccx has written so far: "" while the file does not exist yet (the .sta early in a run).
 std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return "";
+    return engine::read_text(path.string(), engine::kLargeFileCap);
 }
 
 }  // namespace

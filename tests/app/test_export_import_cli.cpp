@@ -33,12 +33,10 @@ Result bhm_run(const std::string& args) {
     return test::run_shell(kBhm + " " + args);
 }
 
+// The file's text; a file that is missing fails the test here, not as an empty text.
 std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    REQUIRE(in.good());
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
+    REQUIRE(fs::is_regular_file(path));
+    return bhm::test::read_file(path);
 }
 
 struct ObjMesh {

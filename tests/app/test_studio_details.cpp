@@ -7,6 +7,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <filesystem>
+#include <utility>
 
 #include "app/cli/render_video.hpp"
 #include "app/gui/export_actions.hpp"
@@ -17,6 +18,7 @@
 #include "app/gui/unsaved_guard.hpp"
 #include "engine/limits.hpp"
 #include "evo/experiment/experiment_fields.hpp"
+#include "evo/experiment/field_rules.hpp"
 #include "app/gui/viewport.hpp"
 #include "engine/replay.hpp"
 #include "test_studio_fixtures.hpp"
@@ -261,6 +263,19 @@ TEST_CASE("studio details: an experiment field's tooltip is the field table's") 
           evo::field_tooltip(*evo::find_experiment_field("actuation.temperature_amplitude_c")));
     CHECK(amplitude.find("<= " + evo::range_number(engine::limits::kMaxActuationStrain)) !=
           std::string::npos);
+    // The boundary's rows (issue 22), drawn by hand in the Constraints panel: their tooltips are
+    // the table's too, rules between fields (field_rules.hpp) included.
+    run_script(session, json::parse(R"([{"click": "tab Constraints"}, {"frames": 2}])"));
+    for (const auto& [widget, path] :
+         {std::pair{"face x-", "boundary.faces.x-"},
+          std::pair{"frame z+", "boundary.enclosure.thickness_voxels.z+"},
+          std::pair{"frame material", "boundary.enclosure.material"}}) {
+        CAPTURE(widget);
+        const std::string shown = hover(widget);
+        CHECK(shown == evo::field_tooltip(*evo::find_experiment_field(path)));
+        CHECK(shown.find(evo::rules_text(path)) != std::string::npos);
+        CHECK_FALSE(evo::rules_text(path).empty());
+    }
 }
 
 TEST_CASE("studio details: a click on the replayed body reads that voxel at the replay time") {
@@ -268,15 +283,7 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     auto e = testing::tiny_experiment();
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest request;
-    request.id = 3;
-    request.label = "test body";
-    request.experiment = e;
-    auto body = std::make_shared<evo::Body>();
-    body->size = {2, 2, 1};
-    body->cells = {1, 2, 1, 2};
-    request.framed_body = body;
-    studio.simulator.request(request);
+    testing::request_tiny_body(studio, e, 3, "test body");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"replay": {"time_s": 0.35, "playing": false}},
                                         {"frames": 3}])"));
@@ -374,15 +381,7 @@ TEST_CASE("studio details: exported frames carry a caption: experiment, body, fi
     e.name = "caption test";
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest request;
-    request.id = 3;
-    request.label = "champion #3, generation 2";
-    request.experiment = e;
-    auto body = std::make_shared<evo::Body>();
-    body->size = {2, 2, 1};
-    body->cells = {1, 2, 1, 2};
-    request.framed_body = body;
-    studio.simulator.request(request);
+    testing::request_tiny_body(studio, e, 3, "champion #3, generation 2");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"frames": 2}])"));
     REQUIRE(studio.shown);

@@ -3,10 +3,13 @@
 // folders, and golden-image checks of studio screenshots.
 #include <doctest/doctest.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 
+#include "app/gui/studio.hpp"
 #include "evo/experiment/experiment.hpp"
 #include "render/image.hpp"
 #include "support/scratch.hpp"
@@ -15,6 +18,22 @@ namespace bhm::app::gui::testing {
 
 inline std::filesystem::path fresh_dir(const std::string& name) {
     return bhm::test::output_dir("studio", name);
+}
+
+//! Asks the studio's simulator for the 2x2x1 body {1, 2, 1, 2} (passive and active voxels side by
+//! side) under `e`, as individual `id` named `label`; the caller's script waits for it
+//! ({"wait_simulation": true}).
+inline void request_tiny_body(Studio& studio, const evo::Experiment& e, std::int64_t id,
+                              const std::string& label) {
+    SimulationRequest request;
+    request.id = id;
+    request.label = label;
+    request.experiment = e;
+    auto body = std::make_shared<evo::Body>();
+    body->size = {2, 2, 1};
+    body->cells = {1, 2, 1, 2};
+    request.framed_body = body;
+    studio.simulator.request(request);
 }
 
 //! Paper Table 1 materials on a small workspace held at x-; short times so a generation of a

@@ -358,15 +358,7 @@ TEST_CASE("studio integrity: simulation mode draws no tinted faces and hatches f
     Studio studio;
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest request;
-    request.id = 1;
-    request.label = "body";
-    request.experiment = e;
-    auto body = std::make_shared<evo::Body>();
-    body->size = {2, 2, 1};
-    body->cells = {1, 2, 1, 2};
-    request.framed_body = body;
-    studio.simulator.request(request);
+    testing::request_tiny_body(studio, e, 1, "body");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"mode": "simulation"}, {"frames": 2}])"));
     const auto list = build_view_draw_list(studio);

@@ -193,15 +193,7 @@ TEST_CASE("studio layout: the view names the body being simulated, not the one s
     auto e = testing::tiny_experiment();
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest first;
-    first.id = 1;
-    first.label = "champion #1, generation 0";
-    first.experiment = e;
-    auto small = std::make_shared<evo::Body>();
-    small->size = {2, 2, 1};
-    small->cells = {1, 2, 1, 2};
-    first.framed_body = small;
-    studio.simulator.request(first);
+    testing::request_tiny_body(studio, e, 1, "champion #1, generation 0");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"frames": 2}])"));
     REQUIRE(studio.shown);

@@ -248,15 +248,7 @@ TEST_CASE("studio session: a simulated body replays at t = 5 s with the settle p
     Studio studio;
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
-    SimulationRequest request;
-    request.id = 3;
-    request.label = "test body";
-    request.experiment = e;
-    auto body = std::make_shared<evo::Body>();
-    body->size = {2, 2, 1};
-    body->cells = {1, 2, 1, 2};
-    request.framed_body = body;
-    studio.simulator.request(request);
+    testing::request_tiny_body(studio, e, 3, "test body");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"replay": {"time_s": 5.0, "playing": false}},
                                         {"frames": 2}])"));

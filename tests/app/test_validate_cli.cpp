@@ -121,10 +121,8 @@ TEST_CASE("usage errors exit 2 with a one-line error and a hint") {
 
 TEST_CASE("mutated presets through the real binary never crash it") {
     const auto dir = bhm::test::scratch_dir("validate-fuzz");
-    std::ifstream in(kSource + "/assets/experiments/paper-exp3.json");
-    std::stringstream s;
-    s << in.rdbuf();
-    const std::string original = s.str();
+    const std::string original =
+        bhm::test::read_file(kSource + "/assets/experiments/paper-exp3.json");
     std::mt19937 rng(7);
     for (int i = 0; i < 24; ++i) {
         std::string text = original;

@@ -21,12 +21,6 @@ const std::vector<std::string> kPresets = {"paper-exp1", "paper-exp1-attached", 
 std::string preset_path(const std::string& name) {
     return kSource + "/assets/experiments/" + name + ".json";
 }
-std::string read_all(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 }  // namespace
 
 TEST_CASE("every preset validates and matches the paper's settings") {
@@ -69,9 +63,7 @@ TEST_CASE("experiment round trip: load, save, load is identical") {
 }
 
 TEST_CASE("actuation.phase_offset_rad: round trip, range, and every voxel's phase moved by it") {
-    const fs::path dir =
-        fs::temp_directory_path() / ("bhm-test-phase-offset-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    const fs::path dir = bhm::test::scratch_dir("phase-offset");
     Experiment a = load_experiment(preset_path("quick-demo"));
     // Absent in the presets: 0, and not written, so files without one stay as they were.
     CHECK(a.actuation.phase_offset_rad == 0.0);
@@ -149,7 +141,7 @@ TEST_CASE("every broken file in tests/data/bad fails and names the field") {
         const std::string path = kSource + "/tests/data/bad/" + file;
         CAPTURE(file);
         std::vector<Problem> problems;
-        const bool is_body = read_all(path).find("\"layers\"") != std::string::npos;
+        const bool is_body = bhm::test::read_file(path).find("\"layers\"") != std::string::npos;
         try {
             if (is_body) {
                 auto body = load_body(path);
@@ -208,7 +200,7 @@ TEST_CASE("mutated presets never crash the loader") {
     std::mt19937 rng(12345);
     int rejected = 0, accepted = 0;
     for (const auto& name : kPresets) {
-        const std::string original = read_all(preset_path(name));
+        const std::string original = bhm::test::read_file(preset_path(name));
         for (int i = 0; i < 80; ++i) {
             std::string text = original;
             switch (i % 4) {

@@ -4,6 +4,7 @@
 // docs/experiment-format.md documents every field.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/field_rules.hpp"
 #include "support/scratch.hpp"
 
 using namespace bhm::evo;
@@ -101,8 +103,18 @@ bool refused_with(const std::vector<Problem>& problems, const std::string& field
 }  // namespace
 
 TEST_CASE("every field of the table is written at its path and read back unchanged") {
-    const Experiment base = preset();
+    // A passive frame material and no attachment, so that a frame thickness or a face set free
+    // keeps the experiment valid.
+    Experiment base = preset();
     REQUIRE(base.materials.size() == 2);
+    REQUIRE_FALSE(base.materials[0].active());
+    base.boundary.enclosure_material = 1;
+    base.fitness.constraints.attached_to_fixed_face = false;
+    // The boundary's faces and frame are rows too (issue 22): the loop below covers them.
+    for (const char* path : {"boundary.faces.x-", "boundary.faces.z+",
+                             "boundary.enclosure.thickness_voxels.y+",
+                             "boundary.enclosure.material"})
+        CHECK(find_experiment_field(path) != nullptr);
     const auto dir = bhm::test::scratch_dir("experiment-fields");
     int checked = 0;
     for (const auto& f : experiment_fields()) {
@@ -117,6 +129,7 @@ TEST_CASE("every field of the table is written at its path and read back unchang
         const std::string file = (dir / "e.json").string();
         save_experiment(file, e);
         CHECK(load_experiment(file) == e);
+        CHECK(experiment_to_json(load_experiment(file)) == written);
         ++checked;
     }
     for (const auto& f : material_fields()) {
@@ -249,6 +262,141 @@ TEST_CASE("the table's physics ranges are the engine's: what it accepts, Model::
     CHECK(field_tooltip(*find_experiment_field("actuation.temperature_amplitude_c"))
               .find("<= " + range_number(bhm::engine::limits::kMaxActuationStrain)) !=
           std::string::npos);
+}
+
+TEST_CASE("each rule between fields is declared once: validated, and in its fields' tooltips") {
+    const Experiment base = preset();
+    REQUIRE(validate_experiment(base, "e.json").empty());
+    // One break per rule, in the rules' order, and the field the validator must name; written
+    // here from the experiment-format's rules, not from field_rules.cpp.
+    struct Break {
+        const char* field;
+        void (*apply)(Experiment&);
+    };
+    const Break breaks[] = {
+        {"workspace.size", [](Experiment& e) { e.workspace_size = {200, 200, 200}; }},
+        {"actuation.temperature_amplitude_c",
+         [](Experiment& e) { e.materials[1].physics.cte_per_c = 0.5; }},
+        {"materials[0].dynamic_friction",
+         [](Experiment& e) {
+             e.materials[0].physics.static_friction = 0.5;
+             e.materials[0].physics.dynamic_friction = 0.6;
+         }},
+        {"materials", [](Experiment& e) { e.materials[1].physics.cte_per_c = 0; }},
+        {"boundary.enclosure.thickness_voxels",
+         [](Experiment& e) {
+             e.boundary.enclosure_material = 1;
+             e.boundary.enclosure_thickness[0] = e.workspace_size[0] - 1;
+             e.boundary.enclosure_thickness[1] = 1;
+         }},
+        {"boundary.enclosure.material",
+         [](Experiment& e) {
+             e.boundary.enclosure_thickness[4] = 1;
+             e.boundary.enclosure_material = 2;  // the active one
+         }},
+        {"boundary.voxel_overrides[0].voxel",
+         [](Experiment& e) {
+             e.boundary.voxel_overrides.push_back({{0, e.workspace_size[1], 0}});
+         }},
+        {"fitness.constraints.attached_to_fixed_face",
+         [](Experiment& e) {
+             e.fitness.constraints.attached_to_fixed_face = true;
+             e.boundary.faces.fill(BoundaryKind::Free);
+         }},
+        {"fitness.constraints.min_active_voxels",
+         [](Experiment& e) {
+             e.fitness.constraints.min_active_voxels = e.workspace_size[0] * e.workspace_size[1] *
+                                                           e.workspace_size[2] + 1;
+         }},
+        {"evolution.cppn.max_hidden_nodes",
+         [](Experiment& e) {
+             e.evolution.cppn.min_hidden_nodes = 6;
+             e.evolution.cppn.max_hidden_nodes = 5;
+         }},
+        {"evolution.cppn.material_outputs",
+         [](Experiment& e) {
+             e.evolution.cppn.material_outputs = MaterialOutputs::PerMaterial;
+             e.materials.pop_back();
+         }},
+        {"evolution.neat.elitism",
+         [](Experiment& e) { e.evolution.neat.elitism = e.evolution.population + 1; }},
+        {"simulation", [](Experiment& e) { e.simulation.evaluate_s = 9e4; }},
+    };
+    REQUIRE(std::size(breaks) == field_rules().size());
+    for (const auto& b : breaks) {
+        CAPTURE(b.field);
+        Experiment e = base;
+        b.apply(e);
+        const auto problems = validate_experiment(e, "e.json");
+        CHECK(std::any_of(problems.begin(), problems.end(),
+                          [&](const Problem& p) { return p.field == b.field; }));
+        // Nothing else of the table is out of range: the rule, not a range, refused it.
+        for (const auto& p : problems)
+            CHECK(p.message.find("must be in") == std::string::npos);
+    }
+    // Every field a rule names is a field of the table, and its tooltip says the rule.
+    int quoted = 0;
+    for (const auto& rule : field_rules()) {
+        const std::string text = rule.text();
+        for (const char* name : rule.fields) {
+            if (!name) continue;
+            CAPTURE(name);
+            const std::string_view n(name);
+            if (n.starts_with("materials[].")) {
+                const MaterialField* f = find_material_field(n.substr(12));
+                REQUIRE(f != nullptr);
+                CHECK(field_tooltip(*f).find(text) != std::string::npos);
+                ++quoted;
+            } else if (n.ends_with('.')) {
+                int under = 0;
+                for (const auto& f : experiment_fields())
+                    if (std::string_view(f.path).starts_with(n)) {
+                        CHECK(field_tooltip(f).find(text) != std::string::npos);
+                        ++under;
+                    }
+                CHECK(under == 6);  // the six faces
+                quoted += under;
+            } else {
+                const ExperimentField* f = find_experiment_field(n);
+                REQUIRE(f != nullptr);
+                CHECK(field_tooltip(*f).find(text) != std::string::npos);
+                ++quoted;
+            }
+        }
+    }
+    CHECK(quoted >= 25);
+    // A field no rule names has no rule in its tooltip.
+    CHECK(rules_text("simulation.record_fps").empty());
+    CHECK(field_tooltip(*find_experiment_field("evolution.cppn.min_hidden_nodes"))
+              .find("max_hidden_nodes >= min_hidden_nodes") != std::string::npos);
+}
+
+TEST_CASE("the boundary's rows read as the file gives them: objects, keys and kinds checked") {
+    json j = experiment_to_json(preset());
+    j["boundary"]["enclosure"]["thikness_voxels"] = json::object();
+    j["boundary"]["faces"]["x+"] = "held";
+    j["boundary"]["enclosure"]["thickness_voxels"]["z-"] = 1.5;
+    try {
+        (void)parse_experiment(j, "e.json");
+        FAIL("a broken boundary was accepted");
+    } catch (const ValidationError& e) {
+        auto names = [&](const std::string& field, const std::string& text) {
+            return refused_with(e.problems, field, text);
+        };
+        CHECK(names("boundary.enclosure.thikness_voxels", "thickness_voxels"));
+        CHECK(names("boundary.faces.x+", "free"));
+        CHECK(names("boundary.enclosure.thickness_voxels.z-", "integer"));
+    }
+    j = experiment_to_json(preset());
+    j["boundary"] = 3;
+    try {
+        (void)parse_experiment(j, "e.json");
+        FAIL("a boundary that is not an object was accepted");
+    } catch (const ValidationError& e) {
+        // Reported once, by the table's reader (the overrides' reader does not repeat it).
+        CHECK(std::count_if(e.problems.begin(), e.problems.end(),
+                            [](const Problem& p) { return p.field == "boundary"; }) == 1);
+    }
 }
 
 TEST_CASE("docs/experiment-format.md documents every field of the table") {

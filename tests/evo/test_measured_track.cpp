@@ -82,3 +82,19 @@ TEST_CASE("a track written by measured_track_to_csv reads back the same") {
     CHECK(again.points[0].position_m == track.points[0].position_m);
     CHECK(again.points[0].axes == track.points[0].axes);
 }
+
+TEST_CASE("a track file that cannot be read is one line naming it, and a folder is refused") {
+    auto error_of = [](const std::string& path) -> std::string {
+        try {
+            (void)bhm::evo::load_measured_track(path);
+        } catch (const std::runtime_error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string missing = std::string(BHM_SOURCE_DIR) + "/tests/data/no-such-track.csv";
+    CHECK(error_of(missing) == missing + ": no such file");
+    // A folder opens as a stream but reads nothing: refused by name, not parsed as an empty track.
+    const std::string folder = std::string(BHM_SOURCE_DIR) + "/tests/data";
+    CHECK(error_of(folder) == folder + ": is a directory, not a file");
+}

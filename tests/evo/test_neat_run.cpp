@@ -13,6 +13,7 @@
 #include "evo/run/evolution_run.hpp"
 #include "evo_test_support.hpp"
 #include "run_test_support.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
@@ -150,12 +151,8 @@ TEST_CASE("a format 2 checkpoint of an AFPO run (before evolution.algorithm) sti
     // no species in the history rows.
     for (const char* name : {kCheckpointFile, kPreviousCheckpointFile}) {
         const fs::path path = old / name;
-        std::ifstream in(path);
-        std::stringstream text;
-        text << in.rdbuf();
-        in.close();
         std::vector<std::string> notes;
-        auto payload = parse_checkpoint_text(text.str(), notes);
+        auto payload = parse_checkpoint_text(bhm::test::read_file(path), notes);
         payload["format_version"] = 2;
         payload["experiment"]["evolution"].erase("algorithm");
         for (auto& row : payload["history"])

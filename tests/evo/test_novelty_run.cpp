@@ -17,6 +17,7 @@
 #include "evo/run/evolution_run.hpp"
 #include "evo_test_support.hpp"
 #include "run_test_support.hpp"
+#include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
@@ -152,10 +153,8 @@ TEST_CASE("a stopped novelty run resumes into its uninterrupted twin, archive in
 
     // A checkpoint without its archive is refused by name, not resumed into another run.
     resumed.reset();
-    std::stringstream text;
-    text << std::ifstream(parts / kCheckpointFile).rdbuf();
     std::vector<std::string> notes;
-    auto payload = parse_checkpoint_text(text.str(), notes);
+    auto payload = parse_checkpoint_text(bhm::test::read_file(parts / kCheckpointFile), notes);
     payload.erase("novelty_archive");
     CHECK_THROWS_WITH(run_state_from_json(payload, "cp.json"),
                       doctest::Contains("novelty_archive"));

@@ -103,10 +103,7 @@ TEST_CASE("save_vxa writes the document atomically") {
     body.cells = {1, 2};
     const auto path = (bhm::test::scratch_dir("vxa-champion") / "champion.vxa").string();
     save_vxa(path, e, body);
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    CHECK(s.str() == vxa_document(e, body));
+    CHECK(bhm::test::read_file(path) == vxa_document(e, body));
     CHECK_FALSE(std::filesystem::exists(path + ".tmp"));
     std::filesystem::remove(path);
 }

@@ -6,6 +6,7 @@
 
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/studio_actions.hpp"
+#include "app/gui/widgets/field_editor.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {
@@ -86,13 +87,17 @@ void faces_section(Studio& s) {
                                                          : ImVec4(0.55f, 0.36f, 0.75f, 0.35f));
             if (ImGui::Button(fixed ? "fixed" : "free", ImVec2(-1.0f, 0.0f))) cycle_face(s, face);
             ImGui::PopStyleColor();
-            record_widget(s, std::string("face ") + evo::kFaceNames[static_cast<std::size_t>(f)]);
+            const std::string name = evo::kFaceNames[static_cast<std::size_t>(f)];
+            record_widget(s, "face " + name);
+            field_tooltip_on_hover(s, "boundary.faces." + name);
             ImGui::TableNextColumn();
             int thickness = e.boundary.enclosure_thickness[static_cast<std::size_t>(f)];
             ImGui::SetNextItemWidth(-1.0f);
             if (ImGui::InputInt("##t", &thickness, 1, 1) &&
                 thickness != e.boundary.enclosure_thickness[static_cast<std::size_t>(f)])
                 set_enclosure_thickness(s, face, std::max(0, thickness));
+            record_widget(s, "frame " + name);
+            field_tooltip_on_hover(s, "boundary.enclosure.thickness_voxels." + name);
             ImGui::PopID();
         }
         ImGui::EndTable();
@@ -102,7 +107,10 @@ void faces_section(Studio& s) {
     ImGui::SetNextItemWidth(field_width() * 1.5f);
     const char* current =
         frame >= 1 && frame <= int(materials.size()) ? materials[frame - 1].name.c_str() : "none";
-    if (ImGui::BeginCombo("Frame material", current)) {
+    const bool choosing = ImGui::BeginCombo("Frame material", current);
+    record_widget(s, "frame material");
+    field_tooltip_on_hover(s, "boundary.enclosure.material");
+    if (choosing) {
         if (ImGui::Selectable("none", frame == 0)) {
             evo::Experiment next = e;
             next.boundary.enclosure_material = 0;

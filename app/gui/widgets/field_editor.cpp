@@ -18,14 +18,19 @@ std::string visible(const char* label) {
     return s.substr(0, s.find("##"));
 }
 
-// After the input item: recorded for scripts, the table's tooltip on hover, then the unit.
 template <class Host>
-void after_item(Studio& s, const evo::FieldOf<Host>& f, const std::string& name) {
-    record_widget(s, name);
+void tooltip_on_hover(Studio& s, const evo::FieldOf<Host>& f) {
     if (ImGui::IsItemHovered()) {
         s.shown_tooltip = evo::field_tooltip(f);
         ImGui::SetTooltip("%s", s.shown_tooltip.c_str());
     }
+}
+
+// After the input item: recorded for scripts, the table's tooltip on hover, then the unit.
+template <class Host>
+void after_item(Studio& s, const evo::FieldOf<Host>& f, const std::string& name) {
+    record_widget(s, name);
+    tooltip_on_hover(s, f);
     if (*f.unit) {
         ImGui::SameLine();
         ImGui::TextDisabled("%s", f.unit);
@@ -109,6 +114,12 @@ bool experiment_field(Studio& s, std::string_view path, bool multiline) {
     if (!draw(s, *f, s.draft, f->path, multiline)) return false;
     commit_draft(s, std::string("set ") + f->path);
     return true;
+}
+
+void field_tooltip_on_hover(Studio& s, std::string_view path) {
+    const evo::ExperimentField* f = evo::find_experiment_field(path);
+    if (!f) throw std::logic_error("no experiment field " + std::string(path));
+    tooltip_on_hover(s, *f);
 }
 
 bool material_field(Studio& s, std::size_t k, std::string_view key) {

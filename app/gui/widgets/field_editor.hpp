@@ -15,6 +15,10 @@ namespace bhm::app::gui {
 //! selectables as "<key> <name>", e.g. "algorithm neat"). True when an edit was committed.
 //! Throws std::logic_error for a path the table does not have.
 bool experiment_field(Studio& studio, std::string_view path, bool multiline = false);
+//! The table's tooltip of the field at `path`, shown while the last item drawn is hovered: for
+//! the widgets drawn by hand over table fields (the Constraints panel's faces and frame).
+//! Throws std::logic_error for a path the table does not have.
+void field_tooltip_on_hover(Studio& studio, std::string_view path);
 //! The physical field `key` of draft.materials[k] ("poisson_ratio"), recorded as
 //! "materials[k].key".
 bool material_field(Studio& studio, std::size_t k, std::string_view key);
