@@ -246,6 +246,10 @@ struct Studio {
     std::string verification_error;    //!< a kept report that could not be read
     std::string verification_key;      //!< "<run dir>#<id>" the kept report was looked up for
     int fem_load = 1;                  //!< row of the verification drawn in the 3D view (+A)
+    //! The ids of the reports kept in the shown run's RUN_DIR/verify/ (Kept FEM reports), read
+    //! when another run is shown and after each verification ends.
+    std::vector<std::int64_t> kept_reports;
+    std::string kept_reports_key;  //!< "<run dir>#<job>" they were listed for
     bool fem_ghost = true;             //!< draw the FEM's shape over our static one
     bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;

@@ -107,6 +107,11 @@ bool verify_shown_body(Studio& studio);
 bool verify_champion(Studio& studio, const ChampionEntry& entry);
 //! Shows a member of the current population (select_individual) and verifies it.
 bool verify_individual(Studio& studio, std::int64_t id);
+//! Shows the body of a report kept in the run directory (Analysis > FEM > Kept FEM reports)
+//! with that report and its ghost, without solving: a member of the run's snapshot, a
+//! champion of its history, or else a member of its checkpoint's population (a reopened run
+//! directory lists only its champions). False (the status says why) when none holds the id.
+bool show_kept_verification(Studio& studio, std::int64_t id);
 //! Kills the solver of the verification in progress; nothing is written.
 void cancel_verification(Studio& studio);
 //! The verification of the body shown, with its shapes, when it is drawn in the 3D view now

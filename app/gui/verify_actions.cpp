@@ -1,11 +1,13 @@
-// "Verify in FEM": the actions of the Analysis > FEM tab and the Champions and Population lists,
-// and the per-frame hand-off from the verifier's worker (app/gui/session/fem_verifier.hpp,
-// docs/studio.md).
+// "Verify in FEM": the actions of the Analysis > FEM tab (its Kept FEM reports list too) and the
+// Champions and Population lists, and the per-frame hand-off from the verifier's worker
+// (app/gui/session/fem_verifier.hpp, docs/studio.md).
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "app/gui/studio_actions.hpp"
+#include "evo/run/checkpoint.hpp"
 
 namespace bhm::app::gui {
 
@@ -94,6 +96,52 @@ bool verify_individual(Studio& studio, std::int64_t id) {
     return start_verification(studio, std::move(request));
 }
 
+bool show_kept_verification(Studio& studio, std::int64_t id) {
+    if (!studio.run) return false;
+    const auto run = studio.run;  // held: the snapshot outlives a newer one taken meanwhile
+    // The member's body as its row or champion file holds it; the report follows the body
+    // shown (update_verification reads it), so nothing is solved.
+    if (run->has_champion && run->champion.id == id) return select_individual(studio, id);
+    for (const auto& m : run->population)
+        if (m.id == id && m.body) return select_individual(studio, id);
+    for (const auto& e : studio.champion_history.entries())
+        if (e.id == id) return replay_champion(studio, e, false);
+    // A reopened run directory lists only its champions: the population is in the checkpoint.
+    try {
+        const auto loaded = evo::load_checkpoint(run->run_dir);
+        const auto& state = loaded.state;
+        const evo::Individual* found = nullptr;
+        for (const auto& m : state.population)
+            if (m.id == id) found = &m;
+        if (!found && state.champion && state.champion->individual.id == id)
+            found = &state.champion->individual;
+        if (!found) {
+            set_status(studio,
+                       "individual #" + std::to_string(id) +
+                           " is neither among the champions nor in the population of " +
+                           loaded.path + " (generation " + std::to_string(state.generation) +
+                           "): its kept report has no body to be shown on",
+                       true);
+            return false;
+        }
+        SimulationRequest request;
+        request.id = id;
+        request.label = "individual #" + std::to_string(id) + " of generation " +
+                        std::to_string(state.generation) + " (checkpoint)";
+        request.experiment = run->experiment;
+        request.framed_body = std::make_shared<const evo::Body>(found->phenotype.body);
+        studio.follow_champion = false;
+        studio.selected_id = id;
+        studio.simulator.request(std::move(request));
+        set_status(studio, "simulating individual #" + std::to_string(id) +
+                               " from the checkpoint, with its kept FEM report");
+        return true;
+    } catch (const std::exception& e) {
+        set_status(studio, e.what(), true);
+        return false;
+    }
+}
+
 void cancel_verification(Studio& studio) {
     if (!studio.fem_verifier.running()) return;
     studio.fem_verifier.cancel();
@@ -138,6 +186,13 @@ void update_verification(Studio& studio) {
     }
     // A body newly shown: the report kept for it in its run directory, if any.
     const std::string run_dir = studio.run ? studio.run->run_dir : "";
+    // The reports kept in that run directory: listed again when another run is shown or a
+    // verification has ended (it may have added one).
+    const std::string kept_key = run_dir + "#" + std::to_string(studio.fem_job_reported);
+    if (kept_key != studio.kept_reports_key) {
+        studio.kept_reports_key = kept_key;
+        studio.kept_reports = kept_verifications(run_dir);
+    }
     const std::string key =
         studio.shown && !run_dir.empty() ? run_dir + "#" + std::to_string(studio.shown->id) : "";
     if (key == studio.verification_key) return;

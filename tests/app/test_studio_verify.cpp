@@ -386,9 +386,13 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
                                             {"wait_run": "finished", "timeout_s": 240},
                                             {"click": "tab Population"}, {"frames": 2}])"));
         REQUIRE(studio.run);
-        // A member other than the champion: its row, not the champion's, is what is verified.
+        // A member other than the champion (nor an earlier one): its row, not the champion's,
+        // is what is verified, and a reopened run finds its body only in the checkpoint.
+        const auto& history = studio.champion_history.entries();
         for (const auto& m : studio.run->population)
-            if (m.body && !(studio.run->has_champion && m.id == studio.run->champion.id)) {
+            if (m.body && !(studio.run->has_champion && m.id == studio.run->champion.id) &&
+                std::none_of(history.begin(), history.end(),
+                             [&](const ChampionEntry& e) { return e.id == m.id; })) {
                 id = m.id;
                 break;
             }
@@ -417,13 +421,50 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
     const auto crashed = make_folder(
         run_dir / "verify" / (".individual-99.partial-" + std::to_string(dead_pid()) + "-zZ9zZ9"));
     Studio again;
+    HeadlessStudio session(again, 1024, 800);
     REQUIRE(open_run_directory(again, run_dir.string()));
     CHECK_FALSE(fs::exists(crashed));
-    // A reopened run directory lists only its champions (the population is in the checkpoint),
-    // so the member's report is read back here as the panel would read it.
-    const auto kept = read_verification(verification_dir(run_dir.string(), id), id);
-    REQUIRE(kept);
-    CHECK(kept->verdict == verdict);
+    // A reopened run directory lists only its champions (the population is in the checkpoint):
+    // Analysis > FEM lists the kept reports, and choosing the member's shows its body (from the
+    // checkpoint) with its report and ghost, without solving.
+    const std::string kept = "kept report #" + std::to_string(id);
+    run_script(session, json::array({{{"click", "tab FEM"}}, {{"frames", 2}}}));
+    CHECK(std::find(again.kept_reports.begin(), again.kept_reports.end(), id) !=
+          again.kept_reports.end());
+    run_script(session, json::array({{{"click", kept}},
+                                     {{"wait_simulation", true}, {"timeout_s", 120}},
+                                     {{"frames", 2}}}));
+    CHECK_MESSAGE(again.status.find("(checkpoint)") != std::string::npos, again.status);
+    REQUIRE(again.shown);
+    CHECK(again.shown->id == id);
+    REQUIRE_MESSAGE(again.verification, again.status);
+    CHECK(again.verification->id == id);
+    CHECK(again.verification->verdict == verdict);
+    CHECK_FALSE(again.fem_verifier.running());  // shown, not solved again
+    CHECK_FALSE(again.fem_state);
+    const auto it = again.widgets.find("fem verdict");
+    CHECK((it != again.widgets.end() && it->second.frame == again.frame));
+    set_view_mode(again, ViewMode::Simulation);
+    const FemVerification* overlay = fem_overlay(again);
+    REQUIRE(overlay);
+    render::Scene scene = simulation_scene(*again.shown, again.clock.time_s, again.view);
+    CHECK(apply_fem_overlay(scene, *overlay, again.fem_load));  // the ghost fits this body
+}
+
+TEST_CASE("studio verify: the kept reports of a run directory are listed by id") {
+    const auto dir = testing::fresh_dir("verify-kept-list");
+    const fs::path v = dir / "verify";
+    make_folder(v / "individual-12");
+    make_folder(v / "individual-3");
+    make_folder(v / "individual-40");
+    fs::remove(v / "individual-40" / "report.json");  // no report: not listed
+    make_folder(v / ".individual-5.partial-1-aB3dE9");
+    make_folder(v / "individual-x7");
+    make_folder(v / "individual-");
+    std::ofstream(v / "individual-8") << "a file, not a folder";
+    CHECK(kept_verifications(dir.string()) == std::vector<std::int64_t>{3, 12});
+    CHECK(kept_verifications((dir / "nowhere").string()).empty());
+    CHECK(kept_verifications("").empty());
 }
 
 TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {

@@ -1,6 +1,7 @@
 // Analysis > FEM: "Verify in FEM" for the body shown (docs/verify.md): the progress of the
 // worker (phase, elapsed time, Cancel), then the verdict, the per-load table of both answers and
-// their differences, and which load the 3D view draws with the FEM's shape as a ghost.
+// their differences, and which load the 3D view draws with the FEM's shape as a ghost; below,
+// the reports kept in the run directory, each of which shows its body with it.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -163,6 +164,35 @@ void result_section(Studio& s) {
     }
 }
 
+// Every report kept in the run directory: a member's too, which a reopened run does not list.
+void kept_section(Studio& s) {
+    if (s.kept_reports.empty() || !s.run) return;
+    ImGui::Separator();
+    ImGui::TextDisabled("Kept FEM reports (%s/verify): choose one to show its body with it",
+                        s.run->run_dir.c_str());
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::PushID("kept reports");
+    for (std::size_t k = 0; k < s.kept_reports.size(); ++k) {
+        const std::int64_t id = s.kept_reports[k];
+        char label[48];
+        std::snprintf(label, sizeof label, "#%lld", static_cast<long long>(id));
+        const float width = ImGui::CalcTextSize(label).x + 2.0f * style.FramePadding.x;
+        if (k > 0 && ImGui::GetItemRectMax().x + style.ItemSpacing.x + width < right)
+            ImGui::SameLine();
+        const bool shown = s.shown && s.shown->id == id;
+        if (shown) ImGui::PushStyleColor(ImGuiCol_Button, kGood);
+        const bool clicked = ImGui::Button(label);
+        if (shown) ImGui::PopStyleColor();
+        record_widget(s, "kept report " + std::string(label));
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("show individual %s with its report and the FEM ghost (no solve)",
+                              label);
+        if (clicked) show_kept_verification(s, id);
+    }
+    ImGui::PopID();
+}
+
 }  // namespace
 
 void draw_verify_panel(Studio& s) {
@@ -177,6 +207,7 @@ void draw_verify_panel(Studio& s) {
         ImGui::TextDisabled("Select a champion or an individual to verify it.");
     progress_section(s);
     result_section(s);
+    kept_section(s);
 }
 
 }  // namespace bhm::app::gui

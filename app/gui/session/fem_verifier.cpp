@@ -1,5 +1,6 @@
 #include "app/gui/session/fem_verifier.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -110,6 +111,26 @@ int remove_stale_partials(const std::string& run_dir) {
 
 std::string verification_dir(const std::string& run_dir, std::int64_t id) {
     return (fs::path(run_dir) / "verify" / ("individual-" + std::to_string(id))).string();
+}
+
+std::vector<std::int64_t> kept_verifications(const std::string& run_dir) {
+    std::vector<std::int64_t> ids;
+    if (run_dir.empty()) return ids;
+    const std::string prefix = "individual-";
+    std::error_code ec;
+    fs::directory_iterator it(fs::path(run_dir) / "verify", ec);
+    if (ec) return ids;
+    for (const auto& entry : it) {
+        const std::string name = entry.path().filename().string();
+        const std::string digits = name.substr(std::min(name.size(), prefix.size()));
+        if (name.rfind(prefix, 0) != 0 || digits.empty() || digits.size() > 18 ||
+            digits.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        if (fs::is_regular_file(entry.path() / "report.json", ec))
+            ids.push_back(std::stoll(digits));
+    }
+    std::sort(ids.begin(), ids.end());
+    return ids;
 }
 
 std::optional<FemVerification> read_verification(const std::string& dir, std::int64_t id) {

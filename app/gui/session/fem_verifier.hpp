@@ -55,6 +55,11 @@ std::string verification_dir(const std::string& run_dir, std::int64_t id);
 //! Reads a verification folder; nullopt when it holds no report.json. Throws std::runtime_error
 //! naming the file when one is unreadable.
 std::optional<FemVerification> read_verification(const std::string& dir, std::int64_t id);
+//! The ids of the reports kept in RUN_DIR/verify/ (folders individual-<id> holding a
+//! report.json), ascending: a population member's is listed too, although a reopened run
+//! directory shows only its champions. Hidden partial folders and other names are skipped;
+//! empty when there is no such folder.
+std::vector<std::int64_t> kept_verifications(const std::string& run_dir);
 
 //! A partial folder this old is stale whoever wrote it: one lives only while a finished
 //! verification's report is written (about a second), never during the solve.
