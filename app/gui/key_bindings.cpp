@@ -99,6 +99,12 @@ std::optional<KeyChord> parse_key_chord(const std::string& text) {
     return std::nullopt;
 }
 
+std::optional<KeyChord> key_event_chord(int key, int action, int mods) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return std::nullopt;
+    return KeyChord{key, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_SHIFT) != 0,
+                    action == GLFW_REPEAT};
+}
+
 void dispatch_key_bindings(Studio& studio) {
     // Each press with the modifiers held at that moment, in order, even when the key (or Ctrl)
     // was released before this frame: a quick Ctrl+Z was lost when only the keys still down at
@@ -106,11 +112,13 @@ void dispatch_key_bindings(Studio& studio) {
     std::vector<KeyChord> presses;
     presses.swap(studio.key_presses);
     if (ImGui::GetIO().WantTextInput) return;
-    for (const KeyChord& press : presses)
+    for (const KeyChord& press : presses) {
+        if (press.repeat) continue;  // a held F5 or Ctrl+Z acts once
         for (const auto& binding : key_bindings())
             if (binding.key == press.key && binding.ctrl == press.ctrl &&
                 binding.shift == press.shift)
                 run_action(studio, binding.action);
+    }
 }
 
 void run_action(Studio& studio, Action action) {

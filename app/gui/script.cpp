@@ -5,6 +5,9 @@
 #include <sstream>
 #include <thread>
 
+#define GLFW_INCLUDE_NONE  // GL comes from glad only
+#include <GLFW/glfw3.h>
+
 #include "app/gui/calibration_actions.hpp"
 #include "app/gui/export_actions.hpp"
 #include "app/gui/key_bindings.hpp"
@@ -181,11 +184,16 @@ void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by)
     session.frame();
 }
 
-void press_key(HeadlessStudio& session, const std::string& chord_text, bool fast) {
+void press_key(HeadlessStudio& session, const std::string& chord_text, bool fast, int repeats) {
     const auto chord = parse_key_chord(chord_text);
     if (!chord) throw ScriptError("unknown key '" + chord_text + "'");
+    if (repeats < 0) throw ScriptError("hold: a number of key repeats, 0 or more");
+    if (fast && repeats > 0) throw ScriptError("a key is either fast or held, not both");
     auto& in = session.input();
-    in.key_presses.push_back(*chord);
+    // The events a window's key callback gets: a press, then one repeat per beat while held.
+    const int mods = (chord->ctrl ? GLFW_MOD_CONTROL : 0) | (chord->shift ? GLFW_MOD_SHIFT : 0);
+    if (const auto press = key_event_chord(chord->key, GLFW_PRESS, mods))
+        in.key_presses.push_back(*press);
     if (fast) {  // pressed and released (Ctrl too) before the next frame: nothing is held
         session.frame();
         return;
@@ -194,6 +202,13 @@ void press_key(HeadlessStudio& session, const std::string& chord_text, bool fast
     in.shift = chord->shift;
     in.key = chord->key;
     session.frame();
+    for (int k = 0; k < repeats; ++k) {
+        if (const auto repeat = key_event_chord(chord->key, GLFW_REPEAT, mods))
+            in.key_presses.push_back(*repeat);
+        session.frame();
+    }
+    if (const auto release = key_event_chord(chord->key, GLFW_RELEASE, mods))
+        in.key_presses.push_back(*release);
     in.key = 0;
     in.ctrl = in.shift = false;
     session.frame();
@@ -258,7 +273,8 @@ void run_step(HeadlessStudio& session, const json& step) {
     } else if (step.contains("click_cell")) {
         click_cell(session, step);
     } else if (step.contains("key")) {
-        press_key(session, step.at("key").get<std::string>(), step.value("fast", false));
+        press_key(session, step.at("key").get<std::string>(), step.value("fast", false),
+                  step.value("hold", 0));
     } else if (step.contains("view")) {
         const auto view = render::parse_named_view(step.at("view").get<std::string>());
         if (!view) throw ScriptError("unknown view (iso, front, top, side)");

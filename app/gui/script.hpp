@@ -58,7 +58,9 @@ void click_at(HeadlessStudio& session, glm::vec2 position, bool shift = false, b
 //! Presses over a widget, moves by `by` pixels over several frames, releases (splitters).
 void drag_widget(HeadlessStudio& session, const std::string& name, glm::vec2 by);
 //! Presses a chord. fast: the key and its modifiers go down and up before the next frame (a
-//! quick Ctrl+Z); otherwise they are held for one frame.
-void press_key(HeadlessStudio& session, const std::string& chord, bool fast = false);
+//! quick Ctrl+Z); otherwise they are held for one frame. repeats > 0: held for that many of the
+//! system's key repeats (GLFW_REPEAT events, one a frame, through the window's key path).
+void press_key(HeadlessStudio& session, const std::string& chord, bool fast = false,
+               int repeats = 0);
 
 }  // namespace bhm::app::gui

@@ -1,5 +1,6 @@
 #include "app/gui/welcome_thumbnails.hpp"
 
+#include "app/gui/example_body.hpp"
 #include "app/gui/studio.hpp"
 #include "app/gui/view_renderer.hpp"
 #include "app/gui/viewport.hpp"
@@ -10,8 +11,11 @@ void WelcomeThumbnails::ensure(ViewRenderer& renderer, const std::vector<PresetC
                                int width_px, int height_px, int samples) {
     while (targets_.size() < cards.size()) {
         const PresetCard& card = cards[targets_.size()];
+        // What the preset evolves: a generation-0 body in its workspace (the workspace alone
+        // when the preset cannot develop one).
+        const std::optional<evo::Body> body = example_body(card.experiment);
         const render::DrawList list =
-            workspace_draw_list(card.experiment, PainterState{}, nullptr, true);
+            workspace_draw_list(card.experiment, PainterState{}, body ? &*body : nullptr, true);
         render::Camera camera = iso_camera();
         render::frame_bounds(camera,
                              list.workspace_bounds.valid ? list.workspace_bounds : list.bounds,

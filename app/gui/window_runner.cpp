@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include "app/gui/headless_session.hpp"
+#include "app/gui/key_bindings.hpp"
 #include "app/gui/redraw_gate.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_app.hpp"
@@ -44,14 +45,14 @@ WindowContext* context_of(GLFWwindow* window) {
 }
 
 // Records each press with the modifiers of that moment (ImGui's backend calls this after its own
-// callback): a press released before the next frame still reaches the key bindings.
+// callback): a press released before the next frame still reaches the key bindings. Repeats of a
+// held key are recorded too, marked (a held Down moves on in the file dialog).
 void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
     WindowContext* c = context_of(window);
     if (!c) return;
     c->gate.input();
-    if (action == GLFW_PRESS)
-        c->studio.key_presses.push_back(
-            {key, (mods & GLFW_MOD_CONTROL) != 0, (mods & GLFW_MOD_SHIFT) != 0});
+    if (const auto chord = key_event_chord(key, action, mods))
+        c->studio.key_presses.push_back(*chord);
 }
 
 // The other input ImGui's backend chains to: each one is a reason to draw.

@@ -3,6 +3,7 @@
 // still taken; and through the UI, as a person presses the keys.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -180,4 +181,40 @@ TEST_CASE("studio file dialog: Open... and Save As... from the panel, with the k
                                         {"frames": 1}])"));
     CHECK_FALSE(studio.file_dialog.open);
     CHECK(studio.compare_field == (dir / "run1").string());
+}
+
+TEST_CASE("studio file dialog: a held Down moves on with the key repeat, shortcuts act once") {
+    const auto dir = make_tree("dialog-hold");
+    Studio studio;
+    studio.browser_dir = dir.string();
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 1},
+                                        {"click": "Open..."}, {"frames": 1}])"));
+    REQUIRE(studio.file_dialog.open);
+    file_dialog_go(studio.file_dialog, dir.string());
+    const auto listed = names(studio.file_dialog);
+    const auto x = std::find(listed.begin(), listed.end(), "x.json");
+    REQUIRE(x != listed.end());
+    const int target = static_cast<int>(x - listed.begin());
+    const int start = studio.file_dialog.selected;
+    REQUIRE(target - start >= 3);  // a/, b/, run1/ come first
+    // Down held for n of the system's repeats after its press: n + 1 rows down.
+    json hold = json::array({{{"key", "down"}, {"hold", target - start - 1}}});
+    run_script(session, hold);
+    CHECK(studio.file_dialog.selected == target);
+    hold = json::array({{{"key", "up"}, {"hold", 1}}});
+    run_script(session, hold);
+    CHECK(studio.file_dialog.selected == target - 2);
+    run_script(session, json::parse(R"([{"key": "down"}, {"key": "down"}, {"key": "enter"},
+                                        {"frames": 1}])"));
+    CHECK_FALSE(studio.file_dialog.open);
+    CHECK(studio.document.experiment().name == "x");
+
+    // Behind no dialog a held shortcut acts once per press: Ctrl+Z held undoes one edit.
+    const int generations = studio.document.experiment().evolution.generations;
+    run_script(session, json::parse(R"([{"set": "evolution.generations", "value": 7},
+                                        {"set": "evolution.generations", "value": 8},
+                                        {"key": "ctrl+z", "hold": 3}, {"frames": 1}])"));
+    CHECK(generations != 7);
+    CHECK(studio.document.experiment().evolution.generations == 7);
 }

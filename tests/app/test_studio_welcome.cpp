@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <set>
 
+#include "app/gui/example_body.hpp"
 #include "app/gui/headless_session.hpp"
 #include "app/gui/script.hpp"
 #include "app/gui/studio_actions.hpp"
 #include "app/gui/welcome.hpp"
+#include "evo/genome/phenotype.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -35,7 +37,52 @@ std::size_t colours_in(const render::Image& image, const WidgetRect& r) {
     return seen.size();
 }
 
+// Pixels of a widget's rectangle in the muscle's red (shaded or not): in the empty workspace only
+// the x axis (green and purple faces, grey frame, yellow star).
+std::size_t red_pixels(const render::Image& image, const WidgetRect& r) {
+    std::size_t n = 0;
+    for (int y = static_cast<int>(r.min.y) + 2; y < static_cast<int>(r.max.y) - 2; ++y)
+        for (int x = static_cast<int>(r.min.x) + 2; x < static_cast<int>(r.max.x) - 2; ++x) {
+            const std::size_t at =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                static_cast<std::size_t>(x);
+            const int red = image.rgba[4 * at], green = image.rgba[4 * at + 1],
+                      blue = image.rgba[4 * at + 2];
+            if (red > 90 && red * 10 > green * 16 && red * 10 > blue * 16) ++n;
+        }
+    return n;
+}
+
 }  // namespace
+
+TEST_CASE("studio welcome: each preset's example body is a generation-0 body that fills a tenth") {
+    for (const auto& c : read_preset_cards(kPresets)) {
+        CAPTURE(c.stem);
+        const auto body = example_body(c.experiment);
+        REQUIRE(body);
+        CHECK(body->size == c.experiment.workspace_size);
+        // At least a tenth of the design space filled (a one-voxel body would show nothing),
+        // counted here over the design space's cells.
+        const auto space = evo::design_space(c.experiment);
+        int designed = 0, active = 0;
+        for (int z = 0; z < body->size[2]; ++z)
+            for (int y = 0; y < body->size[1]; ++y)
+                for (int x = 0; x < body->size[0]; ++x) {
+                    const int m = body->cells[static_cast<std::size_t>(body->index(x, y, z))];
+                    if (m != 0 && space.contains(x, y, z)) ++designed;
+                    if (m != 0 && c.experiment.materials[static_cast<std::size_t>(m - 1)].active())
+                        ++active;
+                }
+        CHECK(designed * 10 >= space.cell_count());
+        CHECK(active >= c.experiment.fitness.constraints.min_active_voxels);
+        // The same body at every start.
+        CHECK(example_body(c.experiment)->cells == body->cells);
+    }
+    // An experiment that cannot develop a body (no active material): none, the workspace alone.
+    auto passive_only = read_preset_cards(kPresets).front().experiment;
+    passive_only.materials.resize(1);
+    CHECK_FALSE(example_body(passive_only));
+}
 
 TEST_CASE("studio welcome: every shipped preset has one line, the quick demo comes first") {
     std::vector<std::string> skipped;
@@ -97,6 +144,9 @@ TEST_CASE("studio welcome: the gallery, thumbnails, legend, and Start held until
         // A thumbnail drawn by the renderer: shaded faces, edges and floor, not a flat box.
         REQUIRE(w.count("welcome thumbnail " + c.stem));
         CHECK(colours_in(image, w.at("welcome thumbnail " + c.stem)) > 40);
+        // Not the empty workspace: the example body's muscle (every preset asks for one). The
+        // red x axis alone gives 64 pixels at this size; the bodies 150 to 1100.
+        CHECK(red_pixels(image, w.at("welcome thumbnail " + c.stem)) > 100);
     }
 
     // Start (the button and F5) waits for a choice.

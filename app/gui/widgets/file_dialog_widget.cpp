@@ -88,6 +88,9 @@ void take_file_dialog_keys(Studio& s) {
     std::vector<KeyChord> presses;
     presses.swap(s.key_presses);
     for (const KeyChord& k : presses) {
+        // A held Up / Down moves on with the system's key repeat; Enter, Backspace and Escape
+        // act once per press (a held Backspace must not climb to the root).
+        if (k.repeat && k.key != GLFW_KEY_UP && k.key != GLFW_KEY_DOWN) continue;
         std::optional<FileDialogKey> key;
         switch (k.key) {
             case GLFW_KEY_UP:
