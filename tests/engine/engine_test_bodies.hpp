@@ -23,6 +23,24 @@ inline BodySpec solid_box(int nx, int ny, int nz, Material material = {}) {
     return s;
 }
 
+// A free 4x3x2 body, half active with scattered phases, actuated from t = 0 (no gravity, no floor,
+// no global damping: nothing external acts on it, so its momenta are conserved).
+inline BodySpec free_actuated_body() {
+    BodySpec s = solid_box(4, 3, 2);
+    Material active = s.materials[0];
+    active.cte_per_c = 0.01;
+    s.materials.push_back(active);
+    s.phase_rad.assign(s.material.size(), 0.0f);
+    for (int c = 0; c < s.cell_count(); ++c) {
+        if (c % 2 == 0) s.material[c] = 2;
+        s.phase_rad[c] = static_cast<float>(0.7 * c);
+    }
+    s.actuation.start_s = 0.0;
+    s.actuation.frequency_hz = 5.0;
+    s.damping.global_ratio = 0.0;
+    return s;
+}
+
 //! Holds every voxel of the x = 0 layer.
 inline void fix_x_min_layer(BodySpec& s) {
     s.fixed.assign(s.material.size(), 0);

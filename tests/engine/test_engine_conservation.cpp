@@ -17,21 +17,9 @@ double norm(const std::array<double, 3>& a) {
     return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
-// A free 4x3x2 body, half active with scattered phases, actuated from t = 0 (no gravity, no floor,
-// no global damping: nothing external acts on it).
-BodySpec free_actuated_body() {
-    BodySpec s = solid_box(4, 3, 2);
-    Material active = s.materials[0];
-    active.cte_per_c = 0.01;
-    s.materials.push_back(active);
-    s.phase_rad.assign(s.material.size(), 0.0f);
-    for (int c = 0; c < s.cell_count(); ++c) {
-        if (c % 2 == 0) s.material[c] = 2;
-        s.phase_rad[c] = static_cast<float>(0.7 * c);
-    }
-    s.actuation.start_s = 0.0;
-    s.actuation.frequency_hz = 5.0;
-    s.damping.global_ratio = 0.0;
+// The shared free actuated body (engine_test_bodies.hpp) with its links half critically damped.
+BodySpec free_damped_body() {
+    BodySpec s = free_actuated_body();
     s.damping.bond_ratio = 0.5;
     return s;
 }
@@ -39,7 +27,7 @@ BodySpec free_actuated_body() {
 }  // namespace
 
 TEST_CASE("free body with internal actuation keeps its momentum, centre of mass and spin") {
-    auto model = Model::build(free_actuated_body());
+    auto model = Model::build(free_damped_body());
     World w(model);
     const auto com0 = w.centre_of_mass_m();
     double max_speed = 0.0, max_moment_arm = 0.0;

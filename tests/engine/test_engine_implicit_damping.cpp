@@ -69,18 +69,7 @@ TEST_CASE("implicit damping: a link's step response overshoots as the damped osc
 }
 
 TEST_CASE("implicit damping: a free actuated body keeps its momentum") {
-    BodySpec s = solid_box(4, 3, 2);
-    Material active = s.materials[0];
-    active.cte_per_c = 0.01;
-    s.materials.push_back(active);
-    s.phase_rad.assign(s.material.size(), 0.0f);
-    for (int c = 0; c < s.cell_count(); ++c) {
-        if (c % 2 == 0) s.material[c] = 2;
-        s.phase_rad[c] = static_cast<float>(0.7 * c);
-    }
-    s.actuation.start_s = 0.0;
-    s.actuation.frequency_hz = 5.0;
-    s.damping.global_ratio = 0.0;
+    BodySpec s = free_actuated_body();
     s.damping.implicit_sweeps = 1;
     World w(Model::build(s));
     const double mass = w.model().total_mass_kg();
