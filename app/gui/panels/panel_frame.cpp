@@ -71,14 +71,8 @@ void draw_menu_bar(Studio& s) {
 
 void draw_help_window(Studio& s) {
     if (!s.show_help) return;
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const float font = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing,
-                            ImVec2(0.5f, 0.5f));
     // Tall enough for every shortcut (wrapped) at the usual window sizes; smaller windows scroll.
-    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 60.0f),
-                                    std::min(display.y - 60.0f, font * 44.0f)),
-                             ImGuiCond_Appearing);
+    centre_next_window(60.0f, 44.0f, ImGuiCond_Appearing);
     if (!ImGui::Begin("Help: shortcuts and mouse", &s.show_help, ImGuiWindowFlags_NoCollapse)) {
         ImGui::End();
         return;

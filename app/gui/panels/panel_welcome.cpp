@@ -121,13 +121,7 @@ void legend(Studio& s) {
 void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& thumbnails) {
     if (!s.welcome_open) return;
     thumbnails.ensure(renderer, s.welcome_cards, kThumbW, kThumbH, s.view.samples);
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const float font = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always,
-                            ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 62.0f),
-                                    std::min(display.y - 60.0f, font * 46.0f)),
-                             ImGuiCond_Always);
+    centre_next_window(62.0f, 46.0f, ImGuiCond_Always);
     ImGui::SetNextWindowFocus();
     bool open = true;
     if (!ImGui::Begin("Welcome to BHM Studio", &open,

@@ -125,13 +125,7 @@ void take_file_dialog_keys(Studio& s) {
 void draw_file_dialog(Studio& s) {
     FileDialog& d = s.file_dialog;
     if (!d.open) return;
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    const float font = ImGui::GetFontSize();
-    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Appearing,
-                            ImVec2(0.5f, 0.5f));
-    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * 40.0f),
-                                    std::min(display.y - 60.0f, font * 30.0f)),
-                             ImGuiCond_Appearing);
+    centre_next_window(40.0f, 30.0f, ImGuiCond_Appearing);
     ImGui::SetNextWindowFocus();
     bool open = true;
     const std::string title = std::string(file_dialog_title(d.purpose)) + "###file dialog";

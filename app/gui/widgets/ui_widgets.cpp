@@ -1,5 +1,6 @@
 #include "app/gui/widgets/ui_widgets.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +42,16 @@ bool tracked_button(Studio& studio, const char* label, ImVec2 size) {
     const bool pressed = ImGui::Button(label, size);
     record_widget(studio, visible_label(label));
     return pressed;
+}
+
+void centre_next_window(float width_em, float height_em, ImGuiCond condition) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float font = ImGui::GetFontSize();
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), condition,
+                            ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 40.0f, font * width_em),
+                                    std::min(display.y - 60.0f, font * height_em)),
+                             condition);
 }
 
 float field_width() {

@@ -38,6 +38,9 @@ void section_title(const char* title);
 void help_marker(const char* text);
 //! Width for a field so the unit fits after it.
 float field_width();
+//! Centres the next window on the display at width_em x height_em font sizes, kept 40 x 60 px
+//! inside the display (the welcome, the help and the file dialog).
+void centre_next_window(float width_em, float height_em, ImGuiCond condition);
 
 //! "12.34 deg" / "3.21 voxels": the fitness with the unit of its measure.
 std::string format_fitness(double fitness, evo::FitnessMeasure measure);
