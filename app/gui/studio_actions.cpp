@@ -440,16 +440,21 @@ bool select_individual(Studio& studio, std::int64_t id) {
     return true;
 }
 
+SimulationRequest champion_request(const Studio& studio, const ChampionEntry& entry) {
+    SimulationRequest request;
+    request.id = entry.id;
+    request.label = "champion #" + std::to_string(entry.id) + " of generation " +
+                    std::to_string(entry.generation);
+    request.experiment = studio.run->experiment;
+    request.experiment.fitness.measure = entry.measure;
+    request.framed_body = load_champion_body(entry.path);
+    return request;
+}
+
 bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
     if (!studio.run) return false;
     try {
-        SimulationRequest request;
-        request.id = entry.id;
-        request.label = "champion #" + std::to_string(entry.id) + " of generation " +
-                        std::to_string(entry.generation);
-        request.experiment = studio.run->experiment;
-        request.experiment.fitness.measure = entry.measure;
-        request.framed_body = load_champion_body(entry.path);
+        SimulationRequest request = champion_request(studio, entry);
         if (beside) {
             studio.compare_simulator.request(std::move(request));
             set_status(studio, "simulating the champion of generation " +

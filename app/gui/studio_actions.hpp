@@ -82,6 +82,9 @@ void close_run_directory(Studio& studio);
 // --- Bodies and replay ---------------------------------------------------------------------
 //! Simulates population member `id` of the shown run for the 3D view (follow_champion off).
 bool select_individual(Studio& studio, std::int64_t id);
+//! The request that simulates a run's champion under the run's experiment and the champion's
+//! measure (replay and Verify in FEM); throws when its body file cannot be read.
+SimulationRequest champion_request(const Studio& studio, const ChampionEntry& entry);
 //! Replays a champion of the run's history (champions/gen-N.json) in the 3D view, or beside the
 //! body shown (compare). The run's rules with the measure the champion was found under.
 bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside);

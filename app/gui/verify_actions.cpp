@@ -59,13 +59,12 @@ bool verify_champion(Studio& studio, const ChampionEntry& entry) {
     }
     if (!replay_champion(studio, entry, false)) return false;
     try {
+        SimulationRequest champion = champion_request(studio, entry);
         FemVerifyRequest request;
-        request.id = entry.id;
-        request.label = "champion #" + std::to_string(entry.id) + " of generation " +
-                        std::to_string(entry.generation);
-        request.experiment = studio.run->experiment;
-        request.experiment.fitness.measure = entry.measure;
-        request.framed_body = load_champion_body(entry.path);
+        request.id = champion.id;
+        request.label = std::move(champion.label);
+        request.experiment = std::move(champion.experiment);
+        request.framed_body = std::move(champion.framed_body);
         request.run_dir = studio.run->run_dir;
         return start_verification(studio, std::move(request));
     } catch (const std::exception& e) {
