@@ -71,13 +71,11 @@ void resize_voxels(Model::Data& d, int n) {
          {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep, &d.angular_keep,
           &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic, &d.act_sin, &d.act_cos})
         v->assign(n, 0.0);
-    d.jacobi_lin.assign(n, 1.0);
-    d.jacobi_rot.assign(n, 1.0);
 }
 
 void resize_links(LinkParams& p, int n, float voxel_size) {
     for (auto* v : {&p.exists, &p.k_axial, &p.k_bend, &p.k_torsion, &p.damp_steps, &p.damp_beta,
-                    &p.rest_sin, &p.rest_cos})
+                    &p.damp_relax, &p.rest_sin, &p.rest_cos})
         v->assign(n, 0.0f);
     p.rest_base.assign(n, voxel_size);  // keeps absent slots well formed
 }
@@ -113,8 +111,8 @@ void absorb_short_runs(std::vector<Run>& runs, IsGathered is_gathered, Gather ga
         const bool short_run = r.end - r.begin < kMinUniformRun;
         if (short_run && ((i > 0 && joins(i, i - 1)) || (i + 1 < runs.size() && joins(i, i + 1))))
             gather(r);
-        const bool same = !out.empty() && out.back().end == r.begin && is_gathered(out.back()) &&
-                          is_gathered(r);
+        const bool same =
+            !out.empty() && out.back().end == r.begin && is_gathered(out.back()) && is_gathered(r);
         if (same)
             out.back().end = r.end;
         else
@@ -323,8 +321,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             // The link's own strain: the two materials' E in series, times the mean of the eight
             // octants' modulus over E (1 when nu = 0). The plain mean keeps the energy the sum of
             // the octants' Hooke energies, positive definite up to nu = 0.5.
-            const double m_link =
-                e * (0.5 * (octant_modulus[axis][v] + octant_modulus[axis][b]));
+            const double m_link = e * (0.5 * (octant_modulus[axis][v] + octant_modulus[axis][b]));
             const double k_axial = m_link * L;
             if (pp.active) pp.rest_scale[axis][v] = static_cast<float>(-L / m_link);
             const double m_a = d.mass[v], m_b = d.mass[b];
@@ -398,13 +395,22 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         }
     }
 
-    // One Jacobi factor for every voxel, from the largest rate: with voxel-wise factors the
-    // sweeps scale the two ends' shares of a link's load differently, and a free body's momentum
-    // drifts (0.2 % of its internal momentum in 0.2 s, a self-propulsion that evolution would
-    // find); with one factor each sweep changes the momentum by a multiple of the loads' sum, 0.
-    double largest_rate = 0.0;
-    for (int v = 0; v < n && implicit; ++v)
-        if (!d.voxel_fixed[v]) largest_rate = std::max(largest_rate, damping_rate[v]);
+    // The implicit damping relaxes each link's damping rates by 1 / (1 + dt max(P_a, P_b)), the
+    // larger of its two ends' bounds (damping_pass.hpp): the link-space Jacobi splitting with that
+    // diagonal converges, since twice it bounds the weighted row sum P_a + P_b of the link-space
+    // operator. The loads of one link stay equal and opposite and balanced in moment, so a free
+    // body's momentum is exact (per-voxel factors scaled the two ends' shares differently and a
+    // free body drifted by 0.2 % of its internal momentum in 0.2 s). Held voxels take no part.
+    for (int axis = 0; axis < 3 && implicit; ++axis) {
+        LinkParams& p = d.links[axis];
+        for (int v = 0; v < n; ++v) {
+            if (p.exists[v] == 0.0f) continue;
+            const int b = d.plus[axis][v];
+            const double rate_a = d.voxel_fixed[v] ? 0.0 : damping_rate[v];
+            const double rate_b = d.voxel_fixed[b] ? 0.0 : damping_rate[b];
+            p.damp_relax[v] = static_cast<float>(1.0 / (1.0 + dt * std::max(rate_a, rate_b)));
+        }
+    }
     for (int v = 0; v < n; ++v) {
         const double m = d.mass[v];
         const double inertia = m * L * L / 6.0;
@@ -419,10 +425,6 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.movable[v] = 1.0;
         d.dt_inv_mass[v] = dt / m;
         d.dt_inv_inertia[v] = dt / inertia;
-        if (implicit) {
-            d.jacobi_lin[v] = 1.0 / (1.0 + dt * largest_rate);
-            d.jacobi_rot[v] = d.jacobi_lin[v];
-        }
     }
     return std::make_shared<const Model>(std::move(data));
 }

@@ -46,10 +46,10 @@ void init_voxels(const Model::Data& d, VoxelState& s) {
 }
 
 void init_links(const Model::Data& d, LinkScratch& l) {
-    // 23 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
+    // 30 arrays; the voxel pass reads slots before 0 (kNoLink, x of voxel 0, uniform runs), so
     // each has link_lead zero slots first.
     const std::size_t span = static_cast<std::size_t>(d.link_lead) + d.stored;
-    l.storage.assign(23 * span, 0.0f);
+    l.storage.assign(30 * span, 0.0f);
     float* base = l.storage.data() + d.link_lead;
     auto next = [&]() {
         float* p = base;
@@ -70,6 +70,11 @@ void init_links(const Model::Data& d, LinkScratch& l) {
     for (int i = 0; i < 3; ++i)
         l.chord[i] = next();
     l.length = next();
+    l.damp_extension = next();
+    for (int i = 0; i < 3; ++i)
+        l.damp_turn_neg[i] = next();
+    for (int i = 0; i < 3; ++i)
+        l.damp_turn_pos[i] = next();
 }
 
 struct Phase {

@@ -45,6 +45,14 @@ BHM_ENGINE_INLINE void damping_loop(const Model::Data& model, const DampingView&
     const float* __restrict rest_base = lp.rest_base.data();
     const float* __restrict rest_sin = lp.rest_sin.data();
     const float* __restrict rest_cos = lp.rest_cos.data();
+    const float* __restrict relax = lp.damp_relax.data();
+    float* __restrict kept_x = out.damp_extension;
+    float* __restrict kept_a0 = out.damp_turn_neg[0];
+    float* __restrict kept_a1 = out.damp_turn_neg[1];
+    float* __restrict kept_a2 = out.damp_turn_neg[2];
+    float* __restrict kept_b0 = out.damp_turn_pos[0];
+    float* __restrict kept_b1 = out.damp_turn_pos[1];
+    float* __restrict kept_b2 = out.damp_turn_pos[2];
     const float* __restrict chord0 = kPoisson ? out.chord[0] : nullptr;
     const float* __restrict chord1 = kPoisson ? out.chord[1] : nullptr;
     const float* __restrict chord2 = kPoisson ? out.chord[2] : nullptr;
@@ -101,13 +109,24 @@ BHM_ENGINE_INLINE void damping_loop(const Model::Data& model, const DampingView&
         // The extension's rate: the length's less the actuated rest length's (the damping resists
         // the elastic strain rate, not the thermal expansion, as the explicit form does).
         const float rest_rate = rate_sin * rest_sin[c] + rate_cos * rest_cos[c];
-        const float x = k * (ex * dv0 + ey * dv1 + ez * dv2 - rest_rate);
-        const float ta0 = k * (static_cast<float>(w0[c]) - wf0);
-        const float ta1 = k * (static_cast<float>(w1[c]) - wf1);
-        const float ta2 = k * (static_cast<float>(w2[c]) - wf2);
-        const float tb0 = k * (static_cast<float>(w0[b]) - wf0);
-        const float tb1 = k * (static_cast<float>(w1[b]) - wf1);
-        const float tb2 = k * (static_cast<float>(w2[b]) - wf2);
+        // This sweep's rates from the current velocities, relaxed toward from the kept ones by
+        // the link's factor (damping_pass.hpp): g <- g + s (beta B v - g).
+        const float s = relax[c];
+        const float x =
+            kept_x[c] + s * (k * (ex * dv0 + ey * dv1 + ez * dv2 - rest_rate) - kept_x[c]);
+        const float ta0 = kept_a0[c] + s * (k * (static_cast<float>(w0[c]) - wf0) - kept_a0[c]);
+        const float ta1 = kept_a1[c] + s * (k * (static_cast<float>(w1[c]) - wf1) - kept_a1[c]);
+        const float ta2 = kept_a2[c] + s * (k * (static_cast<float>(w2[c]) - wf2) - kept_a2[c]);
+        const float tb0 = kept_b0[c] + s * (k * (static_cast<float>(w0[b]) - wf0) - kept_b0[c]);
+        const float tb1 = kept_b1[c] + s * (k * (static_cast<float>(w1[b]) - wf1) - kept_b1[c]);
+        const float tb2 = kept_b2[c] + s * (k * (static_cast<float>(w2[b]) - wf2) - kept_b2[c]);
+        kept_x[c] = x;
+        kept_a0[c] = ta0;
+        kept_a1[c] = ta1;
+        kept_a2[c] = ta2;
+        kept_b0[c] = tb0;
+        kept_b1[c] = tb1;
+        kept_b2[c] = tb2;
         // Stiffness at the actuated size, as in the elastic pass.
         const float size =
             (rest_base[c] + sin_t * rest_sin[c] + cos_t * rest_cos[c]) * inv_voxel_size;

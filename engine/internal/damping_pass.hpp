@@ -5,17 +5,26 @@
 // link pass) it bounds the step: for one mode, A = beta mu dt and B = mu dt^2, the recurrence is
 // stable only while 2 A + B < 4. Implicit, the velocity after the step solves
 //     (M + dt C) v = M v*,   v* = the velocity after the elastic and every other force,
-// which damps every mode by a factor in (0, 1], stable for any beta up to the undamped B < 4. It
-// is solved by Jacobi sweeps with the diagonal D = M + dt P, P = m sum over the voxel's links of
-// a bound on each link's damping rate (Model::Data::jacobi_lin / jacobi_rot), so P - C is
-// positive semidefinite. Sweep: v <- v - D^-1 (M (v - v*) + dt C v). Started from v* (cold), one
-// sweep damps every mode by a factor in (0, 1] but a smooth one by only 1 / (1 + d), d = dt P / m,
-// of the exact amount, each further sweep converging by d / (1 + d). The sweeps start instead from
-// v* plus the last step's damping change v - v* (warm): the smooth modes, whose damping changes
-// little from step to step, start nearly converged, and the fast ones, for which the start is
-// wrong, are the ones a sweep converges in one go. Per mode, with A = beta mu dt, B = mu dt^2 and
-// any 0 < A <= d, one warm sweep is stable for B < 4.0 like the cold one (the eigenvalues of the
-// three-variable recurrence of x, v and the kept change). docs/physics.md, "Damping and the step".
+// which damps every mode by a factor in (0, 1], stable for any beta up to the undamped B < 4.
+//
+// It is solved in link space: the unknowns are each link's damping rates g = beta B v (the
+// extension rate and the two ends' rotation rates relative to the link frame, B the rate map of
+// link_kinematics.hpp), kept per link from sweep to sweep and step to step (LinkScratch's
+// damp_extension, damp_turn_neg / _pos). A sweep relaxes them toward the rates of the current
+// velocities, g <- g + s (beta B v - g), s = 1 / (1 + dt max(P_a, P_b)) per link
+// (LinkParams::damp_relax), P a voxel's sum over its links of a bound on each link's damping rate
+// (link_damping_rate_bound in model.cpp), and the voxels then take v = v* - dt M^-1 B^T K g, the
+// beam loads of g at the current chord. The splitting converges: in the inner product of
+// (beta K)^-1 the operator I + dt beta K B M^-1 B^T is self-adjoint, and twice the diagonal
+// 1 + dt max(P_a, P_b) bounds its weighted row sum 1 + dt (P_a + P_b). Because each link's loads
+// are equal and opposite and balanced in moment, a free body keeps its linear and angular
+// momentum to float rounding, as with the elastic loads (a per-voxel Jacobi factor scales the two
+// ends' shares differently: a free body drifted by 0.2 % of its internal momentum in 0.2 s).
+// The sweeps start from v* plus the last step's damping change v - v* (warm), and g from the last
+// step's: the smooth modes, whose damping changes little from step to step, start nearly
+// converged, and the fast ones, for which the start is wrong, are the ones a sweep converges in
+// one go (factor (d - dt mu) / (1 + d) per sweep, d = dt max(P_a, P_b)). docs/physics.md,
+// "Damping and the step".
 //
 // A sweep is a pass over the links (C v from the velocities: beta times the beam loads of the
 // deformation rate, in the same link frame the elastic pass used, whose chord is unchanged since

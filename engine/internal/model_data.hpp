@@ -74,6 +74,10 @@ struct LinkParams {
     //! Rayleigh beta (s) of the implicit bond damping (damping_pass.hpp); all zero, and damp_steps
     //! used instead, when it is explicit
     std::vector<float> damp_beta;
+    //! Implicit bond damping: the relaxation factor 1 / (1 + dt max(P_a, P_b)) of the link's
+    //! damping rates per sweep, P the sum over a voxel's links of a bound on each link's damping
+    //! rate (damping_pass.hpp); 0 when it is explicit
+    std::vector<float> damp_relax;
     std::vector<float> rest_base;   //!< rest length with no actuation (m)
     std::vector<float> rest_sin;    //!< d(rest)/d sin(2 pi f tau) (m)
     std::vector<float> rest_cos;    //!< d(rest)/d cos(2 pi f tau) (m)
@@ -162,11 +166,6 @@ struct Model::Data {
     std::vector<double> dt_inv_inertia;  //!< dt / I, I = m L^2 / 6
     std::vector<double> linear_keep;     //!< 1 / (1 + dt c_g / m): implicit global damping
     std::vector<double> angular_keep;    //!< 1 / (1 + dt c_g,rot / I)
-    //! Implicit bond damping (damping_pass.hpp): 1 / (1 + dt P / m) and 1 / (1 + dt P_rot / I),
-    //! P / m = P_rot / I the sum over the voxel's links of a bound on each link's damping rate
-    //! (so the Jacobi diagonal M + dt P bounds M + dt C); 1 for fixed voxels and dummies
-    std::vector<double> jacobi_lin;
-    std::vector<double> jacobi_rot;
     std::vector<double> floor_k;         //!< floor penalty stiffness (N/m), E L
     std::vector<double> floor_c;         //!< floor collision damping (N s/m)
     std::vector<double> mu_static;

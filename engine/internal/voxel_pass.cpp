@@ -21,7 +21,7 @@ namespace {
 // Raw views of every array the pass touches, taken once per pass.
 struct Arrays {
     const double *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep, *angular_keep,
-        *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos, *jacobi_lin, *jacobi_rot;
+        *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos;
     double *pos[3], *quat[4], *vel[3], *omega[3], *stuck;
     double *vel_star[3], *omega_star[3], *vel_delta[3], *omega_delta[3];
     float* quat_f[4];
@@ -45,8 +45,6 @@ Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScrat
     a.mu_dynamic = d.mu_dynamic.data();
     a.act_sin = d.act_sin.data();
     a.act_cos = d.act_cos.data();
-    a.jacobi_lin = d.jacobi_lin.data();
-    a.jacobi_rot = d.jacobi_rot.data();
     for (int i = 0; i < 3; ++i) {
         a.vel_star[i] = s.vel_star[i].data();
         a.omega_star[i] = s.omega_star[i].data();
@@ -228,9 +226,9 @@ __attribute__((always_inline)) inline int voxel_loop(const Arrays& a, double* __
     return count;
 }
 
-// One Jacobi sweep of (M + dt C) v = M v* on the voxels of one run (damping_pass.hpp), the link
-// scratch holding -C v. kLast: the pose then moves with the new velocities, and the change v - v*
-// is kept for the next step's start.
+// The voxel half of one sweep of (M + dt C) v = M v* on the voxels of one run (damping_pass.hpp),
+// the link scratch holding the loads of the links' relaxed damping rates. kLast: the pose then
+// moves with the new velocities, and the change v - v* is kept for the next step's start.
 template <bool kGather, bool kLast>
 __attribute__((always_inline)) inline int damping_loop(const Arrays& a, double* __restrict refused,
                                                        const VoxelRun& run) {
@@ -243,15 +241,14 @@ __attribute__((always_inline)) inline int damping_loop(const Arrays& a, double* 
         else
             gather(a, c, c - below_y, c - below_z, nullptr, f, m);
         Update u;
-        // A voxel held by static friction stays held: no change along the floor.
+        // v = v* - dt M^-1 C v, the links' loads from their relaxed rates (damping_pass.hpp). A
+        // voxel held by static friction stays held: no change along the floor.
         const double free_t = 1.0 - a.stuck[c];
-        const double jl = a.jacobi_lin[c], dt_inv_m = a.dt_inv_mass[c];
-        const double jr = a.jacobi_rot[c], dt_inv_i = a.dt_inv_inertia[c];
+        const double dt_inv_m = a.dt_inv_mass[c], dt_inv_i = a.dt_inv_inertia[c];
         for (int i = 0; i < 3; ++i) {
-            const double v = a.vel[i][c], w = a.omega[i][c];
-            const double dv = jl * (dt_inv_m * f[i] - (v - a.vel_star[i][c]));
-            u.v[i] = v + (i < 2 ? free_t * dv : dv);
-            u.w[i] = w + jr * (dt_inv_i * m[i] - (w - a.omega_star[i][c]));
+            const double dv = dt_inv_m * f[i];
+            u.v[i] = a.vel_star[i][c] + (i < 2 ? free_t * dv : dv);
+            u.w[i] = a.omega_star[i][c] + dt_inv_i * m[i];
         }
         for (int i = 0; i < 3; ++i) {
             a.vel[i][c] = u.v[i];

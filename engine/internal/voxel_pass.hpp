@@ -22,8 +22,8 @@ struct VoxelPassInput {
 int voxel_pass(const Model::Data& model, VoxelState& voxels,
                const std::array<LinkScratch, 3>& links, const VoxelPassInput& in);
 
-//! One Jacobi sweep of the implicit bond damping (damping_pass.hpp) on every voxel, the link
-//! scratch holding the damping loads -C v of damping_link_pass; `last`: then integrates the pose
+//! The voxel half of one sweep of the implicit bond damping (damping_pass.hpp) on every voxel:
+//! v = v* plus dt M^-1 times the damping loads of damping_link_pass in the link scratch; `last`: then integrates the pose
 //! and returns the count of insane voxels as voxel_pass does (0 otherwise).
 int damping_voxel_pass(const Model::Data& model, VoxelState& voxels,
                        const std::array<LinkScratch, 3>& links, bool last);

@@ -54,6 +54,12 @@ struct LinkScratch {
     float* length = nullptr;
     std::array<float*, 3> prev_theta_neg{};
     std::array<float*, 3> prev_theta_pos{};
+    //! The implicit bond damping's state per link (damping_pass.hpp): beta times the extension
+    //! rate and the two ends' rotation rates relative to the link frame (world axes), as the
+    //! last sweep relaxed them; the loads are rebuilt from them at the current chord.
+    float* damp_extension = nullptr;
+    std::array<float*, 3> damp_turn_neg{};
+    std::array<float*, 3> damp_turn_pos{};
 };
 
 //! Per step scratch of the Poisson pass, and its one piece of state: the lateral-strain
