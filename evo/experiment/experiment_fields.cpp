@@ -101,8 +101,8 @@ const ExperimentField kExperimentFields[] = {
      .help = "damping of floor contact, as a ratio of critical", .range = {0, lim::kMaxDampingRatio},
      .format = "%.3f", BHM_NUMBER(simulation.collision_damping_ratio)},
     {.path = "simulation.implicit_damping_sweeps", .label = "Implicit damping sweeps", .unit = "",
-     .help = "0: explicit bond damping (it bounds the step); n > 0: implicit, n Jacobi sweeps, "
-             "a longer step (docs/physics.md)",
+     .help = "1 (default): implicit bond damping, the full zeta and a 2.2x longer stable step; "
+             "n > 1: more sweeps; 0: explicit, capped at the step (docs/physics.md)",
      .range = {0, lim::kMaxImplicitSweeps}, BHM_INTEGER(simulation.implicit_damping_sweeps)},
     {.path = "simulation.record_fps", .label = "Record rate", .unit = "frames/s",
      .help = "replay frames and fitness samples per second", .range = {0, 1000, kOpen},

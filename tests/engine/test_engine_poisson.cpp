@@ -69,8 +69,11 @@ TEST_CASE("poisson: a free bar pulled along x contracts laterally by nu eps and 
                                << " z " << s.lateral_z);
             // Relative checks (doctest's Approx is absolute for values this small).
             CHECK(std::fabs(s.axial / (stress / 5e6) - 1.0) < 0.02);
-            CHECK(std::fabs(s.lateral_y + nu * s.axial) <= 0.10 * nu * s.axial + 1e-9);
-            CHECK(std::fabs(s.lateral_z + nu * s.axial) <= 0.10 * nu * s.axial + 1e-9);
+            // (Plus the float kernels' rounding, 1e-5 of the axial strain: at nu = 0 the implicit
+            // damping's leaves a lateral strain of 2e-8, a 0.07 nm shift of 1 cm voxels.)
+            const double rounding = 1e-5 * s.axial;
+            CHECK(std::fabs(s.lateral_y + nu * s.axial) <= 0.10 * nu * s.axial + rounding);
+            CHECK(std::fabs(s.lateral_z + nu * s.axial) <= 0.10 * nu * s.axial + rounding);
         }
     }
 }
