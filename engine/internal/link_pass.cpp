@@ -93,7 +93,9 @@ PoissonInputs poisson_inputs(const Model::Data& model, const PoissonScratch& p, 
 // One axis's loop over the link slots of one run. kGather: the + end of slot c is plus[c];
 // otherwise it is voxel c + delta, and nothing is gathered. kPoisson: the chords come from the
 // Poisson pass's scratch and the rest lengths take its shift.
-template <bool kGather, bool kPoisson>
+// kExplicitDamping: the explicit (velocity-lagged) bond damping; without it (the implicit
+// damping, damping_pass.hpp, applies it) the loop neither reads nor keeps the last deformation.
+template <bool kGather, bool kPoisson, bool kExplicitDamping>
 BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, LinkScratch& out,
                                 const PoissonInputs& pi, int axis, float sin_t, float cos_t,
                                 const LinkRun& run) {
@@ -178,21 +180,26 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
             static_cast<int>((exists[c] > 0.0f) & !healthy(f, f.length - actuated, rest_base[c]));
 
         // Deformation plus beta times its rate (Rayleigh damping), then the beam equations.
-        const float k = damp[c];
-        const float x = extension + k * (extension - prev_ext[c]);
-        const float ta0 = f.theta_neg[0] + k * (f.theta_neg[0] - pa0[c]);
-        const float ta1 = f.theta_neg[1] + k * (f.theta_neg[1] - pa1[c]);
-        const float ta2 = f.theta_neg[2] + k * (f.theta_neg[2] - pa2[c]);
-        const float tb0 = f.theta_pos[0] + k * (f.theta_pos[0] - pb0[c]);
-        const float tb1 = f.theta_pos[1] + k * (f.theta_pos[1] - pb1[c]);
-        const float tb2 = f.theta_pos[2] + k * (f.theta_pos[2] - pb2[c]);
-        prev_ext[c] = extension;
-        pa0[c] = f.theta_neg[0];
-        pa1[c] = f.theta_neg[1];
-        pa2[c] = f.theta_neg[2];
-        pb0[c] = f.theta_pos[0];
-        pb1[c] = f.theta_pos[1];
-        pb2[c] = f.theta_pos[2];
+        float x = extension;
+        float ta0 = f.theta_neg[0], ta1 = f.theta_neg[1], ta2 = f.theta_neg[2];
+        float tb0 = f.theta_pos[0], tb1 = f.theta_pos[1], tb2 = f.theta_pos[2];
+        if constexpr (kExplicitDamping) {
+            const float k = damp[c];
+            x = extension + k * (extension - prev_ext[c]);
+            ta0 = f.theta_neg[0] + k * (f.theta_neg[0] - pa0[c]);
+            ta1 = f.theta_neg[1] + k * (f.theta_neg[1] - pa1[c]);
+            ta2 = f.theta_neg[2] + k * (f.theta_neg[2] - pa2[c]);
+            tb0 = f.theta_pos[0] + k * (f.theta_pos[0] - pb0[c]);
+            tb1 = f.theta_pos[1] + k * (f.theta_pos[1] - pb1[c]);
+            tb2 = f.theta_pos[2] + k * (f.theta_pos[2] - pb2[c]);
+            prev_ext[c] = extension;
+            pa0[c] = f.theta_neg[0];
+            pa1[c] = f.theta_neg[1];
+            pa2[c] = f.theta_neg[2];
+            pb0[c] = f.theta_pos[0];
+            pb1[c] = f.theta_pos[1];
+            pb2[c] = f.theta_pos[2];
+        }
 
         const float kb = k_bend[c] * size2;
         const float kt = k_torsion[c] * size2;
@@ -213,27 +220,37 @@ BHM_ENGINE_INLINE int link_loop(const Model::Data& model, const AxisView& v, Lin
     return bad;
 }
 
+template <bool kExplicitDamping>
+BHM_ENGINE_INLINE int link_runs(const Model::Data& model, const AxisView& v, LinkScratch& out,
+                                const PoissonScratch* poisson, int axis, float sin_t, float cos_t) {
+    int bad = 0;
+    if (poisson) {
+        const PoissonInputs pi = poisson_inputs(model, *poisson, axis);
+        for (const LinkRun& run : model.link_runs[axis])
+            bad += run.delta == 0 ? link_loop<true, true, kExplicitDamping>(model, v, out, pi, axis,
+                                                                            sin_t, cos_t, run)
+                                  : link_loop<false, true, kExplicitDamping>(
+                                        model, v, out, pi, axis, sin_t, cos_t, run);
+    } else {
+        const PoissonInputs none;
+        for (const LinkRun& run : model.link_runs[axis])
+            bad += run.delta == 0 ? link_loop<true, false, kExplicitDamping>(
+                                        model, v, out, none, axis, sin_t, cos_t, run)
+                                  : link_loop<false, false, kExplicitDamping>(
+                                        model, v, out, none, axis, sin_t, cos_t, run);
+    }
+    return bad;
+}
+
 }  // namespace
 
 BHM_ENGINE_KERNEL int link_pass(const Model::Data& model, const VoxelState& voxels,
                                 LinkScratch& out, const PoissonScratch* poisson, int axis,
                                 float sin_t, float cos_t) {
     const AxisView v = axis_view(model, voxels, axis);
-    int bad = 0;
-    if (poisson) {
-        const PoissonInputs pi = poisson_inputs(model, *poisson, axis);
-        for (const LinkRun& run : model.link_runs[axis])
-            bad += run.delta == 0
-                       ? link_loop<true, true>(model, v, out, pi, axis, sin_t, cos_t, run)
-                       : link_loop<false, true>(model, v, out, pi, axis, sin_t, cos_t, run);
-    } else {
-        const PoissonInputs none;
-        for (const LinkRun& run : model.link_runs[axis])
-            bad += run.delta == 0
-                       ? link_loop<true, false>(model, v, out, none, axis, sin_t, cos_t, run)
-                       : link_loop<false, false>(model, v, out, none, axis, sin_t, cos_t, run);
-    }
-    return bad;
+    if (model.implicit_sweeps > 0)
+        return link_runs<false>(model, v, out, poisson, axis, sin_t, cos_t);
+    return link_runs<true>(model, v, out, poisson, axis, sin_t, cos_t);
 }
 
 int first_bad_link(const Model::Data& model, const VoxelState& voxels,
