@@ -4,6 +4,7 @@
 // the "a resumed run equals its uninterrupted twin" tests.
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,22 @@ inline std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
     for (auto& r : rows)
         r.wall_s = 0.0;
     return rows;
+}
+
+//! fitness.csv without its wall_s column (column 8, the only one that depends on the machine).
+inline std::string csv_without_wall(const std::string& csv) {
+    std::stringstream in(csv), out;
+    std::string line;
+    constexpr int kWallColumn = 8;  // generation,...,diverged,wall_s,...
+    while (std::getline(in, line)) {
+        std::size_t start = 0;
+        for (int c = 0; c < kWallColumn; ++c)
+            start = line.find(',', start) + 1;
+        const std::size_t end = line.find(',', start);
+        out << line.substr(0, start) << (end == std::string::npos ? "" : line.substr(end + 1))
+            << "\n";
+    }
+    return out.str();
 }
 
 //! An empty path under the temporary folder, unique to this suite (`suite`) and process.

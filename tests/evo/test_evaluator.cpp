@@ -10,8 +10,11 @@
 #include "evo/evaluate/evaluator.hpp"
 #include "evo/run/evolution_run.hpp"
 #include "evo_test_support.hpp"
+#include "run_test_support.hpp"
 
 using namespace bhm::evo;
+using bhm::evo::test::run_options;
+using bhm::evo::test::without_wall;
 
 namespace {
 
@@ -45,20 +48,6 @@ class FailingEvaluator final : public Evaluator {
     int good_;
     ThreadEvaluator inner_{1};
 };
-
-RunOptions options(int generations, std::shared_ptr<Evaluator> evaluator) {
-    RunOptions o;
-    o.generations = generations;
-    o.threads = 2;
-    o.evaluator = std::move(evaluator);
-    return o;
-}
-
-std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
-    for (auto& r : rows)
-        r.wall_s = 0.0;
-    return rows;
-}
 
 }  // namespace
 
@@ -101,9 +90,9 @@ TEST_CASE("ThreadEvaluator returns evaluate_body's reports in batch order, one c
 
 TEST_CASE("a run over another Evaluator is the same run as over the thread pool") {
     const auto e = test::tiny_experiment();
-    EvolutionRun pooled(e, options(3, nullptr));
+    EvolutionRun pooled(e, run_options(3, 2, "", nullptr));
     auto reverse = std::make_shared<ReverseEvaluator>();
-    EvolutionRun custom(e, options(3, reverse));
+    EvolutionRun custom(e, run_options(3, 2, "", reverse));
     pooled.run();
     custom.run();
     CHECK(reverse->batches == 3);
@@ -119,7 +108,7 @@ TEST_CASE("a run over another Evaluator is the same run as over the thread pool"
 
 TEST_CASE("an evaluator failure abandons the generation and keeps the last complete state") {
     const auto e = test::tiny_experiment();
-    EvolutionRun run(e, options(4, std::make_shared<FailingEvaluator>(2)));
+    EvolutionRun run(e, run_options(4, 2, "", std::make_shared<FailingEvaluator>(2)));
     CHECK_THROWS_WITH_AS(run.run(), doctest::Contains("rank 1 is gone"), std::runtime_error);
     CHECK(run.state().generation == 1);  // generations 0 and 1 completed, 2 was abandoned
     CHECK(run.state().history.size() == 2);

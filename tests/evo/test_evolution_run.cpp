@@ -15,50 +15,22 @@
 #include "evo/run/evolution_run.hpp"
 #include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
-#include "xml_check.hpp"
+#include "run_test_support.hpp"
 #include "support/scratch.hpp"
+#include "xml_check.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
+using bhm::evo::test::csv_without_wall;
+using bhm::evo::test::run_options;
+using bhm::evo::test::without_wall;
 
-namespace {
-
-//! fitness.csv without its wall_s column (the only one that depends on the machine's speed).
-std::string csv_without_wall(const std::string& csv) {
-    std::stringstream in(csv), out;
-    std::string line;
-    constexpr int kWallColumn = 8;  // generation,...,diverged,wall_s,...
-    while (std::getline(in, line)) {
-        std::size_t start = 0;
-        for (int c = 0; c < kWallColumn; ++c)
-            start = line.find(',', start) + 1;
-        const std::size_t end = line.find(',', start);
-        out << line.substr(0, start) << (end == std::string::npos ? "" : line.substr(end + 1))
-            << "\n";
-    }
-    return out.str();
-}
-
-std::vector<HistoryRow> without_wall(std::vector<HistoryRow> rows) {
-    for (auto& r : rows)
-        r.wall_s = 0.0;
-    return rows;
-}
-
-RunOptions options(int generations, int threads, const std::string& dir = "") {
-    RunOptions o;
-    o.generations = generations;
-    o.threads = threads;
-    o.out_dir = dir;
-    return o;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("AFPO generations: pool 2P+1 cut to P, ages, newcomers, elitism") {
     const auto e = test::tiny_experiment();
     const int P = e.evolution.population;
-    EvolutionRun run(e, options(4, 2));
+    EvolutionRun run(e, run_options(4, 2));
     std::vector<std::shared_ptr<const GenerationReport>> reports;
     run.set_report_callback([&](auto r) { reports.push_back(r); });
     CHECK(run.run() == StopReason::GenerationBudget);
@@ -117,8 +89,8 @@ TEST_CASE("AFPO generations: pool 2P+1 cut to P, ages, newcomers, elitism") {
 
 TEST_CASE("the same seed gives the same run with 1 and 2 threads") {
     const auto e = test::tiny_experiment();
-    EvolutionRun one(e, options(3, 1));
-    EvolutionRun two(e, options(3, 2));
+    EvolutionRun one(e, run_options(3, 1));
+    EvolutionRun two(e, run_options(3, 2));
     one.run();
     two.run();
     CHECK(without_wall(one.state().history) == without_wall(two.state().history));
@@ -129,7 +101,7 @@ TEST_CASE("the same seed gives the same run with 1 and 2 threads") {
           two.state().champion->individual.report.fitness);
     CHECK(one.state().rng == two.state().rng);
     // A different seed gives a different run.
-    auto other = options(3, 2);
+    auto other = run_options(3, 2);
     other.seed = 8;
     EvolutionRun three(e, other);
     three.run();
@@ -140,18 +112,18 @@ TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
     const auto e = test::tiny_experiment();
     const fs::path whole = bhm::test::scratch_dir("evo-whole", false),
                    parts = bhm::test::scratch_dir("evo-parts", false);
-    EvolutionRun uninterrupted(e, options(4, 2, whole.string()));
+    EvolutionRun uninterrupted(e, run_options(4, 2, whole.string()));
     uninterrupted.run();
 
     {
-        EvolutionRun first(e, options(4, 1, parts.string()));
+        EvolutionRun first(e, run_options(4, 1, parts.string()));
         first.set_report_callback([&](auto r) {
             if (r->generation == 1) first.request_stop();  // as Ctrl-C would, between generations
         });
         CHECK(first.run() == StopReason::StopRequested);
         CHECK(first.state().generation == 1);
     }
-    auto resumed = EvolutionRun::resume(options(4, 2, parts.string()));
+    auto resumed = EvolutionRun::resume(run_options(4, 2, parts.string()));
     CHECK(resumed->resume_warnings().empty());
     CHECK(resumed->state().generation == 1);
     CHECK(resumed->run() == StopReason::GenerationBudget);
@@ -181,11 +153,11 @@ TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
     CHECK_NOTHROW(bhm::test::XmlReader::parse(bhm::test::read_file(whole / "champion.vxa")));
     // While a run object lives it owns its directory; a new run elsewhere refuses a directory
     // that already holds a run (here a copy without the owner).
-    CHECK_THROWS_AS(EvolutionRun(e, options(4, 1, whole.string())), RunDirectoryBusy);
+    CHECK_THROWS_AS(EvolutionRun(e, run_options(4, 1, whole.string())), RunDirectoryBusy);
     const fs::path copy = bhm::test::scratch_dir("evo-whole-copy", false);
     fs::copy(whole, copy, fs::copy_options::recursive);
     fs::remove(copy / kRunLockFile);
-    CHECK_THROWS_WITH_AS(EvolutionRun(e, options(4, 1, copy.string())),
+    CHECK_THROWS_WITH_AS(EvolutionRun(e, run_options(4, 1, copy.string())),
                          doctest::Contains("--resume"), std::runtime_error);
     fs::remove_all(copy);
     fs::remove_all(whole);
@@ -194,7 +166,7 @@ TEST_CASE("stop, then resume, is identical to an uninterrupted run") {
 
 TEST_CASE("a stop during a generation abandons it and leaves the state untouched") {
     const auto e = test::tiny_experiment();
-    EvolutionRun run(e, options(3, 2));
+    EvolutionRun run(e, run_options(3, 2));
     REQUIRE(run.run_generation());
     const auto before = run.state().history;
     const auto rng = run.state().rng;
@@ -214,7 +186,7 @@ TEST_CASE("pause and stop reach into the simulations of a generation, resume re-
     const fs::path whole = bhm::test::scratch_dir("evo-cancel-whole", false),
                    parts = bhm::test::scratch_dir("evo-cancel-parts", false);
 
-    auto owned = std::make_unique<EvolutionRun>(e, options(3, 2, parts.string()));
+    auto owned = std::make_unique<EvolutionRun>(e, run_options(3, 2, parts.string()));
     EvolutionRun& run = *owned;
     CHECK(run.checkpoint_path().empty());  // nothing on disk yet
     CHECK_FALSE(run.progress().running);
@@ -253,10 +225,10 @@ TEST_CASE("pause and stop reach into the simulations of a generation, resume re-
     CHECK(run.state().history.size() == 1);
 
     owned.reset();  // releases the directory
-    auto resumed = EvolutionRun::resume(options(3, 2, parts.string()));
+    auto resumed = EvolutionRun::resume(run_options(3, 2, parts.string()));
     CHECK(resumed->checkpoint_path() == (parts / kCheckpointFile).string());
     CHECK(resumed->run() == StopReason::GenerationBudget);
-    EvolutionRun uninterrupted(e, options(3, 2, whole.string()));
+    EvolutionRun uninterrupted(e, run_options(3, 2, whole.string()));
     uninterrupted.run();
     CHECK(csv_without_wall(bhm::test::read_file(parts / "fitness.csv")) ==
           csv_without_wall(bhm::test::read_file(whole / "fitness.csv")));
@@ -274,30 +246,30 @@ TEST_CASE("pause and stop reach into the simulations of a generation, resume re-
 TEST_CASE("a corrupt checkpoint falls back to the previous one, both corrupt is a clear error") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("evo-corrupt", false);
-    EvolutionRun(e, options(2, 2, dir.string())).run();
+    EvolutionRun(e, run_options(2, 2, dir.string())).run();
     std::ofstream(dir / "checkpoint.json") << "{\"format\": \"bhm-evolution-checkpoint\", trunc";
-    auto resumed = EvolutionRun::resume(options(3, 2, dir.string()));
+    auto resumed = EvolutionRun::resume(run_options(3, 2, dir.string()));
     REQUIRE(resumed->resume_warnings().size() == 1);
     CHECK(resumed->resume_warnings()[0].find("checkpoint.json") != std::string::npos);
     CHECK(resumed->state().generation == 0);  // the previous checkpoint: after generation 0
     resumed->run();
-    EvolutionRun reference(e, options(3, 2));
+    EvolutionRun reference(e, run_options(3, 2));
     reference.run();
     CHECK(without_wall(resumed->state().history) == without_wall(reference.state().history));
     resumed.reset();  // releases the directory
 
     std::ofstream(dir / "checkpoint.json") << "not json";
     std::ofstream(dir / "checkpoint.prev.json") << "{}";
-    CHECK_THROWS_WITH_AS(EvolutionRun::resume(options(3, 2, dir.string())),
+    CHECK_THROWS_WITH_AS(EvolutionRun::resume(run_options(3, 2, dir.string())),
                          doctest::Contains("checkpoint.prev.json: damaged"), std::runtime_error);
     fs::remove_all(dir);
-    CHECK_THROWS_WITH_AS(EvolutionRun::resume(options(3, 2, dir.string())),
+    CHECK_THROWS_WITH_AS(EvolutionRun::resume(run_options(3, 2, dir.string())),
                          doctest::Contains("no such run directory"), std::runtime_error);
 }
 
 TEST_CASE("a change of rules between generations re-scores the population and is recorded") {
     const auto e = test::tiny_experiment();
-    EvolutionRun run(e, options(3, 2));
+    EvolutionRun run(e, run_options(3, 2));
     REQUIRE(run.run_generation());
     Fitness rules = e.fitness;
     rules.measure = FitnessMeasure::ComFinalYz;
@@ -354,14 +326,15 @@ class ChangeRulesMidBatch final : public Evaluator {
 
 }  // namespace
 
-TEST_CASE("run(): a rule change mid-generation restarts that generation and equals the change made "
-          "between generations; a pause between generations is reported with the next generation") {
+TEST_CASE(
+    "run(): a rule change mid-generation restarts that generation and equals the change made "
+    "between generations; a pause between generations is reported with the next generation") {
     const Experiment e = test::tiny_experiment();
     Fitness rules = e.fitness;
     rules.measure = FitnessMeasure::ComFinalYz;
 
     // Twin: the change requested before generation 2 starts.
-    EvolutionRun twin(e, options(4, 2));
+    EvolutionRun twin(e, run_options(4, 2));
     twin.set_report_callback([&](auto r) {
         if (r->generation == 1) twin.request_fitness_change(rules);
     });
@@ -369,7 +342,7 @@ TEST_CASE("run(): a rule change mid-generation restarts that generation and equa
 
     // The same change made while generation 2 is being simulated: abandoned, then run again.
     auto evaluator = std::make_shared<ChangeRulesMidBatch>(2, rules);
-    RunOptions o = options(4, 2);
+    RunOptions o = run_options(4, 2);
     o.evaluator = evaluator;
     EvolutionRun run(e, o);
     evaluator->run = &run;
@@ -395,7 +368,7 @@ TEST_CASE("run(): new rules that arrive while the run is held between generation
     const Experiment e = test::tiny_experiment();
     Fitness rules = e.fitness;
     rules.measure = FitnessMeasure::ComFinalYz;
-    EvolutionRun run(e, options(3, 2));
+    EvolutionRun run(e, run_options(3, 2));
     run.set_report_callback([&](auto r) {
         if (r->generation == 0) run.pause_between_generations(true);
     });

@@ -15,20 +15,15 @@
 #include "evo/run/physics_rules.hpp"
 #include "evo/run/run_directory.hpp"
 #include "evo_test_support.hpp"
+#include "run_test_support.hpp"
 #include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
+using bhm::evo::test::csv_without_wall;
+using bhm::evo::test::run_options;
 
 namespace {
-
-RunOptions options(int generations, int threads, const std::string& dir = "") {
-    RunOptions o;
-    o.generations = generations;
-    o.threads = threads;
-    o.out_dir = dir;
-    return o;
-}
 
 //! The tiny experiment's physics, stiffer and with a weaker drive: a body's fitness changes.
 PhysicsRules calibrated(const Experiment& e) {
@@ -40,27 +35,15 @@ PhysicsRules calibrated(const Experiment& e) {
     return p;
 }
 
-//! fitness.csv without wall_s (column 8), the only column that depends on the machine.
-std::string csv_without_wall(const std::string& csv) {
-    std::stringstream in(csv), out;
-    std::string line;
-    while (std::getline(in, line)) {
-        std::size_t start = 0;
-        for (int c = 0; c < 8; ++c)
-            start = line.find(',', start) + 1;
-        const std::size_t end = line.find(',', start);
-        out << line.substr(0, start) << (end == std::string::npos ? "" : line.substr(end + 1))
-            << "\n";
-    }
-    return out.str();
-}
-
 void strip_clock(nlohmann::json& j) {
     if (j.is_object()) {
-        for (const char* key : {"wall_s", "elapsed_s", "sim_wall_s", "checksum"}) j.erase(key);
-        for (auto& [key, value] : j.items()) strip_clock(value);
+        for (const char* key : {"wall_s", "elapsed_s", "sim_wall_s", "checksum"})
+            j.erase(key);
+        for (auto& [key, value] : j.items())
+            strip_clock(value);
     } else if (j.is_array()) {
-        for (auto& value : j) strip_clock(value);
+        for (auto& value : j)
+            strip_clock(value);
     }
 }
 
@@ -84,7 +67,7 @@ TEST_CASE("physics rules: read back as written, refused when they would change t
     bad.materials[0].youngs_modulus_pa = -1.0;
     CHECK_THROWS_WITH_AS(with_physics(e, bad), doctest::Contains("youngs_modulus"),
                          std::invalid_argument);
-    EvolutionRun run(e, options(2, 1));
+    EvolutionRun run(e, run_options(2, 1));
     CHECK_THROWS_AS(run.request_physics_change(bad), std::invalid_argument);
 
     const std::string said = describe_physics_change(e, p);
@@ -98,7 +81,7 @@ TEST_CASE("a physics change at generation g: every member simulated again, nothi
     const Experiment e = test::tiny_experiment();
     const PhysicsRules p = calibrated(e);
     const Experiment after = with_physics(e, p);
-    EvolutionRun run(e, options(4, 2));
+    EvolutionRun run(e, run_options(4, 2));
     REQUIRE(run.run_generation());
     REQUIRE(run.run_generation());
     const std::vector<Individual> before = run.state().population;
@@ -150,7 +133,7 @@ TEST_CASE("a run with a physics change equals its resumed twin; run.json records
     const fs::path whole = bhm::test::scratch_dir("physics-whole", false),
                    parts = bhm::test::scratch_dir("physics-parts", false);
     {
-        EvolutionRun run(e, options(5, 2, whole.string()));
+        EvolutionRun run(e, run_options(5, 2, whole.string()));
         run.set_report_callback([&](auto r) {
             if (r->generation == 1) run.request_physics_change(p);
         });
@@ -158,14 +141,14 @@ TEST_CASE("a run with a physics change equals its resumed twin; run.json records
     }
     {
         // Stopped right after the change's generation, then resumed from its checkpoint.
-        EvolutionRun first(e, options(5, 1, parts.string()));
+        EvolutionRun first(e, run_options(5, 1, parts.string()));
         first.set_report_callback([&](auto r) {
             if (r->generation == 1) first.request_physics_change(p);
             if (r->generation == 2) first.request_stop();
         });
         REQUIRE(first.run() == StopReason::StopRequested);
     }
-    auto resumed = EvolutionRun::resume(options(5, 2, parts.string()));
+    auto resumed = EvolutionRun::resume(run_options(5, 2, parts.string()));
     CHECK(resumed->resume_warnings().empty());
     REQUIRE(resumed->state().rule_changes.size() == 1);
     CHECK(resumed->state().rule_changes[0].physics == p);

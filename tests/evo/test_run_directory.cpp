@@ -6,21 +6,10 @@
 #include "evo/run/evolution_run.hpp"
 #include "evo/run/run_directory.hpp"
 #include "evo_test_support.hpp"
+#include "run_test_support.hpp"
 #include "support/scratch.hpp"
 
 using namespace bhm::evo;
-
-namespace {
-
-RunOptions two_generations(const std::string& dir) {
-    RunOptions o;
-    o.generations = 2;
-    o.threads = 2;
-    o.out_dir = dir;
-    return o;
-}
-
-}  // namespace
 
 TEST_CASE("run directory readers: run.json, champion.json and fitness.csv as the run wrote them") {
     const auto dir = bhm::test::scratch_dir("run-directory-read", false);
@@ -28,7 +17,7 @@ TEST_CASE("run directory readers: run.json, champion.json and fitness.csv as the
     Fitness changed = e.fitness;
     changed.measure = FitnessMeasure::BendAngleDeg;
     {
-        EvolutionRun run(e, two_generations(dir.string()));
+        EvolutionRun run(e, test::run_options(2, 2, dir.string()));
         run.set_report_callback([&](auto r) {
             if (r->generation == 0) run.request_fitness_change(changed);
         });

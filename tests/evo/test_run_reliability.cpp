@@ -13,23 +13,17 @@
 #include "evo/run/evolution_run.hpp"
 #include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
+#include "run_test_support.hpp"
 #include "support/scratch.hpp"
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
+using bhm::evo::test::run_options;
 
 namespace {
 
 void spit(const fs::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
-}
-
-RunOptions options(int generations, const std::string& dir) {
-    RunOptions o;
-    o.generations = generations;
-    o.threads = 2;
-    o.out_dir = dir;
-    return o;
 }
 
 }  // namespace
@@ -43,7 +37,7 @@ TEST_CASE("CRC-32 gives the standard check value") {
 TEST_CASE("a checkpoint whose contents changed but still parse is caught by its checksum") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-crc", false);
-    EvolutionRun(e, options(2, dir.string())).run();
+    EvolutionRun(e, run_options(2, 2, dir.string())).run();
     const fs::path current = dir / kCheckpointFile;
     std::string text = bhm::test::read_file(current);
     REQUIRE(text.rfind("{\"checksum\":\"crc32:", 0) == 0);
@@ -58,7 +52,7 @@ TEST_CASE("a checkpoint whose contents changed but still parse is caught by its 
     REQUIRE(at != std::string::npos);
     text[at + 14] = '0';
     spit(current, text);
-    auto resumed = EvolutionRun::resume(options(3, dir.string()));
+    auto resumed = EvolutionRun::resume(run_options(3, 2, dir.string()));
     REQUIRE(resumed->resume_warnings().size() == 1);
     const std::string warning = resumed->resume_warnings()[0];
     CHECK(warning.find(current.string()) == 0);
@@ -83,15 +77,17 @@ TEST_CASE("a checkpoint whose contents changed but still parse is caught by its 
     fs::remove_all(dir);
 }
 
-TEST_CASE("after a resume from the backup the next checkpoint keeps it, the damaged one set aside") {
+TEST_CASE(
+    "after a resume from the backup the next checkpoint keeps it, the damaged one set aside") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-keep-backup", false);
-    EvolutionRun(e, options(2, dir.string())).run();  // generations 0 and 1: both files exist
+    EvolutionRun(e, run_options(2, 2, dir.string()))
+        .run();  // generations 0 and 1: both files exist
     const std::string backup = bhm::test::read_file(dir / kPreviousCheckpointFile);
     const std::string damaged = "{\"checksum\":\"crc32:00000000\" damaged";
     spit(dir / kCheckpointFile, damaged);
-    auto resumed = EvolutionRun::resume(options(2, dir.string()));
-    REQUIRE(resumed->state().generation == 0);  // from the backup
+    auto resumed = EvolutionRun::resume(run_options(2, 2, dir.string()));
+    REQUIRE(resumed->state().generation == 0);              // from the backup
     CHECK(resumed->run() == StopReason::GenerationBudget);  // one generation: one checkpoint
     CHECK(resumed->state().generation == 1);
     resumed.reset();
@@ -107,12 +103,12 @@ TEST_CASE("after a resume from the backup the next checkpoint keeps it, the dama
 TEST_CASE("a format 1 checkpoint (no checksum) is still read, with a warning that names it") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-v1", false);
-    EvolutionRun(e, options(2, dir.string())).run();
+    EvolutionRun(e, run_options(2, 2, dir.string())).run();
     std::vector<std::string> notes;
     auto payload = parse_checkpoint_text(bhm::test::read_file(dir / kCheckpointFile), notes);
     payload["format_version"] = 1;
     spit(dir / kCheckpointFile, payload.dump(1) + "\n");
-    auto resumed = EvolutionRun::resume(options(3, dir.string()));
+    auto resumed = EvolutionRun::resume(run_options(3, 2, dir.string()));
     REQUIRE(resumed->resume_warnings().size() == 1);
     CHECK(resumed->resume_warnings()[0].find((dir / kCheckpointFile).string()) == 0);
     CHECK(resumed->resume_warnings()[0].find("not verified") != std::string::npos);
@@ -124,20 +120,20 @@ TEST_CASE("a run directory has one writer: a second is refused with the owner's 
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-lock", false);
     {
-        EvolutionRun first(e, options(2, dir.string()));
+        EvolutionRun first(e, run_options(2, 2, dir.string()));
         const std::string owner = run_lock_owner(dir.string());
         CHECK(owner.find("pid " + std::to_string(::getpid()) + " on host ") == 0);
         try {
-            EvolutionRun second(e, options(2, dir.string()));
+            EvolutionRun second(e, run_options(2, 2, dir.string()));
             FAIL("a second writer was let in");
         } catch (const RunDirectoryBusy& busy) {
             CHECK(std::string(busy.what()).find(owner) != std::string::npos);
         }
         first.run();
-        CHECK_THROWS_AS(EvolutionRun::resume(options(3, dir.string())), RunDirectoryBusy);
+        CHECK_THROWS_AS(EvolutionRun::resume(run_options(3, 2, dir.string())), RunDirectoryBusy);
     }
     CHECK_FALSE(fs::exists(dir / kRunLockFile));  // released with the run
-    CHECK_NOTHROW(EvolutionRun::resume(options(3, dir.string())));
+    CHECK_NOTHROW(EvolutionRun::resume(run_options(3, 2, dir.string())));
     fs::remove_all(dir);
 }
 
@@ -163,9 +159,9 @@ TEST_CASE("a lock left by a killed process is stale and taken over") {
 TEST_CASE("a damaged run.json is named, repaired from the checkpoint, and the run goes on") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-runjson", false);
-    EvolutionRun(e, options(2, dir.string())).run();
+    EvolutionRun(e, run_options(2, 2, dir.string())).run();
     spit(dir / "run.json", "{\"bhm_version\": \"0.1\", \"seed\": 7, \"experi");
-    auto resumed = EvolutionRun::resume(options(3, dir.string()));
+    auto resumed = EvolutionRun::resume(run_options(3, 2, dir.string()));
     REQUIRE(resumed->resume_warnings().size() == 1);
     CHECK(resumed->resume_warnings()[0].find((dir / "run.json").string()) == 0);
     CHECK(resumed->resume_warnings()[0].find("rewritten") != std::string::npos);
