@@ -109,6 +109,9 @@ struct PoissonParams {
     std::array<std::array<std::vector<float>, 2>, 3> dev_scale;
     //! voxel, per [axis][side]: the link slot e_far reads (the partner's other link), or kNoLink
     std::array<std::array<std::vector<std::int32_t>, 2>, 3> far_slot;
+    //! voxel, per [axis][side]: where the far link carries a relaxed split d, the end estimate
+    //! reads that link's half at the partner, e_far = e + far_pair * d (poisson.cpp); else 0
+    std::array<std::array<std::vector<float>, 2>, 3> far_pair;
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
     std::array<std::vector<float>, 3> pair_step;   //!< link slot: relaxation step of d, 0 if none
     //! voxels at either end of a link with a relaxed d (isolated or mixed)
@@ -116,16 +119,19 @@ struct PoissonParams {
     bool mixed = false;  //!< some link joins two materials and carries a relaxed split d
     //! The far links of the column-end estimates, as sparse lists (a few voxels per column), so
     //! the dense loops read them contiguously instead of through tables on every slot:
-    //! far_reads[a]: (voxel, side, slot) with mu_far != 0, copies strain[slot] to the voxel's
-    //! far strain (y and z; x reads v - 2 and v + 1 directly); far_pos_links[a] / far_neg_links[a]:
+    //! far_reads[a]: (voxel, side, slot) with mu_far != 0, copies strain[slot] (+ pair d) to the
+    //! voxel's far strain (y and z; x too in a mixed body, otherwise x reads v - 2 and v + 1
+    //! directly); far_pair_reads[a]: those with a d, whose far gradient also moves that d;
+    //! far_pos_links[a] / far_neg_links[a]:
     //! (link slot, voxel) whose far gradient (far_pos / far_neg) that link's stress takes.
     struct FarRead {
         std::int32_t voxel = 0, side = 0, slot = 0;
+        float pair = 0.0f;  //!< far_pair of (voxel, side): e_far = strain + pair * d of the slot
     };
     struct FarLink {
         std::int32_t link = 0, voxel = 0;
     };
-    std::array<std::vector<FarRead>, 3> far_reads;
+    std::array<std::vector<FarRead>, 3> far_reads, far_pair_reads;
     std::array<std::vector<FarLink>, 3> far_pos_links, far_neg_links;
 };
 

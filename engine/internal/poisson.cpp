@@ -48,6 +48,12 @@ inline float octant_lambda(float hx, float hy, float hz, float lambda1, float la
     return one * lambda1 + two * lambda2 + three * lambda3;
 }
 
+// The neighbour of v on side s of axis a (its - neighbour is the slot of the link whose + end
+// is v: a link slot is its - end voxel).
+int partner_on(const Model::Data& d, int a, int s, int v) {
+    return s == 1 ? d.plus[a][v] : d.minus[a][v];
+}
+
 int links_on_axis(const PoissonParams& pp, int a, int v) {
     return static_cast<int>(pp.has_minus[a][v] + pp.has_plus[a][v]);
 }
@@ -88,6 +94,7 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                             &pp.mu_pair[a][s], &pp.dev_scale[a][s]})
                 v->assign(d.stored, 0.0f);
             pp.far_slot[a][s].assign(d.stored, kNoLink);
+            pp.far_pair[a][s].assign(d.stored, 0.0f);
         }
         octant_modulus[a].assign(d.stored, 0.0);
     }
@@ -160,13 +167,22 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
             for (int s = 0; s < kSides; ++s)
                 mixed[s] = h[s] != 0.0f && relaxed[partner[s]] && !same_material(v, partner[s]);
             const int count = links_on_axis(pp, a, v);
-            if (count == 2) {  // interior: the mean of the two half-links
+            if (count == 2) {
+                // Interior: the centre strain interpolated between the two half-links' own
+                // centres. A link of one material samples the strain half a voxel out, the mean
+                // of the two; a mixed link's half in this voxel (w e -+ d) spans only the voxel's
+                // half, a quarter out, so with one mixed side the line through both samples gives
+                // it 2/3 and the other link 1/3. (With the mean, the stiff voxel at a soft
+                // interface took half its thinning from the nearly rigid series share: the
+                // heated bilayer at nu 0.49 was 9-12 % too stiff; docs/physics.md.)
+                const bool one_mixed = mixed[0] != mixed[1];
                 for (int s = 0; s < kSides; ++s) {
-                    pp.mu_own[a][s][v] = 0.5f * w[s];
-                    pp.mu_other[a][s][v] = 0.5f * w[1 - s];
+                    const float weight = one_mixed ? (mixed[s] ? 2.0f / 3.0f : 1.0f / 3.0f) : 0.5f;
+                    pp.mu_own[a][s][v] = weight * w[s];
+                    pp.mu_other[a][s][v] = (1.0f - weight) * w[1 - s];
                     pp.mixed = pp.mixed || mixed[s];
                     if (mixed[s]) {
-                        pp.mu_pair[a][s][v] = s == 1 ? -0.5f : 0.5f;
+                        pp.mu_pair[a][s][v] = s == 1 ? -weight : weight;
                         pair_voxel[v] = 1;
                     }
                 }
@@ -212,13 +228,28 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
         }
     for (int a = 0; a < 3; ++a) {
         pp.far_reads[a].clear();
+        pp.far_pair_reads[a].clear();
         pp.far_pos_links[a].clear();
         pp.far_neg_links[a].clear();
         for (int v = 0; v < n; ++v)
             for (int s = 0; s < kSides; ++s) {
                 if (pp.mu_far[a][s][v] == 0.0f) continue;
                 const int slot = pp.far_slot[a][s][v];
-                if (a != 0) pp.far_reads[a].push_back({v, s, slot});
+                // A far link with a relaxed split (its - end carries the d): the end estimate
+                // reads its half at the partner p, w_p e -+ d in p's units (+ d where p is the
+                // link's + end, side 0), in v's units (E_p / E_v) that: mu_far already holds
+                // series(E_p, E_n) / E_v, so e_far = e +- d E_p / series(E_p, E_n). Reading the
+                // link's e alone left the d out of the estimate, which then disagreed with the
+                // half-link the interface voxel itself uses.
+                if (pp.mu_pair[a][1][slot] != 0.0f) {
+                    const int p = partner_on(d, a, s, v), far = partner_on(d, a, s, p);
+                    const double ep = young(p), en = young(far);
+                    pp.far_pair[a][s][v] =
+                        static_cast<float>((s == 0 ? 1.0 : -1.0) * (ep + en) / (2.0 * en));
+                }
+                const PoissonParams::FarRead read{v, s, slot, pp.far_pair[a][s][v]};
+                if (a != 0 || pp.mixed) pp.far_reads[a].push_back(read);
+                if (read.pair != 0.0f) pp.far_pair_reads[a].push_back(read);
                 (s == 1 ? pp.far_pos_links : pp.far_neg_links)[a].push_back({slot, v});
             }
     }
@@ -241,7 +272,8 @@ constexpr double kMixedStepFactor = 0.5;
 // The d's of one voxel: local index k = 2 a + s, set where mu_pair[a][s] != 0.
 // hessian[k][l] = d^2 (W / V) / (dd_k dd_l) of this voxel's octants (linear volumetric stress,
 // its saturation only lowers it): mu[a][s'] takes d_(a,s) with pair (s' = s) or inner * pair
-// (s' != s), the half-link gamma[a][s] with (1 + inner) pair, or pair at a column's end.
+// (s' != s), the half-link gamma[a][s] with weight 1 inside a column (half_link_pair) and pair at
+// an isolated link or a column's end (where gamma is mu).
 using LocalHessian = std::array<std::array<double, 6>, 6>;
 
 LocalHessian local_hessian(const PoissonParams& pp, int v) {
@@ -253,10 +285,9 @@ LocalHessian local_hessian(const PoissonParams& pp, int v) {
             const double pair = pp.mu_pair[a][s][v];
             if (pair == 0.0) continue;
             const double inner = pp.mu_other[a][s][v] > 0.0f ? 1.0 : 0.0;
-            const bool end = pp.mu_far[a][s][v] < 0.0f;
             mu_coef[k][a][s] = pair;
             mu_coef[k][a][1 - s] = inner * pair;
-            gamma_coef[k][a][s] = end ? pair : (1.0 + inner) * pair;
+            gamma_coef[k][a][s] = inner != 0.0 ? (pair > 0.0 ? 1.0 : -1.0) : pair;
         }
     const float* has[3][kSides] = {{pp.has_minus[0].data(), pp.has_plus[0].data()},
                                    {pp.has_minus[1].data(), pp.has_plus[1].data()},
@@ -290,12 +321,39 @@ void finish_poisson_params(Model::Data& d) {
         std::vector<LocalHessian> hess(d.voxels);
         for (int v : pp.pair_voxels)
             hess[v] = local_hessian(pp, v);
+        // A far link's d in a column end's estimate (far_pair): its curvature there, on that
+        // link's row, and a bound on its coupling with the end voxel's own d's, on both rows.
+        std::array<std::vector<double>, 3> extra_h, extra_off;
+        for (int a = 0; a < 3; ++a) {
+            extra_h[a].assign(d.voxels, 0.0);
+            extra_off[a].assign(d.voxels, 0.0);
+        }
+        for (int a = 0; a < 3; ++a)
+            for (const PoissonParams::FarRead& r : pp.far_pair_reads[a]) {
+                const int v = r.voxel;
+                const double coef = std::fabs(pp.mu_far[a][r.side][v] * r.pair);
+                double side_modulus = 0.0;  // sum over the side's octants of (G / 4 + lambda_o / 8)
+                for (int o = 0; o < 8; ++o)
+                    if (((o >> (2 - a)) & 1) == r.side)
+                        side_modulus += 0.25 * pp.shear[v] + pp.octant_lambda8[o][v];
+                extra_h[a][r.slot] += side_modulus * coef * coef;
+                for (int a2 = 0; a2 < 3; ++a2)
+                    for (int s2 = 0; s2 < kSides; ++s2) {
+                        const double own = std::fabs(pp.mu_pair[a2][s2][v]);
+                        if (own == 0.0) continue;
+                        // mu takes at most 1.5 d, gamma at most 1.5 d (a column's end)
+                        const double bound = side_modulus * coef * 2.0 * std::max(own, 1.0);
+                        extra_off[a][r.slot] += bound;
+                        extra_off[a2][s2 == 1 ? v : d.minus[a2][v]] += bound;  // its slot
+                    }
+            }
         for (int a = 0; a < 3; ++a)
             for (int c = 0; c < d.voxels; ++c) {
                 if (pp.mu_pair[a][1][c] == 0.0f) continue;
                 const int b = d.plus[a][c];
                 const int kc = 2 * a + 1, kb = 2 * a;
-                double h = hess[c][kc][kc] + hess[b][kb][kb], off = 0.0;
+                double h = hess[c][kc][kc] + hess[b][kb][kb] + extra_h[a][c],
+                       off = extra_off[a][c];
                 for (int l = 0; l < 6; ++l) {
                     if (l != kc) off += std::fabs(hess[c][kc][l]);
                     if (l != kb) off += std::fabs(hess[b][kb][l]);
@@ -413,6 +471,7 @@ struct Views {
     const float *own[3][kSides], *other[3][kSides], *far[3][kSides], *pair[3][kSides],
         *dev[3][kSides];
     const int *far_slot[3][kSides], *below[3];
+    const float* far_pair[3][kSides];
     const float *strain[3], *d[3], *far_strain[3][kSides];
     float *grad_neg[3], *grad_pos[3], *far_neg[3], *far_pos[3], *dgrad_neg[3], *dgrad_pos[3];
 };
@@ -431,6 +490,7 @@ Views views_of(const Model::Data& d, PoissonScratch& p) {
             w.pair[a][s] = pp.mu_pair[a][s].data();
             w.dev[a][s] = pp.dev_scale[a][s].data();
             w.far_slot[a][s] = pp.far_slot[a][s].data();
+            w.far_pair[a][s] = pp.far_pair[a][s].data();
         }
         w.below[a] = d.minus[a].data();
         w.strain[a] = p.strain[a];
@@ -462,6 +522,14 @@ BHM_ENGINE_INLINE float inside_column(const Views& w, int a, int s, int v) {
     return static_cast<float>(w.other[a][s][v] > 0.0f);
 }
 
+// The weight of a mixed link's d in this voxel's half-link strain: +-1 inside a column (mu takes
+// it with the interpolation weight, 1/2 or 2/3, in pair), pair itself at an isolated link or a
+// column's end (weight 1 or, where gamma is the end estimate, 1.5).
+BHM_ENGINE_INLINE float half_link_pair(float pair, float inner) {
+    const float sign = static_cast<float>(pair > 0.0f) - static_cast<float>(pair < 0.0f);
+    return inner * sign + (1.0f - inner) * pair;
+}
+
 // The strains one voxel's octants see: mu (volumetric term) and gamma (deviatoric term) of each
 // axis and side, h = 1 where that half-link exists.
 struct VoxelStrains {
@@ -480,13 +548,14 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
     for (int a = 0; a < 3; ++a) {
         const float e[kSides] = {w.strain[a][below[a]], w.strain[a][v]};
         const float dd[kSides] = {w.d[a][below[a]], w.d[a][v]};
-        const float pair[kSides] = {w.pair[a][0][v] * dd[0], w.pair[a][1][v] * dd[1]};
+        const float pair_weight[kSides] = {w.pair[a][0][v], w.pair[a][1][v]};
+        const float pair[kSides] = {pair_weight[0] * dd[0], pair_weight[1] * dd[1]};
 #pragma GCC unroll 8
         for (int s = 0; s < kSides; ++s) {
             out.h[a][s] = half_link_exists(w, a, s, v);
             const float far = far_strain[a][s];
-            // Inside a column the centre is the mean of both half-links, d's included (a mixed
-            // link's d enters mu with half its weight, its half-link with the full one).
+            // Inside a column the centre interpolates both half-links, d's included (a mixed
+            // link's d enters mu with its interpolation weight, its half-link with the full one).
             const float inner = kMixed ? inside_column(w, a, s, v) : 0.0f;
             out.mu[a][s] = w.own[a][s][v] * e[s] + w.other[a][s][v] * e[1 - s] +
                            w.far[a][s][v] * far + pair[s];
@@ -494,7 +563,8 @@ BHM_ENGINE_INLINE VoxelStrains voxel_strains(const Views& w, int v, const int (&
             // The deviatoric term uses the half-link, except at a column's end, where it takes
             // the same estimate as the volumetric one (so a uniform strain stays exact there).
             const float half =
-                w.dev[a][s][v] * e[s] + (kMixed ? (1.0f + inner) * pair[s] : pair[s]);
+                w.dev[a][s][v] * e[s] +
+                (kMixed ? half_link_pair(pair_weight[s], inner) * dd[s] : pair[s]);
             out.gamma[a][s] = half + at_column_end(w, a, s, v) * (out.mu[a][s] - half);
         }
     }
@@ -507,7 +577,8 @@ VoxelStrains voxel_strains(const Views& w, int v) {
     float far[3][kSides];
     for (int a = 0; a < 3; ++a)
         for (int s = 0; s < kSides; ++s)
-            far[a][s] = w.strain[a][w.far_slot[a][s][v]];
+            far[a][s] = w.strain[a][w.far_slot[a][s][v]] +
+                        w.far_pair[a][s][v] * w.d[a][w.far_slot[a][s][v]];
     return voxel_strains<true>(w, v, below, far);
 }
 
@@ -549,12 +620,13 @@ BHM_ENGINE_INLINE void voxel_gradients(const Views& w, int v, const int (&below)
             grad[s] = own * P[a][s] + w.other[a][1 - s][v] * P[a][1 - s] +
                       (dev + end * (own - dev)) * deviatoric;
             far[s] = w.far[a][s][v] * (P[a][s] + deviatoric);
-            // d_s enters mu_s, mu of the other side inside a column (half weight each, both
-            // in pair) and the half-link (full weight: (1 + inner) pair).
+            // d_s enters mu_s, mu of the other side inside a column (its interpolation weight
+            // in both, pair) and the half-link (half_link_pair).
             if constexpr (kMixed) {
                 const float inner = inside_column(w, a, s, v);
-                dgrad[s] =
-                    w.pair[a][s][v] * (P[a][s] + inner * P[a][1 - s] + (1.0f + inner) * deviatoric);
+                const float pair = w.pair[a][s][v];
+                dgrad[s] = pair * (P[a][s] + inner * P[a][1 - s]) +
+                           half_link_pair(pair, inner) * deviatoric;
             } else {
                 dgrad[s] = w.pair[a][s][v] * (P[a][s] + deviatoric);
             }
@@ -581,7 +653,9 @@ BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
     for (int v = run.begin; v < run.end; ++v) {
         const int below[3] = {v - 1, kGather ? w.below[1][v] : v - below_y,
                               kGather ? w.below[2][v] : v - below_z};
-        const float far[3][kSides] = {{ex[v - 2], ex[v + 1]},
+        // (a mixed body's x far strains may carry a d: far_strain_copies fills them)
+        const float far[3][kSides] = {{kMixed ? w.far_strain[0][0][v] : ex[v - 2],
+                                       kMixed ? w.far_strain[0][1][v] : ex[v + 1]},
                                       {w.far_strain[1][0][v], w.far_strain[1][1][v]},
                                       {w.far_strain[2][0][v], w.far_strain[2][1][v]}};
         voxel_gradients<kMixed>(w, v, below, far);
@@ -591,15 +665,21 @@ BHM_ENGINE_INLINE void voxel_loop(const Views& w, const VoxelRun& run) {
 // The far links are a few per column (its two ends): copied through the model's sparse lists
 // instead of gathered on every slot of the dense loops (a gather is one scalar load per lane).
 void far_strain_copies(const PoissonParams& pp, PoissonScratch& p) {
-    for (int a = 1; a < 3; ++a) {
+    for (int a = 0; a < 3; ++a) {  // (x only in a mixed body: far_reads[0] is empty otherwise)
         float* far[kSides] = {p.far_strain_neg[a], p.far_strain_pos[a]};
         for (const PoissonParams::FarRead& r : pp.far_reads[a])
             far[r.side][r.voxel] = p.strain[a][r.slot];
+        for (const PoissonParams::FarRead& r : pp.far_pair_reads[a])
+            far[r.side][r.voxel] += r.pair * p.pair_d[a][r.slot];
     }
 }
 
 void far_gradient_copies(const PoissonParams& pp, PoissonScratch& p) {
     for (int a = 0; a < 3; ++a) {
+        // A far link's d in an end estimate: dW/dd = pair dW/de_far, on that link's row.
+        for (const PoissonParams::FarRead& r : pp.far_pair_reads[a])
+            p.dgrad_pos[a][r.slot] +=
+                r.pair * (r.side == 1 ? p.far_pos[a][r.voxel] : p.far_neg[a][r.voxel]);
         for (const PoissonParams::FarLink& f : pp.far_pos_links[a])
             p.far_from_below[a][f.link] = p.far_pos[a][f.voxel];
         for (const PoissonParams::FarLink& f : pp.far_neg_links[a])
