@@ -7,10 +7,14 @@
 // docs/physics.md ("Bodies of several materials") has the table these cases print.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -69,28 +73,40 @@ std::vector<ccx::Material> materials(const MixedScene& s, double contrast, doubl
 // CalculiX: elements of L / 2 along x from the clamp (voxel 0's centre), one element per voxel
 // across; element ex lies in voxel (ex + 1) / 2.
 // `refine` elements per voxel edge (2 refine along x) check the mesh's convergence.
-double calculix_tip(const MixedScene& s, double contrast, double nu, int refine = 1) {
-    const double length = (s.nx - 0.5) * kL;
+ccx::Mesh calculix_mesh(const MixedScene& s, int refine) {
     const int r = refine;
-    ccx::Mesh m{{length, s.ny * kL, s.nz * kL}, {r * (2 * s.nx - 1), r * s.ny, r * s.nz}};
+    return {{(s.nx - 0.5) * kL, s.ny * kL, s.nz * kL}, {r * (2 * s.nx - 1), r * s.ny, r * s.nz}};
+}
+
+// Solves the scene on `m` (of calculix_mesh(s, refine)) and returns the displacements of the
+// nodes `printed`.
+std::map<int, std::array<double, 3>> calculix_solve(const MixedScene& s, double contrast, double nu,
+                                                    int refine, const ccx::Mesh& m,
+                                                    const std::vector<int>& printed) {
+    const int r = refine;
     std::ostringstream inp;
     ccx::write_mesh(inp, m, materials(s, contrast, nu), [&](int ex, int ey, int ez) {
         return s.stiff((ex / r + 1) / 2, ey / r, ez / r);
     });
     ccx::write_set(inp, "NSET", "CLAMP",
                    ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
-    const double probe_x = (s.nx - 1) * kL;
-    const auto probe = ccx::nodes_where(
-        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
-    ccx::write_set(inp, "NSET", "PROBE", probe);
+    ccx::write_set(inp, "NSET", "PRINTED", printed);
     inp << "*BOUNDARY\nCLAMP, 1, 3\n";
     if (s.load == Load::Heat)
         inp << "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 0.\n*STEP\n*STATIC\n"
                "*TEMPERATURE\nNALL, 1.\n";
     else
         inp << "*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n";
-    inp << "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
-    return ccx::mean(ccx::solve(s.name, inp.str()), probe, 2);
+    inp << "*NODE PRINT, NSET=PRINTED\nU\n*END STEP\n";
+    return ccx::solve(s.name, inp.str());
+}
+
+double calculix_tip(const MixedScene& s, double contrast, double nu, int refine = 1) {
+    const ccx::Mesh m = calculix_mesh(s, refine);
+    const double probe_x = (s.nx - 1) * kL;
+    const auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
+    return ccx::mean(calculix_solve(s, contrast, nu, refine, m, probe), probe, 2);
 }
 
 // Runs a world to static equilibrium (1e-4 relative change of the tip over 0.05 s slices).
@@ -230,4 +246,70 @@ TEST_CASE("calculix probe: one scene of two materials" * doctest::skip()) {
         return;
     }
     compare(scene(name), k, n);
+}
+
+// The strain profile through the thickness at mid-span, engine / CalculiX (2 elements per voxel,
+// so the voxel centres are nodes): per voxel layer z the x and y strains between neighbouring
+// centres and the z strain to the next layer, averaged over y (docs/physics.md quotes it). On
+// demand, BHM_NY optional (the strip's width):
+//   BHM_SCENE=bilayer-soft-active BHM_CONTRAST=10 BHM_NU=0.49
+//     build/bin/test_engine -tc="calculix profile*" --no-skip -s
+TEST_CASE("calculix profile: strains through the thickness at mid-span" * doctest::skip()) {
+    if (skip_without_ccx()) return;
+    const char* name = std::getenv("BHM_SCENE");
+    REQUIRE(name);
+    MixedScene sc = scene(name);
+    if (const char* ny = std::getenv("BHM_NY")) sc.ny = std::atoi(ny);
+    const char* contrast = std::getenv("BHM_CONTRAST");
+    const char* nu_text = std::getenv("BHM_NU");
+    const double k = contrast ? std::atof(contrast) : 10.0,
+                 nu = nu_text ? std::atof(nu_text) : 0.35;
+    const int x0 = sc.nx / 2;
+    World w(Model::build(engine_body(sc, k, nu)));
+    settle(w, sc.nx - 1);
+    const Model& m = w.model();
+    auto pos = [&](int x, int y, int z) { return w.voxel_position_m(voxel_at(m, x, y, z)); };
+    auto dist = [&](std::array<double, 3> a, std::array<double, 3> b) {
+        return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                         (a[2] - b[2]) * (a[2] - b[2]));
+    };
+    // CalculiX at 2 elements per voxel: the voxel centres are nodes.
+    const int r = 2;
+    const ccx::Mesh mesh = calculix_mesh(sc, r);
+    const auto u = calculix_solve(
+        sc, k, nu, r, mesh, ccx::nodes_where(mesh, [](double, double, double) { return true; }));
+    auto cu = [&](double x, double y, double z) {  // the displacement of the node at a point
+        auto index = [&](double p, int axis) {
+            return static_cast<int>(std::lround(p / (mesh.size[axis] / (2.0 * mesh.n[axis]))));
+        };
+        return u.at(mesh.node_id(index(x, 0), index(y, 1), index(z, 2)));
+    };
+    for (int z = 0; z < sc.nz; ++z) {
+        double ex = 0, ey = 0, ez = 0, cx = 0, cy = 0, cz = 0;
+        for (int y = 0; y < sc.ny; ++y) {
+            ex += dist(pos(x0 + 1, y, z), pos(x0, y, z)) / kL - 1.0;
+            cx += (cu((x0 + 1) * kL, (y + 0.5) * kL, (z + 0.5) * kL)[0] -
+                   cu(x0 * kL, (y + 0.5) * kL, (z + 0.5) * kL)[0]) /
+                  kL;
+            if (z + 1 < sc.nz) {
+                ez += dist(pos(x0, y, z + 1), pos(x0, y, z)) / kL - 1.0;
+                cz += (cu(x0 * kL, (y + 0.5) * kL, (z + 1.5) * kL)[2] -
+                       cu(x0 * kL, (y + 0.5) * kL, (z + 0.5) * kL)[2]) /
+                      kL;
+            }
+            if (y + 1 < sc.ny) {
+                ey += dist(pos(x0, y + 1, z), pos(x0, y, z)) / kL - 1.0;
+                cy += (cu(x0 * kL, (y + 1.5) * kL, (z + 0.5) * kL)[1] -
+                       cu(x0 * kL, (y + 0.5) * kL, (z + 0.5) * kL)[1]) /
+                      kL;
+            }
+        }
+        const double n = sc.ny, n1 = std::max(1, sc.ny - 1);
+        char line[256];
+        std::snprintf(
+            line, sizeof line,
+            "z %d (mat %d): e_x %+.4e / %+.4e   e_y %+.4e / %+.4e   e_z(z,z+1) %+.4e / %+.4e", z,
+            sc.stiff(x0, 0, z), ex / n, cx / n, ey / n1, cy / n1, ez / n, cz / n);
+        MESSAGE(line);
+    }
 }
