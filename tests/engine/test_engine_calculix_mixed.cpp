@@ -251,7 +251,7 @@ TEST_CASE("calculix probe: one scene of two materials" * doctest::skip()) {
 // The strain profile through the thickness at mid-span, engine / CalculiX (2 elements per voxel,
 // so the voxel centres are nodes): per voxel layer z the x and y strains between neighbouring
 // centres and the z strain to the next layer, averaged over y (docs/physics.md quotes it). On
-// demand, BHM_NY optional (the strip's width):
+// demand, BHM_NY (the strip's width) and BHM_X0 (the section, default mid-span) optional:
 //   BHM_SCENE=bilayer-soft-active BHM_CONTRAST=10 BHM_NU=0.49
 //     build/bin/test_engine -tc="calculix profile*" --no-skip -s
 TEST_CASE("calculix profile: strains through the thickness at mid-span" * doctest::skip()) {
@@ -264,7 +264,7 @@ TEST_CASE("calculix profile: strains through the thickness at mid-span" * doctes
     const char* nu_text = std::getenv("BHM_NU");
     const double k = contrast ? std::atof(contrast) : 10.0,
                  nu = nu_text ? std::atof(nu_text) : 0.35;
-    const int x0 = sc.nx / 2;
+    const int x0 = std::getenv("BHM_X0") ? std::atoi(std::getenv("BHM_X0")) : sc.nx / 2;
     World w(Model::build(engine_body(sc, k, nu)));
     settle(w, sc.nx - 1);
     const Model& m = w.model();
