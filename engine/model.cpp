@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/internal/edge_springs.hpp"
 #include "engine/internal/model_data.hpp"
 #include "engine/internal/poisson.hpp"
 #include "engine/limits.hpp"
@@ -355,6 +356,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         }
     }
 
+    build_edge_springs(d, max_omega2);
+
     // A body without links (a lone voxel) has no strain to couple: skip the pass (it would
     // write zeros every step).
     if (d.link_count == 0) pp.active = false;
@@ -426,6 +429,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.dt_inv_mass[v] = dt / m;
         d.dt_inv_inertia[v] = dt / inertia;
     }
+    finish_edge_springs(d);
     return std::make_shared<const Model>(std::move(data));
 }
 
@@ -437,6 +441,9 @@ int Model::voxel_count() const {
 }
 int Model::link_count() const {
     return data_->link_count;
+}
+int Model::edge_spring_count() const {
+    return static_cast<int>(data_->edge_springs.size());
 }
 double Model::dt_s() const {
     return data_->dt_s;

@@ -19,6 +19,9 @@ public:
 
     int voxel_count() const;
     int link_count() const;
+    //! Springs across shared edges between voxels stiffer than both voxels beside that edge
+    //! (docs/physics.md, "Springs across edges"); 0 in bodies of one stiffness.
+    int edge_spring_count() const;
     double dt_s() const;            //!< dt_fraction x the largest stable step
     double voxel_size_m() const;
     const BodySpec& spec() const;   //!< the spec it was built from

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engine/internal/damping_pass.hpp"
+#include "engine/internal/edge_springs.hpp"
 #include "engine/internal/link_pass.hpp"
 #include "engine/internal/poisson.hpp"
 #include "engine/internal/voxel_pass.hpp"
@@ -101,6 +102,11 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     const Model::Data& d = *state_->data;
     init_voxels(d, state_->voxels);
     if (d.poisson.active) prepare_poisson_scratch(d, state_->poisson);
+    for (int i = 0; i < 3; ++i) {
+        state_->edges.force[i].assign(d.edge_springs.size(), 0.0);
+        state_->edges.moment_a[i].assign(d.edge_springs.size(), 0.0);
+        state_->edges.moment_b[i].assign(d.edge_springs.size(), 0.0);
+    }
     // At t = 0 every link is straight at its lattice length; its extension is that length minus
     // its (possibly already actuated) rest length, so the first damping rate is zero.
     const Phase phase = actuation_phase(d, 0.0);
@@ -155,6 +161,7 @@ void World::step() {
         return;
     }
 
+    if (d.edge_springs.size() > 0) edge_pass(d, s.voxels, s.edges, phase.sin_t, phase.cos_t);
     VoxelPassInput in;
     in.sin_t = phase.sin_t;
     in.cos_t = phase.cos_t;

@@ -184,6 +184,19 @@ struct Model::Data {
 
     std::array<LinkParams, 3> links;  //!< per axis, one slot per voxel slot
     PoissonParams poisson;
+
+    //! Springs across shared voxel edges (edge_springs.hpp), structure of arrays over the
+    //! springs (empty in most bodies). Vectors in a's body frame.
+    struct EdgeSprings {
+        std::vector<std::int32_t> a, b;            //!< voxel slots, b = a + one step along two axes
+        std::array<std::vector<double>, 3> half;   //!< a's centre to the edge's midpoint (m)
+        std::array<std::vector<double>, 3> gauss;  //!< midpoint to a Gauss point, L / (2 sqrt 3)
+        std::array<std::vector<double>, 3> edge;   //!< unit, along the edge
+        std::vector<double> k_across, k_along;     //!< per point (N/m)
+        std::vector<double> damping;               //!< per point (N s/m)
+        int size() const { return static_cast<int>(a.size()); }
+    };
+    EdgeSprings edge_springs;
 };
 
 }  // namespace bhm::engine

@@ -83,12 +83,20 @@ struct PoissonScratch {
     std::array<float*, 3> far_from_above{};  //!< link slot: far_neg of the voxel two above it
 };
 
+//! Per edge spring (edge_springs.hpp): the loads its vectorised half writes for the scatter.
+struct EdgeScratch {
+    std::array<std::vector<double>, 3> force;     //!< on a (b gets the opposite)
+    std::array<std::vector<double>, 3> moment_a;  //!< on a
+    std::array<std::vector<double>, 3> moment_b;  //!< on b
+};
+
 struct World::State {
     std::shared_ptr<const Model> model;
     const Model::Data* data = nullptr;
     VoxelState voxels;
     std::array<LinkScratch, 3> links;
     PoissonScratch poisson;
+    EdgeScratch edges;
     std::int64_t steps = 0;
     std::int64_t rested_steps = 0;  //!< of steps, those passed at rest (World::rest_until)
     bool diverged = false;

@@ -121,6 +121,15 @@ std::vector<Scene> scenes() {
             for (int x = 0; x < layered.nx; ++x)
                 if (z == 1 || z == 5) layered.material[layered.cell_index(x, y, z)] = 3;
     list.push_back({"layered_20x8x7", layered, 40000});
+    // The worst case of the springs across edges (issue 24): the cantilever as a 10x
+    // checkerboard, every stiff voxel joined to its stiff edge neighbours (one spring per voxel
+    // and a half).
+    BodySpec checkerboard = layered;
+    for (int z = 0; z < checkerboard.nz; ++z)
+        for (int y = 0; y < checkerboard.ny; ++y)
+            for (int x = 0; x < checkerboard.nx; ++x)
+                checkerboard.material[checkerboard.cell_index(x, y, z)] = (x + y + z) % 2 ? 3 : 1;
+    list.push_back({"checkerboard_20x8x7", checkerboard, 40000});
     return list;
 }
 
