@@ -2,7 +2,9 @@
 // The verification suite's CalculiX (ccx) decks: a structured C3D20R brick mesh of a box, written
 // as a .inp and solved by the project's one ccx driver (evo/verify/ccx_run.hpp, which bhm verify
 // uses too). CalculiX is an independent 3-D continuum FEM (Debian calculix-ccx).
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -35,8 +37,29 @@ struct Mesh {
     int node_id(int i, int j, int k) const {
         return 1 + i + (2 * n[0] + 1) * (j + (2 * n[1] + 1) * k);
     }
+    //! Grading toward the voxel faces: 0 = uniform; q > 1 maps each voxel's local
+    //! coordinate t in [0, 1] by 0.5 (2 t)^q below 0.5 and its mirror above, so elements shrink
+    //! toward every voxel face and edge. voxel: the voxel size; offset: where voxel faces lie
+    //! along each axis modulo the voxel size.
+    double grading = 0.0;
+    double voxel = 0.0;
+    std::array<double, 3> offset{};
+    double corner(int axis, int i) const {
+        const double u = size[axis] * i / (2.0 * n[axis]);
+        if (grading <= 0.0) return u;
+        const double shifted = u - offset[axis];
+        const double cell = std::floor(shifted / voxel + 1e-9);
+        const double t = std::clamp(shifted / voxel - cell, 0.0, 1.0);
+        const double g = t < 0.5 ? 0.5 * std::pow(2.0 * t, grading)
+                                 : 1.0 - 0.5 * std::pow(2.0 * (1.0 - t), grading);
+        return offset[axis] + (cell + g) * voxel;
+    }
+    double coordinate(int axis, int i) const {
+        if (grading <= 0.0 || i % 2 == 0) return corner(axis, i);
+        return 0.5 * (corner(axis, i - 1) + corner(axis, i + 1));
+    }
     std::array<double, 3> position(int i, int j, int k) const {
-        return {size[0] * i / (2.0 * n[0]), size[1] * j / (2.0 * n[1]), size[2] * k / (2.0 * n[2])};
+        return {coordinate(0, i), coordinate(1, j), coordinate(2, k)};
     }
     // C3D20 has corner nodes (all even) and edge midpoints (exactly one index odd).
     static bool used(int i, int j, int k) { return (i % 2) + (j % 2) + (k % 2) <= 1; }
