@@ -8,15 +8,12 @@
 #include <numbers>
 
 #include "engine_test_bodies.hpp"
+#include "free_body_checks.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
 
 namespace {
-
-double norm(const std::array<double, 3>& a) {
-    return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-}
 
 // A free box whose voxel (x, y, z) is the stiffer material 2 (10x) when x + y + z is even.
 BodySpec checkerboard(int nx, int ny, int nz, double cte_soft, double cte_stiff) {
@@ -82,20 +79,7 @@ TEST_CASE(
     auto model = Model::build(s);
     REQUIRE(model->edge_spring_count() > 0);
     World w(model);
-    const auto com0 = w.centre_of_mass_m();
-    double max_speed = 0.0;
-    for (int k = 1; k <= 20; ++k) {
-        REQUIRE(w.advance_to(0.01 * k));
-        max_speed =
-            std::max(max_speed, std::sqrt(2.0 * w.kinetic_energy_j() / model->total_mass_kg()));
-        const double momentum_scale = model->total_mass_kg() * max_speed;
-        CHECK(norm(w.linear_momentum()) < 1e-9 * momentum_scale);
-        const auto com = w.centre_of_mass_m();
-        CHECK(norm({com[0] - com0[0], com[1] - com0[1], com[2] - com0[2]}) < 1e-9);
-        // About the fixed centre of mass; the springs' moments balance in double, the links' in
-        // float (the conservation suite's bound).
-        CHECK(norm(w.angular_momentum()) < 1e-4 * momentum_scale * 0.03);
-    }
+    const double max_speed = check_free_body_keeps_momenta(w, 20, 0.01);
     CHECK(max_speed > 1e-3);  // the body really moved internally
 }
 
