@@ -125,12 +125,13 @@ void finish_edge_springs(Model::Data& d) {
     }
 }
 
-// The loads of every spring from the voxels' poses (a pure function per spring, so it
-// vectorises with gathers). The two Gauss points p = -1, +1 sit at h + p g from each centre, so
-// the gap and its rate are G0 + p G1 and V0 + p V1, the force F0 + p F1, and the sums over the
-// two points close in form: force 2 F0 on a; moments 2 ((h_a + G0 / 2) x F0 + (g_a + G1 / 2) x
-// F1) on a and -2 ((h_b - G0 / 2) x F0 + (g_b - G1 / 2) x F1) on b (each point's force pair acts
-// at the gap's midpoint, so the moments balance for any direction of the force).
+// The loads of every spring from the voxels' poses, per spring (the scatter comes after; GCC 12
+// does not vectorise the gathers, docs/physics.md has the cost). The two Gauss points p = -1, +1
+// sit at h + p g from each centre, so the gap and its rate are G0 + p G1 and V0 + p V1, the force
+// F0 + p F1, and the sums over the two points close in form: force 2 F0 on a; moments
+// 2 ((h_a + G0 / 2) x F0 + (g_a + G1 / 2) x F1) on a and -2 ((h_b - G0 / 2) x F0 + (g_b - G1 / 2)
+// x F1) on b (each point's force pair acts at the gap's midpoint, so the moments balance for any
+// direction of the force).
 BHM_ENGINE_KERNEL void edge_loads(const Model::Data& d, const VoxelState& s, EdgeScratch& out,
                                   double sin_t, double cos_t) {
     const Model::Data::EdgeSprings& e = d.edge_springs;
