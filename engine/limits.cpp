@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/internal/poisson.hpp"
+#include "engine/internal/series.hpp"
 
 namespace bhm::engine::limits {
 namespace {
@@ -27,11 +28,6 @@ std::string bound(double x) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", x);
     return buf;
-}
-
-// Two materials joined by a link act as springs in series: 2 a b / (a + b).
-double series(double a, double b) {
-    return 2.0 * a * b / (a + b);
 }
 
 double shear_modulus(const Material& m) {

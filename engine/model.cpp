@@ -11,6 +11,7 @@
 #include "engine/internal/edge_springs.hpp"
 #include "engine/internal/model_data.hpp"
 #include "engine/internal/poisson.hpp"
+#include "engine/internal/series.hpp"
 #include "engine/limits.hpp"
 
 namespace bhm::engine {
@@ -25,11 +26,6 @@ namespace {
 void validate(const BodySpec& spec) {
     const std::vector<limits::Problem> problems = limits::body_spec_problems(spec);
     if (!problems.empty()) reject(problems.front().field + " " + problems.front().message);
-}
-
-// Two materials joined by a link act as springs in series: 2 a b / (a + b).
-double series(double a, double b) {
-    return 2.0 * a * b / (a + b);
 }
 
 double shear_modulus(const Material& m) {

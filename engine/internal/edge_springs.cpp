@@ -6,13 +6,10 @@
 #include <vector>
 
 #include "engine/internal/kernel_dispatch.hpp"
+#include "engine/internal/series.hpp"
 
 namespace bhm::engine {
 namespace {
-
-double series(double a, double b) {
-    return 2.0 * a * b / (a + b);
-}
 
 struct Vec {
     double x, y, z;
