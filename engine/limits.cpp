@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/internal/poisson.hpp"
-#include "engine/internal/series.hpp"
+#include "engine/internal/moduli.hpp"
 
 namespace bhm::engine::limits {
 namespace {
@@ -28,10 +28,6 @@ std::string bound(double x) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", x);
     return buf;
-}
-
-double shear_modulus(const Material& m) {
-    return m.youngs_modulus_pa / (2.0 * (1.0 + m.poisson_ratio));
 }
 
 // Torsion constant of a square section of side a: J = 0.1406 a^4 (Saint-Venant, b/a = 1).

@@ -11,7 +11,7 @@
 #include "engine/internal/edge_springs.hpp"
 #include "engine/internal/model_data.hpp"
 #include "engine/internal/poisson.hpp"
-#include "engine/internal/series.hpp"
+#include "engine/internal/moduli.hpp"
 #include "engine/limits.hpp"
 
 namespace bhm::engine {
@@ -26,10 +26,6 @@ namespace {
 void validate(const BodySpec& spec) {
     const std::vector<limits::Problem> problems = limits::body_spec_problems(spec);
     if (!problems.empty()) reject(problems.front().field + " " + problems.front().message);
-}
-
-double shear_modulus(const Material& m) {
-    return m.youngs_modulus_pa / (2.0 * (1.0 + m.poisson_ratio));
 }
 
 // The largest relative size change a voxel's actuation reaches (|size - 1|).

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "engine/internal/kernel_dispatch.hpp"
-#include "engine/internal/series.hpp"
+#include "engine/internal/moduli.hpp"
 
 namespace bhm::engine {
 namespace {
