@@ -5,7 +5,6 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/internal/kernel_dispatch.hpp"
 #include "engine/internal/moduli.hpp"
 
 namespace bhm::engine {
@@ -122,77 +121,54 @@ void finish_edge_springs(Model::Data& d) {
     }
 }
 
-// The loads of every spring from the voxels' poses, per spring (the scatter comes after; GCC 12
-// does not vectorise the gathers, docs/physics.md has the cost). The two Gauss points p = -1, +1
-// sit at h + p g from each centre, so the gap and its rate are G0 + p G1 and V0 + p V1, the force
-// F0 + p F1, and the sums over the two points close in form: force 2 F0 on a; moments
-// 2 ((h_a + G0 / 2) x F0 + (g_a + G1 / 2) x F1) on a and -2 ((h_b - G0 / 2) x F0 + (g_b - G1 / 2)
-// x F1) on b (each point's force pair acts at the gap's midpoint, so the moments balance for any
-// direction of the force).
-BHM_ENGINE_KERNEL void edge_loads(const Model::Data& d, const VoxelState& s, EdgeScratch& out,
-                                  double sin_t, double cos_t) {
+namespace {
+
+// The loads of every spring from the voxels' poses, per spring (the scatter comes after; scalar:
+// GCC 12 does not vectorise the gathers, docs/physics.md has the cost). The two Gauss points p =
+// -1, +1 sit at h + p g from each centre, so the gap and its rate are G0 + p G1 and V0 + p V1, the
+// force F0 + p F1, and the sums over the two points close in form: force 2 F0 on a; moments 2 ((h_a
+// + G0 / 2) x F0 + (g_a + G1 / 2) x F1) on a and -2 ((h_b - G0 / 2) x F0 + (g_b - G1 / 2) x F1) on
+// b (each point's force pair acts at the gap's midpoint, so the moments balance for any direction
+// of the force).
+void edge_loads(const Model::Data& d, const VoxelState& s, EdgeScratch& out, double sin_t,
+                double cos_t) {
     const Model::Data::EdgeSprings& e = d.edge_springs;
-    const int count = e.size();
-    // Raw, unaliased views, so that the loop vectorises (gathers by voxel index).
-    const std::int32_t* __restrict ia = e.a.data();
-    const std::int32_t* __restrict ib = e.b.data();
-    const double *__restrict qw = s.quat[0].data(), *__restrict qx = s.quat[1].data(),
-                 *__restrict qy = s.quat[2].data(), *__restrict qz = s.quat[3].data();
-    const double *__restrict px = s.pos[0].data(), *__restrict py = s.pos[1].data(),
-                 *__restrict pz = s.pos[2].data();
-    const double *__restrict vx = s.vel[0].data(), *__restrict vy = s.vel[1].data(),
-                 *__restrict vz = s.vel[2].data();
-    const double *__restrict wx = s.omega[0].data(), *__restrict wy = s.omega[1].data(),
-                 *__restrict wz = s.omega[2].data();
-    const double* __restrict act_sin = d.act_sin.data(), * __restrict act_cos = d.act_cos.data();
-    const double *__restrict hx = e.half[0].data(), *__restrict hy = e.half[1].data(),
-                 *__restrict hz = e.half[2].data();
-    const double *__restrict gx = e.gauss[0].data(), *__restrict gy = e.gauss[1].data(),
-                 *__restrict gz = e.gauss[2].data();
-    const double *__restrict tx = e.edge[0].data(), *__restrict ty = e.edge[1].data(),
-                 *__restrict tz = e.edge[2].data();
-    const double *__restrict k_across = e.k_across.data(), *__restrict k_along = e.k_along.data(),
-                 *__restrict damping = e.damping.data();
-    double *__restrict fx = out.force[0].data(), *__restrict fy = out.force[1].data(),
-           *__restrict fz = out.force[2].data();
-    double *__restrict max_ = out.moment_a[0].data(), *__restrict may = out.moment_a[1].data(),
-           *__restrict maz = out.moment_a[2].data();
-    double *__restrict mbx = out.moment_b[0].data(), *__restrict mby = out.moment_b[1].data(),
-           *__restrict mbz = out.moment_b[2].data();
-    for (int n = 0; n < count; ++n) {
-        const int a = ia[n], b = ib[n];
-        const Vec qa{qx[a], qy[a], qz[a]}, qb{qx[b], qy[b], qz[b]};
-        const double scale_a = 1.0 + act_sin[a] * sin_t + act_cos[a] * cos_t;
-        const double scale_b = 1.0 + act_sin[b] * sin_t + act_cos[b] * cos_t;
-        const Vec half{hx[n], hy[n], hz[n]}, gauss{gx[n], gy[n], gz[n]};
-        const Vec h_a = scale_a * rotate(qw[a], qa, half);
-        const Vec h_b = -scale_b * rotate(qw[b], qb, half);
-        const Vec g_a = scale_a * rotate(qw[a], qa, gauss);
-        const Vec g_b = scale_b * rotate(qw[b], qb, gauss);
-        const Vec t = rotate(qw[a], qa, Vec{tx[n], ty[n], tz[n]});
-        const Vec gap0 = (Vec{px[b], py[b], pz[b]} + h_b) - (Vec{px[a], py[a], pz[a]} + h_a);
+    auto quat = [&](int v) { return Vec{s.quat[1][v], s.quat[2][v], s.quat[3][v]}; };
+    auto pos = [&](int v) { return Vec{s.pos[0][v], s.pos[1][v], s.pos[2][v]}; };
+    auto vel = [&](int v) { return Vec{s.vel[0][v], s.vel[1][v], s.vel[2][v]}; };
+    auto spin = [&](int v) { return Vec{s.omega[0][v], s.omega[1][v], s.omega[2][v]}; };
+    for (int n = 0; n < e.size(); ++n) {
+        const int a = e.a[n], b = e.b[n];
+        const double scale_a = 1.0 + d.act_sin[a] * sin_t + d.act_cos[a] * cos_t;
+        const double scale_b = 1.0 + d.act_sin[b] * sin_t + d.act_cos[b] * cos_t;
+        const Vec half{e.half[0][n], e.half[1][n], e.half[2][n]};
+        const Vec gauss{e.gauss[0][n], e.gauss[1][n], e.gauss[2][n]};
+        const Vec h_a = scale_a * rotate(s.quat[0][a], quat(a), half);
+        const Vec h_b = -scale_b * rotate(s.quat[0][b], quat(b), half);
+        const Vec g_a = scale_a * rotate(s.quat[0][a], quat(a), gauss);
+        const Vec g_b = scale_b * rotate(s.quat[0][b], quat(b), gauss);
+        const Vec t = rotate(s.quat[0][a], quat(a), Vec{e.edge[0][n], e.edge[1][n], e.edge[2][n]});
+        const Vec gap0 = (pos(b) + h_b) - (pos(a) + h_a);
         const Vec gap1 = g_b - g_a;
-        const Vec wa{wx[a], wy[a], wz[a]}, wb{wx[b], wy[b], wz[b]};
-        const Vec rate0 = (Vec{vx[b], vy[b], vz[b]} + cross(wb, h_b)) -
-                          (Vec{vx[a], vy[a], vz[a]} + cross(wa, h_a));
-        const Vec rate1 = cross(wb, g_b) - cross(wa, g_a);
+        const Vec rate0 = (vel(b) + cross(spin(b), h_b)) - (vel(a) + cross(spin(a), h_a));
+        const Vec rate1 = cross(spin(b), g_b) - cross(spin(a), g_a);
         // Across the edge k_across, along it k_along.
-        const double k = k_across[n], dk = k_along[n] - k_across[n], c = damping[n];
+        const double k = e.k_across[n], dk = e.k_along[n] - e.k_across[n], c = e.damping[n];
         const Vec f0 = k * gap0 + (dk * dot(gap0, t)) * t + c * rate0;
         const Vec f1 = k * gap1 + (dk * dot(gap1, t)) * t + c * rate1;
         const Vec m_a = 2.0 * (cross(h_a + 0.5 * gap0, f0) + cross(g_a + 0.5 * gap1, f1));
         const Vec m_b = -2.0 * (cross(h_b - 0.5 * gap0, f0) + cross(g_b - 0.5 * gap1, f1));
-        fx[n] = 2.0 * f0.x;
-        fy[n] = 2.0 * f0.y;
-        fz[n] = 2.0 * f0.z;
-        max_[n] = m_a.x;
-        may[n] = m_a.y;
-        maz[n] = m_a.z;
-        mbx[n] = m_b.x;
-        mby[n] = m_b.y;
-        mbz[n] = m_b.z;
+        const Vec loads[3] = {2.0 * f0, m_a, m_b};
+        std::array<std::vector<double>, 3>* targets[3] = {&out.force, &out.moment_a, &out.moment_b};
+        for (int l = 0; l < 3; ++l) {
+            (*targets[l])[0][n] = loads[l].x;
+            (*targets[l])[1][n] = loads[l].y;
+            (*targets[l])[2][n] = loads[l].z;
+        }
     }
 }
+
+}  // namespace
 
 void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double sin_t,
                double cos_t) {

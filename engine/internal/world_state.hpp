@@ -83,7 +83,7 @@ struct PoissonScratch {
     std::array<float*, 3> far_from_above{};  //!< link slot: far_neg of the voxel two above it
 };
 
-//! Per edge spring (edge_springs.hpp): the loads its vectorised half writes for the scatter.
+//! Per edge spring (edge_springs.hpp): its loads, written before they are scattered to voxels.
 struct EdgeScratch {
     std::array<std::vector<double>, 3> force;     //!< on a (b gets the opposite)
     std::array<std::vector<double>, 3> moment_a;  //!< on a
