@@ -137,10 +137,12 @@ struct Result {
     std::string scene;
     int voxels = 0, links = 0;
     std::int64_t steps = 0;
+
     double wall_s = 0.0;
     double cpu_s = 0.0;
     double build_s = 0.0;   //!< Model::build + World construction
     bool use_wall = false;  //!< rate per wall second (the two-thread row)
+    int edge_springs = 0;   //!< springs across voxel edges (mixed bodies; --per-body)
     double voxel_steps_per_s() const {
         return static_cast<double>(voxels) * static_cast<double>(steps) /
                (use_wall ? wall_s : cpu_s);
@@ -193,6 +195,7 @@ Result run_single(const std::string& name, const BodySpec& spec, std::int64_t st
     const double cpu_start = thread_cpu_s();
     step_world(world, steps, name);
     Result r{name, model->voxel_count(), model->link_count(), steps, 0.0, 0.0, build_s};
+    r.edge_springs = model->edge_spring_count();
     r.cpu_s = thread_cpu_s() - cpu_start;
     r.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
     if (fingerprint)
@@ -274,7 +277,7 @@ CorpusResult run_corpus(const std::string& path, const std::string& assets, doub
         out.full_evaluations_s += r.build_s + full_steps * r.cpu_s / static_cast<double>(r.steps);
         if (per_body)
             std::cerr << name << ": " << r.voxels << " voxels, " << r.links << " links, "
-                      << r.voxel_steps_per_s() << " voxel-steps/s\n";
+                      << r.edge_springs << " edge springs, " << r.voxel_steps_per_s() << " voxel-steps/s\n";
         out.bodies.push_back(r);
     }
     return out;  // empty when no body is in the voxel range: the caller skips it
