@@ -44,7 +44,7 @@ nlohmann::json corpus_of(const std::string& assets, const std::string& preset, i
     while (static_cast<int>(bodies.size()) < count) {
         if (++tries > 1000 * count)
             throw std::runtime_error(preset + ": too few random genomes pass the constraints");
-        const Genome g = random_genome(e.evolution.cppn, rng);
+        const Genome g = random_genome(e.evolution.cppn, rng, dev.cppn_output_count());
         const Phenotype ph = dev.develop(g);
         if (!constraint_violation(e.fitness.constraints, e.boundary, dev.space(), ph).empty())
             continue;
