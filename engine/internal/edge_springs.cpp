@@ -3,44 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
+#include "engine/internal/kernel_dispatch.hpp"
+#include "engine/internal/link_kinematics.hpp"  // BHM_ENGINE_INLINE
 #include "engine/internal/moduli.hpp"
 
 namespace bhm::engine {
-namespace {
-
-struct Vec {
-    double x, y, z;
-};
-__attribute__((always_inline)) inline Vec operator+(Vec a, Vec b) {
-    return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-__attribute__((always_inline)) inline Vec operator-(Vec a, Vec b) {
-    return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-__attribute__((always_inline)) inline Vec operator*(double s, Vec a) {
-    return {s * a.x, s * a.y, s * a.z};
-}
-__attribute__((always_inline)) inline double dot(Vec a, Vec b) {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-__attribute__((always_inline)) inline Vec cross(Vec a, Vec b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-// v turned by the unit quaternion (w, x, y, z): v + 2 w (u x v) + 2 u x (u x v).
-__attribute__((always_inline)) inline Vec rotate(double w, Vec u, Vec v) {
-    const Vec t = 2.0 * cross(u, v);
-    return v + w * t + cross(u, t);
-}
-
-}  // namespace
-
 void build_edge_springs(Model::Data& d, double& max_omega2) {
     const BodySpec& spec = d.spec;
     const double L = spec.voxel_size_m;
     Model::Data::EdgeSprings& springs = d.edge_springs;
+    springs.gauss_m = static_cast<float>(L / (2.0 * std::sqrt(3.0)));
     const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
     const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
     auto material = [&](int v) -> const Material& {
@@ -78,16 +53,20 @@ void build_edge_springs(Model::Data& d, double& max_omega2) {
                     springs.a.push_back(a);
                     springs.b.push_back(b);
                     for (int k = 0; k < 3; ++k) {
-                        springs.half[k].push_back(k == i ? 0.5 * L : k == j ? 0.5 * s * L : 0.0);
-                        springs.gauss[k].push_back(k == edge_axis ? L / (2.0 * std::sqrt(3.0))
-                                                                  : 0.0);
-                        springs.edge[k].push_back(k == edge_axis ? 1.0 : 0.0);
+                        springs.half[k].push_back(static_cast<float>(k == i   ? 0.5 * L
+                                                                     : k == j ? 0.5 * s * L
+                                                                              : 0.0));
+                        springs.edge[k].push_back(k == edge_axis ? 1.0f : 0.0f);
                     }
+                    springs.act_sin_a.push_back(static_cast<float>(d.act_sin[a]));
+                    springs.act_cos_a.push_back(static_cast<float>(d.act_cos[a]));
+                    springs.act_sin_b.push_back(static_cast<float>(d.act_sin[b]));
+                    springs.act_cos_b.push_back(static_cast<float>(d.act_cos[b]));
                     const double k_across = per_point / (1.0 - nu * nu);
                     const double k_along = per_point / (1.0 + nu);  // 2 G / E
-                    springs.k_across.push_back(k_across);
-                    springs.k_along.push_back(k_along);
-                    springs.damping.push_back(0.0);
+                    springs.k_across.push_back(static_cast<float>(k_across));
+                    springs.k_along.push_back(static_cast<float>(k_along));
+                    springs.damping.push_back(0.0f);
                     // Stiffest mode: a point's effective mass, with the lever |half| = L / sqrt 2
                     // and I = m L^2 / 6, is m / 4 per end; both points on the lighter pair.
                     const double m = std::min(d.mass[a], d.mass[b]);
@@ -117,54 +96,126 @@ void finish_edge_springs(Model::Data& d) {
         const double k = std::max(springs.k_across[n], springs.k_along[n]);
         const double cap =
             0.5 * std::min(d.mass[a] / per_voxel[a], d.mass[b] / per_voxel[b]) / (8.0 * dt);
-        springs.damping[n] = std::min(2.0 * d.spec.damping.bond_ratio * std::sqrt(m * k), cap);
+        springs.damping[n] =
+            static_cast<float>(std::min(2.0 * d.spec.damping.bond_ratio * std::sqrt(m * k), cap));
     }
 }
 
 namespace {
 
-// The loads of every spring from the voxels' poses, per spring (the scatter comes after; scalar:
-// GCC 12 does not vectorise the gathers, docs/physics.md has the cost). The two Gauss points p =
-// -1, +1 sit at h + p g from each centre, so the gap and its rate are G0 + p G1 and V0 + p V1, the
-// force F0 + p F1, and the sums over the two points close in form: force 2 F0 on a; moments 2 ((h_a
-// + G0 / 2) x F0 + (g_a + G1 / 2) x F1) on a and -2 ((h_b - G0 / 2) x F0 + (g_b - G1 / 2) x F1) on
-// b (each point's force pair acts at the gap's midpoint, so the moments balance for any direction
-// of the force).
-void edge_loads(const Model::Data& d, const VoxelState& s, EdgeScratch& out, double sin_t,
-                double cos_t) {
-    const Model::Data::EdgeSprings& e = d.edge_springs;
-    auto quat = [&](int v) { return Vec{s.quat[1][v], s.quat[2][v], s.quat[3][v]}; };
-    auto pos = [&](int v) { return Vec{s.pos[0][v], s.pos[1][v], s.pos[2][v]}; };
-    auto vel = [&](int v) { return Vec{s.vel[0][v], s.vel[1][v], s.vel[2][v]}; };
-    auto spin = [&](int v) { return Vec{s.omega[0][v], s.omega[1][v], s.omega[2][v]}; };
-    for (int n = 0; n < e.size(); ++n) {
-        const int a = e.a[n], b = e.b[n];
-        const double scale_a = 1.0 + d.act_sin[a] * sin_t + d.act_cos[a] * cos_t;
-        const double scale_b = 1.0 + d.act_sin[b] * sin_t + d.act_cos[b] * cos_t;
-        const Vec half{e.half[0][n], e.half[1][n], e.half[2][n]};
-        const Vec gauss{e.gauss[0][n], e.gauss[1][n], e.gauss[2][n]};
-        const Vec h_a = scale_a * rotate(s.quat[0][a], quat(a), half);
-        const Vec h_b = -scale_b * rotate(s.quat[0][b], quat(b), half);
-        const Vec g_a = scale_a * rotate(s.quat[0][a], quat(a), gauss);
-        const Vec g_b = scale_b * rotate(s.quat[0][b], quat(b), gauss);
-        const Vec t = rotate(s.quat[0][a], quat(a), Vec{e.edge[0][n], e.edge[1][n], e.edge[2][n]});
-        const Vec gap0 = (pos(b) + h_b) - (pos(a) + h_a);
-        const Vec gap1 = g_b - g_a;
-        const Vec rate0 = (vel(b) + cross(spin(b), h_b)) - (vel(a) + cross(spin(a), h_a));
-        const Vec rate1 = cross(spin(b), g_b) - cross(spin(a), g_a);
+struct Vecf {
+    float x, y, z;
+};
+BHM_ENGINE_INLINE Vecf operator+(Vecf a, Vecf b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+BHM_ENGINE_INLINE Vecf operator-(Vecf a, Vecf b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+BHM_ENGINE_INLINE Vecf operator*(float s, Vecf a) {
+    return {s * a.x, s * a.y, s * a.z};
+}
+BHM_ENGINE_INLINE float dot(Vecf a, Vecf b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+BHM_ENGINE_INLINE Vecf cross(Vecf a, Vecf b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+// v turned by the unit quaternion (w, u): v + 2 w (u x v) + 2 u x (u x v).
+BHM_ENGINE_INLINE Vecf rotate(float w, Vecf u, Vecf v) {
+    const Vecf t = 2.0f * cross(u, v);
+    return v + w * t + cross(u, t);
+}
+
+// What the kernel reads and writes, as plain pointers (restrict: the outputs alias no input).
+struct EdgeKernel {
+    const std::int32_t* __restrict a;
+    const std::int32_t* __restrict b;
+    const float* __restrict half[3];
+    const float* __restrict edge[3];
+    const float* __restrict k_across;
+    const float* __restrict k_along;
+    const float* __restrict damping;
+    const float* __restrict act_sin_a;
+    const float* __restrict act_cos_a;
+    const float* __restrict act_sin_b;
+    const float* __restrict act_cos_b;
+    const double* __restrict pos[3];
+    const double* __restrict vel[3];
+    const double* __restrict omega[3];
+    const float* __restrict quat[4];
+    float* __restrict out[9];  // force, moment on a, moment on b; x, y, z each
+    float gauss, sin_t, cos_t;
+    int count;
+};
+
+// The loads of every spring from the voxels' poses, per spring; the scatter comes after. Float
+// like the link kernel, and vectorised like it (gathers of the two voxels' states; the
+// quaternions are the voxel pass's float copies); position and velocity differences are taken in
+// double first, so the gap loses nothing to the body's distance from its origin. The two Gauss
+// points p = -1, +1 sit at h + p g from each centre, so the gap and its rate are G0 + p G1 and
+// V0 + p V1, the force F0 + p F1, and the sums over the two points close in form: force 2 F0 on
+// a; moments 2 ((h_a + G0 / 2) x F0 + (g_a + G1 / 2) x F1) on a and -2 ((h_b - G0 / 2) x F0 +
+// (g_b - G1 / 2) x F1) on b (each point's force pair acts at the gap's midpoint, so the moments
+// balance for any direction of the force).
+BHM_ENGINE_KERNEL void edge_loads(const EdgeKernel& k) {
+    // Every pointer in a local of its own: GCC vectorises no load through an array of pointers.
+    const std::int32_t* __restrict ia = k.a;
+    const std::int32_t* __restrict ib = k.b;
+    const float* __restrict half0 = k.half[0], * __restrict half1 = k.half[1], * __restrict half2 = k.half[2];
+    const float* __restrict edge0 = k.edge[0], * __restrict edge1 = k.edge[1], * __restrict edge2 = k.edge[2];
+    const float* __restrict k_across = k.k_across, * __restrict k_along = k.k_along, * __restrict damping = k.damping;
+    const float* __restrict sin_a = k.act_sin_a, * __restrict cos_a = k.act_cos_a, * __restrict sin_b = k.act_sin_b, * __restrict cos_b = k.act_cos_b;
+    const double* __restrict p0 = k.pos[0], * __restrict p1 = k.pos[1], * __restrict p2 = k.pos[2];
+    const double* __restrict v0 = k.vel[0], * __restrict v1 = k.vel[1], * __restrict v2 = k.vel[2];
+    const double* __restrict w0 = k.omega[0], * __restrict w1 = k.omega[1], * __restrict w2 = k.omega[2];
+    const float* __restrict qw = k.quat[0], * __restrict qx = k.quat[1], * __restrict qy = k.quat[2], * __restrict qz = k.quat[3];
+    float* __restrict o0 = k.out[0], * __restrict o1 = k.out[1], * __restrict o2 = k.out[2], * __restrict o3 = k.out[3], * __restrict o4 = k.out[4], * __restrict o5 = k.out[5], * __restrict o6 = k.out[6], * __restrict o7 = k.out[7], * __restrict o8 = k.out[8];
+    const float gauss = k.gauss, sin_t = k.sin_t, cos_t = k.cos_t;
+    const int count = k.count;
+    // GCC honours restrict on parameters only; the outputs alias no input (edge_pass).
+#pragma GCC ivdep
+    for (int n = 0; n < count; ++n) {
+        const int a = ia[n], b = ib[n];
+        const float scale_a = 1.0f + sin_a[n] * sin_t + cos_a[n] * cos_t;
+        const float scale_b = 1.0f + sin_b[n] * sin_t + cos_b[n] * cos_t;
+        const Vecf qa{qx[a], qy[a], qz[a]};
+        const Vecf qb{qx[b], qy[b], qz[b]};
+        const float wa = qw[a], wb = qw[b];
+        const Vecf half{half0[n], half1[n], half2[n]};
+        const Vecf edge{edge0[n], edge1[n], edge2[n]};
+        const Vecf h_a = scale_a * rotate(wa, qa, half);
+        const Vecf h_b = -scale_b * rotate(wb, qb, half);
+        const Vecf t = rotate(wa, qa, edge);  // the edge's direction (a's)
+        const Vecf g_a = (scale_a * gauss) * t;
+        const Vecf g_b = (scale_b * gauss) * rotate(wb, qb, edge);
+        const Vecf centres{static_cast<float>(p0[b] - p0[a]), static_cast<float>(p1[b] - p1[a]),
+                           static_cast<float>(p2[b] - p2[a])};
+        const Vecf dvel{static_cast<float>(v0[b] - v0[a]), static_cast<float>(v1[b] - v1[a]),
+                        static_cast<float>(v2[b] - v2[a])};
+        const Vecf spin_a{static_cast<float>(w0[a]), static_cast<float>(w1[a]),
+                          static_cast<float>(w2[a])};
+        const Vecf spin_b{static_cast<float>(w0[b]), static_cast<float>(w1[b]),
+                          static_cast<float>(w2[b])};
+        const Vecf gap0 = centres + (h_b - h_a);
+        const Vecf gap1 = g_b - g_a;
+        const Vecf rate0 = dvel + (cross(spin_b, h_b) - cross(spin_a, h_a));
+        const Vecf rate1 = cross(spin_b, g_b) - cross(spin_a, g_a);
         // Across the edge k_across, along it k_along.
-        const double k = e.k_across[n], dk = e.k_along[n] - e.k_across[n], c = e.damping[n];
-        const Vec f0 = k * gap0 + (dk * dot(gap0, t)) * t + c * rate0;
-        const Vec f1 = k * gap1 + (dk * dot(gap1, t)) * t + c * rate1;
-        const Vec m_a = 2.0 * (cross(h_a + 0.5 * gap0, f0) + cross(g_a + 0.5 * gap1, f1));
-        const Vec m_b = -2.0 * (cross(h_b - 0.5 * gap0, f0) + cross(g_b - 0.5 * gap1, f1));
-        const Vec loads[3] = {2.0 * f0, m_a, m_b};
-        std::array<std::vector<double>, 3>* targets[3] = {&out.force, &out.moment_a, &out.moment_b};
-        for (int l = 0; l < 3; ++l) {
-            (*targets[l])[0][n] = loads[l].x;
-            (*targets[l])[1][n] = loads[l].y;
-            (*targets[l])[2][n] = loads[l].z;
-        }
+        const float kx = k_across[n], dk = k_along[n] - k_across[n], c = damping[n];
+        const Vecf f0 = kx * gap0 + (dk * dot(gap0, t)) * t + c * rate0;
+        const Vecf f1 = kx * gap1 + (dk * dot(gap1, t)) * t + c * rate1;
+        const Vecf m_a = 2.0f * (cross(h_a + 0.5f * gap0, f0) + cross(g_a + 0.5f * gap1, f1));
+        const Vecf m_b = -2.0f * (cross(h_b - 0.5f * gap0, f0) + cross(g_b - 0.5f * gap1, f1));
+        o0[n] = 2.0f * f0.x;
+        o1[n] = 2.0f * f0.y;
+        o2[n] = 2.0f * f0.z;
+        o3[n] = m_a.x;
+        o4[n] = m_a.y;
+        o5[n] = m_a.z;
+        o6[n] = m_b.x;
+        o7[n] = m_b.y;
+        o8[n] = m_b.z;
     }
 }
 
@@ -172,16 +223,51 @@ void edge_loads(const Model::Data& d, const VoxelState& s, EdgeScratch& out, dou
 
 void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double sin_t,
                double cos_t) {
-    edge_loads(d, s, scratch, sin_t, cos_t);
-    // The scatter, in spring order (a voxel is in several springs).
     const Model::Data::EdgeSprings& e = d.edge_springs;
-    for (int n = 0; n < e.size(); ++n) {
-        const int a = e.a[n], b = e.b[n];
-        for (int i = 0; i < 3; ++i) {
-            s.vel[i][a] += d.dt_inv_mass[a] * scratch.force[i][n];
-            s.vel[i][b] -= d.dt_inv_mass[b] * scratch.force[i][n];
-            s.omega[i][a] += d.dt_inv_inertia[a] * scratch.moment_a[i][n];
-            s.omega[i][b] += d.dt_inv_inertia[b] * scratch.moment_b[i][n];
+    EdgeKernel k{};
+    k.a = e.a.data();
+    k.b = e.b.data();
+    for (int i = 0; i < 3; ++i) {
+        k.half[i] = e.half[i].data();
+        k.edge[i] = e.edge[i].data();
+        k.pos[i] = s.pos[i].data();
+        k.vel[i] = s.vel[i].data();
+        k.omega[i] = s.omega[i].data();
+        k.out[i] = scratch.force[i].data();
+        k.out[3 + i] = scratch.moment_a[i].data();
+        k.out[6 + i] = scratch.moment_b[i].data();
+    }
+    for (int i = 0; i < 4; ++i)
+        k.quat[i] = s.quat_f[i].data();
+    k.k_across = e.k_across.data();
+    k.k_along = e.k_along.data();
+    k.damping = e.damping.data();
+    k.act_sin_a = e.act_sin_a.data();
+    k.act_cos_a = e.act_cos_a.data();
+    k.act_sin_b = e.act_sin_b.data();
+    k.act_cos_b = e.act_cos_b.data();
+    k.gauss = e.gauss_m;
+    k.sin_t = static_cast<float>(sin_t);
+    k.cos_t = static_cast<float>(cos_t);
+    k.count = e.size();
+    edge_loads(k);
+    // The scatter, in spring order (a voxel is in several springs).
+    const std::int32_t* __restrict ia = e.a.data();
+    const std::int32_t* __restrict ib = e.b.data();
+    const double* __restrict inv_mass = d.dt_inv_mass.data();
+    const double* __restrict inv_inertia = d.dt_inv_inertia.data();
+    for (int i = 0; i < 3; ++i) {
+        double* __restrict vel = s.vel[i].data();
+        double* __restrict omega = s.omega[i].data();
+        const float* __restrict force = scratch.force[i].data();
+        const float* __restrict moment_a = scratch.moment_a[i].data();
+        const float* __restrict moment_b = scratch.moment_b[i].data();
+        for (int n = 0; n < k.count; ++n) {
+            const int a = ia[n], b = ib[n];
+            vel[a] += inv_mass[a] * force[n];
+            vel[b] -= inv_mass[b] * force[n];
+            omega[a] += inv_inertia[a] * moment_a[n];
+            omega[b] += inv_inertia[b] * moment_b[n];
         }
     }
 }

@@ -78,13 +78,13 @@ struct LinkParams {
     //! damping rates per sweep, P the sum over a voxel's links of a bound on each link's damping
     //! rate (damping_pass.hpp); 0 when it is explicit
     std::vector<float> damp_relax;
-    std::vector<float> rest_base;   //!< rest length with no actuation (m)
-    std::vector<float> rest_sin;    //!< d(rest)/d sin(2 pi f tau) (m)
-    std::vector<float> rest_cos;    //!< d(rest)/d cos(2 pi f tau) (m)
+    std::vector<float> rest_base;  //!< rest length with no actuation (m)
+    std::vector<float> rest_sin;   //!< d(rest)/d sin(2 pi f tau) (m)
+    std::vector<float> rest_cos;   //!< d(rest)/d cos(2 pi f tau) (m)
 };
 
-//! Poisson coupling (engine/internal/poisson.hpp): per voxel slot and per link slot, float like the link
-//! kernel. Absent (all empty) when no voxel couples its axes (every nu = 0, or a 1-D body).
+//! Poisson coupling (engine/internal/poisson.hpp): per voxel slot and per link slot, float like the
+//! link kernel. Absent (all empty) when no voxel couples its axes (every nu = 0, or a 1-D body).
 //! Side index s: 0 = the voxel's - half-link on an axis, 1 = its + half-link.
 struct PoissonParams {
     bool active = false;
@@ -186,14 +186,18 @@ struct Model::Data {
     PoissonParams poisson;
 
     //! Springs across shared voxel edges (edge_springs.hpp), structure of arrays over the
-    //! springs (empty in most bodies). Vectors in a's body frame.
+    //! springs (empty in most bodies). Float like the link kernel (the float edge kernel reads
+    //! them); vectors in a's body frame.
     struct EdgeSprings {
-        std::vector<std::int32_t> a, b;            //!< voxel slots, b = a + one step along two axes
-        std::array<std::vector<double>, 3> half;   //!< a's centre to the edge's midpoint (m)
-        std::array<std::vector<double>, 3> gauss;  //!< midpoint to a Gauss point, L / (2 sqrt 3)
-        std::array<std::vector<double>, 3> edge;   //!< unit, along the edge
-        std::vector<double> k_across, k_along;     //!< per point (N/m)
-        std::vector<double> damping;               //!< per point (N s/m)
+        std::vector<std::int32_t> a, b;          //!< voxel slots, b = a + one step along two axes
+        std::array<std::vector<float>, 3> half;  //!< a's centre to the edge's midpoint (m)
+        std::array<std::vector<float>, 3> edge;  //!< unit, along the edge
+        std::vector<float> k_across, k_along;    //!< per point (N/m)
+        std::vector<float> damping;              //!< per point (N s/m)
+        //! a's and b's size scale 1 + act_sin sin + act_cos cos, copied from the voxels so the
+        //! kernel reads them in spring order
+        std::vector<float> act_sin_a, act_cos_a, act_sin_b, act_cos_b;
+        float gauss_m = 0.0f;  //!< the edge's midpoint to a Gauss point, L / (2 sqrt 3)
         int size() const { return static_cast<int>(a.size()); }
     };
     EdgeSprings edge_springs;

@@ -85,9 +85,9 @@ struct PoissonScratch {
 
 //! Per edge spring (edge_springs.hpp): its loads, written before they are scattered to voxels.
 struct EdgeScratch {
-    std::array<std::vector<double>, 3> force;     //!< on a (b gets the opposite)
-    std::array<std::vector<double>, 3> moment_a;  //!< on a
-    std::array<std::vector<double>, 3> moment_b;  //!< on b
+    std::array<std::vector<float>, 3> force;     //!< on a (b gets the opposite)
+    std::array<std::vector<float>, 3> moment_a;  //!< on a
+    std::array<std::vector<float>, 3> moment_b;  //!< on b
 };
 
 struct World::State {
