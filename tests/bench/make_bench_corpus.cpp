@@ -1,10 +1,12 @@
-// make_bench_corpus: writes the benchmark corpus of realistic bodies, one JSON file per paper
-// preset: the bodies evolution's generation 0 simulates, i.e. bodies decoded from random CPPN
+// make_bench_corpus: writes the benchmark corpus of realistic bodies, one JSON file per preset:
+// the bodies evolution's generation 0 simulates, i.e. bodies decoded from random CPPN
 // genomes (fixed seeds) that pass the preset's constraints, whatever size they come out.
 //
 //   make_bench_corpus [--assets DIR] [--out DIR] [--count N] [PRESET...]
 //
-// Defaults: assets/experiments, tests/bench/corpus, 50 bodies, the four paper presets. The files
+// Defaults: assets/experiments, tests/bench/corpus, 50 bodies, the four paper presets and the two
+// of several materials (multi-material, biohybrid-catheter: their bodies have springs across
+// voxel edges, whose cost per step the benchmark then shows). The files
 // are committed (tests/bench/corpus/README.md); rerun this only to change the corpus. A file:
 //   {"experiment": "paper-exp1", "seed": S, "bodies": [{"name": "random-00", "voxels": N,
 //    "body": <body JSON as in docs/experiment-format.md>}, ...]}
@@ -78,7 +80,8 @@ int main(int argc, char** argv) {
                 presets.push_back(a);
         }
         if (presets.empty())
-            presets = {"paper-exp1", "paper-exp1-attached", "paper-exp2", "paper-exp3"};
+            presets = {"paper-exp1", "paper-exp1-attached", "paper-exp2",
+                       "paper-exp3", "multi-material",      "biohybrid-catheter"};
         std::filesystem::create_directories(out);
         for (std::size_t k = 0; k < presets.size(); ++k) {
             const auto corpus = corpus_of(assets, presets[k], count, corpus_seed(presets[k]));
