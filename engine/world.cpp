@@ -103,10 +103,13 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     init_voxels(d, state_->voxels);
     if (d.poisson.active) prepare_poisson_scratch(d, state_->poisson);
     for (int i = 0; i < 3; ++i) {
-        state_->edges.force[i].assign(d.edge_springs.size(), 0.0f);
-        state_->edges.moment_a[i].assign(d.edge_springs.size(), 0.0f);
-        state_->edges.moment_b[i].assign(d.edge_springs.size(), 0.0f);
+        for (int end = 0; end < 2; ++end) {
+            state_->edges.dvel[end][i].assign(d.edge_springs.size(), 0.0f);
+            state_->edges.domega[end][i].assign(d.edge_springs.size(), 0.0f);
+        }
     }
+    for (auto& gap : state_->edges.last_gap)
+        gap.assign(d.edge_springs.size(), 0.0f);
     // At t = 0 every link is straight at its lattice length; its extension is that length minus
     // its (possibly already actuated) rest length, so the first damping rate is zero.
     const Phase phase = actuation_phase(d, 0.0);

@@ -81,6 +81,8 @@ void finish_edge_springs(Model::Data& d) {
     const double dt = d.dt_s;
     Model::Data::EdgeSprings& springs = d.edge_springs;
     std::vector<int> per_voxel(d.voxels, 0);
+    for (auto* v : {&springs.step_a, &springs.step_b, &springs.turn_a, &springs.turn_b})
+        v->assign(springs.size(), 0.0f);
     for (int n = 0; n < springs.size(); ++n) {
         ++per_voxel[springs.a[n]];
         ++per_voxel[springs.b[n]];
@@ -90,14 +92,18 @@ void finish_edge_springs(Model::Data& d) {
         // see the same velocities (edge_pass), so the explicit damping is stable while each
         // voxel's sum over its springs' points of c dt / m_point stays below 1, m_point = m / 4
         // (a Gauss point's effective mass with the lever L / sqrt 2 and I = m L^2 / 6): capped
-        // at half that.
+        // at half that. Stored over dt: the kernel damps the gap's change over a step.
         const int a = springs.a[n], b = springs.b[n];
         const double m = d.mass[a] * d.mass[b] / (d.mass[a] + d.mass[b]);
         const double k = std::max(springs.k_across[n], springs.k_along[n]);
         const double cap =
             0.5 * std::min(d.mass[a] / per_voxel[a], d.mass[b] / per_voxel[b]) / (8.0 * dt);
-        springs.damping[n] =
-            static_cast<float>(std::min(2.0 * d.spec.damping.bond_ratio * std::sqrt(m * k), cap));
+        const double c = std::min(2.0 * d.spec.damping.bond_ratio * std::sqrt(m * k), cap);
+        springs.damping[n] = static_cast<float>(c / dt);
+        springs.step_a[n] = static_cast<float>(d.dt_inv_mass[a]);
+        springs.step_b[n] = static_cast<float>(d.dt_inv_mass[b]);
+        springs.turn_a[n] = static_cast<float>(d.dt_inv_inertia[a]);
+        springs.turn_b[n] = static_cast<float>(d.dt_inv_inertia[b]);
     }
 }
 
@@ -141,20 +147,23 @@ struct EdgeKernel {
     const float* __restrict act_sin_b;
     const float* __restrict act_cos_b;
     const double* __restrict pos[3];
-    const double* __restrict vel[3];
-    const double* __restrict omega[3];
+    float* __restrict last_gap[6];  // G0 and G1 of the step before (x, y, z each), updated
     const float* __restrict quat[4];
-    float* __restrict out[9];  // force, moment on a, moment on b; x, y, z each
+    const float* __restrict step_a;  // dt / m and dt / I of a and b
+    const float* __restrict step_b;
+    const float* __restrict turn_a;
+    const float* __restrict turn_b;
+    float* __restrict out[12];  // velocity and spin increments of a, then b; x, y, z each
     float gauss, sin_t, cos_t;
     int count;
 };
 
 // The loads of every spring from the voxels' poses, per spring; the scatter comes after. Float
-// like the link kernel, and vectorised like it (gathers of the two voxels' states; the
-// quaternions are the voxel pass's float copies); position and velocity differences are taken in
-// double first, so the gap loses nothing to the body's distance from its origin. The two Gauss
-// points p = -1, +1 sit at h + p g from each centre, so the gap and its rate are G0 + p G1 and
-// V0 + p V1, the force F0 + p F1, and the sums over the two points close in form: force 2 F0 on
+// like the link kernel, and vectorised like it (gathers of the two voxels' poses; the quaternions
+// are the voxel pass's float copies); the centres' difference is taken in double first, so the
+// gap loses nothing to the body's distance from its origin. The two Gauss points p = -1, +1 sit
+// at h + p g from each centre, so the gap is G0 + p G1, its change over the step C0 + p C1, the
+// force F0 + p F1, and the sums over the two points close in form: force 2 F0 on
 // a; moments 2 ((h_a + G0 / 2) x F0 + (g_a + G1 / 2) x F1) on a and -2 ((h_b - G0 / 2) x F0 +
 // (g_b - G1 / 2) x F1) on b (each point's force pair acts at the gap's midpoint, so the moments
 // balance for any direction of the force).
@@ -167,10 +176,14 @@ BHM_ENGINE_KERNEL void edge_loads(const EdgeKernel& k) {
     const float* __restrict k_across = k.k_across, * __restrict k_along = k.k_along, * __restrict damping = k.damping;
     const float* __restrict sin_a = k.act_sin_a, * __restrict cos_a = k.act_cos_a, * __restrict sin_b = k.act_sin_b, * __restrict cos_b = k.act_cos_b;
     const double* __restrict p0 = k.pos[0], * __restrict p1 = k.pos[1], * __restrict p2 = k.pos[2];
-    const double* __restrict v0 = k.vel[0], * __restrict v1 = k.vel[1], * __restrict v2 = k.vel[2];
-    const double* __restrict w0 = k.omega[0], * __restrict w1 = k.omega[1], * __restrict w2 = k.omega[2];
+    float* __restrict l0 = k.last_gap[0], * __restrict l1 = k.last_gap[1], * __restrict l2 = k.last_gap[2], * __restrict l3 = k.last_gap[3], * __restrict l4 = k.last_gap[4], * __restrict l5 = k.last_gap[5];
     const float* __restrict qw = k.quat[0], * __restrict qx = k.quat[1], * __restrict qy = k.quat[2], * __restrict qz = k.quat[3];
-    float* __restrict o0 = k.out[0], * __restrict o1 = k.out[1], * __restrict o2 = k.out[2], * __restrict o3 = k.out[3], * __restrict o4 = k.out[4], * __restrict o5 = k.out[5], * __restrict o6 = k.out[6], * __restrict o7 = k.out[7], * __restrict o8 = k.out[8];
+    float* __restrict dva0 = k.out[0], * __restrict dva1 = k.out[1], * __restrict dva2 = k.out[2];
+    float* __restrict dwa0 = k.out[3], * __restrict dwa1 = k.out[4], * __restrict dwa2 = k.out[5];
+    float* __restrict dvb0 = k.out[6], * __restrict dvb1 = k.out[7], * __restrict dvb2 = k.out[8];
+    float* __restrict dwb0 = k.out[9], * __restrict dwb1 = k.out[10], * __restrict dwb2 = k.out[11];
+    const float* __restrict step_a = k.step_a, * __restrict step_b = k.step_b;
+    const float* __restrict turn_a = k.turn_a, * __restrict turn_b = k.turn_b;
     const float gauss = k.gauss, sin_t = k.sin_t, cos_t = k.cos_t;
     const int count = k.count;
     // GCC honours restrict on parameters only; the outputs alias no input (edge_pass).
@@ -191,31 +204,39 @@ BHM_ENGINE_KERNEL void edge_loads(const EdgeKernel& k) {
         const Vecf g_b = (scale_b * gauss) * rotate(wb, qb, edge);
         const Vecf centres{static_cast<float>(p0[b] - p0[a]), static_cast<float>(p1[b] - p1[a]),
                            static_cast<float>(p2[b] - p2[a])};
-        const Vecf dvel{static_cast<float>(v0[b] - v0[a]), static_cast<float>(v1[b] - v1[a]),
-                        static_cast<float>(v2[b] - v2[a])};
-        const Vecf spin_a{static_cast<float>(w0[a]), static_cast<float>(w1[a]),
-                          static_cast<float>(w2[a])};
-        const Vecf spin_b{static_cast<float>(w0[b]), static_cast<float>(w1[b]),
-                          static_cast<float>(w2[b])};
         const Vecf gap0 = centres + (h_b - h_a);
         const Vecf gap1 = g_b - g_a;
-        const Vecf rate0 = dvel + (cross(spin_b, h_b) - cross(spin_a, h_a));
-        const Vecf rate1 = cross(spin_b, g_b) - cross(spin_a, g_a);
+        // Damping on the gap's change over the last step, as the links' (link_pass.cpp): with
+        // symplectic Euler positions it is the current velocities' rate, and it leaves out the
+        // actuated size's own change, which is not an elastic rate.
+        const Vecf change0{gap0.x - l0[n], gap0.y - l1[n], gap0.z - l2[n]};
+        const Vecf change1{gap1.x - l3[n], gap1.y - l4[n], gap1.z - l5[n]};
+        l0[n] = gap0.x;
+        l1[n] = gap0.y;
+        l2[n] = gap0.z;
+        l3[n] = gap1.x;
+        l4[n] = gap1.y;
+        l5[n] = gap1.z;
         // Across the edge k_across, along it k_along.
         const float kx = k_across[n], dk = k_along[n] - k_across[n], c = damping[n];
-        const Vecf f0 = kx * gap0 + (dk * dot(gap0, t)) * t + c * rate0;
-        const Vecf f1 = kx * gap1 + (dk * dot(gap1, t)) * t + c * rate1;
+        const Vecf f0 = kx * gap0 + (dk * dot(gap0, t)) * t + c * change0;
+        const Vecf f1 = kx * gap1 + (dk * dot(gap1, t)) * t + c * change1;
         const Vecf m_a = 2.0f * (cross(h_a + 0.5f * gap0, f0) + cross(g_a + 0.5f * gap1, f1));
         const Vecf m_b = -2.0f * (cross(h_b - 0.5f * gap0, f0) + cross(g_b - 0.5f * gap1, f1));
-        o0[n] = 2.0f * f0.x;
-        o1[n] = 2.0f * f0.y;
-        o2[n] = 2.0f * f0.z;
-        o3[n] = m_a.x;
-        o4[n] = m_a.y;
-        o5[n] = m_a.z;
-        o6[n] = m_b.x;
-        o7[n] = m_b.y;
-        o8[n] = m_b.z;
+        // Impulses over the masses: a gets 2 F0, b -2 F0.
+        const float force_a = 2.0f * step_a[n], force_b = -2.0f * step_b[n];
+        dva0[n] = force_a * f0.x;
+        dva1[n] = force_a * f0.y;
+        dva2[n] = force_a * f0.z;
+        dwa0[n] = turn_a[n] * m_a.x;
+        dwa1[n] = turn_a[n] * m_a.y;
+        dwa2[n] = turn_a[n] * m_a.z;
+        dvb0[n] = force_b * f0.x;
+        dvb1[n] = force_b * f0.y;
+        dvb2[n] = force_b * f0.z;
+        dwb0[n] = turn_b[n] * m_b.x;
+        dwb1[n] = turn_b[n] * m_b.y;
+        dwb2[n] = turn_b[n] * m_b.z;
     }
 }
 
@@ -231,11 +252,12 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
         k.half[i] = e.half[i].data();
         k.edge[i] = e.edge[i].data();
         k.pos[i] = s.pos[i].data();
-        k.vel[i] = s.vel[i].data();
-        k.omega[i] = s.omega[i].data();
-        k.out[i] = scratch.force[i].data();
-        k.out[3 + i] = scratch.moment_a[i].data();
-        k.out[6 + i] = scratch.moment_b[i].data();
+        k.last_gap[i] = scratch.last_gap[i].data();
+        k.last_gap[3 + i] = scratch.last_gap[3 + i].data();
+        for (int end = 0; end < 2; ++end) {
+            k.out[6 * end + i] = scratch.dvel[end][i].data();
+            k.out[6 * end + 3 + i] = scratch.domega[end][i].data();
+        }
     }
     for (int i = 0; i < 4; ++i)
         k.quat[i] = s.quat_f[i].data();
@@ -246,6 +268,10 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
     k.act_cos_a = e.act_cos_a.data();
     k.act_sin_b = e.act_sin_b.data();
     k.act_cos_b = e.act_cos_b.data();
+    k.step_a = e.step_a.data();
+    k.step_b = e.step_b.data();
+    k.turn_a = e.turn_a.data();
+    k.turn_b = e.turn_b.data();
     k.gauss = e.gauss_m;
     k.sin_t = static_cast<float>(sin_t);
     k.cos_t = static_cast<float>(cos_t);
@@ -254,20 +280,19 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
     // The scatter, in spring order (a voxel is in several springs).
     const std::int32_t* __restrict ia = e.a.data();
     const std::int32_t* __restrict ib = e.b.data();
-    const double* __restrict inv_mass = d.dt_inv_mass.data();
-    const double* __restrict inv_inertia = d.dt_inv_inertia.data();
     for (int i = 0; i < 3; ++i) {
         double* __restrict vel = s.vel[i].data();
         double* __restrict omega = s.omega[i].data();
-        const float* __restrict force = scratch.force[i].data();
-        const float* __restrict moment_a = scratch.moment_a[i].data();
-        const float* __restrict moment_b = scratch.moment_b[i].data();
+        const float* __restrict dva = scratch.dvel[0][i].data();
+        const float* __restrict dvb = scratch.dvel[1][i].data();
+        const float* __restrict dwa = scratch.domega[0][i].data();
+        const float* __restrict dwb = scratch.domega[1][i].data();
         for (int n = 0; n < k.count; ++n) {
             const int a = ia[n], b = ib[n];
-            vel[a] += inv_mass[a] * force[n];
-            vel[b] -= inv_mass[b] * force[n];
-            omega[a] += inv_inertia[a] * moment_a[n];
-            omega[b] += inv_inertia[b] * moment_b[n];
+            vel[a] += dva[n];
+            vel[b] += dvb[n];
+            omega[a] += dwa[n];
+            omega[b] += dwb[n];
         }
     }
 }

@@ -193,10 +193,12 @@ struct Model::Data {
         std::array<std::vector<float>, 3> half;  //!< a's centre to the edge's midpoint (m)
         std::array<std::vector<float>, 3> edge;  //!< unit, along the edge
         std::vector<float> k_across, k_along;    //!< per point (N/m)
-        std::vector<float> damping;              //!< per point (N s/m)
+        std::vector<float> damping;              //!< per point, c / dt (N/m): on the gap's change
         //! a's and b's size scale 1 + act_sin sin + act_cos cos, copied from the voxels so the
         //! kernel reads them in spring order
         std::vector<float> act_sin_a, act_cos_a, act_sin_b, act_cos_b;
+        //! dt / m and dt / I of a and b (0 for a held voxel), set with the step
+        std::vector<float> step_a, step_b, turn_a, turn_b;
         float gauss_m = 0.0f;  //!< the edge's midpoint to a Gauss point, L / (2 sqrt 3)
         int size() const { return static_cast<int>(a.size()); }
     };

@@ -85,9 +85,11 @@ struct PoissonScratch {
 
 //! Per edge spring (edge_springs.hpp): its loads, written before they are scattered to voxels.
 struct EdgeScratch {
-    std::array<std::vector<float>, 3> force;     //!< on a (b gets the opposite)
-    std::array<std::vector<float>, 3> moment_a;  //!< on a
-    std::array<std::vector<float>, 3> moment_b;  //!< on b
+    //! [end][axis]: the step's velocity and spin increments of a (end 0) and b (end 1)
+    std::array<std::array<std::vector<float>, 3>, 2> dvel, domega;
+    //! state: the gap's G0 (x, y, z) and G1 (x, y, z) of the last step, whose change the
+    //! springs' damping takes (edge_springs.cpp); 0 at rest
+    std::array<std::vector<float>, 6> last_gap;
 };
 
 struct World::State {
