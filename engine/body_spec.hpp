@@ -49,8 +49,10 @@ struct BodySpec {
     int nx = 0, ny = 0, nz = 0;
     double voxel_size_m = 0.01;
     std::vector<std::uint8_t> material;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
-    std::vector<std::uint8_t> fixed;     //!< (nx*ny*nz) or empty; 1 = all six DOF held
-    std::vector<float> phase_rad;        //!< (nx*ny*nz) or empty; actuation phase per cell
+    //! (nx*ny*nz) or empty; 1 = held: the centre fixed, the rotation too, except in a held face
+    //! or line, where it turns against a spring to the clamp (engine/model.cpp)
+    std::vector<std::uint8_t> fixed;
+    std::vector<float> phase_rad;  //!< (nx*ny*nz) or empty; actuation phase per cell
     std::vector<Material> materials;
     Environment environment;
     Damping damping;

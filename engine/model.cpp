@@ -10,8 +10,8 @@
 
 #include "engine/internal/edge_springs.hpp"
 #include "engine/internal/model_data.hpp"
-#include "engine/internal/poisson.hpp"
 #include "engine/internal/moduli.hpp"
+#include "engine/internal/poisson.hpp"
 #include "engine/limits.hpp"
 
 namespace bhm::engine {
@@ -59,10 +59,54 @@ double link_damping_rate_bound(double beta, double k_axial, double k_bend, doubl
     return beta * std::max({axial, torsion, bend});
 }
 
+// Held voxels' rotation. A held voxel's centre is fixed; its rotation stands for the material's
+// rotation at the clamp, w = (curl u) / 2. On a held face every displacement and its derivatives
+// along the face vanish, so w about the face's normal is 0, but about an axis in the face it is
+// half the shear strain there (d u_n / d x_t), which a clamped soft layer has: locking it
+// stiffened 100x soft layers in a stiff cantilever by 2.3 points (docs/physics.md). So about
+// axis a a held voxel turns when exactly one of the two axes across a has a held face
+// neighbour: a held face's voxels turn about the two axes in it, a held line's about the two
+// axes across the line (never about the line: the body would hinge on it), a lone held voxel or
+// one inside a held block not at all. Free voxels turn about every axis.
+// A held voxel that turns does so against a spring to the clamp of its own material,
+// kClampWallStiffness E L^3 per radian (about all three axes; its locked axes stay at 0 anyway):
+// a stiff voxel in a clamped face barely turns, so a stiff layer held between soft ones does not
+// hinge at the clamp (freely turning, stiff layers in a 100x softer beam went -2.8 -> +14.9 %),
+// while a soft voxel follows its layer's shear. For a held voxel and its free neighbour under
+// simple shear gamma (chord turned by gamma, the neighbour by gamma / 2), the held end of their
+// link (4 E I / L = E L^3 / 3) comes to rest at gamma / 2, the continuum's rotation, with a spring
+// of E L^3 / 2; fitted on the 100x layered cantilevers against CalculiX it is 0.3 (docs/physics.md,
+// "The clamp").
+inline constexpr double kClampWallStiffness = 0.3;
+std::array<bool, 3> held_voxel_turns(const Model::Data& d, int v) {
+    if (!d.voxel_fixed[v]) return {true, true, true};
+    const BodySpec& spec = d.spec;
+    const int c = d.voxel_cell[v];
+    const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
+    const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
+    const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
+    std::array<bool, 3> held_along{false, false, false};
+    for (int k = 0; k < 3; ++k)
+        for (int s = -1; s <= 1; s += 2) {
+            if (xyz[k] + s < 0 || xyz[k] + s >= limit[k]) continue;
+            const int n = d.cell_voxel[c + s * stride[k]];
+            if (n >= 0 && d.voxel_fixed[n]) held_along[k] = true;
+        }
+    std::array<bool, 3> turns{};
+    for (int a = 0; a < 3; ++a)
+        turns[a] = held_along[(a + 1) % 3] != held_along[(a + 2) % 3];
+    return turns;
+}
+
+bool turns_at_all(const Model::Data& d, int v) {
+    const std::array<bool, 3> turns = held_voxel_turns(d, v);
+    return turns[0] || turns[1] || turns[2];
+}
+
 void resize_voxels(Model::Data& d, int n) {
-    for (auto* v :
-         {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep, &d.angular_keep,
-          &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic, &d.act_sin, &d.act_cos})
+    for (auto* v : {&d.movable, &d.mass, &d.dt_inv_mass, &d.dt_inv_inertia, &d.linear_keep,
+                    &d.angular_keep[0], &d.angular_keep[1], &d.angular_keep[2], &d.wall_stiffness,
+                    &d.floor_k, &d.floor_c, &d.mu_static, &d.mu_dynamic, &d.act_sin, &d.act_cos})
         v->assign(n, 0.0);
 }
 
@@ -284,6 +328,11 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         if (amplitude != 0.0) d.any_active = true;
         max_omega2 = std::max(max_omega2,
                               limits::voxel_omega2(mat, L, spec.actuation.temperature_amplitude_c));
+        // A turning held voxel's spring to the clamp. It needs no bound of its own: with its
+        // links (at most six of E L^3 / 3) it is at most 1.15 times the rotational stiffness of a
+        // free voxel inside the body, whose step is already set by the links.
+        if (d.voxel_fixed[v] && turns_at_all(d, v))
+            d.wall_stiffness[v] = kClampWallStiffness * mat.youngs_modulus_pa * L * L * L;
     }
 
     // Poisson coupling (poisson.hpp): per-voxel moduli and centre-strain coefficients; a link's
@@ -401,8 +450,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         for (int v = 0; v < n; ++v) {
             if (p.exists[v] == 0.0f) continue;
             const int b = d.plus[axis][v];
-            const double rate_a = d.voxel_fixed[v] ? 0.0 : damping_rate[v];
-            const double rate_b = d.voxel_fixed[b] ? 0.0 : damping_rate[b];
+            const double rate_a = turns_at_all(d, v) ? damping_rate[v] : 0.0;
+            const double rate_b = turns_at_all(d, b) ? damping_rate[b] : 0.0;
             p.damp_relax[v] = static_cast<float>(1.0 / (1.0 + dt * std::max(rate_a, rate_b)));
         }
     }
@@ -415,11 +464,14 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         const double c_rot = 2.0 * spec.damping.global_ratio *
                              std::sqrt(inertia * mat.youngs_modulus_pa * L * L * L / 3.0);
         d.linear_keep[v] = 1.0 / (1.0 + dt * c_lin / m);
-        d.angular_keep[v] = 1.0 / (1.0 + dt * c_rot / inertia);
+        const double keep = 1.0 / (1.0 + dt * c_rot / inertia);
+        const std::array<bool, 3> turns = held_voxel_turns(d, v);
+        for (int i = 0; i < 3; ++i)
+            d.angular_keep[i][v] = turns[i] ? keep : 0.0;
+        if (turns[0] || turns[1] || turns[2]) d.dt_inv_inertia[v] = dt / inertia;
         if (d.voxel_fixed[v]) continue;
         d.movable[v] = 1.0;
         d.dt_inv_mass[v] = dt / m;
-        d.dt_inv_inertia[v] = dt / inertia;
     }
     finish_edge_springs(d);
     return std::make_shared<const Model>(std::move(data));

@@ -342,6 +342,7 @@ double World::potential_energy_j() const {
     for (int c = 0; c < d.voxels; ++c) {
         const double z = s.pos[2][c] + d.origin_m[2];
         e -= d.mass[c] * g * z;
+        e += 4.0 * d.wall_stiffness[c] * (1.0 - std::fabs(s.quat[0][c]));  // voxel_pass.cpp
         if (!d.spec.environment.floor) continue;
         const double half =
             0.5 * d.voxel_size_m * (1.0 + d.act_sin[c] * phase.sin_t + d.act_cos[c] * phase.cos_t);

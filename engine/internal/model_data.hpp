@@ -171,9 +171,14 @@ struct Model::Data {
     std::vector<double> dt_inv_mass;     //!< dt / m (0 for dummies or fixed)
     std::vector<double> dt_inv_inertia;  //!< dt / I, I = m L^2 / 6
     std::vector<double> linear_keep;     //!< 1 / (1 + dt c_g / m): implicit global damping
-    std::vector<double> angular_keep;    //!< 1 / (1 + dt c_g,rot / I)
-    std::vector<double> floor_k;         //!< floor penalty stiffness (N/m), E L
-    std::vector<double> floor_c;         //!< floor collision damping (N s/m)
+    //! Per axis: 1 / (1 + dt c_g,rot / I) where the voxel turns about that world axis, 0 where
+    //! it may not (a held voxel's locked axes, model.cpp "Held voxels' rotation")
+    std::array<std::vector<double>, 3> angular_keep;
+    //! A held voxel that turns (model.cpp, "Held voxels' rotation"): its rotational spring to
+    //! the clamp, kClampWallStiffness E L^3 (N m/rad); 0 for every other voxel
+    std::vector<double> wall_stiffness;
+    std::vector<double> floor_k;  //!< floor penalty stiffness (N/m), E L
+    std::vector<double> floor_c;  //!< floor collision damping (N s/m)
     std::vector<double> mu_static;
     std::vector<double> mu_dynamic;
     std::vector<double>

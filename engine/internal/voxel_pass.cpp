@@ -20,8 +20,8 @@ namespace {
 
 // Raw views of every array the pass touches, taken once per pass.
 struct Arrays {
-    const double *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep, *angular_keep,
-        *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos;
+    const double *movable, *mass, *dt_inv_mass, *dt_inv_inertia, *linear_keep, *angular_keep[3],
+        *floor_k, *floor_c, *mu_static, *mu_dynamic, *act_sin, *act_cos, *wall_stiffness;
     double *pos[3], *quat[4], *vel[3], *omega[3], *stuck;
     double *vel_star[3], *omega_star[3], *vel_delta[3], *omega_delta[3];
     float* quat_f[4];
@@ -38,8 +38,10 @@ Arrays arrays_of(const Model::Data& d, VoxelState& s, const std::array<LinkScrat
     a.dt_inv_mass = d.dt_inv_mass.data();
     a.dt_inv_inertia = d.dt_inv_inertia.data();
     a.linear_keep = d.linear_keep.data();
-    a.angular_keep = d.angular_keep.data();
+    for (int i = 0; i < 3; ++i)
+        a.angular_keep[i] = d.angular_keep[i].data();
     a.floor_k = d.floor_k.data();
+    a.wall_stiffness = d.wall_stiffness.data();
     a.floor_c = d.floor_c.data();
     a.mu_static = d.mu_static.data();
     a.mu_dynamic = d.mu_dynamic.data();
@@ -170,10 +172,15 @@ __attribute__((always_inline)) inline Update integrate(const Arrays& a, const Vo
     u.v[2] *= lin;
 
     // Rotation: isotropic inertia (cube), so no gyroscopic term.
-    const double ang = a.angular_keep[c] * a.movable[c];
+    // (A held voxel's locked axes keep 0: model.cpp, "Held voxels' rotation".)
     const double dt_inv_i = a.dt_inv_inertia[c];
+    // A turning held voxel's spring to the clamp (model.cpp): the moment -2 k q_vec of the energy
+    // 4 k (1 - |w|), k theta^2 / 2 for small turns; 0 for every other voxel.
+    const double wall = a.wall_stiffness[c] * (a.quat[0][c] < 0.0 ? -2.0 : 2.0);
     for (int i = 0; i < 3; ++i)
-        u.w[i] = (a.omega[i][c] + dt_inv_i * m[i]) * ang;
+        m[i] -= wall * a.quat[1 + i][c];
+    for (int i = 0; i < 3; ++i)
+        u.w[i] = (a.omega[i][c] + dt_inv_i * m[i]) * a.angular_keep[i][c];
     advance_pose(a, c, u);
     return u;
 }
@@ -248,7 +255,7 @@ __attribute__((always_inline)) inline int damping_loop(const Arrays& a, double* 
         for (int i = 0; i < 3; ++i) {
             const double dv = dt_inv_m * f[i];
             u.v[i] = a.vel_star[i][c] + (i < 2 ? free_t * dv : dv);
-            u.w[i] = a.omega_star[i][c] + dt_inv_i * m[i];
+            u.w[i] = a.omega_star[i][c] + (a.angular_keep[i][c] != 0.0 ? dt_inv_i * m[i] : 0.0);
         }
         for (int i = 0; i < 3; ++i) {
             a.vel[i][c] = u.v[i];

@@ -192,10 +192,14 @@ static void check(const char* name, double contrast, double nu, double tolerance
 }
 
 // A few cells of the table below, seconds each (2-core machine, unloaded).
-TEST_CASE("calculix: soft layers in a stiffer cantilever under gravity") {
+TEST_CASE("calculix: soft layers in a stiffer cantilever under gravity within 5%") {
     if (skip_without_ccx()) return;
     check("layers-soft-in-stiff", 10.0, 0.49, 0.05);
-    check("layers-soft-in-stiff", 100.0, 0.49, 0.05);  // -4.0 %; was -5.8 %
+    check("layers-soft-in-stiff", 100.0, 0.49, 0.05);  // -2.8 %
+    // The clamp's held voxels turning against their spring to the wall (model.cpp) brought these
+    // two inside: -5.5 / -5.6 % with the clamp's rotation locked, -4.8 / -4.7 % now.
+    check("layers-soft-in-stiff", 100.0, 0.0, 0.05);
+    check("layers-soft-in-stiff", 100.0, 0.35, 0.05);
 }
 
 TEST_CASE("calculix: stiff layers in a 100x softer cantilever under gravity within 5%") {
@@ -207,8 +211,8 @@ TEST_CASE("calculix: soft active tissue on a stiff passive strip heated 1 degC")
     if (skip_without_ccx()) return;
     check("bilayer-soft-active", 10.0, 0.35, 0.05);
     check("bilayer-soft-active", 100.0, 0.35, 0.05);
-    check("bilayer-soft-active", 10.0, 0.49, 0.05);   // -4.3 %; was -9.3 %
-    check("bilayer-soft-active", 100.0, 0.49, 0.05);  // -2.0 %; was -12.5 %
+    check("bilayer-soft-active", 10.0, 0.49, 0.05);   // -4.7 %; was -9.3 %
+    check("bilayer-soft-active", 100.0, 0.49, 0.05);  // -2.4 %; was -12.5 %
 }
 
 TEST_CASE("calculix: a stiff-core / soft-shell beam under gravity") {
