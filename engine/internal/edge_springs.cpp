@@ -280,20 +280,26 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
     // The scatter, in spring order (a voxel is in several springs).
     const std::int32_t* __restrict ia = e.a.data();
     const std::int32_t* __restrict ib = e.b.data();
-    for (int i = 0; i < 3; ++i) {
-        double* __restrict vel = s.vel[i].data();
-        double* __restrict omega = s.omega[i].data();
-        const float* __restrict dva = scratch.dvel[0][i].data();
-        const float* __restrict dvb = scratch.dvel[1][i].data();
-        const float* __restrict dwa = scratch.domega[0][i].data();
-        const float* __restrict dwb = scratch.domega[1][i].data();
-        for (int n = 0; n < k.count; ++n) {
-            const int a = ia[n], b = ib[n];
-            vel[a] += dva[n];
-            vel[b] += dvb[n];
-            omega[a] += dwa[n];
-            omega[b] += dwb[n];
-        }
+    double *__restrict vx = s.vel[0].data(), *__restrict vy = s.vel[1].data(),
+           *__restrict vz = s.vel[2].data();
+    double *__restrict wx = s.omega[0].data(), *__restrict wy = s.omega[1].data(),
+           *__restrict wz = s.omega[2].data();
+    const auto& dv = scratch.dvel;
+    const auto& dw = scratch.domega;
+    for (int n = 0; n < k.count; ++n) {
+        const int a = ia[n], b = ib[n];
+        vx[a] += dv[0][0][n];
+        vy[a] += dv[0][1][n];
+        vz[a] += dv[0][2][n];
+        wx[a] += dw[0][0][n];
+        wy[a] += dw[0][1][n];
+        wz[a] += dw[0][2][n];
+        vx[b] += dv[1][0][n];
+        vy[b] += dv[1][1][n];
+        vz[b] += dv[1][2][n];
+        wx[b] += dw[1][0][n];
+        wy[b] += dw[1][1][n];
+        wz[b] += dw[1][2][n];
     }
 }
 
