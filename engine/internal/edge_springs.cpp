@@ -133,6 +133,13 @@ BHM_ENGINE_INLINE Vecf rotate(float w, Vecf u, Vecf v) {
     return v + w * t + cross(u, t);
 }
 
+// v into slot n of three component arrays.
+BHM_ENGINE_INLINE void store(float* x, float* y, float* z, int n, Vecf v) {
+    x[n] = v.x;
+    y[n] = v.y;
+    z[n] = v.z;
+}
+
 // What the kernel reads and writes, as plain pointers (restrict: the outputs alias no input).
 struct EdgeKernel {
     const std::int32_t* __restrict a;
@@ -225,18 +232,10 @@ BHM_ENGINE_KERNEL void edge_loads(const EdgeKernel& k) {
         const Vecf m_b = -2.0f * (cross(h_b - 0.5f * gap0, f0) + cross(g_b - 0.5f * gap1, f1));
         // Impulses over the masses: a gets 2 F0, b -2 F0.
         const float force_a = 2.0f * step_a[n], force_b = -2.0f * step_b[n];
-        dva0[n] = force_a * f0.x;
-        dva1[n] = force_a * f0.y;
-        dva2[n] = force_a * f0.z;
-        dwa0[n] = turn_a[n] * m_a.x;
-        dwa1[n] = turn_a[n] * m_a.y;
-        dwa2[n] = turn_a[n] * m_a.z;
-        dvb0[n] = force_b * f0.x;
-        dvb1[n] = force_b * f0.y;
-        dvb2[n] = force_b * f0.z;
-        dwb0[n] = turn_b[n] * m_b.x;
-        dwb1[n] = turn_b[n] * m_b.y;
-        dwb2[n] = turn_b[n] * m_b.z;
+        store(dva0, dva1, dva2, n, force_a * f0);
+        store(dwa0, dwa1, dwa2, n, turn_a[n] * m_a);
+        store(dvb0, dvb1, dvb2, n, force_b * f0);
+        store(dwb0, dwb1, dwb2, n, turn_b[n] * m_b);
     }
 }
 
