@@ -16,7 +16,7 @@ namespace bhm::evo::validated {
 
 //! Largest max E / min E trusted: layered and cored bodies within 2.3 % of CalculiX up to 10 for
 //! 0 <= nu <= 0.49, the heated soft-on-stiff bilayer within 4.7 %, checkerboards (stiff voxels
-//! meeting along edges) within 3.3 % of the continuum (docs/physics.md, "Bodies of several
+//! meeting along edges) within 4.0 % of the continuum (docs/physics.md, "Bodies of several
 //! materials"). At 100 layered and cored bodies are within 4.8 %, but a checkerboard's continuum
 //! value beyond 30 is not known to 5 %, and evolution makes such mixtures, so the envelope stays
 //! at 10. Inside this contrast any nu of the range below is trusted.
