@@ -285,20 +285,18 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
            *__restrict wz = s.omega[2].data();
     const auto& dv = scratch.dvel;
     const auto& dw = scratch.domega;
+    // Voxel v takes spring n's increments of end 0 (a) or 1 (b).
+    auto add = [&](int v, int end, int n) {
+        vx[v] += dv[end][0][n];
+        vy[v] += dv[end][1][n];
+        vz[v] += dv[end][2][n];
+        wx[v] += dw[end][0][n];
+        wy[v] += dw[end][1][n];
+        wz[v] += dw[end][2][n];
+    };
     for (int n = 0; n < k.count; ++n) {
-        const int a = ia[n], b = ib[n];
-        vx[a] += dv[0][0][n];
-        vy[a] += dv[0][1][n];
-        vz[a] += dv[0][2][n];
-        wx[a] += dw[0][0][n];
-        wy[a] += dw[0][1][n];
-        wz[a] += dw[0][2][n];
-        vx[b] += dv[1][0][n];
-        vy[b] += dv[1][1][n];
-        vz[b] += dv[1][2][n];
-        wx[b] += dw[1][0][n];
-        wy[b] += dw[1][1][n];
-        wz[b] += dw[1][2][n];
+        add(ia[n], 0, n);
+        add(ib[n], 1, n);
     }
 }
 
