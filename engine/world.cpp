@@ -102,12 +102,8 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     const Model::Data& d = *state_->data;
     init_voxels(d, state_->voxels);
     if (d.poisson.active) prepare_poisson_scratch(d, state_->poisson);
-    for (int i = 0; i < 3; ++i) {
-        for (int end = 0; end < 2; ++end) {
-            state_->edges.dvel[end][i].assign(d.edge_springs.size(), 0.0f);
-            state_->edges.domega[end][i].assign(d.edge_springs.size(), 0.0f);
-        }
-    }
+    for (auto& increment : state_->edges.increment)
+        increment.assign(2 * static_cast<std::size_t>(d.edge_springs.size()), 0.0f);
     for (auto& gap : state_->edges.last_gap)
         gap.assign(d.edge_springs.size(), 0.0f);
     // At t = 0 every link is straight at its lattice length; its extension is that length minus

@@ -87,6 +87,22 @@ void finish_edge_springs(Model::Data& d) {
         ++per_voxel[springs.a[n]];
         ++per_voxel[springs.b[n]];
     }
+    // The scatter's plan: each touched voxel's increments, in spring order.
+    springs.touched.clear();
+    springs.incidence_begin.assign(1, 0);
+    std::vector<int> first(d.voxels, 0);  // a voxel's first entry in incidence
+    for (int v = 0; v < d.voxels; ++v) {
+        if (per_voxel[v] == 0) continue;
+        first[v] = springs.incidence_begin.back();
+        springs.touched.push_back(v);
+        springs.incidence_begin.push_back(first[v] + per_voxel[v]);
+    }
+    springs.incidence.assign(springs.incidence_begin.back(), 0);
+    std::vector<int> filled = first;
+    for (int n = 0; n < springs.size(); ++n) {
+        springs.incidence[filled[springs.a[n]]++] = n;
+        springs.incidence[filled[springs.b[n]]++] = springs.size() + n;
+    }
     for (int n = 0; n < springs.size(); ++n) {
         // Bond damping as the links' (2 zeta sqrt(m k) on the pair's reduced mass). All springs
         // see the same velocities (edge_pass), so the explicit damping is stable while each
@@ -254,8 +270,8 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
         k.last_gap[i] = scratch.last_gap[i].data();
         k.last_gap[3 + i] = scratch.last_gap[3 + i].data();
         for (int end = 0; end < 2; ++end) {
-            k.out[6 * end + i] = scratch.dvel[end][i].data();
-            k.out[6 * end + 3 + i] = scratch.domega[end][i].data();
+            k.out[6 * end + i] = scratch.increment[i].data() + end * e.size();
+            k.out[6 * end + 3 + i] = scratch.increment[3 + i].data() + end * e.size();
         }
     }
     for (int i = 0; i < 4; ++i)
@@ -276,27 +292,42 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
     k.cos_t = static_cast<float>(cos_t);
     k.count = e.size();
     edge_loads(k);
-    // The scatter, in spring order (a voxel is in several springs).
-    const std::int32_t* __restrict ia = e.a.data();
-    const std::int32_t* __restrict ib = e.b.data();
+    // The scatter, per voxel: its springs' increments summed (in spring order) and added once,
+    // so no store waits on the one before (adding each spring's increments to its two voxels in
+    // turn chained a voxel's load-add-stores through its springs).
+    const std::int32_t* __restrict touched = e.touched.data();
+    const std::int32_t* __restrict begin = e.incidence_begin.data();
+    const std::int32_t* __restrict incidence = e.incidence.data();
+    const auto& inc = scratch.increment;
+    const float *__restrict dvx = inc[0].data(), *__restrict dvy = inc[1].data(),
+                *__restrict dvz = inc[2].data();
+    const float *__restrict dwx = inc[3].data(), *__restrict dwy = inc[4].data(),
+                *__restrict dwz = inc[5].data();
     double *__restrict vx = s.vel[0].data(), *__restrict vy = s.vel[1].data(),
            *__restrict vz = s.vel[2].data();
     double *__restrict wx = s.omega[0].data(), *__restrict wy = s.omega[1].data(),
            *__restrict wz = s.omega[2].data();
-    const auto& dv = scratch.dvel;
-    const auto& dw = scratch.domega;
-    // Voxel v takes spring n's increments of end 0 (a) or 1 (b).
-    auto add = [&](int v, int end, int n) {
-        vx[v] += dv[end][0][n];
-        vy[v] += dv[end][1][n];
-        vz[v] += dv[end][2][n];
-        wx[v] += dw[end][0][n];
-        wy[v] += dw[end][1][n];
-        wz[v] += dw[end][2][n];
-    };
-    for (int n = 0; n < k.count; ++n) {
-        add(ia[n], 0, n);
-        add(ib[n], 1, n);
+    const int touched_count = static_cast<int>(e.touched.size());
+    for (int t = 0; t < touched_count; ++t) {
+        // In double, as the velocities: a sum in float let a free checkerboard's momentum drift
+        // by 1e-6 of its scale (tests/engine/test_engine_edge_springs.cpp allows 1e-9).
+        double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        for (int entry = begin[t]; entry < begin[t + 1]; ++entry) {
+            const int i = incidence[entry];
+            sum[0] += dvx[i];
+            sum[1] += dvy[i];
+            sum[2] += dvz[i];
+            sum[3] += dwx[i];
+            sum[4] += dwy[i];
+            sum[5] += dwz[i];
+        }
+        const int v = touched[t];
+        vx[v] += sum[0];
+        vy[v] += sum[1];
+        vz[v] += sum[2];
+        wx[v] += sum[3];
+        wy[v] += sum[4];
+        wz[v] += sum[5];
     }
 }
 

@@ -205,6 +205,10 @@ struct Model::Data {
         //! dt / m and dt / I of a and b (0 for a held voxel), set with the step
         std::vector<float> step_a, step_b, turn_a, turn_b;
         float gauss_m = 0.0f;  //!< the edge's midpoint to a Gauss point, L / (2 sqrt 3)
+        //! The scatter's plan (edge_pass): the voxels in some spring (ascending), and for voxel
+        //! touched[t] its springs' increments at end * size() + n for the entries
+        //! [incidence_begin[t], incidence_begin[t + 1]) of incidence, in spring order
+        std::vector<std::int32_t> touched, incidence_begin, incidence;
         int size() const { return static_cast<int>(a.size()); }
     };
     EdgeSprings edge_springs;

@@ -85,8 +85,9 @@ struct PoissonScratch {
 
 //! Per edge spring (edge_springs.hpp): its loads, written before they are scattered to voxels.
 struct EdgeScratch {
-    //! [end][axis]: the step's velocity and spin increments of a (end 0) and b (end 1)
-    std::array<std::array<std::vector<float>, 3>, 2> dvel, domega;
+    //! The step's velocity (x, y, z) and spin (x, y, z) increments, a's (end 0) at n and b's
+    //! (end 1) at springs + n
+    std::array<std::vector<float>, 6> increment;
     //! state: the gap's G0 (x, y, z) and G1 (x, y, z) of the last step, whose change the
     //! springs' damping takes (edge_springs.cpp); 0 at rest
     std::array<std::vector<float>, 6> last_gap;
