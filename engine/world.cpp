@@ -104,6 +104,7 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     if (d.poisson.active) prepare_poisson_scratch(d, state_->poisson);
     for (auto& increment : state_->edges.increment)
         increment.assign(2 * static_cast<std::size_t>(d.edge_springs.size()), 0.0f);
+    if (d.edge_springs.size() > 0) state_->edges.force = state_->voxels.ext_force;
     for (auto& gap : state_->edges.last_gap)
         gap.assign(d.edge_springs.size(), 0.0f);
     // At t = 0 every link is straight at its lattice length; its extension is that length minus
@@ -160,8 +161,10 @@ void World::step() {
         return;
     }
 
-    if (d.edge_springs.size() > 0) edge_pass(d, s.voxels, s.edges, phase.sin_t, phase.cos_t);
+    const bool springs = d.edge_springs.size() > 0;
+    if (springs) edge_pass(d, s.voxels, s.edges, phase.sin_t, phase.cos_t);
     VoxelPassInput in;
+    if (springs) in.applied_force = &s.edges.force;
     in.sin_t = phase.sin_t;
     in.cos_t = phase.cos_t;
     in.gravity_m_s2 = d.spec.environment.gravity_m_s2;
@@ -280,8 +283,11 @@ void World::read_poses(VoxelPoses& out) const {
 void World::set_external_force(int v, std::array<double, 3> force_n) {
     if (v < 0 || v >= state_->data->voxels)
         throw std::out_of_range("World::set_external_force: no such voxel");
-    for (int i = 0; i < 3; ++i)
+    for (int i = 0; i < 3; ++i) {
         state_->voxels.ext_force[i][v] = force_n[i];
+        // The voxel pass reads the springs' sum, which holds the external force too.
+        if (!state_->edges.force[i].empty()) state_->edges.force[i][v] = force_n[i];
+    }
 }
 
 double World::kinetic_energy_j() const {

@@ -81,7 +81,7 @@ void finish_edge_springs(Model::Data& d) {
     const double dt = d.dt_s;
     Model::Data::EdgeSprings& springs = d.edge_springs;
     std::vector<int> per_voxel(d.voxels, 0);
-    for (auto* v : {&springs.step_a, &springs.step_b, &springs.turn_a, &springs.turn_b})
+    for (auto* v : {&springs.turn_a, &springs.turn_b})
         v->assign(springs.size(), 0.0f);
     for (int n = 0; n < springs.size(); ++n) {
         ++per_voxel[springs.a[n]];
@@ -116,8 +116,6 @@ void finish_edge_springs(Model::Data& d) {
             0.5 * std::min(d.mass[a] / per_voxel[a], d.mass[b] / per_voxel[b]) / (8.0 * dt);
         const double c = std::min(2.0 * d.spec.damping.bond_ratio * std::sqrt(m * k), cap);
         springs.damping[n] = static_cast<float>(c / dt);
-        springs.step_a[n] = static_cast<float>(d.dt_inv_mass[a]);
-        springs.step_b[n] = static_cast<float>(d.dt_inv_mass[b]);
         springs.turn_a[n] = static_cast<float>(d.dt_inv_inertia[a]);
         springs.turn_b[n] = static_cast<float>(d.dt_inv_inertia[b]);
     }
@@ -172,11 +170,9 @@ struct EdgeKernel {
     const double* __restrict pos[3];
     float* __restrict last_gap[6];  // G0 and G1 of the step before (x, y, z each), updated
     const float* __restrict quat[4];
-    const float* __restrict step_a;  // dt / m and dt / I of a and b
-    const float* __restrict step_b;
-    const float* __restrict turn_a;
+    const float* __restrict turn_a;  // dt / I of a and b
     const float* __restrict turn_b;
-    float* __restrict out[12];  // velocity and spin increments of a, then b; x, y, z each
+    float* __restrict out[12];  // force and spin increment of a, then b; x, y, z each
     float gauss, sin_t, cos_t;
     int count;
 };
@@ -201,11 +197,10 @@ BHM_ENGINE_KERNEL void edge_loads(const EdgeKernel& k) {
     const double* __restrict p0 = k.pos[0], * __restrict p1 = k.pos[1], * __restrict p2 = k.pos[2];
     float* __restrict l0 = k.last_gap[0], * __restrict l1 = k.last_gap[1], * __restrict l2 = k.last_gap[2], * __restrict l3 = k.last_gap[3], * __restrict l4 = k.last_gap[4], * __restrict l5 = k.last_gap[5];
     const float* __restrict qw = k.quat[0], * __restrict qx = k.quat[1], * __restrict qy = k.quat[2], * __restrict qz = k.quat[3];
-    float* __restrict dva0 = k.out[0], * __restrict dva1 = k.out[1], * __restrict dva2 = k.out[2];
+    float* __restrict fa0 = k.out[0], * __restrict fa1 = k.out[1], * __restrict fa2 = k.out[2];
     float* __restrict dwa0 = k.out[3], * __restrict dwa1 = k.out[4], * __restrict dwa2 = k.out[5];
-    float* __restrict dvb0 = k.out[6], * __restrict dvb1 = k.out[7], * __restrict dvb2 = k.out[8];
+    float* __restrict fb0 = k.out[6], * __restrict fb1 = k.out[7], * __restrict fb2 = k.out[8];
     float* __restrict dwb0 = k.out[9], * __restrict dwb1 = k.out[10], * __restrict dwb2 = k.out[11];
-    const float* __restrict step_a = k.step_a, * __restrict step_b = k.step_b;
     const float* __restrict turn_a = k.turn_a, * __restrict turn_b = k.turn_b;
     const float gauss = k.gauss, sin_t = k.sin_t, cos_t = k.cos_t;
     const int count = k.count;
@@ -246,11 +241,11 @@ BHM_ENGINE_KERNEL void edge_loads(const EdgeKernel& k) {
         const Vecf f1 = kx * gap1 + (dk * dot(gap1, t)) * t + c * change1;
         const Vecf m_a = 2.0f * (cross(h_a + 0.5f * gap0, f0) + cross(g_a + 0.5f * gap1, f1));
         const Vecf m_b = -2.0f * (cross(h_b - 0.5f * gap0, f0) + cross(g_b - 0.5f * gap1, f1));
-        // Impulses over the masses: a gets 2 F0, b -2 F0.
-        const float force_a = 2.0f * step_a[n], force_b = -2.0f * step_b[n];
-        store(dva0, dva1, dva2, n, force_a * f0);
+        // Forces (a gets 2 F0, b -2 F0: the voxel pass adds them to the links') and angular
+        // impulses over the inertias.
+        store(fa0, fa1, fa2, n, 2.0f * f0);
         store(dwa0, dwa1, dwa2, n, turn_a[n] * m_a);
-        store(dvb0, dvb1, dvb2, n, force_b * f0);
+        store(fb0, fb1, fb2, n, -2.0f * f0);
         store(dwb0, dwb1, dwb2, n, turn_b[n] * m_b);
     }
 }
@@ -283,8 +278,6 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
     k.act_cos_a = e.act_cos_a.data();
     k.act_sin_b = e.act_sin_b.data();
     k.act_cos_b = e.act_cos_b.data();
-    k.step_a = e.step_a.data();
-    k.step_b = e.step_b.data();
     k.turn_a = e.turn_a.data();
     k.turn_b = e.turn_b.data();
     k.gauss = e.gauss_m;
@@ -292,39 +285,45 @@ void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double
     k.cos_t = static_cast<float>(cos_t);
     k.count = e.size();
     edge_loads(k);
-    // The scatter, per voxel: its springs' increments summed (in spring order) and added once,
-    // so no store waits on the one before (adding each spring's increments to its two voxels in
-    // turn chained a voxel's load-add-stores through its springs).
+    // The scatter, per voxel: its springs' forces and spin increments summed (in spring order)
+    // and applied once, so no store waits on the one before (adding each spring's increments to
+    // its two voxels in turn chained a voxel's load-add-stores through its springs). The forces
+    // go with the external force to the voxel pass, which adds them to the links' before its
+    // static friction test; the spins turn the voxel now.
     const std::int32_t* __restrict touched = e.touched.data();
     const std::int32_t* __restrict begin = e.incidence_begin.data();
     const std::int32_t* __restrict incidence = e.incidence.data();
     const auto& inc = scratch.increment;
-    const float *__restrict dvx = inc[0].data(), *__restrict dvy = inc[1].data(),
-                *__restrict dvz = inc[2].data();
+    const float *__restrict fx = inc[0].data(), *__restrict fy = inc[1].data(),
+                *__restrict fz = inc[2].data();
     const float *__restrict dwx = inc[3].data(), *__restrict dwy = inc[4].data(),
                 *__restrict dwz = inc[5].data();
-    double *__restrict vx = s.vel[0].data(), *__restrict vy = s.vel[1].data(),
-           *__restrict vz = s.vel[2].data();
+    const auto& ext = s.ext_force;
+    const double *__restrict ext_x = ext[0].data(), *__restrict ext_y = ext[1].data(),
+                 *__restrict ext_z = ext[2].data();
+    double *__restrict force_x = scratch.force[0].data(),
+           *__restrict force_y = scratch.force[1].data(),
+           *__restrict force_z = scratch.force[2].data();
     double *__restrict wx = s.omega[0].data(), *__restrict wy = s.omega[1].data(),
            *__restrict wz = s.omega[2].data();
     const int touched_count = static_cast<int>(e.touched.size());
     for (int t = 0; t < touched_count; ++t) {
-        // In double, as the velocities: a sum in float let a free checkerboard's momentum drift
-        // by 1e-6 of its scale (tests/engine/test_engine_edge_springs.cpp allows 1e-9).
+        // In double: a sum in float let a free checkerboard's momentum drift by 1e-6 of its
+        // scale (tests/engine/test_engine_edge_springs.cpp allows 1e-9).
         double sum[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
         for (int entry = begin[t]; entry < begin[t + 1]; ++entry) {
             const int i = incidence[entry];
-            sum[0] += dvx[i];
-            sum[1] += dvy[i];
-            sum[2] += dvz[i];
+            sum[0] += fx[i];
+            sum[1] += fy[i];
+            sum[2] += fz[i];
             sum[3] += dwx[i];
             sum[4] += dwy[i];
             sum[5] += dwz[i];
         }
         const int v = touched[t];
-        vx[v] += sum[0];
-        vy[v] += sum[1];
-        vz[v] += sum[2];
+        force_x[v] = ext_x[v] + sum[0];
+        force_y[v] = ext_y[v] + sum[1];
+        force_z[v] = ext_z[v] + sum[2];
         wx[v] += sum[3];
         wy[v] += sum[4];
         wz[v] += sum[5];

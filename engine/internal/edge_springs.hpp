@@ -32,9 +32,10 @@ void build_edge_springs(Model::Data& d, double& max_omega2);
 //! Sets the springs' bond damping once the step d.dt_s is known.
 void finish_edge_springs(Model::Data& d);
 
-//! Adds the springs' impulses dt F to their voxels' velocities before the voxel pass integrates
-//! the rest: the same as adding F to the voxels' force sums (symplectic Euler). A no-op without
-//! springs.
+//! The springs' loads before the voxel pass integrates: their forces, with the external force,
+//! into scratch.force (the voxel pass's applied force, so static friction weighs them too), their
+//! moments as spin increments dt M / I (symplectic Euler, as adding M to the voxels' moment sums).
+//! Not called without springs.
 void edge_pass(const Model::Data& d, VoxelState& s, EdgeScratch& scratch, double sin_t,
                double cos_t);
 

@@ -202,8 +202,8 @@ struct Model::Data {
         //! a's and b's size scale 1 + act_sin sin + act_cos cos, copied from the voxels so the
         //! kernel reads them in spring order
         std::vector<float> act_sin_a, act_cos_a, act_sin_b, act_cos_b;
-        //! dt / m and dt / I of a and b (0 for a held voxel), set with the step
-        std::vector<float> step_a, step_b, turn_a, turn_b;
+        //! dt / I of a and b (0 for a voxel that does not turn), set with the step
+        std::vector<float> turn_a, turn_b;
         float gauss_m = 0.0f;  //!< the edge's midpoint to a Gauss point, L / (2 sqrt 3)
         //! The scatter's plan (edge_pass): the voxels in some spring (ascending), and for voxel
         //! touched[t] its springs' increments at end * size() + n for the entries

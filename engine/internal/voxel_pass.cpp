@@ -288,7 +288,10 @@ __attribute__((always_inline)) inline int damping_loop(const Arrays& a, double* 
 BHM_ENGINE_KERNEL int voxel_pass(const Model::Data& d, VoxelState& s,
                                  const std::array<LinkScratch, 3>& links,
                                  const VoxelPassInput& in) {
-    const Arrays a = arrays_of(d, s, links);
+    Arrays a = arrays_of(d, s, links);
+    if (in.applied_force)
+        for (int i = 0; i < 3; ++i)
+            a.ext[i] = (*in.applied_force)[i].data();
     int count = 0;
     for (const VoxelRun& run : d.voxel_runs) {
         if (in.velocity_only)

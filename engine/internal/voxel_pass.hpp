@@ -14,6 +14,9 @@ struct VoxelPassInput {
     //! The implicit bond damping follows: write only the velocities (also as VoxelState's v*),
     //! not the pose; damping_voxel_pass's last sweep moves it
     bool velocity_only = false;
+    //! Per voxel slot, the force besides the links' and gravity (N): the external force plus the
+    //! springs' across edges (EdgeScratch::force); null: VoxelState::ext_force alone
+    const std::array<std::vector<double>, 3>* applied_force = nullptr;
 };
 
 //! Integrates every voxel by one dt and returns how many voxels' new state is insane: moved more

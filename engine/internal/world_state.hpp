@@ -85,9 +85,13 @@ struct PoissonScratch {
 
 //! Per edge spring (edge_springs.hpp): its loads, written before they are scattered to voxels.
 struct EdgeScratch {
-    //! The step's velocity (x, y, z) and spin (x, y, z) increments, a's (end 0) at n and b's
+    //! The step's force (x, y, z; N) and spin increment (x, y, z), a's (end 0) at n and b's
     //! (end 1) at springs + n
     std::array<std::vector<float>, 6> increment;
+    //! Per voxel slot: VoxelState::ext_force plus the springs' forces of the step, which the voxel
+    //! pass takes as its applied force (so static friction weighs them with the links'); the
+    //! slots of voxels in no spring hold ext_force (World::set_external_force writes both)
+    std::array<std::vector<double>, 3> force;
     //! state: the gap's G0 (x, y, z) and G1 (x, y, z) of the last step, whose change the
     //! springs' damping takes (edge_springs.cpp); 0 at rest
     std::array<std::vector<float>, 6> last_gap;

@@ -113,3 +113,67 @@ TEST_CASE(
     MESSAGE("largest departure from the scaled lattice: " << worst / L << " L");
     CHECK(worst < 1e-5 * L);
 }
+
+namespace {
+
+// A 2x2 square on the floor under gravity, x fastest: the anchor (0, 0), stiff (10x) and gripping
+// the floor (mu_s 0.5), the bridges (1, 0) and (0, 1), its partner (1, 1), the last three
+// frictionless. A force on the partner pulls away from the anchor along the diagonal, growing
+// slowly to 3 mu_s times the anchor's weight over 3 s; the anchor counts as let go once it has
+// slid 1e-3 L. Returns the pull then over mu_s N, N the anchor's floor force (its penalty spring
+// E L times its depth).
+double release_over_grip(int bridge_material, int* springs) {
+    Material stiff_anchor;
+    stiff_anchor.youngs_modulus_pa *= 10.0;
+    stiff_anchor.static_friction = 0.5;
+    stiff_anchor.dynamic_friction = 0.4;
+    Material stiff_free = stiff_anchor;
+    stiff_free.static_friction = stiff_free.dynamic_friction = 0.0;
+    Material soft;
+    soft.static_friction = soft.dynamic_friction = 0.0;
+    BodySpec s = solid_box(2, 2, 1);
+    s.materials = {stiff_anchor, stiff_free, soft};
+    const auto bridge = static_cast<std::uint8_t>(bridge_material);
+    s.material = {1, bridge, bridge, 2};
+    s.environment.floor = true;
+    s.environment.gravity_m_s2 = -9.81;
+    auto model = Model::build(s);
+    *springs = model->edge_spring_count();
+    World w(model);
+    REQUIRE(w.advance_to(0.3));  // settled on the floor
+    const double L = model->voxel_size_m();
+    const double weight = model->total_mass_kg() / 4.0 * 9.81;
+    const auto start = w.voxel_position_m(0);
+    const double normal = stiff_anchor.youngs_modulus_pa * L * (0.5 * L - start[2]);
+    const double t0 = w.time_s(), ramp_s = 3.0, most = 3.0 * stiff_anchor.static_friction * weight;
+    while (w.time_s() < t0 + ramp_s) {
+        const double pull = most * (w.time_s() - t0) / ramp_s;
+        w.set_external_force(3, {pull / std::sqrt(2.0), pull / std::sqrt(2.0), 0.0});
+        w.step();
+        if (w.diverged()) break;
+        const auto p = w.voxel_position_m(0);
+        if (std::hypot(p[0] - start[0], p[1] - start[1]) > 1e-3 * L)
+            return pull / (stiff_anchor.static_friction * normal);
+    }
+    REQUIRE(!w.diverged());
+    return 0.0;  // never let go
+}
+
+}  // namespace
+
+TEST_CASE("edge springs: static friction weighs the springs' forces with the links'") {
+    // With stiff bridges the pull reaches the anchor through links alone; with 10x softer ones
+    // through the links and the spring across the stiff pair's shared edge. Coulomb's law lets
+    // the anchor go at the same share of mu_s N either way (the anchor's N is larger on soft
+    // bridges: the stiff contact carries more of the weight). Static friction that weighed the
+    // links' share alone held it until 1.41 mu_s N instead of 0.86 (links alone: 0.90).
+    int springs = -1;
+    const double links_only = release_over_grip(2, &springs);
+    CHECK(springs == 0);
+    const double with_spring = release_over_grip(3, &springs);
+    CHECK(springs == 1);
+    MESSAGE("let go at " << links_only << " mu_s N on links alone, " << with_spring
+                         << " mu_s N with the spring");
+    CHECK(links_only > 0.5);
+    CHECK(std::fabs(with_spring / links_only - 1.0) < 0.08);
+}
