@@ -8,10 +8,10 @@
 #include "app/cli/commands.hpp"
 
 #if BHM_WITH_GUI
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/shell/window_runner.hpp"
 #include "app/gui/studio.hpp"
-#include "app/gui/studio_actions.hpp"
 #include "app/gui/studio_app.hpp"
-#include "app/gui/window_runner.hpp"
 #endif
 
 namespace bhm::app {

@@ -8,8 +8,8 @@
 #include <imgui.h>
 
 #include "app/gui/studio.hpp"
-#include "app/gui/view_renderer.hpp"
-#include "app/gui/welcome_thumbnails.hpp"
+#include "app/gui/view/renderer.hpp"
+#include "app/gui/welcome/thumbnails.hpp"
 
 namespace bhm::app::gui {
 

@@ -8,12 +8,12 @@
 #include <fstream>
 #include <numbers>
 
-#include "app/gui/body_analysis.hpp"
-#include "app/gui/headless_session.hpp"
-#include "app/gui/script.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/session/body_analysis.hpp"
 #include "app/gui/session/replay_player.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "render/colormap.hpp"
 #include "test_studio_fixtures.hpp"
 

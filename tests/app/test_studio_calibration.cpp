@@ -11,12 +11,12 @@
 #include <fstream>
 #include <thread>
 
-#include "app/gui/calibration_actions.hpp"
-#include "app/gui/headless_session.hpp"
-#include "app/gui/script.hpp"
+#include "app/gui/actions/calibration_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/calibration_session.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"

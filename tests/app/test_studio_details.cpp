@@ -10,17 +10,17 @@
 #include <utility>
 
 #include "app/cli/render_video.hpp"
-#include "app/gui/export_actions.hpp"
-#include "app/gui/headless_session.hpp"
-#include "app/gui/redraw_gate.hpp"
-#include "app/gui/script.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/actions/export_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/redraw_gate.hpp"
+#include "app/gui/shell/script.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "engine/limits.hpp"
+#include "engine/replay.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/field_rules.hpp"
-#include "app/gui/viewport.hpp"
-#include "engine/replay.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;

@@ -1,9 +1,9 @@
 // The studio's document: validated edits, undo / redo, and the painter's edits as pure functions.
 #include <doctest/doctest.h>
 
-#include "app/gui/constraint_edits.hpp"
-#include "app/gui/experiment_document.hpp"
-#include "app/gui/studio_defaults.hpp"
+#include "app/gui/document/constraint_edits.hpp"
+#include "app/gui/document/experiment_document.hpp"
+#include "app/gui/document/studio_defaults.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "test_studio_fixtures.hpp"
 

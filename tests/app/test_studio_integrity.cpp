@@ -8,11 +8,11 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "app/gui/headless_session.hpp"
-#include "app/gui/script.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/unsaved_guard.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/evolution_run.hpp"
 #include "test_studio_fixtures.hpp"

@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <chrono>
 
-#include "app/gui/headless_session.hpp"
-#include "app/gui/script.hpp"
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
 #include "app/gui/widgets/plot_axes.hpp"
 #include "app/gui/widgets/tile_layout.hpp"
 #include "test_studio_fixtures.hpp"

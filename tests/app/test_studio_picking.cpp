@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "app/gui/picking.hpp"
+#include "app/gui/view/picking.hpp"
 
 using namespace bhm;
 using namespace bhm::app::gui;

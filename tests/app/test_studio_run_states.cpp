@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/gui/headless_session.hpp"
-#include "app/gui/redraw_gate.hpp"
-#include "app/gui/script.hpp"
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/redraw_gate.hpp"
+#include "app/gui/shell/script.hpp"
 #include "evo/run/checkpoint.hpp"
 #include "evo/run/evolution_run.hpp"
 #include "test_studio_fixtures.hpp"

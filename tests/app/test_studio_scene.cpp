@@ -4,9 +4,9 @@
 
 #include <algorithm>
 
-#include "app/gui/constraint_edits.hpp"
+#include "app/gui/document/constraint_edits.hpp"
 #include "app/gui/session/body_simulator.hpp"
-#include "app/gui/view_scene.hpp"
+#include "app/gui/view/scene.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;

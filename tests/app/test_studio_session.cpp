@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/gui/headless_session.hpp"
-#include "app/gui/key_bindings.hpp"
-#include "app/gui/script.hpp"
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/key_bindings.hpp"
+#include "app/gui/shell/script.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"
 #include "test_studio_fixtures.hpp"

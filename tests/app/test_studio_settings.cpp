@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "app/gui/studio_settings.hpp"
+#include "app/gui/settings/studio_settings.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm::app::gui;

@@ -19,11 +19,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "app/gui/headless_session.hpp"
-#include "app/gui/script.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/fem_verifier.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/view_scene.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
+#include "app/gui/view/scene.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "test_studio_fixtures.hpp"

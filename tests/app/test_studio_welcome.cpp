@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <set>
 
-#include "app/gui/example_body.hpp"
-#include "app/gui/headless_session.hpp"
-#include "app/gui/script.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/welcome.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
+#include "app/gui/welcome/example_body.hpp"
+#include "app/gui/welcome/welcome.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "test_studio_fixtures.hpp"
 

@@ -24,9 +24,9 @@
 #include <thread>
 #include <vector>
 
-#include "app/gui/headless_session.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/body_simulator.hpp"
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/shell/headless_studio.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "tests/bench/bench_machine.hpp"
 

@@ -6,9 +6,9 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/session/champion_history.hpp"
-#include "app/gui/studio_actions.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 

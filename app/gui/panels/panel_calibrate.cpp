@@ -11,9 +11,9 @@
 
 #include <imgui.h>
 
-#include "app/gui/calibration_actions.hpp"
+#include "app/gui/actions/calibration_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/studio_actions.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 

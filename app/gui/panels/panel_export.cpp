@@ -6,8 +6,8 @@
 
 #include <imgui.h>
 
-#include "app/gui/export_actions.hpp"
-#include "app/gui/export_geometry.hpp"
+#include "app/gui/actions/export_actions.hpp"
+#include "app/gui/actions/export_geometry.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 

@@ -4,10 +4,10 @@
 
 #include <imgui.h>
 
-#include "app/gui/key_bindings.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 

@@ -6,9 +6,9 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/studio_paths.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 

@@ -10,8 +10,8 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/studio_actions.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

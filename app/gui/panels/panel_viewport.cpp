@@ -7,10 +7,10 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/view_renderer.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/view/renderer.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "render/colormap.hpp"
 

@@ -17,7 +17,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "app/gui/body_analysis.hpp"
+#include "app/gui/session/body_analysis.hpp"
 #include "app/gui/session/latest_slot.hpp"
 #include "engine/replay.hpp"
 #include "evo/evaluate/fitness.hpp"

@@ -7,9 +7,9 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/studio_paths.hpp"
-#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

@@ -6,7 +6,7 @@
 
 #include <imgui.h>
 
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

@@ -3,7 +3,7 @@
 // are preferences, never overwritten by a small window; each frame fits them into the display,
 // so a tiny resize squeezes the tiles only while the window is small. Splitters on the inner
 // edges change the preferences, bounded.
-#include "app/gui/studio_settings.hpp"
+#include "app/gui/settings/studio_settings.hpp"
 
 namespace bhm::app::gui {
 

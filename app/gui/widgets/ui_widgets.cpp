@@ -7,7 +7,7 @@
 
 #include <imgui_internal.h>
 
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 
 namespace bhm::app::gui {
 

@@ -1,4 +1,4 @@
-#include "app/gui/studio_defaults.hpp"
+#include "app/gui/document/studio_defaults.hpp"
 
 namespace bhm::app::gui {
 

@@ -1,4 +1,4 @@
-#include "app/gui/example_body.hpp"
+#include "app/gui/welcome/example_body.hpp"
 
 #include <algorithm>
 #include <exception>

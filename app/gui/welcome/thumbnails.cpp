@@ -1,9 +1,9 @@
-#include "app/gui/welcome_thumbnails.hpp"
+#include "app/gui/welcome/thumbnails.hpp"
 
-#include "app/gui/example_body.hpp"
 #include "app/gui/studio.hpp"
-#include "app/gui/view_renderer.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/view/renderer.hpp"
+#include "app/gui/view/viewport.hpp"
+#include "app/gui/welcome/example_body.hpp"
 
 namespace bhm::app::gui {
 

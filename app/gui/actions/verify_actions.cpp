@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "evo/run/checkpoint.hpp"
 
 namespace bhm::app::gui {

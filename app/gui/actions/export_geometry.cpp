@@ -1,8 +1,8 @@
-#include "app/gui/export_geometry.hpp"
+#include "app/gui/actions/export_geometry.hpp"
 
 #include <filesystem>
 
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/surface_mesh.hpp"

@@ -1,4 +1,4 @@
-#include "app/gui/studio_settings.hpp"
+#include "app/gui/settings/studio_settings.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/gui/studio_paths.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 

@@ -1,4 +1,4 @@
-#include "app/gui/window_runner.hpp"
+#include "app/gui/shell/window_runner.hpp"
 
 #include <glad/gl.h>
 
@@ -10,12 +10,12 @@
 
 #include <imgui.h>
 
-#include "app/gui/headless_session.hpp"
-#include "app/gui/key_bindings.hpp"
-#include "app/gui/redraw_gate.hpp"
-#include "app/gui/script.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/key_bindings.hpp"
+#include "app/gui/shell/redraw_gate.hpp"
+#include "app/gui/shell/script.hpp"
 #include "app/gui/studio_app.hpp"
-#include "app/gui/unsaved_guard.hpp"
 #include "imgui_impl_glfw.h"
 #include "imgui_impl_opengl3.h"
 #include "render/window.hpp"

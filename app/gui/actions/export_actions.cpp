@@ -1,15 +1,15 @@
-#include "app/gui/export_actions.hpp"
+#include "app/gui/actions/export_actions.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "app/cli/render_video.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/studio_paths.hpp"
-#include "app/gui/view_renderer.hpp"
-#include "app/gui/view_scene.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/settings/studio_paths.hpp"
+#include "app/gui/view/renderer.hpp"
+#include "app/gui/view/scene.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"

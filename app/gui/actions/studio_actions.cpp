@@ -1,13 +1,13 @@
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 
-#include "app/gui/calibration_actions.hpp"
-#include "app/gui/studio_paths.hpp"
-#include "evo/experiment/experiment_io.hpp"
+#include "app/gui/actions/calibration_actions.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo/run/run_directory.hpp"
 
 namespace bhm::app::gui {

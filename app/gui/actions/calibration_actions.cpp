@@ -1,4 +1,4 @@
-#include "app/gui/calibration_actions.hpp"
+#include "app/gui/actions/calibration_actions.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <exception>
 #include <memory>
 
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/studio_paths.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 

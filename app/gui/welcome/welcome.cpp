@@ -1,12 +1,12 @@
-#include "app/gui/welcome.hpp"
+#include "app/gui/welcome/welcome.hpp"
 
 #include <algorithm>
 #include <filesystem>
 #include <map>
 
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/studio.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/studio_paths.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "render/scene.hpp"
 

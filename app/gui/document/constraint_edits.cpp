@@ -1,4 +1,4 @@
-#include "app/gui/constraint_edits.hpp"
+#include "app/gui/document/constraint_edits.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "app/gui/key_bindings.hpp"
+#include "app/gui/shell/key_bindings.hpp"
 
 #define GLFW_INCLUDE_NONE  // GL comes from glad only
 #include <GLFW/glfw3.h>
@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cctype>
 
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
 
 namespace bhm::app::gui {
 

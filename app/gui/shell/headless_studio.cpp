@@ -1,4 +1,4 @@
-#include "app/gui/headless_session.hpp"
+#include "app/gui/shell/headless_studio.hpp"
 
 #include <glad/gl.h>
 #include <malloc.h>

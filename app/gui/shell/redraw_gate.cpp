@@ -1,4 +1,4 @@
-#include "app/gui/redraw_gate.hpp"
+#include "app/gui/shell/redraw_gate.hpp"
 
 #include "app/gui/studio.hpp"
 

@@ -1,4 +1,4 @@
-#include "app/gui/view_renderer.hpp"
+#include "app/gui/view/renderer.hpp"
 
 #include <glad/gl.h>
 

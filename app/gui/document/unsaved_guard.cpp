@@ -1,10 +1,10 @@
-#include "app/gui/unsaved_guard.hpp"
+#include "app/gui/document/unsaved_guard.hpp"
 
 #include <algorithm>
 
 #include <imgui.h>
 
-#include "app/gui/studio_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

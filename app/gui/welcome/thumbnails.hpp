@@ -1,12 +1,12 @@
 #pragma once
 // The welcome's preset thumbnails: each preset's workspace with an example body in it (a
-// generation-0 body, app/gui/example_body.hpp) drawn once by our renderer into a framebuffer kept
+// generation-0 body, app/gui/welcome/example_body.hpp) drawn once by our renderer into a framebuffer kept
 // for the session, on the UI thread (GL never runs on a worker).
 #include <cstddef>
 #include <memory>
 #include <vector>
 
-#include "app/gui/welcome.hpp"
+#include "app/gui/welcome/welcome.hpp"
 #include "app/gui/widgets/gl_framebuffer.hpp"
 
 namespace bhm::app::gui {

@@ -1,4 +1,4 @@
-#include "app/gui/studio_paths.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,8 +1,8 @@
-#include "app/gui/file_dialog.hpp"
+#include "app/gui/widgets/file_dialog.hpp"
 
 #include <filesystem>
 
-#include "app/gui/studio_paths.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 
 namespace bhm::app::gui {
 

@@ -1,4 +1,4 @@
-#include "app/gui/script.hpp"
+#include "app/gui/shell/script.hpp"
 
 #include <chrono>
 #include <fstream>
@@ -8,12 +8,12 @@
 #define GLFW_INCLUDE_NONE  // GL comes from glad only
 #include <GLFW/glfw3.h>
 
-#include "app/gui/calibration_actions.hpp"
-#include "app/gui/export_actions.hpp"
-#include "app/gui/key_bindings.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/view_scene.hpp"
-#include "app/gui/viewport.hpp"
+#include "app/gui/actions/calibration_actions.hpp"
+#include "app/gui/actions/export_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/shell/key_bindings.hpp"
+#include "app/gui/view/scene.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_reader.hpp"

@@ -1,9 +1,9 @@
-#include "app/gui/experiment_document.hpp"
+#include "app/gui/document/experiment_document.hpp"
 
 #include <atomic>
 #include <limits>
 
-#include "app/gui/studio_defaults.hpp"
+#include "app/gui/document/studio_defaults.hpp"
 
 namespace bhm::app::gui {
 

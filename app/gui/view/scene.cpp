@@ -1,4 +1,4 @@
-#include "app/gui/view_scene.hpp"
+#include "app/gui/view/scene.hpp"
 
 #include <algorithm>
 #include <map>
@@ -6,7 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "app/cli/render_scene.hpp"
-#include "app/gui/constraint_edits.hpp"
+#include "app/gui/document/constraint_edits.hpp"
 #include "app/gui/session/replay_player.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 

@@ -28,7 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/gui/headless_session.hpp"
+#include "app/gui/shell/headless_studio.hpp"
 
 namespace bhm::app::gui {
 

@@ -1,4 +1,4 @@
-#include "app/gui/picking.hpp"
+#include "app/gui/view/picking.hpp"
 
 #include <algorithm>
 #include <cmath>

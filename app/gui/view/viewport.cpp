@@ -1,10 +1,10 @@
-#include "app/gui/viewport.hpp"
+#include "app/gui/view/viewport.hpp"
 
 #include <glm/glm.hpp>
 
-#include "app/gui/calibration_actions.hpp"
-#include "app/gui/studio_actions.hpp"
-#include "app/gui/view_scene.hpp"
+#include "app/gui/actions/calibration_actions.hpp"
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/view/scene.hpp"
 #include "engine/replay.hpp"
 
 namespace bhm::app::gui {

@@ -1,4 +1,4 @@
-#include "app/gui/body_analysis.hpp"
+#include "app/gui/session/body_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
