@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engine/internal/edge_springs.hpp"
+#include "engine/internal/link_confinement.hpp"
 #include "engine/internal/model_data.hpp"
 #include "engine/internal/moduli.hpp"
 #include "engine/internal/poisson.hpp"
@@ -364,7 +365,12 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             // octants' modulus over E (1 when nu = 0). The plain mean keeps the energy the sum of
             // the octants' Hooke energies, positive definite up to nu = 0.5.
             const double m_link = e * (0.5 * (octant_modulus[axis][v] + octant_modulus[axis][b]));
-            const double k_axial = m_link * L;
+            // A half-link inside a wider region is stiffer (link_confinement.hpp): every mode of
+            // the link, its normal stress with the Poisson coupling (rest_scale keeps m_link)
+            // included.
+            const ConfinedLinkFactors confined =
+                confined_link_factors(d, v, b, axis, ma.poisson_ratio, mb.poisson_ratio);
+            const double k_axial = confined.axial * m_link * L;
             if (pp.active) pp.rest_scale[axis][v] = static_cast<float>(-L / m_link);
             const double m_a = d.mass[v], m_b = d.mass[b];
             const double reduced_mass = m_a * m_b / (m_a + m_b);
@@ -378,15 +384,16 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             const double beta = spec.damping.bond_ratio * std::sqrt(pair_mass / (e * L));
             p.exists[v] = 1.0f;
             p.k_axial[v] = static_cast<float>(k_axial);
-            p.k_bend[v] = static_cast<float>(e * beam_inertia_over_l);
-            p.k_torsion[v] = static_cast<float>(g * torsion_over_l);
+            p.k_bend[v] = static_cast<float>(confined.bending * e * beam_inertia_over_l);
+            p.k_torsion[v] = static_cast<float>(confined.bending * g * torsion_over_l);
             p.damp_steps[v] = static_cast<float>(beta);  // capped and divided by dt below
             p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
             p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
             if (implicit) {
                 const double lambda = link_damping_rate_bound(
-                    beta, k_axial, e * beam_inertia_over_l, g * torsion_over_l, m_a, m_b, L,
+                    beta, k_axial, confined.bending * e * beam_inertia_over_l,
+                    confined.bending * g * torsion_over_l, m_a, m_b, L,
                     1.0 + std::max(actuation_reach(d, v), actuation_reach(d, b)));
                 damping_rate[v] += lambda;
                 damping_rate[b] += lambda;

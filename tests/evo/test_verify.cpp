@@ -160,25 +160,32 @@ TEST_CASE("verify: the solid and bilayer cantilevers agree with the CalculiX sui
     CHECK(std::fabs(bilayer_ours / bilayer_suite - 1.0) < 0.02);
 }
 
-TEST_CASE("verify: a bilayer held by a single voxel differs from the FEM and says so") {
+TEST_CASE("verify: a body held by a single voxel agrees with the refined continuum at rest") {
     if (skip_without_ccx()) return;
-    // A 10x3x3 bilayer whose held layer keeps only its middle voxel: the engine's lone link
-    // bends about twice as far as the continuum's neck (issue 27: weakly held bodies).
-    auto s = held_box(10, 3, 3, 1, 5e6);
+    // A 10x3x3 body whose held layer keeps only its middle voxel (issue 27: weakly held bodies).
+    // Until issue 40 the engine's lone link from the held voxel bent about twice as far as the
+    // continuum's neck: 82 % more sag than this FEM at rest (+141 % at +1 degC on the bilayer).
+    // The narrow neck's re-entrant corners need a fine mesh: C3D20R with 4 elements per voxel
+    // edge (the default C3D8I with 2 was 25 % stiff here, C3D20R with 2 5 %).
+    auto s = held_box(10, 3, 3, 0, 5e6);
     for (int z = 0; z < 3; ++z)
         for (int y = 0; y < 3; ++y)
             if (y != 1 || z != 1) s.material[s.cell_index(0, y, z)] = 0;
-    s.actuation.temperature_amplitude_c = 1.0;
-    const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, {});
+    evo::VerifyOptions fine;
+    fine.mesh.element = evo::FemElement::C3D20R;
+    fine.mesh.subdivision = 4;
+    const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, fine);
     MESSAGE(v.verdict());
-    CHECK_FALSE(v.agrees);
-    CHECK(v.worst > 0.3);
-    CHECK(v.verdict().rfind("differs by", 0) == 0);
-    // The same body with the whole layer held agrees.
-    const auto whole = evo::verify_body(held_box(10, 3, 3, 1, 5e6), evo::FitnessMeasure::ComMaxYz,
-                                        {});
-    MESSAGE("whole layer held: " << whole.verdict());
-    CHECK(whole.worst < v.worst / 3);
+    REQUIRE(v.loads.size() == 1);  // no active voxel: rest only
+    CHECK(v.agrees);
+    CHECK(v.worst < 0.08);
+    CHECK(v.verdict().rfind("agrees within", 0) == 0);
+    // A tolerance tighter than the difference is a "differs" verdict (on the default mesh).
+    evo::VerifyOptions tight;
+    tight.tolerance = 0.001;
+    const auto strict = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, tight);
+    CHECK_FALSE(strict.agrees);
+    CHECK(strict.verdict().rfind("differs by", 0) == 0);
 }
 
 TEST_CASE("verify: free, detached and too large bodies are reported, not solved") {

@@ -1,0 +1,54 @@
+#include "engine/internal/link_confinement.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "engine/internal/poisson.hpp"
+
+namespace bhm::engine {
+
+int confining_neighbours(const Model::Data& d, int v, int axis, int side) {
+    const BodySpec& spec = d.spec;
+    const int c = d.voxel_cell[v];
+    const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
+    const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
+    const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
+    const int along = xyz[axis] + side;
+    const bool in_lattice = along >= 0 && along < limit[axis];
+    int count = 0;
+    for (int lateral = 0; lateral < 3; ++lateral) {
+        if (lateral == axis) continue;
+        for (int s = -1; s <= 1; s += 2) {
+            if (xyz[lateral] + s < 0 || xyz[lateral] + s >= limit[lateral]) continue;
+            const int neighbour = c + s * stride[lateral];
+            if (spec.material[neighbour] == 0) continue;
+            if (!in_lattice || spec.material[neighbour + side * stride[axis]] == 0) ++count;
+        }
+    }
+    return count;
+}
+
+namespace {
+
+// 2 / (1 / kappa_a + 1 / kappa_b) with kappa = 1 + c n g, at most kConfinedLinkCap.
+double series_factor(int n_a, double g_a, int n_b, double g_b) {
+    const double kappa_a = 1.0 + kConfinedHalfStiffening * n_a * g_a;
+    const double kappa_b = 1.0 + kConfinedHalfStiffening * n_b * g_b;
+    return std::min(kConfinedLinkCap, 2.0 / (1.0 / kappa_a + 1.0 / kappa_b));
+}
+
+}  // namespace
+
+ConfinedLinkFactors confined_link_factors(const Model::Data& d, int v, int b, int axis, double nu_v,
+                                          double nu_b) {
+    const int n_v = confining_neighbours(d, v, axis, +1);
+    const int n_b = confining_neighbours(d, b, axis, -1);
+    if (n_v == 0 && n_b == 0) return {};
+    const double root_v = std::sqrt(poisson_wave_factor(nu_v));
+    const double root_b = std::sqrt(poisson_wave_factor(nu_b));
+    return {series_factor(n_v, 1.0 / root_v, n_b, 1.0 / root_b),
+            series_factor(n_v, root_v, n_b, root_b)};
+}
+
+}  // namespace bhm::engine
