@@ -370,9 +370,16 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
         remove_stale_partials(run_dir);
         std::string note;
         if (studio.run && !studio.document.dirty()) {
-            // Show the run's experiment in the editor (a copy; the run directory is never written).
+            // Show the run's experiment in the editor (a copy; the run directory is never
+            // written). It is untitled, and so is the path field: Save must never write the
+            // run's experiment over the file the editor held before (issue 39, H1).
+            const std::string previous = studio.document.path();
             studio.document.reset(studio.run->experiment, "");
+            studio.path_field.clear();
             studio.view.camera_needs_framing = true;
+            note = previous.empty() ? std::string(" (the editor shows its experiment, untitled)")
+                                    : " (the editor shows its experiment, untitled; " + previous +
+                                          " is unchanged)";
         } else if (studio.run) {
             note = " (the editor keeps your unsaved experiment)";
         }
