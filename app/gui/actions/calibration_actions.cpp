@@ -159,6 +159,7 @@ bool apply_calibration(Studio& s) {
         label += " " + f.parameter.name + " " + number(f.initial_value) + " -> " +
                  number(f.value) + " " + evo::fit_unit(f.parameter) + ",";
     label.pop_back();
+    if (!r.converged) label += " (not converged: the fit stopped at its simulation budget)";
     if (!apply_edit(s, next, label)) return false;
     c.applied_job = snap->job;
     // The live run keeps its physics until Apply to the live run sends them.
@@ -224,7 +225,11 @@ void update_calibration(Studio& s) {
                           " simulations");
     } else if (snap.phase == CalibrationPhase::Finished && snap.result) {
         const auto& r = *snap.result;
-        set_status(s, "calibration done: misfit " + number(r.misfit_before_m) + " m -> " +
+        // A fit the budget cut short is not "done": its values are not an optimum (issue 39, M3).
+        set_status(s, std::string(r.converged ? "calibration done"
+                                              : "calibration stopped at its simulation budget, "
+                                                "not converged") +
+                          ": misfit " + number(r.misfit_before_m) + " m -> " +
                           number(r.misfit_after_m) + " m, " +
                           std::to_string(r.optimiser_simulations + r.jacobian_simulations + 2) +
                           " simulations" +

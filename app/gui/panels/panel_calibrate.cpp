@@ -110,10 +110,12 @@ void progress_line(Studio& s) {
                       format_duration(elapsed).c_str());
         ImGui::ProgressBar(0.0f, ImVec2(-1.0f, 0.0f), text);
     } else {
+        const bool converged = !snap->result || snap->result->converged;
         const char* state = snap->phase == CalibrationPhase::Running     ? ""
                             : snap->phase == CalibrationPhase::Cancelled ? " (cancelled)"
                             : snap->phase == CalibrationPhase::Failed    ? " (failed)"
-                                                                         : " (done)";
+                            : converged                                  ? " (done)"
+                                                : " (budget reached: not converged)";
         char best[32] = "-";
         if (std::isfinite(snap->best_misfit_m))
             std::snprintf(best, sizeof best, "%.4g mm", snap->best_misfit_m * 1e3);
@@ -147,7 +149,15 @@ void report(Studio& s) {
             ImGui::TableNextColumn();
             ImGui::Text(f.at_bound ? "%.4g (bound)" : "%.4g", f.value);
             ImGui::TableNextColumn();
-            if (std::isfinite(f.sigma))
+            if (!r.converged) {
+                // The curvature where the budget stopped the search says nothing of how far
+                // the optimum is: no number that would pass for an uncertainty.
+                ImGui::TextColored(ImColor(kWarning), "not converged");
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%.2g from the curvature at this point, which understates "
+                                      "the error of a fit that did not converge",
+                                      f.sigma);
+            } else if (std::isfinite(f.sigma))
                 ImGui::Text("%.2g (%.1f %%)", f.sigma,
                             f.value != 0.0 ? 100.0 * f.sigma / std::abs(f.value) : 0.0);
             else
