@@ -458,3 +458,30 @@ TEST_CASE("studio: a calibration the budget cut short says so and Apply labels i
     CHECK_MESSAGE(s.document.undo_label().find("(not converged") != std::string::npos,
                   s.document.undo_label());
 }
+
+TEST_CASE("studio: after Apply the calibrated body is simulated again, alone in the view") {
+    // Issue 39, M7: after Calibrate > Apply the body shown kept its old motion (its replay and a
+    // video of it too, with no note) and the split view kept an unrelated champion beside it.
+    if (!evo::calibration_available()) return;
+    Fixture f;
+    Studio s;
+    const auto snap = calibrate_fixture(s, f, testing::fresh_dir("calibration-resimulate"), 12);
+    SimulationRequest other;  // beside it (Analysis > Champions > beside)
+    other.id = 7;
+    other.label = "an unrelated champion";
+    other.experiment = f.experiment;
+    other.framed_body = f.body;
+    s.compare_simulator.request(other);
+    REQUIRE(update_until(s, [&] { return s.compared != nullptr; }, 60.0));
+    const auto before = s.shown;
+    REQUIRE(apply_calibration(s));
+    CHECK(s.compared == nullptr);
+    const double amplitude = s.document.experiment().actuation.temperature_amplitude_c;
+    CHECK(amplitude == relative(snap->result->fitted[1].value, 1e-12));
+    REQUIRE(update_until(
+        s, [&] { return s.shown && s.shown != before && !s.simulator.busy(); }, 60.0));
+    CHECK(s.shown->framed_body == f.body);
+    CHECK(s.shown->experiment.actuation.temperature_amplitude_c == amplitude);
+    CHECK_MESSAGE(s.shown->label.find("calibrated") != std::string::npos, s.shown->label);
+    CHECK(s.compared == nullptr);
+}

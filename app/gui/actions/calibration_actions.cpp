@@ -139,6 +139,22 @@ bool cancel_calibration(Studio& s) {
     return true;
 }
 
+void show_calibrated_body(Studio& s) {
+    const auto& c = s.calibration;
+    const auto snap = c.snapshot;
+    if (!snap || !snap->result || !s.shown || s.shown->framed_body != c.framed_body) return;
+    // The replay (and a video exported from it) must move as the fitted values say, and a
+    // champion compared beside it belongs to another question (issue 39, M7).
+    clear_compared_body(s);
+    SimulationRequest request;
+    request.id = c.body_id;
+    request.label = c.body_label + ", calibrated against " + file_name(c.track_path);
+    request.experiment = snap->result->calibrated.experiment;
+    request.framed_body = c.framed_body;
+    s.follow_champion = false;
+    s.simulator.request(std::move(request));
+}
+
 bool apply_calibration(Studio& s) {
     auto& c = s.calibration;
     const auto snap = c.snapshot;
@@ -162,6 +178,7 @@ bool apply_calibration(Studio& s) {
     if (!r.converged) label += " (not converged: the fit stopped at its simulation budget)";
     if (!apply_edit(s, next, label)) return false;
     c.applied_job = snap->job;
+    show_calibrated_body(s);
     // The live run keeps its physics until Apply to the live run sends them.
     if (run_is_live(s.evolution.phase()) && editing_run_document(s))
         set_status(s, label + " (the live run keeps its physics: Apply to the live run changes it)");

@@ -515,6 +515,7 @@ const evo::ExploitReport* shown_exploits(const Studio& studio) {
 }
 
 void clear_compared_body(Studio& studio) {
+    studio.compare_simulator.cancel();  // a compared body still being simulated goes too
     studio.compared.reset();
     studio.compared_version = studio.compare_simulator.version();
 }
