@@ -15,6 +15,7 @@
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/calibration_session.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
 #include "app/gui/view/viewport.hpp"
@@ -484,4 +485,48 @@ TEST_CASE("studio: after Apply the calibrated body is simulated again, alone in 
     CHECK(s.shown->experiment.actuation.temperature_amplitude_c == amplitude);
     CHECK_MESSAGE(s.shown->label.find("calibrated") != std::string::npos, s.shown->label);
     CHECK(s.compared == nullptr);
+}
+
+TEST_CASE("studio session: the Calibrate tab browses for its files; exports go to the data folder") {
+    // Issue 39, M4: Calibrate's body and track were typed paths only (no file dialog), and the
+    // Export tab's defaults were relative names that landed in the folder the studio was started
+    // from (the source checkout, when started from there).
+    if (!evo::calibration_available()) return;
+    const auto dir = std::filesystem::canonical(testing::fresh_dir("calibration-browse"));
+    Fixture f;
+    evo::save_body((dir / "bilayer.body.json").string(), evo::test::bilayer(false));
+    evo::write_file_atomically((dir / "tip.csv").string(),
+                               evo::measured_track_to_csv(*f.track, "test track"));
+    Studio s;
+    s.document.reset(f.experiment, "");
+    s.browser_dir = dir.string();
+    HeadlessStudio session(s, 1280, 800);
+    run_script(session, nlohmann::json::parse(R"([{"drag": "splitter plot", "by": [0, -300]},
+        {"drag": "splitter run", "by": [0, -150]}, {"click": "tab Calibrate"}, {"frames": 2},
+        {"click": "Body..."}, {"frames": 1}])"));
+    REQUIRE(s.file_dialog.open);
+    CHECK(s.file_dialog.purpose == FileDialogPurpose::ShowBody);
+    CHECK(s.widgets.count("dialog entry bilayer.body.json"));
+    CHECK_FALSE(s.widgets.count("dialog entry tip.csv"));
+    run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry bilayer.body.json"},
+        {"wait_simulation": true}, {"frames": 1}, {"click": "Track..."}, {"frames": 1}])"));
+    REQUIRE(s.shown);
+    CHECK(s.shown->label == "body bilayer.body.json");
+    CHECK(s.calibration.body_field == (dir / "bilayer.body.json").string());
+    REQUIRE(s.file_dialog.open);
+    CHECK(s.file_dialog.purpose == FileDialogPurpose::LoadTrack);
+    CHECK(s.widgets.count("dialog entry tip.csv"));
+    run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry tip.csv"},
+        {"wait_calibration": true}, {"frames": 1}])"));
+    CHECK(s.calibration.track_path == (dir / "tip.csv").string());
+    REQUIRE(s.calibration.track);
+
+    const std::string data_folder =
+        std::filesystem::path(default_runs_root()).parent_path().string();
+    for (const std::string* path :
+         {&s.exports.frames_folder, &s.exports.champion_vxa_path, &s.exports.champion_json_path,
+          &s.exports.mesh_path, &s.exports.vtk_folder, &s.exports.video_path}) {
+        CHECK_MESSAGE(path->rfind(data_folder + "/exports/", 0) == 0, *path);
+        CHECK(std::filesystem::path(*path).is_absolute());
+    }
 }

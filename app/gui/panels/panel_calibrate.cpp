@@ -14,6 +14,7 @@
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
+#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -29,9 +30,10 @@ constexpr ImU32 kWarning = IM_COL32(190, 60, 30, 255);
 void path_field(Studio& s, const char* id, const char* hint, std::string& value) {
     char buffer[1024];
     std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
-    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Load track").x -
-                            2.0f * ImGui::GetStyle().FramePadding.x -
-                            ImGui::GetStyle().ItemSpacing.x);
+    // Room for two buttons: the action and the file dialog's.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Load trackTrack...").x -
+                            4.0f * style.FramePadding.x - 2.0f * style.ItemSpacing.x);
     if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
     record_widget(s, id + 2);
 }
@@ -42,11 +44,18 @@ void track_controls(Studio& s) {
     path_field(s, "##body file", "BODY.json (optional: show a body file)", c.body_field);
     ImGui::SameLine();
     if (tracked_button(s, "Show body")) show_body_file(s, c.body_field);
+    ImGui::SameLine();
+    if (tracked_button(s, "Body...")) show_file_dialog(s, FileDialogPurpose::ShowBody);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("browse for a body file (*.json) to show");
     path_field(s, "##track file", "TRACK.csv (docs/track-format.md)", c.track_field);
     ImGui::SameLine();
     ImGui::BeginDisabled(running || !s.shown);
     if (tracked_button(s, "Load track")) load_track(s, c.track_field);
+    ImGui::SameLine();
+    if (tracked_button(s, "Track...")) show_file_dialog(s, FileDialogPurpose::LoadTrack);
     ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("browse for a measured track (*.csv, docs/track-format.md)");
     if (!c.track) {
         ImGui::TextDisabled(s.shown ? "Load a track onto %s." : "Show a body first.",
                             s.shown ? s.shown->label.c_str() : "");
