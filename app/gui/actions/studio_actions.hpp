@@ -126,6 +126,9 @@ void cancel_verification(Studio& studio);
 //! The verification of the body shown, with its shapes, when it is drawn in the 3D view now
 //! (Simulation mode, ghost on); null otherwise.
 const FemVerification* fem_overlay(const Studio& studio);
+//! The verdict as the studio shows it: with the tolerance it was judged by when the body was
+//! compared ("agrees within 3.1 % (tolerance 10 %)"), so a reader never has to hover for it.
+std::string fem_verdict_line(const FemVerification& verification);
 //! Per frame (update_studio): takes the verifier's newest state, and looks up the report kept in
 //! the run directory for a body newly shown.
 void update_verification(Studio& studio);
