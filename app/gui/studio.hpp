@@ -100,20 +100,24 @@ struct ViewState {
     } second;
 };
 
+//! The Export panel's fields. Their defaults are absolute, in the data folder
+//! (default_export_path), not relative names that land wherever the studio was started.
 struct ExportState {
     std::string screenshot_path;  //!< empty: numbered files in default_screenshots_dir()
     int screenshot_width = 1920, screenshot_height = 1080;
-    std::string frames_folder = "bhm-frames";
+    std::string frames_folder = default_export_path("bhm-frames");
     int frames_width = 1280, frames_height = 720;
     double frames_fps = 30.0;
     //! Burn a caption into frames and videos: experiment, body (generation), fitness, time.
     bool caption = true;
-    std::string champion_vxa_path = "champion.vxa";
-    std::string champion_json_path = "champion.json";
-    std::string mesh_path = "champion.stl";  //!< .stl or .obj (+ .mtl beside it)
+    std::string champion_vxa_path = default_export_path("champion.vxa");
+    std::string champion_json_path = default_export_path("champion.json");
+    //! .stl or .obj (+ .mtl beside it)
+    std::string mesh_path = default_export_path("champion.stl");
     bool mesh_deformed = false;              //!< at the replay time instead of at rest
-    std::string vtk_folder = "bhm-paraview";
-    std::string video_path = "bhm-replay.mp4";  //!< .mp4 (H.264) or .gif, through ffmpeg
+    std::string vtk_folder = default_export_path("bhm-paraview");
+    //! .mp4 (H.264) or .gif, through ffmpeg
+    std::string video_path = default_export_path("bhm-replay.mp4");
     //! A frame sequence (or video) in progress: one frame is written per UI frame so the UI
     //! stays live.
     struct FrameJob {

@@ -173,6 +173,9 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     // BOBYQA's trust region can shrink onto a shallow valley before reaching its floor; restarting
     // from the best point of the search with a fresh, smaller region finds the rest; passes stop
     // once one no longer improves that search's misfit by 1 %.
+    // Whether the pass that found the best point stopped by its own criterion rather than at the
+    // budget; false while no pass has reached the best point (the scan's best).
+    bool best_converged = false;
     for (const auto& start : starts) {
         std::vector<double> here = start;
         double here_best = std::numeric_limits<double>::infinity();
@@ -187,7 +190,8 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
                 return (*static_cast<Tracked*>(data))(trial);
             },
             &tracked);
-        for (int pass = 0; pass < 4 && sims + static_cast<int>(2 * p + 2) <= budget; ++pass) {
+        for (int pass = 0; pass < 4; ++pass) {
+            if (sims + static_cast<int>(2 * p + 2) > budget) break;
             const double before_pass = here_best;
             std::vector<double> pass_step(p);
             for (std::size_t i = 0; i < p; ++i)
@@ -197,8 +201,10 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
             opt.set_maxeval(budget - sims);
             x = here;
             double final_value = 0.0;
+            bool pass_converged = false;
             try {
                 const nlopt::result r = opt.optimize(x, final_value);
+                pass_converged = r != nlopt::MAXEVAL_REACHED;
                 out.stop_reason = r == nlopt::MAXEVAL_REACHED ? "simulation budget reached"
                                   : r == nlopt::XTOL_REACHED  ? "parameters converged"
                                   : r == nlopt::FTOL_REACHED  ? "misfit converged"
@@ -208,6 +214,7 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
             } catch (const nlopt::roundoff_limited&) {
                 if (o.cancel && o.cancel->load()) throw EvaluationCancelled();
                 out.stop_reason = "optimiser limited by round-off";
+                pass_converged = true;  // as far as the misfit's precision allows
             } catch (...) {
                 // NLopt's C++ wrapper swallows the objective's exceptions and throws its own
                 // (nlopt failure): a cancelled simulation must still say it was cancelled.
@@ -215,9 +222,14 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
                 throw;
             }
             ++out.optimiser_passes;
+            // This start holds the best point found so far (its objective is the squared
+            // misfit): whether the best point is an optimum is whether this pass converged.
+            if (std::sqrt(here_best) <= best * (1.0 + 1e-12)) best_converged = pass_converged;
             if (pass > 0 && here_best > 0.99 * before_pass) break;
         }
     }
+    out.converged = best_converged;
+    if (!out.converged) out.stop_reason = "simulation budget reached";
     out.x = best_x;
     out.optimiser_simulations = sims;
     out.calibrated = apply_fit(e, ps, out.x);
@@ -235,6 +247,11 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     const std::size_t dof = n > p + offsets ? n - p - offsets : n;
     out.identifiability = analyse_identifiability(jac, ssr / static_cast<double>(dof));
     const auto& id = out.identifiability;
+    if (!out.converged)
+        out.warnings.push_back(
+            "not converged: the fit stopped at its simulation budget (" + std::to_string(budget) +
+            "), so the values are the best found, not the best fit, and may be further off than "
+            "their standard deviations; calibrate again with a larger budget");
     for (std::size_t i = 0; i < p; ++i) {
         FittedParameter f;
         f.parameter = ps[i];

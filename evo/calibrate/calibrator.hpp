@@ -56,6 +56,11 @@ struct CalibrationResult {
     int optimiser_passes = 0;  //!< BOBYQA runs (restarts included)
     int scan_simulations = 0;  //!< of optimiser_simulations, the parallel scan of the box
     std::string stop_reason;
+    //! False when the best point was not reached by an optimiser pass that stopped by its own
+    //! criterion (the pass hit the simulation budget, or the budget left no pass to run from the
+    //! scan's best): the values are the best found, not an optimum, and the standard deviations
+    //! (the curvature at that point) understate how far off they may be.
+    bool converged = true;
     Identifiability identifiability;
     SimulatedTrack before, after;
     FitPoint calibrated;  //!< the experiment with the fitted values (and the phase lag)

@@ -5,6 +5,7 @@
 // The truth is the parameters our own engine made the track with (as tests/evo/test_calibrate).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/calibration_session.hpp"
+#include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
 #include "app/gui/view/viewport.hpp"
@@ -392,4 +394,139 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
     CHECK(run->rule_changes[0].generation == info.rule_changes[0].generation);
     CHECK(run->rule_changes[0].description.rfind("physics: E[passive] 5e+06 -> ", 0) == 0);
     CHECK(run->experiment.materials[0].physics.youngs_modulus_pa == fitted_e);
+}
+
+namespace {
+
+// Frames as update_studio runs them (no drawing) until done() holds or the timeout passes.
+template <class Done>
+bool update_until(Studio& s, Done done, double timeout_s) {
+    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
+    while (!done() && Clock::now() < end) {
+        update_studio(s);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    update_studio(s);
+    return done();
+}
+
+// The fixture's body shown, its track loaded onto it and E and amplitude fitted with `budget`
+// simulations; returns the finished snapshot.
+std::shared_ptr<const CalibrationSnapshot> calibrate_fixture(Studio& s, const Fixture& f,
+                                                             const std::filesystem::path& dir,
+                                                             int budget) {
+    const std::string track_path = (dir / "tip.csv").string();
+    evo::write_file_atomically(track_path, evo::measured_track_to_csv(*f.track, "test track"));
+    s.document.reset(f.experiment, "");
+    SimulationRequest request;
+    request.id = -2;
+    request.label = "bilayer";
+    request.experiment = f.experiment;
+    request.framed_body = f.body;
+    s.simulator.request(request);
+    REQUIRE(update_until(s, [&] { return s.shown != nullptr; }, 60.0));
+    REQUIRE(load_track(s, track_path));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }, 60.0));
+    s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
+    s.calibration.fit_on[0] = true;  // E
+    s.calibration.fit_on[3] = true;  // amplitude
+    s.calibration.max_simulations = budget;
+    s.calibration.threads = 2;
+    REQUIRE(start_calibration(s));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }, 120.0));
+    REQUIRE(s.calibration.snapshot->phase == CalibrationPhase::Finished);
+    return s.calibration.snapshot;
+}
+
+}  // namespace
+
+TEST_CASE("studio: a calibration the budget cut short says so and Apply labels it unconverged") {
+    // Issue 39, M3: a fit that stopped at its simulation budget showed "done" with a standard
+    // deviation 28 times smaller than its error, and Apply wrote it as any other.
+    if (!evo::calibration_available()) return;
+    Fixture f;
+    Studio s;
+    // 12: the scan and one short pass of BOBYQA.
+    const auto snap = calibrate_fixture(s, f, testing::fresh_dir("calibration-budget"), 12);
+    CHECK_MESSAGE(s.status.rfind("calibration stopped at its simulation budget, not converged",
+                                 0) == 0,
+                  s.status);
+    const auto& warnings = snap->result->warnings;
+    CHECK(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+        return w.rfind("not converged", 0) == 0;
+    }));
+    REQUIRE(apply_calibration(s));
+    CHECK_MESSAGE(s.document.undo_label().find("(not converged") != std::string::npos,
+                  s.document.undo_label());
+}
+
+TEST_CASE("studio: after Apply the calibrated body is simulated again, alone in the view") {
+    // Issue 39, M7: after Calibrate > Apply the body shown kept its old motion (its replay and a
+    // video of it too, with no note) and the split view kept an unrelated champion beside it.
+    if (!evo::calibration_available()) return;
+    Fixture f;
+    Studio s;
+    const auto snap = calibrate_fixture(s, f, testing::fresh_dir("calibration-resimulate"), 12);
+    SimulationRequest other;  // beside it (Analysis > Champions > beside)
+    other.id = 7;
+    other.label = "an unrelated champion";
+    other.experiment = f.experiment;
+    other.framed_body = f.body;
+    s.compare_simulator.request(other);
+    REQUIRE(update_until(s, [&] { return s.compared != nullptr; }, 60.0));
+    const auto before = s.shown;
+    REQUIRE(apply_calibration(s));
+    CHECK(s.compared == nullptr);
+    const double amplitude = s.document.experiment().actuation.temperature_amplitude_c;
+    CHECK(amplitude == relative(snap->result->fitted[1].value, 1e-12));
+    REQUIRE(update_until(
+        s, [&] { return s.shown && s.shown != before && !s.simulator.busy(); }, 60.0));
+    CHECK(s.shown->framed_body == f.body);
+    CHECK(s.shown->experiment.actuation.temperature_amplitude_c == amplitude);
+    CHECK_MESSAGE(s.shown->label.find("calibrated") != std::string::npos, s.shown->label);
+    CHECK(s.compared == nullptr);
+}
+
+TEST_CASE("studio session: the Calibrate tab browses for its files; exports go to the data folder") {
+    // Issue 39, M4: Calibrate's body and track were typed paths only (no file dialog), and the
+    // Export tab's defaults were relative names that landed in the folder the studio was started
+    // from (the source checkout, when started from there).
+    if (!evo::calibration_available()) return;
+    const auto dir = std::filesystem::canonical(testing::fresh_dir("calibration-browse"));
+    Fixture f;
+    evo::save_body((dir / "bilayer.body.json").string(), evo::test::bilayer(false));
+    evo::write_file_atomically((dir / "tip.csv").string(),
+                               evo::measured_track_to_csv(*f.track, "test track"));
+    Studio s;
+    s.document.reset(f.experiment, "");
+    s.browser_dir = dir.string();
+    HeadlessStudio session(s, 1280, 800);
+    run_script(session, nlohmann::json::parse(R"([{"drag": "splitter plot", "by": [0, -300]},
+        {"drag": "splitter run", "by": [0, -150]}, {"click": "tab Calibrate"}, {"frames": 2},
+        {"click": "Body..."}, {"frames": 1}])"));
+    REQUIRE(s.file_dialog.open);
+    CHECK(s.file_dialog.purpose == FileDialogPurpose::ShowBody);
+    CHECK(s.widgets.count("dialog entry bilayer.body.json"));
+    CHECK_FALSE(s.widgets.count("dialog entry tip.csv"));
+    run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry bilayer.body.json"},
+        {"wait_simulation": true}, {"frames": 1}, {"click": "Track..."}, {"frames": 1}])"));
+    REQUIRE(s.shown);
+    CHECK(s.shown->label == "body bilayer.body.json");
+    CHECK(s.calibration.body_field == (dir / "bilayer.body.json").string());
+    REQUIRE(s.file_dialog.open);
+    CHECK(s.file_dialog.purpose == FileDialogPurpose::LoadTrack);
+    CHECK(s.widgets.count("dialog entry tip.csv"));
+    run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry tip.csv"},
+        {"wait_calibration": true}, {"frames": 1}])"));
+    CHECK(s.calibration.track_path == (dir / "tip.csv").string());
+    REQUIRE(s.calibration.track);
+
+    const std::string data_folder =
+        std::filesystem::path(default_runs_root()).parent_path().string();
+    for (const std::string* path :
+         {&s.exports.frames_folder, &s.exports.champion_vxa_path, &s.exports.champion_json_path,
+          &s.exports.mesh_path, &s.exports.vtk_folder, &s.exports.video_path}) {
+        CHECK_MESSAGE(path->rfind(data_folder + "/exports/", 0) == 0, *path);
+        CHECK(std::filesystem::path(*path).is_absolute());
+    }
 }

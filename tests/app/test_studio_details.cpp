@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <utility>
 
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
 #include "app/cli/render_video.hpp"
 #include "app/gui/actions/export_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
@@ -65,6 +68,35 @@ TEST_CASE("studio details: a Ctrl+Z pressed and released between two frames stil
     CHECK_FALSE(studio.document.can_undo());
     run_script(session, json::parse(R"([{"key": "ctrl+y"}])"));  // held a frame: still works
     CHECK(studio.document.experiment().simulation.settle_s == 0.2);
+}
+
+TEST_CASE("studio details: quick keys in a prefilled path field all act, in their order") {
+    // Issue 39, M2: at 5-20 fps a key pressed and released between two frames never reached a
+    // text field (Ctrl+A, End, Backspace did nothing) and a typed path was spliced into the
+    // proposed one.
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    studio.run_dir_field = "/data/proposed/run-1";
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "run dir"},
+        {"key": "end", "fast": true}, {"key": "backspace", "fast": true},
+        {"key": "backspace", "fast": true}, {"frames": 1}])"));
+    CHECK(studio.run_dir_field == "/data/proposed/run");
+    run_script(session, json::parse(R"([{"key": "ctrl+a", "fast": true}, {"type": "/mine/run"},
+                                        {"frames": 1}])"));
+    CHECK(studio.run_dir_field == "/mine/run");
+    // All in one event batch (one slow frame): End, two Backspaces, then "s"; each key is taken
+    // by a frame of its own, the character after them.
+    auto& keys = session.input().keys;
+    for (int key : {GLFW_KEY_HOME, GLFW_KEY_DELETE, GLFW_KEY_END, GLFW_KEY_BACKSPACE}) {
+        keys.key(key, GLFW_PRESS, 0);
+        keys.key(key, GLFW_RELEASE, 0);
+    }
+    keys.character('s');
+    for (int i = 0; i < 8 && keys.pending(); ++i) session.frame();
+    session.frame();
+    CHECK_FALSE(keys.pending());
+    CHECK(studio.run_dir_field == "mine/rus");
 }
 
 TEST_CASE("studio details: a second dialog does not show an older error") {

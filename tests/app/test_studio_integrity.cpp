@@ -371,3 +371,40 @@ TEST_CASE("studio integrity: simulation mode draws no tinted faces and hatches f
             ++hatch;
     CHECK(hatch >= 8);  // the outline's four segments and at least one hatch line
 }
+
+TEST_CASE("studio integrity: viewing a run over a saved document never lets Save overwrite it") {
+    // Issue 39, H1: Run > Run directory > View replaced a saved experiment with the run's while
+    // the path field still named the saved file, so the next Save wrote the run's experiment over
+    // it (a fixed face, a frame and its material were lost).
+    const auto dir = fs::absolute(testing::fresh_dir("integrity-view-over-saved"));
+    auto run_experiment = testing::tiny_experiment();
+    run_experiment.name = "the run";
+    run_experiment.evolution.generations = 1;
+    {
+        evo::RunOptions options;
+        options.out_dir = (dir / "run").string();
+        evo::EvolutionRun(run_experiment, options).run();
+    }
+    auto mine = testing::tiny_experiment();
+    mine.name = "mine";
+    mine.boundary.faces[static_cast<int>(evo::Face::ZMin)] = evo::BoundaryKind::Fixed;
+    const std::string my_file = (dir / "mine.json").string();
+    evo::save_experiment(my_file, mine);
+    const std::string saved_text = read_text(my_file);
+
+    Studio studio;
+    REQUIRE(open_experiment(studio, my_file));  // File > Open: the path field names the file
+    CHECK(studio.path_field == my_file);
+    CHECK_FALSE(studio.document.dirty());
+    REQUIRE(open_run_directory(studio, (dir / "run").string()));
+    // The editor shows the run's experiment, untitled, and says the saved file is kept.
+    CHECK(studio.document.experiment().name == "the run");
+    CHECK(studio.document.path().empty());
+    CHECK(studio.path_field.empty());
+    CHECK_MESSAGE(studio.status.find(my_file + " is unchanged") != std::string::npos,
+                  studio.status);
+    // Save asks for a name rather than writing over the file the editor held before.
+    CHECK_FALSE(save_experiment(studio));
+    CHECK(read_text(my_file) == saved_text);
+    CHECK(evo::load_experiment(my_file) == mine);
+}

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include <imgui.h>
+
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
@@ -221,4 +223,22 @@ TEST_CASE("studio layout: the view names the body being simulated, not the one s
     frames_until(session, 60.0, [&] { return !studio.simulator.busy(); });
     session.frame();
     CHECK_FALSE(drawn_now(studio, "simulating note"));
+}
+
+TEST_CASE("studio layout: at 900 x 600 the Analysis tile shows more than its tab row") {
+    // Issue 39, M5: at 900 x 600 the Analysis panel was only its tab row (60 px), so the
+    // population, the calibration and the FEM tab could not be reached.
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 900, 600);
+    run_script(session, json::parse(R"([{"frames": 3}, {"click": "tab FEM"}, {"frames": 2}])"));
+    REQUIRE(drawn_now(studio, "analysis panel"));
+    const WidgetRect tile = studio.widgets.at("analysis panel");
+    const float lines = (tile.max.y - tile.min.y) / ImGui::GetTextLineHeightWithSpacing();
+    CHECK_MESSAGE(lines >= 8.0f, "the Analysis tile is " << lines << " lines high");
+    CHECK(studio.tiles.population >= kMinPopulation);
+    CHECK(studio.tiles.run >= kMinRun);
+    CHECK(studio.tiles.plot >= kMinPlot);
+    // The view keeps its share all the same.
+    CHECK(studio.view.size_px.y >= 0.4f * 600.0f);
 }

@@ -263,3 +263,31 @@ TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no emp
     }
     CHECK(fs::exists(dir / "kept" / "notes.txt"));
 }
+
+TEST_CASE("studio run states: after Stop, Resume goes on from the run's folder, nothing typed") {
+    // Issue 39, M1: after Stop, Resume was greyed and the run-directory field empty; resuming
+    // needed the path typed into a collapsed section.
+    const auto dir = fs::absolute(testing::fresh_dir("states-stop-resume"));
+    Studio studio;
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 6;
+    studio.document.reset(e, "");
+    studio.run_dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "Start"},
+                                        {"wait_generations": 1, "timeout_s": 240},
+                                        {"click": "Stop"},
+                                        {"wait_run": "stopped", "timeout_s": 120}])"));
+    const int stopped_at = studio.evolution.snapshot()->generation;
+    REQUIRE(stopped_at >= 1);
+    REQUIRE(stopped_at < 6);  // the budget leaves something to resume
+    // The Run directory section holds the folder, so Resume run works from there too.
+    CHECK(studio.open_run_field == (dir / "run").lexically_normal().string());
+    run_script(session, json::parse(R"([{"click": "Resume"}, {"frames": 2}])"));
+    CHECK_MESSAGE(run_is_live(studio.evolution.phase()), studio.status);
+    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    const auto run = studio.evolution.snapshot();
+    CHECK(run->generation == 6);
+    CHECK(run->history.size() == 6);
+    CHECK(run->run_dir == (dir / "run").lexically_normal().string());
+}

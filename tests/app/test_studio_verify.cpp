@@ -498,3 +498,43 @@ TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {
         std::copy_n(screen.pixel(x0, y), 4 * panel.width, panel.pixel(0, y - y0));
     testing::check_studio_golden("fem", panel, session.font());
 }
+
+TEST_CASE("studio verify: the verdict states its tolerance; the split view's lines stay in their pane") {
+    // Issue 39, M6: the FEM verdict said "agrees within X %" without the tolerance it was judged
+    // by (only a tooltip had it), and in the split view the overlay's lines ran under the right
+    // pane.
+    auto kept = read_verification(
+        (fs::path(BHM_SOURCE_DIR) / "tests" / "data" / "verify" / "individual-7").string(), 7);
+    REQUIRE(kept);
+    REQUIRE(kept->compared);
+    CHECK(fem_verdict_line(*kept) == kept->verdict + " (tolerance 10 %)");
+
+    auto e = testing::tiny_experiment({2, 2, 1});
+    Studio studio;
+    studio.document.reset(e, "");
+    HeadlessStudio session(studio, 1024, 700);
+    testing::request_tiny_body(studio, e, 1,
+                               "champion #1 of generation 12 of a run whose name is long enough "
+                               "to run past the left pane of the split view");
+    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120}])"));
+    SimulationRequest other;
+    other.id = 2;
+    other.label = "champion #2 of generation 3, compared with the body on the left";
+    other.experiment = e;
+    other.framed_body = studio.shown->framed_body;
+    studio.compare_simulator.request(other);
+    const auto end = Clock::now() + std::chrono::seconds(120);
+    while (!studio.compared && Clock::now() < end) session.frame();
+    REQUIRE(studio.compared);
+    run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
+    REQUIRE(studio.view.split);
+    for (const char* name : {"view overlay", "compared overlay"}) {
+        const WidgetRect text = studio.widgets.at(name);
+        CHECK(text.frame == studio.frame);
+        const bool left = std::string(name) == "view overlay";
+        const float pane_right = left ? studio.view.origin_px.x + studio.view.size_px.x
+                                      : studio.view.second.origin_px.x + studio.view.second.size_px.x;
+        CHECK_MESSAGE(text.max.x <= pane_right, name << " reaches " << text.max.x
+                                                     << ", its pane ends at " << pane_right);
+    }
+}

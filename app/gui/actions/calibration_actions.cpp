@@ -139,6 +139,22 @@ bool cancel_calibration(Studio& s) {
     return true;
 }
 
+void show_calibrated_body(Studio& s) {
+    const auto& c = s.calibration;
+    const auto snap = c.snapshot;
+    if (!snap || !snap->result || !s.shown || s.shown->framed_body != c.framed_body) return;
+    // The replay (and a video exported from it) must move as the fitted values say, and a
+    // champion compared beside it belongs to another question (issue 39, M7).
+    clear_compared_body(s);
+    SimulationRequest request;
+    request.id = c.body_id;
+    request.label = c.body_label + ", calibrated against " + file_name(c.track_path);
+    request.experiment = snap->result->calibrated.experiment;
+    request.framed_body = c.framed_body;
+    s.follow_champion = false;
+    s.simulator.request(std::move(request));
+}
+
 bool apply_calibration(Studio& s) {
     auto& c = s.calibration;
     const auto snap = c.snapshot;
@@ -159,8 +175,10 @@ bool apply_calibration(Studio& s) {
         label += " " + f.parameter.name + " " + number(f.initial_value) + " -> " +
                  number(f.value) + " " + evo::fit_unit(f.parameter) + ",";
     label.pop_back();
+    if (!r.converged) label += " (not converged: the fit stopped at its simulation budget)";
     if (!apply_edit(s, next, label)) return false;
     c.applied_job = snap->job;
+    show_calibrated_body(s);
     // The live run keeps its physics until Apply to the live run sends them.
     if (run_is_live(s.evolution.phase()) && editing_run_document(s))
         set_status(s, label + " (the live run keeps its physics: Apply to the live run changes it)");
@@ -224,7 +242,11 @@ void update_calibration(Studio& s) {
                           " simulations");
     } else if (snap.phase == CalibrationPhase::Finished && snap.result) {
         const auto& r = *snap.result;
-        set_status(s, "calibration done: misfit " + number(r.misfit_before_m) + " m -> " +
+        // A fit the budget cut short is not "done": its values are not an optimum (issue 39, M3).
+        set_status(s, std::string(r.converged ? "calibration done"
+                                              : "calibration stopped at its simulation budget, "
+                                                "not converged") +
+                          ": misfit " + number(r.misfit_before_m) + " m -> " +
                           number(r.misfit_after_m) + " m, " +
                           std::to_string(r.optimiser_simulations + r.jacobian_simulations + 2) +
                           " simulations" +

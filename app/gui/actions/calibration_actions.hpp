@@ -25,6 +25,9 @@ bool cancel_calibration(Studio& studio);
 //! labelled with the values and the track; false when there is no finished calibration or the
 //! edit is refused.
 bool apply_calibration(Studio& studio);
+//! After Apply: the track's body, when it is the one shown, is simulated again under the
+//! calibrated experiment (labelled so) and nothing stays beside it in the split view.
+void show_calibrated_body(Studio& studio);
 //! Sends the fitted values to the live run as a rule change with physics
 //! (EvolutionSession::change_physics): the run's physics with the fitted values in place, so
 //! from the next generation every member is simulated again under them, the change is in

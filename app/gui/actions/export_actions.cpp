@@ -46,6 +46,11 @@ const evo::Body* body_to_export(const Studio& s, const evo::Experiment** experim
 
 }  // namespace
 
+void make_parent_folder(const std::string& path) {
+    const auto parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
 render::Image render_view_image(const Studio& s, ViewRenderer& renderer, int width, int height) {
     const render::DrawList list = build_view_draw_list(s);
     return renderer.draw_to_image(list, s.view.camera, width, height, 4);
@@ -198,6 +203,7 @@ bool export_champion_vxa(Studio& s, const std::string& path) {
         return false;
     }
     try {
+        make_parent_folder(path);  // the defaults' folder in the data folder may not exist yet
         evo::save_vxa(path, *experiment, *body);
         set_status(s, "VXA written: " + path);
         return true;
@@ -215,6 +221,7 @@ bool export_champion_json(Studio& s, const std::string& path) {
         return false;
     }
     try {
+        make_parent_folder(path);  // the defaults' folder in the data folder may not exist yet
         evo::save_body(path, *body);
         set_status(s, "body JSON written: " + path);
         return true;

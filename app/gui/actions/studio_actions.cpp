@@ -257,6 +257,8 @@ bool stop_run(Studio& studio) {
     if (!run_is_live(studio.evolution.phase())) return false;
     studio.evolution.stop();
     const int done = studio.run && studio.run->loaded ? studio.run->generation : 0;
+    // Resume run (Run directory) goes on from this folder without its path typed (issue 39, M1).
+    if (done > 0 && !studio.run->run_dir.empty()) studio.open_run_field = studio.run->run_dir;
     set_status(studio, done > 0 ? "stopping: the generation in progress is abandoned, the "
                                   "checkpoint of generation " +
                                       std::to_string(done - 1) + " is kept"
@@ -265,9 +267,27 @@ bool stop_run(Studio& studio) {
     return true;
 }
 
+std::string stopped_run_folder(const Studio& studio) {
+    if (studio.showing_run_directory || studio.evolution.phase() != RunPhase::Stopped) return "";
+    const auto run = studio.evolution.snapshot();
+    // Generation 0 stopped leaves no checkpoint (and no folder): nothing to go on from.
+    if (!run || !run->loaded || run->generation < 1) return "";
+    return run->run_dir;
+}
+
+bool resume_stopped_run(Studio& studio) {
+    const std::string folder = stopped_run_folder(studio);
+    if (folder.empty()) return false;
+    return resume_run_directory(studio, folder);
+}
+
 bool resume_run_directory(Studio& studio, const std::string& run_dir) {
     if (run_is_live(studio.evolution.phase())) {
         set_status(studio, "a run is already going: stop it first", true);
+        return false;
+    }
+    if (run_dir.empty()) {
+        set_status(studio, "resume run: type or browse for a run directory first", true);
         return false;
     }
     try {
@@ -370,9 +390,16 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
         remove_stale_partials(run_dir);
         std::string note;
         if (studio.run && !studio.document.dirty()) {
-            // Show the run's experiment in the editor (a copy; the run directory is never written).
+            // Show the run's experiment in the editor (a copy; the run directory is never
+            // written). It is untitled, and so is the path field: Save must never write the
+            // run's experiment over the file the editor held before (issue 39, H1).
+            const std::string previous = studio.document.path();
             studio.document.reset(studio.run->experiment, "");
+            studio.path_field.clear();
             studio.view.camera_needs_framing = true;
+            note = previous.empty() ? std::string(" (the editor shows its experiment, untitled)")
+                                    : " (the editor shows its experiment, untitled; " + previous +
+                                          " is unchanged)";
         } else if (studio.run) {
             note = " (the editor keeps your unsaved experiment)";
         }
@@ -488,6 +515,7 @@ const evo::ExploitReport* shown_exploits(const Studio& studio) {
 }
 
 void clear_compared_body(Studio& studio) {
+    studio.compare_simulator.cancel();  // a compared body still being simulated goes too
     studio.compared.reset();
     studio.compared_version = studio.compare_simulator.version();
 }

@@ -49,6 +49,12 @@ bool pause_run(Studio& studio);
 bool resume_run(Studio& studio);
 bool stop_run(Studio& studio);
 bool resume_run_directory(Studio& studio, const std::string& run_dir);
+//! The folder of the live session's run when it was stopped after at least one generation (its
+//! checkpoint can be resumed); empty otherwise.
+std::string stopped_run_folder(const Studio& studio);
+//! Resume after Stop: the stopped run goes on from its last checkpoint, as Resume run on its
+//! folder would. False when there is no such run (stopped_run_folder).
+bool resume_stopped_run(Studio& studio);
 //! The fallback when a resume failed (no usable checkpoint): the experiment the run was started
 //! with (its run.json) becomes the editor's document and starts from generation 0 in a new
 //! folder, as the CLI's message proposes. Refused while the editor holds unsaved edits.
@@ -120,6 +126,9 @@ void cancel_verification(Studio& studio);
 //! The verification of the body shown, with its shapes, when it is drawn in the 3D view now
 //! (Simulation mode, ghost on); null otherwise.
 const FemVerification* fem_overlay(const Studio& studio);
+//! The verdict as the studio shows it: with the tolerance it was judged by when the body was
+//! compared ("agrees within 3.1 % (tolerance 10 %)"), so a reader never has to hover for it.
+std::string fem_verdict_line(const FemVerification& verification);
 //! Per frame (update_studio): takes the verifier's newest state, and looks up the report kept in
 //! the run directory for a body newly shown.
 void update_verification(Studio& studio);

@@ -157,6 +157,13 @@ const FemVerification* fem_overlay(const Studio& studio) {
     return v.get();
 }
 
+std::string fem_verdict_line(const FemVerification& v) {
+    if (!v.compared) return v.verdict;
+    char tolerance[48];
+    std::snprintf(tolerance, sizeof tolerance, " (tolerance %.3g %%)", 100.0 * v.tolerance);
+    return v.verdict + tolerance;
+}
+
 void update_verification(Studio& studio) {
     if (studio.fem_verifier.version() != studio.fem_state_version) {
         studio.fem_state_version = studio.fem_verifier.version();
@@ -174,7 +181,8 @@ void update_verification(Studio& studio) {
                     studio.fem_load =
                         std::min<int>(1, static_cast<int>(st->result->rows.size()) - 1);
                 }
-                set_status(studio, st->label + ": " + st->result->verdict + " (" + seconds + ")");
+                set_status(studio, st->label + ": " + fem_verdict_line(*st->result) + ", " +
+                                       seconds);
             } else if (st->phase == FemVerifyPhase::Cancelled) {
                 set_status(studio, "verification of " + st->label + " cancelled after " + seconds +
                                        "; nothing was written");

@@ -14,6 +14,7 @@
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
+#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -29,9 +30,10 @@ constexpr ImU32 kWarning = IM_COL32(190, 60, 30, 255);
 void path_field(Studio& s, const char* id, const char* hint, std::string& value) {
     char buffer[1024];
     std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
-    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Load track").x -
-                            2.0f * ImGui::GetStyle().FramePadding.x -
-                            ImGui::GetStyle().ItemSpacing.x);
+    // Room for two buttons: the action and the file dialog's.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Load trackTrack...").x -
+                            4.0f * style.FramePadding.x - 2.0f * style.ItemSpacing.x);
     if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
     record_widget(s, id + 2);
 }
@@ -42,11 +44,18 @@ void track_controls(Studio& s) {
     path_field(s, "##body file", "BODY.json (optional: show a body file)", c.body_field);
     ImGui::SameLine();
     if (tracked_button(s, "Show body")) show_body_file(s, c.body_field);
+    ImGui::SameLine();
+    if (tracked_button(s, "Body...")) show_file_dialog(s, FileDialogPurpose::ShowBody);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("browse for a body file (*.json) to show");
     path_field(s, "##track file", "TRACK.csv (docs/track-format.md)", c.track_field);
     ImGui::SameLine();
     ImGui::BeginDisabled(running || !s.shown);
     if (tracked_button(s, "Load track")) load_track(s, c.track_field);
+    ImGui::SameLine();
+    if (tracked_button(s, "Track...")) show_file_dialog(s, FileDialogPurpose::LoadTrack);
     ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("browse for a measured track (*.csv, docs/track-format.md)");
     if (!c.track) {
         ImGui::TextDisabled(s.shown ? "Load a track onto %s." : "Show a body first.",
                             s.shown ? s.shown->label.c_str() : "");
@@ -110,10 +119,12 @@ void progress_line(Studio& s) {
                       format_duration(elapsed).c_str());
         ImGui::ProgressBar(0.0f, ImVec2(-1.0f, 0.0f), text);
     } else {
+        const bool converged = !snap->result || snap->result->converged;
         const char* state = snap->phase == CalibrationPhase::Running     ? ""
                             : snap->phase == CalibrationPhase::Cancelled ? " (cancelled)"
                             : snap->phase == CalibrationPhase::Failed    ? " (failed)"
-                                                                         : " (done)";
+                            : converged                                  ? " (done)"
+                                                : " (budget reached: not converged)";
         char best[32] = "-";
         if (std::isfinite(snap->best_misfit_m))
             std::snprintf(best, sizeof best, "%.4g mm", snap->best_misfit_m * 1e3);
@@ -147,7 +158,15 @@ void report(Studio& s) {
             ImGui::TableNextColumn();
             ImGui::Text(f.at_bound ? "%.4g (bound)" : "%.4g", f.value);
             ImGui::TableNextColumn();
-            if (std::isfinite(f.sigma))
+            if (!r.converged) {
+                // The curvature where the budget stopped the search says nothing of how far
+                // the optimum is: no number that would pass for an uncertainty.
+                ImGui::TextColored(ImColor(kWarning), "not converged");
+                if (ImGui::IsItemHovered())
+                    ImGui::SetTooltip("%.2g from the curvature at this point, which understates "
+                                      "the error of a fit that did not converge",
+                                      f.sigma);
+            } else if (std::isfinite(f.sigma))
                 ImGui::Text("%.2g (%.1f %%)", f.sigma,
                             f.value != 0.0 ? 100.0 * f.sigma / std::abs(f.value) : 0.0);
             else

@@ -38,9 +38,19 @@ void controls(Studio& s) {
     if (tracked_button(s, "Pause", ImVec2(w, 0))) pause_run(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
-    ImGui::BeginDisabled(phase != RunPhase::Paused && phase != RunPhase::Pausing);
-    if (tracked_button(s, "Resume", ImVec2(w, 0))) resume_run(s);
+    // After Stop, Resume goes on from the run's last checkpoint (its folder is known).
+    const bool stopped_resumable = !stopped_run_folder(s).empty();
+    ImGui::BeginDisabled(phase != RunPhase::Paused && phase != RunPhase::Pausing &&
+                         !stopped_resumable);
+    if (tracked_button(s, "Resume", ImVec2(w, 0))) {
+        if (stopped_resumable)
+            resume_stopped_run(s);
+        else
+            resume_run(s);
+    }
     ImGui::EndDisabled();
+    if (stopped_resumable && ImGui::IsItemHovered())
+        ImGui::SetTooltip("go on from the last checkpoint of %s", stopped_run_folder(s).c_str());
     ImGui::SameLine();
     ImGui::BeginDisabled(!live || phase == RunPhase::Stopping);
     if (tracked_button(s, "Stop", ImVec2(w, 0))) stop_run(s);

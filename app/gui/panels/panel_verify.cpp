@@ -102,7 +102,7 @@ void result_section(Studio& s) {
     ImGui::PushStyleColor(ImGuiCol_Text, !v->compared ? IM_COL32(150, 100, 20, 255)
                                          : v->agrees  ? kGood
                                                       : kBad);
-    ImGui::TextWrapped("%s", v->verdict.c_str());
+    ImGui::TextWrapped("%s", fem_verdict_line(*v).c_str());
     ImGui::PopStyleColor();
     record_widget(s, "fem verdict");
     if (ImGui::IsItemHovered())

@@ -1,6 +1,7 @@
 // The 3D view: a toolbar (mode, named views, display toggles), the scene rendered into a texture
 // shown as an ImGui image, camera gestures, painter clicks and a small text overlay.
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -127,17 +128,41 @@ void pane_mouse(Studio& s, bool hovered) {
     }
 }
 
-void pane_overlay(const Studio& s, ImVec2 origin) {
-    ImDrawList* dl = ImGui::GetWindowDrawList();
+// Lines of text over a pane of the 3D view, from its top-left corner down, each wrapped at the
+// pane's width: in the split view a line running past it went under the other pane (issue 39,
+// M6). Records the block as the widget `name`.
+class OverlayText {
+  public:
+    OverlayText(Studio& s, const char* name, ImVec2 origin, ImVec2 size)
+        : s_(s), name_(name), from_{origin.x + 10.0f, origin.y + 8.0f}, at_(from_),
+          wrap_(std::max(40.0f, size.x - 20.0f)), right_(from_.x) {}
+    ~OverlayText() {
+        s_.widgets[name_] = WidgetRect{{from_.x, from_.y}, {right_, at_.y}, s_.frame};
+    }
+    void line(ImU32 color, const std::string& text) {
+        ImFont* font = ImGui::GetFont();
+        const float size = ImGui::GetFontSize();
+        ImGui::GetWindowDrawList()->AddText(font, size, at_, color, text.c_str(), nullptr, wrap_);
+        const ImVec2 extent = font->CalcTextSizeA(size, FLT_MAX, wrap_, text.c_str());
+        right_ = std::max(right_, at_.x + extent.x);
+        at_.y += extent.y + ImGui::GetStyle().ItemSpacing.y;
+    }
+    ImVec2 at() const { return at_; }
+
+  private:
+    Studio& s_;
+    const char* name_;
+    ImVec2 from_, at_;
+    float wrap_, right_;
+};
+
+void pane_overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     const auto& c = *s.compared;
-    const std::string first = "compared: " + c.label;
-    const std::string second =
-        "fitness " + format_fitness(c.fitness, c.experiment.fitness.measure) +
-        (s.view.link_cameras ? "   (cameras linked)" : "   (own camera)");
-    const float line = ImGui::GetTextLineHeightWithSpacing();
-    dl->AddText({origin.x + 10.0f, origin.y + 8.0f}, IM_COL32(30, 34, 40, 255), first.c_str());
-    dl->AddText({origin.x + 10.0f, origin.y + 8.0f + line}, IM_COL32(90, 96, 106, 255),
-                second.c_str());
+    OverlayText text(s, "compared overlay", origin, size);
+    text.line(IM_COL32(30, 34, 40, 255), "compared: " + c.label);
+    text.line(IM_COL32(90, 96, 106, 255),
+              "fitness " + format_fitness(c.fitness, c.experiment.fitness.measure) +
+                  (s.view.link_cameras ? "   (cameras linked)" : "   (own camera)"));
 }
 
 // The second pane of the split view at [origin, origin + size].
@@ -167,7 +192,7 @@ void draw_second_pane(Studio& s, ViewRenderer& renderer, ImVec2 origin, ImVec2 s
                            ImVec2(origin.x + size.x, origin.y + size.y), 1);
     record_widget(s, "3d view compared");
     pane_mouse(s, ImGui::IsItemHovered());
-    pane_overlay(s, origin);
+    pane_overlay(s, origin, size);
 }
 
 void mouse(Studio& s, glm::vec2 local, bool hovered) {
@@ -241,11 +266,8 @@ void color_bar(const Studio& s, const SimulatedBody& b, ImVec2 origin, ImVec2 si
 void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float line = ImGui::GetTextLineHeightWithSpacing();
-    ImVec2 at{origin.x + 10.0f, origin.y + 8.0f};
-    auto text = [&](ImU32 color, const std::string& t) {
-        dl->AddText(at, color, t.c_str());
-        at.y += line;
-    };
+    OverlayText lines(s, "view overlay", origin, size);
+    auto text = [&](ImU32 color, const std::string& t) { lines.line(color, t); };
     const ImU32 dark = IM_COL32(30, 34, 40, 255), dim = IM_COL32(90, 96, 106, 255);
     const auto& e = s.document.experiment();
     char buf[256];
@@ -254,10 +276,10 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     const std::string pending = s.simulator.pending_label();
     const bool waiting = !pending.empty() && (!s.shown || s.shown->label != pending);
     if (s.view.mode == ViewMode::Simulation && waiting) {
-        const ImVec2 from = at;
+        const ImVec2 from = lines.at();
         text(IM_COL32(190, 110, 0, 255), "simulating " + pending + " ...");
         s.widgets["simulating note"] =
-            WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, at.y}, s.frame};
+            WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, lines.at().y}, s.frame};
     }
     if (s.view.mode == ViewMode::Simulation && s.shown) {
         const auto& b = *s.shown;
@@ -277,7 +299,7 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
         if (const FemVerification* v = fem_overlay(s)) {
             const auto& row = v->rows[static_cast<std::size_t>(s.fem_load)];
             text(v->agrees ? IM_COL32(30, 120, 50, 255) : IM_COL32(200, 40, 30, 255),
-                 "FEM: " + v->verdict + "; static at " + row.load +
+                 "FEM: " + fem_verdict_line(*v) + "; static at " + row.load +
                      ": ours solid, CalculiX as the grey ghost");
         } else if (s.view.color_by != ColorBy::Material && !b.replay.frames.empty()) {
             color_bar(s, b, origin, size);

@@ -30,6 +30,10 @@ std::string default_screenshots_dir() {
     return (fs::path(default_runs_root()).parent_path() / "screenshots").string();
 }
 
+std::string default_export_path(const std::string& name) {
+    return (fs::path(default_runs_root()).parent_path() / "exports" / name).string();
+}
+
 std::string next_numbered_path(const std::string& path) {
     const fs::path base(absolute_path(path));
     std::error_code ec;
@@ -93,10 +97,13 @@ FileListing read_file_listing(const std::string& dir) {
             out.folders.emplace_back(absolute_path(p.string()), run);
         } else if (it->is_regular_file(type_ec) && p.extension() == ".json") {
             out.experiments.push_back(absolute_path(p.string()));
+        } else if (it->is_regular_file(type_ec) && p.extension() == ".csv") {
+            out.tracks.push_back(absolute_path(p.string()));
         }
     }
     std::sort(out.folders.begin(), out.folders.end());
     std::sort(out.experiments.begin(), out.experiments.end());
+    std::sort(out.tracks.begin(), out.tracks.end());
     return out;
 }
 

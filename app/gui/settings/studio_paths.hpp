@@ -21,6 +21,11 @@ std::string default_runs_root();
 //! beside default_runs_root() (not the folder the studio was started from).
 std::string default_screenshots_dir();
 
+//! Where the Export panel's files go unless another path is typed: an exports/ folder beside
+//! default_runs_root(), so `name` never lands in the folder the studio was started from (the
+//! source checkout, when started from there). Absolute.
+std::string default_export_path(const std::string& name);
+
 //! The first of `stem-001.ext`, `stem-002.ext`, ... beside `path` that does not exist yet,
 //! absolute: each F12 keeps the earlier screenshots.
 std::string next_numbered_path(const std::string& path);
@@ -39,6 +44,7 @@ std::vector<std::string> list_experiment_files(const std::string& dir);
 struct FileListing {
     std::vector<std::pair<std::string, bool>> folders;  //!< absolute path, is a run directory
     std::vector<std::string> experiments;               //!< *.json (absolute), by name
+    std::vector<std::string> tracks;  //!< *.csv measured tracks (absolute), by name
     std::string error;                                  //!< the folder cannot be read
     std::chrono::steady_clock::time_point read_at{};
     bool valid = false;

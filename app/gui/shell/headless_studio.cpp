@@ -3,6 +3,10 @@
 #include <glad/gl.h>
 #include <malloc.h>
 
+#include <utility>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "imgui_impl_opengl3.h"
@@ -39,7 +43,21 @@ HeadlessStudio::HeadlessStudio(Studio& studio, int width, int height)
     io.LogFilename = nullptr;
     io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
     io.BackendPlatformName = "bhm-headless";
-    // Text fields understand the keys the GLFW backend maps; scripts press the same codes.
+    // Text fields understand the keys the GLFW backend maps (ImGui_ImplGlfw_Init's table);
+    // scripts press the same codes.
+    const std::pair<ImGuiKey_, int> keys[] = {
+        {ImGuiKey_Tab, GLFW_KEY_TAB},           {ImGuiKey_LeftArrow, GLFW_KEY_LEFT},
+        {ImGuiKey_RightArrow, GLFW_KEY_RIGHT},  {ImGuiKey_UpArrow, GLFW_KEY_UP},
+        {ImGuiKey_DownArrow, GLFW_KEY_DOWN},    {ImGuiKey_PageUp, GLFW_KEY_PAGE_UP},
+        {ImGuiKey_PageDown, GLFW_KEY_PAGE_DOWN}, {ImGuiKey_Home, GLFW_KEY_HOME},
+        {ImGuiKey_End, GLFW_KEY_END},           {ImGuiKey_Insert, GLFW_KEY_INSERT},
+        {ImGuiKey_Delete, GLFW_KEY_DELETE},     {ImGuiKey_Backspace, GLFW_KEY_BACKSPACE},
+        {ImGuiKey_Space, GLFW_KEY_SPACE},       {ImGuiKey_Enter, GLFW_KEY_ENTER},
+        {ImGuiKey_Escape, GLFW_KEY_ESCAPE},     {ImGuiKey_KeyPadEnter, GLFW_KEY_KP_ENTER},
+        {ImGuiKey_A, GLFW_KEY_A},               {ImGuiKey_C, GLFW_KEY_C},
+        {ImGuiKey_V, GLFW_KEY_V},               {ImGuiKey_X, GLFW_KEY_X},
+        {ImGuiKey_Y, GLFW_KEY_Y},               {ImGuiKey_Z, GLFW_KEY_Z}};
+    for (const auto& [imgui_key, glfw_key] : keys) io.KeyMap[imgui_key] = glfw_key;
     font_ = apply_studio_style(studio.settings.ui_scale);
     if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
         ImGui::DestroyContext(gl_->imgui);
@@ -84,10 +102,11 @@ void HeadlessStudio::frame(double dt_s) {
     }
     io.MouseWheel = input_.wheel;
     input_.wheel = 0.0f;
-    io.KeyCtrl = input_.ctrl;
-    io.KeyShift = input_.shift;
     for (bool& down : io.KeysDown)
         down = false;
+    input_.keys.deliver(io);
+    io.KeyCtrl = io.KeyCtrl || input_.ctrl;
+    io.KeyShift = io.KeyShift || input_.shift;
     if (input_.key > 0 && input_.key < IM_ARRAYSIZE(io.KeysDown)) io.KeysDown[input_.key] = true;
     for (const KeyChord& press : input_.key_presses)
         studio_.key_presses.push_back(press);

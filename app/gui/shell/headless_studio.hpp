@@ -9,6 +9,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "app/gui/shell/key_event_queue.hpp"
 #include "app/gui/studio.hpp"
 #include "app/gui/studio_app.hpp"
 #include "render/image.hpp"
@@ -35,6 +36,9 @@ struct SyntheticInput {
     //! Presses since the last frame, as the window's key callback records them (a press and its
     //! release may both come before the frame). Moved into studio.key_presses by the frame.
     std::vector<KeyChord> key_presses;
+    //! What ImGui's text fields get: the same events a window's key and char callbacks queue
+    //! (a fast key's press and release, typed characters), handed over a frame at a time.
+    KeyEventQueue keys;
 };
 
 class HeadlessStudio {

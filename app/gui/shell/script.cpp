@@ -7,6 +7,7 @@
 
 #define GLFW_INCLUDE_NONE  // GL comes from glad only
 #include <GLFW/glfw3.h>
+#include <imgui_internal.h>  // ImTextCharFromUtf8
 
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/export_actions.hpp"
@@ -195,6 +196,8 @@ void press_key(HeadlessStudio& session, const std::string& chord_text, bool fast
     if (const auto press = key_event_chord(chord->key, GLFW_PRESS, mods))
         in.key_presses.push_back(*press);
     if (fast) {  // pressed and released (Ctrl too) before the next frame: nothing is held
+        in.keys.key(chord->key, GLFW_PRESS, mods);
+        in.keys.key(chord->key, GLFW_RELEASE, mods);
         session.frame();
         return;
     }
@@ -275,6 +278,17 @@ void run_step(HeadlessStudio& session, const json& step) {
     } else if (step.contains("key")) {
         press_key(session, step.at("key").get<std::string>(), step.value("fast", false),
                   step.value("hold", 0));
+    } else if (step.contains("type")) {
+        // Characters as a window's char callback gets them, all in one event batch.
+        const std::string text = step.at("type").get<std::string>();
+        for (const char* c = text.c_str(); *c;) {
+            unsigned int codepoint = 0;
+            const int used = ImTextCharFromUtf8(&codepoint, c, nullptr);
+            if (used <= 0) break;
+            session.input().keys.character(codepoint);
+            c += used;
+        }
+        session.frame();
     } else if (step.contains("view")) {
         const auto view = render::parse_named_view(step.at("view").get<std::string>());
         if (!view) throw ScriptError("unknown view (iso, front, top, side)");

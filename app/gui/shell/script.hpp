@@ -7,6 +7,7 @@
 //   {"click_face": "x+"}                      Faces tool, click the face in the 3D view
 //   {"click_cell": [x, y, z], "brush": "fixed"|"forbidden"|"material"|"clear", "material": k}
 //   {"key": "ctrl+z"}                         press a shortcut (key_bindings.hpp)
+//   {"type": "runs/a"}                        type characters into the text field with the keyboard
 //   {"view": "iso"|"front"|"top"|"side"}     named camera view (keys 1-4)
 //   {"mode": "workspace"|"simulation"}
 //   {"wait_generations": 2, "timeout_s": 120}  frames until the run has completed that many

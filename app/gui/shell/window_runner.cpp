@@ -13,6 +13,7 @@
 #include "app/gui/document/unsaved_guard.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/key_bindings.hpp"
+#include "app/gui/shell/key_event_queue.hpp"
 #include "app/gui/shell/redraw_gate.hpp"
 #include "app/gui/shell/script.hpp"
 #include "app/gui/studio_app.hpp"
@@ -38,35 +39,49 @@ void save_settings_quietly(Studio& studio) {
 struct WindowContext {
     Studio& studio;
     RedrawGate gate;
+    KeyEventQueue keys;  //!< ImGui's keys and characters, handed over a frame at a time
 };
 
 WindowContext* context_of(GLFWwindow* window) {
     return static_cast<WindowContext*>(glfwGetWindowUserPointer(window));
 }
 
-// Records each press with the modifiers of that moment (ImGui's backend calls this after its own
-// callback): a press released before the next frame still reaches the key bindings. Repeats of a
-// held key are recorded too, marked (a held Down moves on in the file dialog).
+// The window's input. ImGui's backend installs no callbacks of its own (its key callback would
+// set io.KeysDown at once, losing a press released before the frame): keys and characters go
+// through the KeyEventQueue, the mouse, scroll, focus and cursor-enter events on to the backend.
+// Each one is a reason to draw.
+
+// Records each press with the modifiers of that moment: a press released before the next frame
+// still reaches the key bindings. Repeats of a held key are recorded too, marked (a held Down
+// moves on in the file dialog).
 void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
     WindowContext* c = context_of(window);
     if (!c) return;
     c->gate.input();
+    c->keys.key(key, action, mods);
     if (const auto chord = key_event_chord(key, action, mods))
         c->studio.key_presses.push_back(*chord);
 }
-
-// The other input ImGui's backend chains to: each one is a reason to draw.
-void on_button(GLFWwindow* window, int, int, int) {
+void on_char(GLFWwindow* window, unsigned int codepoint) {
+    if (WindowContext* c = context_of(window)) {
+        c->gate.input();
+        c->keys.character(codepoint);
+    }
+}
+void on_button(GLFWwindow* window, int button, int action, int mods) {
+    ImGui_ImplGlfw_MouseButtonCallback(window, button, action, mods);
     if (WindowContext* c = context_of(window)) c->gate.input();
 }
-void on_scroll(GLFWwindow* window, double, double) {
+void on_scroll(GLFWwindow* window, double x, double y) {
+    ImGui_ImplGlfw_ScrollCallback(window, x, y);
     if (WindowContext* c = context_of(window)) c->gate.input();
 }
-void on_char(GLFWwindow* window, unsigned int) {
+void on_focus(GLFWwindow* window, int focused) {
+    ImGui_ImplGlfw_WindowFocusCallback(window, focused);
     if (WindowContext* c = context_of(window)) c->gate.input();
 }
-void on_focus(GLFWwindow* window, int) {
-    if (WindowContext* c = context_of(window)) c->gate.input();
+void on_cursor_enter(GLFWwindow* window, int entered) {
+    ImGui_ImplGlfw_CursorEnterCallback(window, entered);
 }
 
 double seconds(std::chrono::steady_clock::time_point t) {
@@ -86,16 +101,16 @@ int run_window(Studio& studio, const WindowOptions& options) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;
     apply_studio_style(studio.settings.ui_scale);
-    WindowContext window_context{studio, {}};
+    WindowContext window_context{studio, {}, {}};
     RedrawGate& gate = window_context.gate;
     glfwSetWindowUserPointer(window.handle(), &window_context);
-    // Installed first: ImGui's backend calls them after its own.
+    ImGui_ImplGlfw_InitForOpenGL(window.handle(), false);  // the callbacks are ours (above)
     glfwSetKeyCallback(window.handle(), on_key);
     glfwSetMouseButtonCallback(window.handle(), on_button);
     glfwSetScrollCallback(window.handle(), on_scroll);
     glfwSetCharCallback(window.handle(), on_char);
     glfwSetWindowFocusCallback(window.handle(), on_focus);
-    ImGui_ImplGlfw_InitForOpenGL(window.handle(), true);
+    glfwSetCursorEnterCallback(window.handle(), on_cursor_enter);
     ImGui_ImplOpenGL3_Init("#version 330 core");
     int exit_code = 0;
     {
@@ -116,7 +131,9 @@ int run_window(Studio& studio, const WindowOptions& options) {
             }
             // Nothing moves by itself: wait for input (saves the cores for evolution), waking 4
             // times a second to pick up new generations; the gate says whether to draw.
-            if (needs_animation(studio) || frame < 3)
+            // Keys still queued for ImGui (one a frame) are drawn without waiting for input.
+            if (window_context.keys.pending()) gate.input();
+            if (needs_animation(studio) || frame < 3 || window_context.keys.pending())
                 window.poll_events();
             else
                 glfwWaitEventsTimeout(0.25);
@@ -149,6 +166,7 @@ int run_window(Studio& studio, const WindowOptions& options) {
             }
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
+            window_context.keys.deliver(io);
             ImGui::NewFrame();
             app.build_frame(std::min(dt, 0.25));
             ImGui::Render();

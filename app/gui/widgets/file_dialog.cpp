@@ -33,6 +33,10 @@ const char* file_dialog_title(FileDialogPurpose purpose) {
             return "Open run directory";
         case FileDialogPurpose::CompareRun:
             return "Compare with run directory";
+        case FileDialogPurpose::ShowBody:
+            return "Show a body file";
+        case FileDialogPurpose::LoadTrack:
+            return "Load a measured track";
     }
     return "";
 }
@@ -52,10 +56,14 @@ std::vector<FileDialogEntry> file_dialog_entries(const std::string& dir, FileDia
     for (const auto& [path, run] : listing.folders)
         out.push_back({run ? FileDialogEntry::Kind::Run : FileDialogEntry::Kind::Folder,
                        fs::path(path).filename().string() + "/", path});
-    if (!purpose_wants_run(purpose))
+    if (purpose == FileDialogPurpose::LoadTrack) {
+        for (const auto& path : listing.tracks)
+            out.push_back({FileDialogEntry::Kind::Track, fs::path(path).filename().string(), path});
+    } else if (!purpose_wants_run(purpose)) {
         for (const auto& path : listing.experiments)
             out.push_back(
                 {FileDialogEntry::Kind::Experiment, fs::path(path).filename().string(), path});
+    }
     return out;
 }
 
@@ -92,6 +100,7 @@ std::optional<std::string> file_dialog_activate(FileDialog& d, std::size_t index
             file_dialog_go(d, e.path);
             return std::nullopt;
         case FileDialogEntry::Kind::Experiment:
+        case FileDialogEntry::Kind::Track:
             return choose(d, e.path);
     }
     return std::nullopt;

@@ -14,10 +14,19 @@
 
 namespace bhm::app::gui {
 
-enum class FileDialogPurpose { OpenExperiment, SaveExperimentAs, OpenRun, CompareRun };
+//! ShowBody and LoadTrack: the Calibrate tab's body file (*.json) and measured track (*.csv).
+enum class FileDialogPurpose {
+    OpenExperiment,
+    SaveExperimentAs,
+    OpenRun,
+    CompareRun,
+    ShowBody,
+    LoadTrack
+};
 
 struct FileDialogEntry {
-    enum class Kind { Parent, Folder, Run, Experiment } kind = Kind::Folder;
+    //! Experiment: a *.json file (an experiment, or a body for ShowBody); Track: a *.csv track.
+    enum class Kind { Parent, Folder, Run, Experiment, Track } kind = Kind::Folder;
     std::string name;  //!< as listed ("..", "runs/", "quick-demo.json")
     std::string path;  //!< absolute
 };

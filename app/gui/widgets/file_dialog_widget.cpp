@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/document/unsaved_guard.hpp"
 #include "app/gui/settings/studio_paths.hpp"
@@ -36,6 +37,14 @@ void apply_choice(Studio& s, FileDialogPurpose purpose, const std::string& path)
             s.compare_field = path;
             add_compared_run(s, path);
             break;
+        case FileDialogPurpose::ShowBody:
+            s.calibration.body_field = path;
+            show_body_file(s, path);
+            break;
+        case FileDialogPurpose::LoadTrack:
+            s.calibration.track_field = path;
+            load_track(s, path);
+            break;
     }
 }
 
@@ -53,6 +62,10 @@ const char* ok_label(FileDialogPurpose purpose) {
             return "View";
         case FileDialogPurpose::CompareRun:
             return "Compare";
+        case FileDialogPurpose::ShowBody:
+            return "Show";
+        case FileDialogPurpose::LoadTrack:
+            return "Load";
     }
     return "OK";
 }
@@ -65,13 +78,16 @@ void show_file_dialog(Studio& s, FileDialogPurpose purpose) {
     const bool experiment = purpose == FileDialogPurpose::SaveExperimentAs ||
                             purpose == FileDialogPurpose::OpenExperiment;
     // A path typed in the panel's field goes into the dialog's name field: Enter takes it.
-    const std::string& typed = experiment ? s.path_field : s.open_run_field;
+    const std::string& typed = experiment                                   ? s.path_field
+                               : purpose == FileDialogPurpose::ShowBody  ? s.calibration.body_field
+                               : purpose == FileDialogPurpose::LoadTrack ? s.calibration.track_field
+                                                                          : s.open_run_field;
     if (experiment) {
         if (!s.document.path().empty()) dir = parent_of(s.document.path());
         if (purpose == FileDialogPurpose::SaveExperimentAs)
             name = s.document.path().empty() ? s.document.experiment().name + ".json"
                                              : fs::path(s.document.path()).filename().string();
-    } else if (s.run && !s.run->run_dir.empty()) {
+    } else if (purpose_wants_run(purpose) && s.run && !s.run->run_dir.empty()) {
         dir = parent_of(s.run->run_dir);
     }
     if (!typed.empty() && typed != s.document.path()) {
@@ -139,10 +155,11 @@ void draw_file_dialog(Studio& s) {
             WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
     }
     ImGui::TextWrapped("%s", d.dir.c_str());
-    ImGui::TextDisabled(
-        purpose_wants_run(d.purpose)
-            ? "run directories [run]; Up/Down, Enter, Backspace: parent, Esc"
-            : "folders and *.json experiments; Up/Down, Enter, Backspace: parent, Esc");
+    ImGui::TextDisabled("%s; Up/Down, Enter, Backspace: parent, Esc",
+                        purpose_wants_run(d.purpose)                 ? "run directories [run]"
+                        : d.purpose == FileDialogPurpose::LoadTrack  ? "folders and *.csv tracks"
+                        : d.purpose == FileDialogPurpose::ShowBody   ? "folders and *.json bodies"
+                                                                     : "folders and *.json experiments");
     const float footer =
         ImGui::GetFrameHeightWithSpacing() * 2.0f + ImGui::GetTextLineHeightWithSpacing();
     std::optional<std::string> chosen;

@@ -21,7 +21,11 @@ struct TileLayout {
 
 //! Smallest sizes a tile keeps while there is room.
 inline constexpr float kMinSide = 120.0f, kMinCentre = 200.0f, kMinBottom = 60.0f,
-                       kMinView = 120.0f, kMinRun = 80.0f, kMinPlot = 80.0f, kMinPopulation = 60.0f;
+                       kMinView = 120.0f, kMinRun = 80.0f, kMinPlot = 80.0f;
+//! The Analysis tile (under Run and Fitness) keeps its tab row and about eight lines under it:
+//! with 60 px, at 900 x 600 it was only its tab row, so population, calibration and FEM could
+//! not be reached (issue 39, M5). Run and Fitness give way first.
+inline constexpr float kMinPopulation = 200.0f;
 //! The 3D view keeps priority in a small window (issue 25 item 7: at 800 x 500 it was 170 x 120
 //! px): the centre column keeps at least this share of the width and the view this share of the
 //! centre's height; below kCollapseLeftBelow px of width the left column folds into a strip of
