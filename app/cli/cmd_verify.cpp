@@ -52,6 +52,7 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     evo::write_verification(v, options, out.string());
     std::cout << body_path << ": " << v.verdict() << "\n";
     if (v.status == evo::VerifyStatus::Compared) {
+        std::cout << "  beside it: " << v.beside() << "\n";
         std::printf("  FEM %d nodes, %.1f s CPU; engine %.1f s CPU; report %s\n", v.fem_nodes,
                     v.fem_cpu_s, v.engine_cpu_s, (out / "report.json").string().c_str());
     }
@@ -115,6 +116,8 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
         bodies.push_back(j);
         std::cout << "#" << rank << " (generation " << c->generation_found << ", fitness "
                   << c->fitness << "): " << v.verdict() << "\n";
+        if (v.status == evo::VerifyStatus::Compared)
+            std::cout << "  beside it: " << v.beside() << "\n";
         if (v.status != evo::VerifyStatus::Compared) continue;
         recorded.push_back(c->fitness);
         fem.push_back(v.fem_score);

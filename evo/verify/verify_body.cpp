@@ -137,17 +137,29 @@ std::string describe_progress(const VerifyProgress& p) {
 
 double Differences::worst() const {
     double w = 0.0;
-    for (const auto& d : {tip, bend, com_yz, rms})
+    for (const auto& d : {tip, bend, com_yz, com, rms})
         if (d) w = std::max(w, *d);
     return w;
 }
 
+std::optional<double> Differences::of(VerifyMeasure m) const {
+    switch (m) {
+        case VerifyMeasure::Com: return com;
+        case VerifyMeasure::ComYz: return com_yz;
+        case VerifyMeasure::Tip: return tip;
+        case VerifyMeasure::Bend: return bend;
+        case VerifyMeasure::Rms: return rms;
+    }
+    return std::nullopt;
+}
+
 std::string BodyVerification::verdict() const {
     if (status == VerifyStatus::OutOfReach) return "outside the continuum's reach: " + reason;
-    char line[128];
-    std::snprintf(line, sizeof line, agrees ? "agrees within %.1f %%" : "differs by %.1f %%",
-                  100.0 * worst);
-    return line;
+    return verdict_line(decision, measure, tolerance, floors);
+}
+
+std::string BodyVerification::beside() const {
+    return status == VerifyStatus::OutOfReach ? "" : measures_beside(decision, floors);
 }
 
 std::string continuum_reach_problem(const engine::BodySpec& s) {
@@ -192,6 +204,8 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                              const VerifyOptions& options) {
     BodyVerification out;
     out.tolerance = options.tolerance;
+    out.floors = options.floors;
+    out.measure = verify_measure_of(fitness);
     double amplitude = spec.actuation.temperature_amplitude_c;
     for (int c = 0; c < spec.cell_count(); ++c) {
         const int m = spec.material[static_cast<std::size_t>(c)];
@@ -266,23 +280,31 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             std::hypot(c.engine.com_yz_m[0] - c.fem.com_yz_m[0],
                        c.engine.com_yz_m[1] - c.fem.com_yz_m[1]),
             std::hypot(c.fem.com_yz_m[0], c.fem.com_yz_m[1]), smallest_m);
+        c.differences.com = relative(
+            std::hypot(c.engine.com_m[0] - c.fem.com_m[0], c.engine.com_m[1] - c.fem.com_m[1],
+                       c.engine.com_m[2] - c.fem.com_m[2]),
+            std::hypot(c.fem.com_m[0], c.fem.com_m[1], c.fem.com_m[2]), smallest_m);
         double d2 = 0.0, f2 = 0.0;
-        for (std::size_t v = 0; v < theirs.size(); ++v)
+        for (std::size_t v = 0; v < theirs.size(); ++v) {
+            c.fem_largest_m = std::max(c.fem_largest_m, norm(theirs[v]));
             for (int a = 0; a < 3; ++a) {
                 const double d = ours.displacement_m[v][a] - theirs[v][a];
                 d2 += d * d;
                 f2 += theirs[v][a] * theirs[v][a];
             }
+        }
         const double n = static_cast<double>(theirs.size());
         c.fem_rms_m = std::sqrt(f2 / n);
         c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
-        out.worst = std::max(out.worst, c.differences.worst());
+        out.worst_any = std::max(out.worst_any, c.differences.worst());
         c.engine_shape = ours.shape;
         c.fem_shape = fem_voxel_shape(out.fem_model, fem.blocks[k], ours.rest_position_m);
         out.loads.push_back(std::move(c));
     }
     control.report({VerifyPhase::Comparing, 0, load_count});
-    out.agrees = out.worst <= options.tolerance;
+    out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+    out.worst = out.decision.worst;
+    out.agrees = out.decision.agrees;
 
     // The experiment's measure at the actuation's extremes, from the rest shape.
     auto score = [&](auto pick) {
