@@ -96,6 +96,16 @@ ResponseMeasures measure(const engine::BodySpec& s, const Geometry& g,
     return r;
 }
 
+// The largest angle any voxel has turned from its rest orientation (unit quaternions w x y z).
+double largest_rotation_deg(const engine::VoxelPoses& shape) {
+    double largest = 0.0;
+    for (std::size_t k = 0; k + 3 < shape.orientation.size(); k += 4) {
+        const double w = std::min(1.0, std::fabs(static_cast<double>(shape.orientation[k])));
+        largest = std::max(largest, 2.0 * std::acos(w) * 180.0 / std::numbers::pi);
+    }
+    return largest;
+}
+
 std::optional<double> relative(double difference, double truth, double smallest) {
     if (std::fabs(truth) < smallest) return std::nullopt;
     return std::fabs(difference) / std::fabs(truth);
@@ -237,34 +247,81 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         loads.push_back({"-A", -amplitude});
     }
     const int load_count = static_cast<int>(loads.size());
-    const std::string deck = ccx_deck(out.fem_model, spec, loads, options.nlgeom);
-    control.report({VerifyPhase::Solving, 1, load_count});
-    CcxWatch watch;
-    watch.cancel = control.cancel;
-    watch.steps_done = [&](int done) {
-        control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+    auto solve = [&](bool nlgeom) {
+        const std::string deck = ccx_deck(out.fem_model, spec, loads, nlgeom);
+        control.report({VerifyPhase::Solving, 1, load_count});
+        CcxWatch watch;
+        watch.cancel = control.cancel;
+        watch.steps_done = [&](int done) {
+            control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+        };
+        CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
+        if (fem.blocks.size() != loads.size())
+            throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
+                                     " displacement blocks for " + std::to_string(loads.size()) +
+                                     " load steps");
+        out.fem_cpu_s += fem.cpu_s;  // both solves when the automatic choice needs the second
+        out.fem_wall_s += fem.wall_s;
+        return fem;
     };
-    const CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
-    if (fem.blocks.size() != loads.size())
-        throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
-                                 " displacement blocks for " + std::to_string(loads.size()) +
-                                 " load steps");
-    out.fem_cpu_s = fem.cpu_s;
-    out.fem_wall_s = fem.wall_s;
-    out.fem_displacements = fem.blocks;
+    out.nlgeom = options.geometry == FemGeometry::Nonlinear;
+    CcxResult fem = solve(out.nlgeom);
 
     const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
     out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
     const double smallest_m = 1e-4 * spec.voxel_size_m;
     QuasiStaticOptions engine_options = options.engine;
     if (!engine_options.cancel) engine_options.cancel = control.cancel;
+    std::vector<QuasiStaticResult> answers;
+    std::string turned_at, bent_at;
     for (std::size_t k = 0; k < loads.size(); ++k) {
         control.report({VerifyPhase::Engine, static_cast<int>(k) + 1, load_count});
-        const auto ours = engine_quasi_static(spec, loads[k].temperature_c, engine_options);
+        auto ours = engine_quasi_static(spec, loads[k].temperature_c, engine_options);
         out.engine_cpu_s += ours.cpu_s;
         if (!ours.problem.empty())
             throw std::runtime_error("our engine has no static answer at " + loads[k].name + ": " +
                                      ours.problem);
+        const double turned = largest_rotation_deg(ours.shape);
+        const double bent = measure(spec, g, ours.displacement_m).bend_deg;
+        if (turned > out.engine_rotation_deg) {
+            out.engine_rotation_deg = turned;
+            turned_at = loads[k].name;
+        }
+        if (bent > out.engine_bend_deg) {
+            out.engine_bend_deg = bent;
+            bent_at = loads[k].name;
+        }
+        answers.push_back(std::move(ours));
+    }
+
+    // Linear or nonlinear: from how far our engine's answer turns (docs/verify.md).
+    char reason[256];
+    const double limit = options.nlgeom_above_deg;
+    if (options.geometry == FemGeometry::Nonlinear) {
+        out.geometry_reason = "nonlinear (--nlgeom)";
+    } else if (options.geometry == FemGeometry::Linear) {
+        out.geometry_reason = "linear (--linear)";
+    } else if (out.engine_rotation_deg > limit || out.engine_bend_deg > limit) {
+        const bool by_voxel = out.engine_rotation_deg >= out.engine_bend_deg;
+        std::snprintf(reason, sizeof reason,
+                      "nonlinear: our engine %s by %.1f deg at %s, over the %g deg threshold",
+                      by_voxel ? "turns a voxel" : "bends the root-to-tip line",
+                      by_voxel ? out.engine_rotation_deg : out.engine_bend_deg,
+                      (by_voxel ? turned_at : bent_at).c_str(), limit);
+        out.geometry_reason = reason;
+        out.nlgeom = true;
+        fem = solve(true);
+    } else {
+        std::snprintf(reason, sizeof reason,
+                      "linear: our engine turns no voxel more than %.1f deg and bends at most "
+                      "%.1f deg, under the %g deg threshold",
+                      out.engine_rotation_deg, out.engine_bend_deg, limit);
+        out.geometry_reason = reason;
+    }
+    out.fem_displacements = fem.blocks;
+
+    for (std::size_t k = 0; k < loads.size(); ++k) {
+        const QuasiStaticResult& ours = answers[k];
         const auto theirs = fem_voxel_displacements(out.fem_model, fem.blocks[k]);
         LoadComparison c;
         c.load = loads[k].name;

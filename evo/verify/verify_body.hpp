@@ -19,9 +19,16 @@
 
 namespace bhm::evo {
 
+//! Whether the FEM's steps are geometrically nonlinear: chosen from our engine's answer
+//! (Automatic), or forced (`--linear`, `--nlgeom`).
+enum class FemGeometry { Automatic, Linear, Nonlinear };
+
 struct VerifyOptions {
     FemMeshOptions mesh;  // C3D8I, 2 per voxel edge: 0.3 % of a mesh 8x finer (docs/verify.md)
-    bool nlgeom = false;  //!< geometrically nonlinear steps (slow: off by default, docs/verify.md)
+    FemGeometry geometry = FemGeometry::Automatic;
+    //! Automatic: nonlinear when our engine turns a voxel, or bends the root-to-tip line, by more
+    //! than this at some load (docs/verify.md, "Linear or nonlinear").
+    double nlgeom_above_deg = 10.0;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     MeasureFloors floors;       //!< under these a measure is reported, never judged
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)
@@ -81,6 +88,10 @@ struct BodyVerification {
     double fem_score = 0.0, engine_score = 0.0;
     double fem_cpu_s = 0.0, fem_wall_s = 0.0, engine_cpu_s = 0.0;
     int fem_nodes = 0, fem_elements = 0;
+    bool nlgeom = false;          //!< the FEM's steps were geometrically nonlinear
+    std::string geometry_reason;  //!< why: "--linear", or our engine's largest rotation
+    double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
+    double engine_bend_deg = 0.0;      //!< ... and largest bend angle
     FemModel fem_model;
     std::vector<NodalDisplacements> fem_displacements;  //!< per load
     //! "agrees within X % (tolerance T %) on MEASURE", "differs by Y % (...) on MEASURE" or

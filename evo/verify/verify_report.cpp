@@ -106,7 +106,12 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
     j["fem"] = {{"solver", "CalculiX ccx"},
                 {"element", fem_element_name(options.mesh.element)},
                 {"elements_per_voxel_edge", options.mesh.subdivision},
-                {"nlgeom", options.nlgeom},
+                {"nlgeom", v.nlgeom},
+                {"geometry_choice", options.geometry == FemGeometry::Automatic ? "automatic"
+                                    : options.geometry == FemGeometry::Linear  ? "linear"
+                                                                               : "nonlinear"},
+                {"geometry_reason", v.geometry_reason},
+                {"nlgeom_above_deg", options.nlgeom_above_deg},
                 {"nodes", v.fem_nodes},
                 {"elements", v.fem_elements},
                 {"cpu_s", v.fem_cpu_s},
@@ -114,7 +119,9 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
     j["engine"] = {{"method", "constant temperature change, floor off, damped until at rest"},
                    {"global_damping_ratio", options.engine.global_damping_ratio},
                    {"rest_tolerance", options.engine.tolerance},
-                   {"cpu_s", v.engine_cpu_s}};
+                   {"cpu_s", v.engine_cpu_s},
+                   {"largest_voxel_rotation_deg", v.engine_rotation_deg},
+                   {"largest_bend_angle_deg", v.engine_bend_deg}};
     j["score"] = {{"fem", v.fem_score}, {"engine", v.engine_score}};
     nlohmann::json loads = nlohmann::json::array();
     for (const auto& c : v.loads)

@@ -1,6 +1,7 @@
 // bhm verify on the command line: its one-line errors (usage, bad input, body too large, ccx
-// missing), a free body reported as outside the continuum's reach, and the top-K report of a tiny
-// run directory made by bhm evolve.
+// missing), a free body reported as outside the continuum's reach, the verdict on the
+// experiment's measure with the FEM's automatic geometry, and the top-K report of a tiny run
+// directory made by bhm evolve.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -76,6 +77,11 @@ TEST_CASE("bhm verify: usage and input errors are one line and a non-zero exit")
     CHECK(no_body.status == 2);
     CHECK(no_body.output.find("needs --body BODY") != std::string::npos);
 
+    const auto both = bhm_run("verify " + f.experiment + " --body " + f.body +
+                              " --nlgeom --linear");
+    CHECK(both.status == 2);
+    CHECK(both.output.find("--nlgeom and --linear exclude each other") != std::string::npos);
+
     const auto missing = bhm_run("verify " + f.path("nope.json") + " --body " + f.body);
     CHECK(missing.status == 1);
     CHECK(missing.output.find("nope.json") != std::string::npos);
@@ -103,6 +109,36 @@ TEST_CASE("bhm verify: a free body is outside the continuum's reach, reported an
     std::ifstream in(f.path("free/report.json"));
     const auto j = nlohmann::json::parse(in);
     CHECK(j["status"] == "out_of_reach");
+}
+
+TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geometry and why") {
+    if (!evo::ccx_available()) {
+        MESSAGE("SKIPPED: CalculiX (ccx) is not installed");
+        WARN(false);
+        return;
+    }
+    // The 5x3x3 bilayer at the paper's +-14.5 % strain (fitness com_final_3d): our engine curls
+    // it past 10 degrees, so the FEM is solved nonlinear; --linear forces the linear solve.
+    Fixture f;
+    const auto r = bhm_run("verify " + f.experiment + " --body " + f.body + " --out " +
+                           f.path("auto"));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("(tolerance 10 %) on the centre of mass") != std::string::npos);
+    CHECK(r.output.find("  beside it: ") != std::string::npos);
+    CHECK(r.output.find("FEM steps nonlinear: our engine ") != std::string::npos);
+    std::ifstream in(f.path("auto/report.json"));
+    const auto j = nlohmann::json::parse(in);
+    CHECK(j["experiment_measure"] == "com_displacement");
+    CHECK(j["fem"]["nlgeom"] == true);
+    CHECK(j["fem"]["geometry_choice"] == "automatic");
+    CHECK(j["engine"]["largest_voxel_rotation_deg"].get<double>() > 10.0);
+
+    const auto l = bhm_run("verify " + f.experiment + " --body " + f.body + " --linear --out " +
+                           f.path("linear"));
+    INFO(l.output);
+    REQUIRE(l.status == 0);
+    CHECK(l.output.find("FEM steps linear (--linear)") != std::string::npos);
 }
 
 TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank correlation") {
