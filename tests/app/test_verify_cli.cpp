@@ -157,12 +157,22 @@ TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank corr
     REQUIRE(r.status == 0);
     CHECK(r.output.find("#1 (generation ") != std::string::npos);
     CHECK(r.output.find("Spearman rank correlation over ") != std::string::npos);
+    // Like for like first; the dynamic fitness labelled as a different thing; 2 < 5 flagged.
+    CHECK(r.output.find("our engine's static score vs the FEM's static score: ") !=
+          std::string::npos);
+    CHECK(r.output.find("(a different thing) the run's recorded dynamic fitness vs the FEM's "
+                        "static score: ") != std::string::npos);
+    CHECK(r.output.find("warning: --top 2: fewer than 5 bodies") != std::string::npos);
+    CHECK(r.output.find("(fewer than 5: too few to mean much)") != std::string::npos);
     std::ifstream in(run + "/verify/report.json");
     REQUIRE(in.good());
     const auto j = nlohmann::json::parse(in);
     REQUIRE(j["bodies"].size() >= 1);
     CHECK(j["bodies"].size() <= 2);
     CHECK(j.contains("spearman_recorded_fitness_vs_fem"));
+    CHECK(j.contains("spearman_engine_static_vs_fem"));
+    CHECK(j["spearman_recorded_fitness_is_dynamic"] == true);
+    CHECK(j["spearman_too_few_bodies"] == true);
     CHECK(j["failed"] == 0);
     // best recorded fitness first, and each body's deformed FEM mesh beside its report
     if (j["bodies"].size() == 2)
