@@ -15,6 +15,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/run_directory.hpp"
 #include "evo/verify/ccx_run.hpp"
+#include "evo/verify/mesh_error.hpp"
 #include "evo/verify/verify_body.hpp"
 #include "evo/verify/verify_report.hpp"
 
@@ -57,8 +58,23 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     const fs::path out =
         parser.get("--out", fs::path(body_path).stem().string() + "-verify");
     const auto v = evo::verify_body(spec, e.fitness.measure, options);
-    evo::write_verification(v, options, out.string());
+    nlohmann::json report = evo::write_verification(v, options, out.string());
     std::cout << body_path << ": " << v.verdict() << "\n";
+    if (v.status == evo::VerifyStatus::Compared && !parser.has("--no-mesh-error")) {
+        const auto error = evo::estimate_mesh_error(spec, e.fitness.measure, v, options);
+        if (error) {
+            std::printf("  FEM mesh error: %s moves %.1f %% at %d element(s) per voxel edge "
+                        "against %d\n",
+                        evo::verify_measure_label(*v.decision.decided_by), 100.0 * error->relative,
+                        error->subdivision, options.mesh.subdivision);
+            report["fem_mesh_error"] = {{"measure",
+                                         evo::verify_measure_key(*v.decision.decided_by)},
+                                        {"elements_per_voxel_edge", error->subdivision},
+                                        {"relative_difference", error->relative},
+                                        {"cpu_s", error->fem_cpu_s}};
+            evo::write_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
+        }
+    }
     if (v.status == evo::VerifyStatus::Compared) {
         std::cout << "  beside it: " << v.beside() << "\n";
         std::cout << "  FEM steps " << v.geometry_reason << "\n";
@@ -201,6 +217,9 @@ int cmd_verify(const Args& args) {
                 "geometrically nonlinear steps, always (default: when our engine turns a voxel "
                 "or bends more than 10 deg)");
     parser.flag("--linear", "linear steps, always (however far the body turns)");
+    parser.flag("--no-mesh-error",
+                "skip the second mesh (twice the subdivision, up to 4) that estimates the FEM's "
+                "own error beside the verdict");
     parser.option("--tolerance", "PERCENT", "largest difference that agrees (default 10)");
     parser.option("--max-voxels", "N", "refuse larger bodies (default 4000)");
     return run_command(parser, args, verify_body);

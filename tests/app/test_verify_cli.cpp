@@ -127,18 +127,21 @@ TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geomet
     CHECK(r.output.find("(tolerance 10 %) on the centre of mass") != std::string::npos);
     CHECK(r.output.find("  beside it: ") != std::string::npos);
     CHECK(r.output.find("FEM steps nonlinear: our engine ") != std::string::npos);
+    CHECK(r.output.find("FEM mesh error: the centre of mass moves ") != std::string::npos);
     std::ifstream in(f.path("auto/report.json"));
     const auto j = nlohmann::json::parse(in);
     CHECK(j["experiment_measure"] == "com_displacement");
     CHECK(j["fem"]["nlgeom"] == true);
     CHECK(j["fem"]["geometry_choice"] == "automatic");
     CHECK(j["engine"]["largest_voxel_rotation_deg"].get<double>() > 10.0);
+    CHECK(j["fem_mesh_error"]["elements_per_voxel_edge"] == 4);
 
-    const auto l = bhm_run("verify " + f.experiment + " --body " + f.body + " --linear --out " +
+    const auto l = bhm_run("verify " + f.experiment + " --body " + f.body + " --linear --no-mesh-error --out " +
                            f.path("linear"));
     INFO(l.output);
     REQUIRE(l.status == 0);
     CHECK(l.output.find("FEM steps linear (--linear)") != std::string::npos);
+    CHECK(l.output.find("FEM mesh error") == std::string::npos);
 }
 
 TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank correlation") {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "evo/verify/ccx_run.hpp"
+#include "evo/verify/mesh_error.hpp"
 #include "evo/verify/verify_body.hpp"
 
 using namespace bhm;
@@ -81,4 +82,19 @@ TEST_CASE("verify geometry: a small actuation keeps the linear solve, and says w
     CHECK(v.geometry_reason.rfind("linear: our engine turns no voxel more than", 0) == 0);
     CHECK(v.engine_rotation_deg < 10.0);
     CHECK(v.engine_rotation_deg > 0.5);  // it did turn: the rotation is read from our answer
+}
+
+TEST_CASE("verify geometry: the FEM's own mesh error from a second mesh, beside the verdict") {
+    if (skip_without_ccx()) return;
+    const auto s = bilayer(0.5);
+    const evo::VerifyOptions options;  // C3D8I, 2 per voxel edge
+    const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, options);
+    const auto e = evo::estimate_mesh_error(s, evo::FitnessMeasure::ComMaxYz, v, options);
+    REQUIRE(e);
+    MESSAGE(v.verdict() << "; the FEM's centre of mass YZ moves " << 100.0 * e->relative
+                        << " % at 4 elements per voxel edge against 2 (ccx " << e->fem_cpu_s
+                        << " s CPU)");
+    CHECK(e->subdivision == 4);  // twice: the same clamp plane (an even subdivision)
+    CHECK(e->relative > 0.0);    // a second, different mesh
+    CHECK(e->relative < 0.05);   // the default mesh is close to converged (docs/verify.md)
 }
