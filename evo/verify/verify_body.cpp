@@ -96,6 +96,16 @@ ResponseMeasures measure(const engine::BodySpec& s, const Geometry& g,
     return r;
 }
 
+// The largest angle any voxel has turned from its rest orientation (unit quaternions w x y z).
+double largest_rotation_deg(const engine::VoxelPoses& shape) {
+    double largest = 0.0;
+    for (std::size_t k = 0; k + 3 < shape.orientation.size(); k += 4) {
+        const double w = std::min(1.0, std::fabs(static_cast<double>(shape.orientation[k])));
+        largest = std::max(largest, 2.0 * std::acos(w) * 180.0 / std::numbers::pi);
+    }
+    return largest;
+}
+
 std::optional<double> relative(double difference, double truth, double smallest) {
     if (std::fabs(truth) < smallest) return std::nullopt;
     return std::fabs(difference) / std::fabs(truth);
@@ -137,17 +147,29 @@ std::string describe_progress(const VerifyProgress& p) {
 
 double Differences::worst() const {
     double w = 0.0;
-    for (const auto& d : {tip, bend, com_yz, rms})
+    for (const auto& d : {tip, bend, com_yz, com, rms})
         if (d) w = std::max(w, *d);
     return w;
 }
 
+std::optional<double> Differences::of(VerifyMeasure m) const {
+    switch (m) {
+        case VerifyMeasure::Com: return com;
+        case VerifyMeasure::ComYz: return com_yz;
+        case VerifyMeasure::Tip: return tip;
+        case VerifyMeasure::Bend: return bend;
+        case VerifyMeasure::Rms: return rms;
+    }
+    return std::nullopt;
+}
+
 std::string BodyVerification::verdict() const {
     if (status == VerifyStatus::OutOfReach) return "outside the continuum's reach: " + reason;
-    char line[128];
-    std::snprintf(line, sizeof line, agrees ? "agrees within %.1f %%" : "differs by %.1f %%",
-                  100.0 * worst);
-    return line;
+    return verdict_line(decision, measure, tolerance, floors);
+}
+
+std::string BodyVerification::beside() const {
+    return status == VerifyStatus::OutOfReach ? "" : measures_beside(decision, floors);
 }
 
 std::string continuum_reach_problem(const engine::BodySpec& s) {
@@ -192,6 +214,8 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                              const VerifyOptions& options) {
     BodyVerification out;
     out.tolerance = options.tolerance;
+    out.floors = options.floors;
+    out.measure = verify_measure_of(fitness);
     double amplitude = spec.actuation.temperature_amplitude_c;
     for (int c = 0; c < spec.cell_count(); ++c) {
         const int m = spec.material[static_cast<std::size_t>(c)];
@@ -223,34 +247,81 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         loads.push_back({"-A", -amplitude});
     }
     const int load_count = static_cast<int>(loads.size());
-    const std::string deck = ccx_deck(out.fem_model, spec, loads, options.nlgeom);
-    control.report({VerifyPhase::Solving, 1, load_count});
-    CcxWatch watch;
-    watch.cancel = control.cancel;
-    watch.steps_done = [&](int done) {
-        control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+    auto solve = [&](bool nlgeom) {
+        const std::string deck = ccx_deck(out.fem_model, spec, loads, nlgeom);
+        control.report({VerifyPhase::Solving, 1, load_count});
+        CcxWatch watch;
+        watch.cancel = control.cancel;
+        watch.steps_done = [&](int done) {
+            control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+        };
+        CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
+        if (fem.blocks.size() != loads.size())
+            throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
+                                     " displacement blocks for " + std::to_string(loads.size()) +
+                                     " load steps");
+        out.fem_cpu_s += fem.cpu_s;  // both solves when the automatic choice needs the second
+        out.fem_wall_s += fem.wall_s;
+        return fem;
     };
-    const CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
-    if (fem.blocks.size() != loads.size())
-        throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
-                                 " displacement blocks for " + std::to_string(loads.size()) +
-                                 " load steps");
-    out.fem_cpu_s = fem.cpu_s;
-    out.fem_wall_s = fem.wall_s;
-    out.fem_displacements = fem.blocks;
+    out.nlgeom = options.geometry == FemGeometry::Nonlinear;
+    CcxResult fem = solve(out.nlgeom);
 
     const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
     out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
     const double smallest_m = 1e-4 * spec.voxel_size_m;
     QuasiStaticOptions engine_options = options.engine;
     if (!engine_options.cancel) engine_options.cancel = control.cancel;
+    std::vector<QuasiStaticResult> answers;
+    std::string turned_at, bent_at;
     for (std::size_t k = 0; k < loads.size(); ++k) {
         control.report({VerifyPhase::Engine, static_cast<int>(k) + 1, load_count});
-        const auto ours = engine_quasi_static(spec, loads[k].temperature_c, engine_options);
+        auto ours = engine_quasi_static(spec, loads[k].temperature_c, engine_options);
         out.engine_cpu_s += ours.cpu_s;
         if (!ours.problem.empty())
             throw std::runtime_error("our engine has no static answer at " + loads[k].name + ": " +
                                      ours.problem);
+        const double turned = largest_rotation_deg(ours.shape);
+        const double bent = measure(spec, g, ours.displacement_m).bend_deg;
+        if (turned > out.engine_rotation_deg) {
+            out.engine_rotation_deg = turned;
+            turned_at = loads[k].name;
+        }
+        if (bent > out.engine_bend_deg) {
+            out.engine_bend_deg = bent;
+            bent_at = loads[k].name;
+        }
+        answers.push_back(std::move(ours));
+    }
+
+    // Linear or nonlinear: from how far our engine's answer turns (docs/verify.md).
+    char reason[256];
+    const double limit = options.nlgeom_above_deg;
+    if (options.geometry == FemGeometry::Nonlinear) {
+        out.geometry_reason = "nonlinear (--nlgeom)";
+    } else if (options.geometry == FemGeometry::Linear) {
+        out.geometry_reason = "linear (--linear)";
+    } else if (out.engine_rotation_deg > limit || out.engine_bend_deg > limit) {
+        const bool by_voxel = out.engine_rotation_deg >= out.engine_bend_deg;
+        std::snprintf(reason, sizeof reason,
+                      "nonlinear: our engine %s by %.1f deg at %s, over the %g deg threshold",
+                      by_voxel ? "turns a voxel" : "bends the root-to-tip line",
+                      by_voxel ? out.engine_rotation_deg : out.engine_bend_deg,
+                      (by_voxel ? turned_at : bent_at).c_str(), limit);
+        out.geometry_reason = reason;
+        out.nlgeom = true;
+        fem = solve(true);
+    } else {
+        std::snprintf(reason, sizeof reason,
+                      "linear: our engine turns no voxel more than %.1f deg and bends at most "
+                      "%.1f deg, under the %g deg threshold",
+                      out.engine_rotation_deg, out.engine_bend_deg, limit);
+        out.geometry_reason = reason;
+    }
+    out.fem_displacements = fem.blocks;
+
+    for (std::size_t k = 0; k < loads.size(); ++k) {
+        const QuasiStaticResult& ours = answers[k];
         const auto theirs = fem_voxel_displacements(out.fem_model, fem.blocks[k]);
         LoadComparison c;
         c.load = loads[k].name;
@@ -266,23 +337,31 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             std::hypot(c.engine.com_yz_m[0] - c.fem.com_yz_m[0],
                        c.engine.com_yz_m[1] - c.fem.com_yz_m[1]),
             std::hypot(c.fem.com_yz_m[0], c.fem.com_yz_m[1]), smallest_m);
+        c.differences.com = relative(
+            std::hypot(c.engine.com_m[0] - c.fem.com_m[0], c.engine.com_m[1] - c.fem.com_m[1],
+                       c.engine.com_m[2] - c.fem.com_m[2]),
+            std::hypot(c.fem.com_m[0], c.fem.com_m[1], c.fem.com_m[2]), smallest_m);
         double d2 = 0.0, f2 = 0.0;
-        for (std::size_t v = 0; v < theirs.size(); ++v)
+        for (std::size_t v = 0; v < theirs.size(); ++v) {
+            c.fem_largest_m = std::max(c.fem_largest_m, norm(theirs[v]));
             for (int a = 0; a < 3; ++a) {
                 const double d = ours.displacement_m[v][a] - theirs[v][a];
                 d2 += d * d;
                 f2 += theirs[v][a] * theirs[v][a];
             }
+        }
         const double n = static_cast<double>(theirs.size());
         c.fem_rms_m = std::sqrt(f2 / n);
         c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
-        out.worst = std::max(out.worst, c.differences.worst());
+        out.worst_any = std::max(out.worst_any, c.differences.worst());
         c.engine_shape = ours.shape;
         c.fem_shape = fem_voxel_shape(out.fem_model, fem.blocks[k], ours.rest_position_m);
         out.loads.push_back(std::move(c));
     }
     control.report({VerifyPhase::Comparing, 0, load_count});
-    out.agrees = out.worst <= options.tolerance;
+    out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+    out.worst = out.decision.worst;
+    out.agrees = out.decision.agrees;
 
     // The experiment's measure at the actuation's extremes, from the rest shape.
     auto score = [&](auto pick) {

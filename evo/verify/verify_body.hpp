@@ -1,8 +1,9 @@
 #pragma once
 // One body checked against the continuum: the reach check, the CalculiX solve at rest, +A and -A
 // (fem_model, ccx_deck, ccx_run), our engine's quasi-static answer at the same loads
-// (quasi_static), and their comparison: tip displacement, bend angle, YZ displacement of the
-// centre of mass and the per-voxel displacement RMS, each as a relative difference.
+// (quasi_static), and their comparison: tip displacement, bend angle, displacement of the centre
+// of mass (3-D and YZ) and the per-voxel displacement RMS, each as a relative difference, judged
+// on the experiment's own measure (verdict.hpp).
 #include <array>
 #include <optional>
 #include <string>
@@ -13,14 +14,23 @@
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/quasi_static.hpp"
+#include "evo/verify/verdict.hpp"
 #include "evo/verify/verify_progress.hpp"
 
 namespace bhm::evo {
 
+//! Whether the FEM's steps are geometrically nonlinear: chosen from our engine's answer
+//! (Automatic), or forced (`--linear`, `--nlgeom`).
+enum class FemGeometry { Automatic, Linear, Nonlinear };
+
 struct VerifyOptions {
     FemMeshOptions mesh;  // C3D8I, 2 per voxel edge: 0.3 % of a mesh 8x finer (docs/verify.md)
-    bool nlgeom = false;  //!< geometrically nonlinear steps (slow: off by default, docs/verify.md)
+    FemGeometry geometry = FemGeometry::Automatic;
+    //! Automatic: nonlinear when our engine turns a voxel, or bends the root-to-tip line, by more
+    //! than this at some load (docs/verify.md, "Linear or nonlinear").
+    double nlgeom_above_deg = 10.0;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
+    MeasureFloors floors;       //!< under these a measure is reported, never judged
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)
     int threads = 1;            //!< solver threads of ccx
     QuasiStaticOptions engine;
@@ -39,8 +49,9 @@ struct ResponseMeasures {
 //! Relative differences (ours against the FEM); absent where the FEM's value is too small to
 //! divide by (a measure of a load that hardly moves the body).
 struct Differences {
-    std::optional<double> tip, bend, com_yz, rms;
+    std::optional<double> tip, bend, com_yz, com, rms;
     double worst() const;  //!< the largest present, 0 when none
+    std::optional<double> of(VerifyMeasure m) const;
 };
 
 struct LoadComparison {
@@ -49,6 +60,7 @@ struct LoadComparison {
     ResponseMeasures fem, engine;
     Differences differences;
     double fem_rms_m = 0.0;  //!< RMS of the FEM's voxel displacements
+    double fem_largest_m = 0.0;  //!< the FEM's largest voxel displacement (the floors' scale)
     //! Both deformed shapes as voxel poses in the FemModel's voxel order and our engine's frame
     //! (fem_shape.hpp): what the studio draws, ours solid and the FEM's as a ghost over it.
     engine::VoxelPoses fem_shape, engine_shape;
@@ -62,18 +74,31 @@ struct BodyVerification {
     int voxels = 0, held_voxels = 0, active_voxels = 0;
     int tip_cell = -1;
     std::vector<LoadComparison> loads;
-    double worst = 0.0;  //!< the largest relative difference over every load and measure
+    //! The verdict: the experiment's measure (`measure`) decides where it clears its floor, else
+    //! the first measure that does (`decision.decided_by`); `worst` is the deciding measure's
+    //! largest relative difference over the loads, `worst_any` the largest of every measure.
+    VerifyMeasure measure = VerifyMeasure::Com;
+    VerdictDecision decision;
+    double worst = 0.0, worst_any = 0.0;
     bool agrees = false;
     double tolerance = 0.10;
+    MeasureFloors floors;
     //! The experiment's fitness measure, evaluated quasi-statically on both answers (the
     //! largest over +A and -A): what ranks bodies in a run's top K.
     double fem_score = 0.0, engine_score = 0.0;
     double fem_cpu_s = 0.0, fem_wall_s = 0.0, engine_cpu_s = 0.0;
     int fem_nodes = 0, fem_elements = 0;
+    bool nlgeom = false;          //!< the FEM's steps were geometrically nonlinear
+    std::string geometry_reason;  //!< why: "--linear", or our engine's largest rotation
+    double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
+    double engine_bend_deg = 0.0;      //!< ... and largest bend angle
     FemModel fem_model;
     std::vector<NodalDisplacements> fem_displacements;  //!< per load
-    //! "agrees within X %", "differs by Y %" or "outside the continuum's reach: why".
+    //! "agrees within X % (tolerance T %) on MEASURE", "differs by Y % (...) on MEASURE" or
+    //! "outside the continuum's reach: why".
     std::string verdict() const;
+    //! Every other measure's largest difference, one phrase each (verdict.hpp).
+    std::string beside() const;
 };
 
 //! Why a body cannot be compared (no held voxel, voxels not attached to a held one), or "".

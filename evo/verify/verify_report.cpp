@@ -26,6 +26,20 @@ nlohmann::json measures_json(const ResponseMeasures& m) {
             {"com_displacement_m", m.com_m}};
 }
 
+nlohmann::json differences_json(const LoadComparison& c) {
+    nlohmann::json j;
+    for (VerifyMeasure m : kVerifyMeasures)
+        j[verify_measure_key(m)] = optional_json(c.differences.of(m));
+    return j;
+}
+
+nlohmann::json floors_json(const LoadComparison& c, const MeasureFloors& floors) {
+    nlohmann::json j;
+    for (VerifyMeasure m : kVerifyMeasures)
+        j[verify_measure_key(m)] = above_floor(c, m, floors);
+    return j;
+}
+
 std::vector<double> ranks(const std::vector<double>& v) {
     std::vector<std::size_t> order(v.size());
     std::iota(order.begin(), order.end(), 0);
@@ -73,12 +87,31 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
     }
     j["agrees"] = v.agrees;
     j["tolerance"] = v.tolerance;
-    j["worst_relative_difference"] = v.worst;
+    j["worst_relative_difference"] = v.worst;  // the deciding measure's (verdict.hpp)
+    j["worst_relative_difference_any_measure"] = v.worst_any;
+    j["experiment_measure"] = verify_measure_key(v.measure);
+    j["decided_by"] = v.decision.decided_by
+                          ? nlohmann::json(verify_measure_key(*v.decision.decided_by))
+                          : nlohmann::json(nullptr);
+    j["floors"] = {{"bend_angle_deg", v.floors.bend_deg},
+                   {"displacement_fraction_of_largest", v.floors.displacement_fraction}};
+    nlohmann::json measures = nlohmann::json::array();
+    for (const auto& m : v.decision.measures)
+        measures.push_back({{"measure", verify_measure_key(m.measure)},
+                            {"worst_judged", optional_json(m.judged)},
+                            {"worst_any", optional_json(m.any)},
+                            {"fem_largest", m.fem_largest}});
+    j["measures"] = measures;
     j["tip_cell"] = v.tip_cell;
     j["fem"] = {{"solver", "CalculiX ccx"},
                 {"element", fem_element_name(options.mesh.element)},
                 {"elements_per_voxel_edge", options.mesh.subdivision},
-                {"nlgeom", options.nlgeom},
+                {"nlgeom", v.nlgeom},
+                {"geometry_choice", options.geometry == FemGeometry::Automatic ? "automatic"
+                                    : options.geometry == FemGeometry::Linear  ? "linear"
+                                                                               : "nonlinear"},
+                {"geometry_reason", v.geometry_reason},
+                {"nlgeom_above_deg", options.nlgeom_above_deg},
                 {"nodes", v.fem_nodes},
                 {"elements", v.fem_elements},
                 {"cpu_s", v.fem_cpu_s},
@@ -86,7 +119,9 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
     j["engine"] = {{"method", "constant temperature change, floor off, damped until at rest"},
                    {"global_damping_ratio", options.engine.global_damping_ratio},
                    {"rest_tolerance", options.engine.tolerance},
-                   {"cpu_s", v.engine_cpu_s}};
+                   {"cpu_s", v.engine_cpu_s},
+                   {"largest_voxel_rotation_deg", v.engine_rotation_deg},
+                   {"largest_bend_angle_deg", v.engine_bend_deg}};
     j["score"] = {{"fem", v.fem_score}, {"engine", v.engine_score}};
     nlohmann::json loads = nlohmann::json::array();
     for (const auto& c : v.loads)
@@ -95,11 +130,9 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                          {"fem", measures_json(c.fem)},
                          {"engine", measures_json(c.engine)},
                          {"fem_voxel_displacement_rms_m", c.fem_rms_m},
-                         {"relative_difference",
-                          {{"tip_displacement", optional_json(c.differences.tip)},
-                           {"bend_angle", optional_json(c.differences.bend)},
-                           {"com_yz_displacement", optional_json(c.differences.com_yz)},
-                           {"voxel_displacement_rms", optional_json(c.differences.rms)}}}});
+                         {"fem_largest_voxel_displacement_m", c.fem_largest_m},
+                         {"relative_difference", differences_json(c)},
+                         {"above_floor", floors_json(c, v.floors)}});
     j["loads"] = loads;
     return j;
 }

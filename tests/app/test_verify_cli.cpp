@@ -1,6 +1,7 @@
 // bhm verify on the command line: its one-line errors (usage, bad input, body too large, ccx
-// missing), a free body reported as outside the continuum's reach, and the top-K report of a tiny
-// run directory made by bhm evolve.
+// missing), a free body reported as outside the continuum's reach, the verdict on the
+// experiment's measure with the FEM's automatic geometry, and the top-K report of a tiny run
+// directory made by bhm evolve.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -76,6 +77,11 @@ TEST_CASE("bhm verify: usage and input errors are one line and a non-zero exit")
     CHECK(no_body.status == 2);
     CHECK(no_body.output.find("needs --body BODY") != std::string::npos);
 
+    const auto both = bhm_run("verify " + f.experiment + " --body " + f.body +
+                              " --nlgeom --linear");
+    CHECK(both.status == 2);
+    CHECK(both.output.find("--nlgeom and --linear exclude each other") != std::string::npos);
+
     const auto missing = bhm_run("verify " + f.path("nope.json") + " --body " + f.body);
     CHECK(missing.status == 1);
     CHECK(missing.output.find("nope.json") != std::string::npos);
@@ -105,6 +111,39 @@ TEST_CASE("bhm verify: a free body is outside the continuum's reach, reported an
     CHECK(j["status"] == "out_of_reach");
 }
 
+TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geometry and why") {
+    if (!evo::ccx_available()) {
+        MESSAGE("SKIPPED: CalculiX (ccx) is not installed");
+        WARN(false);
+        return;
+    }
+    // The 5x3x3 bilayer at the paper's +-14.5 % strain (fitness com_final_3d): our engine curls
+    // it past 10 degrees, so the FEM is solved nonlinear; --linear forces the linear solve.
+    Fixture f;
+    const auto r = bhm_run("verify " + f.experiment + " --body " + f.body + " --out " +
+                           f.path("auto"));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("(tolerance 10 %) on the centre of mass") != std::string::npos);
+    CHECK(r.output.find("  beside it: ") != std::string::npos);
+    CHECK(r.output.find("FEM steps nonlinear: our engine ") != std::string::npos);
+    CHECK(r.output.find("FEM mesh error: the centre of mass moves ") != std::string::npos);
+    std::ifstream in(f.path("auto/report.json"));
+    const auto j = nlohmann::json::parse(in);
+    CHECK(j["experiment_measure"] == "com_displacement");
+    CHECK(j["fem"]["nlgeom"] == true);
+    CHECK(j["fem"]["geometry_choice"] == "automatic");
+    CHECK(j["engine"]["largest_voxel_rotation_deg"].get<double>() > 10.0);
+    CHECK(j["fem_mesh_error"]["elements_per_voxel_edge"] == 4);
+
+    const auto l = bhm_run("verify " + f.experiment + " --body " + f.body + " --linear --no-mesh-error --out " +
+                           f.path("linear"));
+    INFO(l.output);
+    REQUIRE(l.status == 0);
+    CHECK(l.output.find("FEM steps linear (--linear)") != std::string::npos);
+    CHECK(l.output.find("FEM mesh error") == std::string::npos);
+}
+
 TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank correlation") {
     if (!evo::ccx_available()) {
         MESSAGE("SKIPPED: CalculiX (ccx) is not installed");
@@ -121,12 +160,22 @@ TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank corr
     REQUIRE(r.status == 0);
     CHECK(r.output.find("#1 (generation ") != std::string::npos);
     CHECK(r.output.find("Spearman rank correlation over ") != std::string::npos);
+    // Like for like first; the dynamic fitness labelled as a different thing; 2 < 5 flagged.
+    CHECK(r.output.find("our engine's static score vs the FEM's static score: ") !=
+          std::string::npos);
+    CHECK(r.output.find("(a different thing) the run's recorded dynamic fitness vs the FEM's "
+                        "static score: ") != std::string::npos);
+    CHECK(r.output.find("warning: --top 2: fewer than 5 bodies") != std::string::npos);
+    CHECK(r.output.find("(fewer than 5: too few to mean much)") != std::string::npos);
     std::ifstream in(run + "/verify/report.json");
     REQUIRE(in.good());
     const auto j = nlohmann::json::parse(in);
     REQUIRE(j["bodies"].size() >= 1);
     CHECK(j["bodies"].size() <= 2);
     CHECK(j.contains("spearman_recorded_fitness_vs_fem"));
+    CHECK(j.contains("spearman_engine_static_vs_fem"));
+    CHECK(j["spearman_recorded_fitness_is_dynamic"] == true);
+    CHECK(j["spearman_too_few_bodies"] == true);
     CHECK(j["failed"] == 0);
     // best recorded fitness first, and each body's deformed FEM mesh beside its report
     if (j["bodies"].size() == 2)
