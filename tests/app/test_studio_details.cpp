@@ -15,7 +15,7 @@
 #include "app/cli/render_video.hpp"
 #include "app/gui/actions/export_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/redraw_gate.hpp"
 #include "app/gui/shell/script.hpp"

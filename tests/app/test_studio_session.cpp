@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/gui/actions/key_bindings.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/shell/headless_studio.hpp"
-#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/shell/script.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"

@@ -1,5 +1,6 @@
 #include "app/gui/actions/studio_actions.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -96,6 +97,24 @@ bool open_experiment(Studio& studio, const std::string& path) {
         set_status(studio, path + ": " + e.what(), true);
     }
     return false;
+}
+
+bool open_welcome(Studio& s) {
+    s.welcome_open = true;
+    s.welcome_cards = read_preset_cards(s.presets_dir);
+    const auto& cards = s.welcome_cards;
+    const auto demo = std::find_if(cards.begin(), cards.end(),
+                                   [](const PresetCard& c) { return c.stem == kStartHerePreset; });
+    if (demo == cards.end()) {
+        set_status(s, std::string("welcome: no ") + kStartHerePreset + ".json in " + s.presets_dir,
+                   true);
+        return false;
+    }
+    const auto recent = s.settings.recent_files;
+    const bool opened = open_experiment(s, demo->path);
+    s.settings.recent_files = recent;  // opened for the user, not by them
+    if (opened) set_status(s, "welcome: choose an experiment to start from");
+    return opened;
 }
 
 bool save_experiment_as(Studio& studio, const std::string& path) {

@@ -147,16 +147,6 @@ void cancel_verification(Studio& studio) {
     set_status(studio, "cancelling the verification");
 }
 
-const FemVerification* fem_overlay(const Studio& studio) {
-    const auto& v = studio.verification;
-    if (!studio.fem_ghost || !v || !studio.shown || v->id != studio.shown->id ||
-        studio.view.mode != ViewMode::Simulation || v->fem_shape.empty())
-        return nullptr;
-    if (studio.fem_load < 0 || studio.fem_load >= static_cast<int>(v->fem_shape.size()))
-        return nullptr;
-    return v.get();
-}
-
 std::string fem_verdict_line(const FemVerification& v) {
     if (!v.compared) return v.verdict;
     char tolerance[48];

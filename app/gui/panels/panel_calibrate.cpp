@@ -13,8 +13,8 @@
 
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/actions/view_clicks.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/view/renderer.hpp"
 #include "app/gui/view/viewport.hpp"

@@ -10,7 +10,7 @@
 #include <imgui.h>
 
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/welcome/thumbnails.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"

@@ -11,8 +11,8 @@
 
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/export_actions.hpp"
+#include "app/gui/actions/key_bindings.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/view/scene.hpp"
 #include "app/gui/view/viewport.hpp"
 #include "engine/io/text_file.hpp"

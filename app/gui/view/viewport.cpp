@@ -2,9 +2,8 @@
 
 #include <glm/glm.hpp>
 
-#include "app/gui/actions/calibration_actions.hpp"
-#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/view/scene.hpp"
+#include "app/gui/view/track_points.hpp"
 #include "engine/replay.hpp"
 
 namespace bhm::app::gui {
@@ -116,6 +115,16 @@ render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterStat
     return list;
 }
 
+const FemVerification* fem_overlay(const Studio& studio) {
+    const auto& v = studio.verification;
+    if (!studio.fem_ghost || !v || !studio.shown || v->id != studio.shown->id ||
+        studio.view.mode != ViewMode::Simulation || v->fem_shape.empty())
+        return nullptr;
+    if (studio.fem_load < 0 || studio.fem_load >= static_cast<int>(v->fem_shape.size()))
+        return nullptr;
+    return v.get();
+}
+
 render::DrawList build_view_draw_list(const Studio& s) {
     const auto& e = s.document.experiment();
     if (s.view.mode == ViewMode::Simulation && s.shown) {
@@ -196,32 +205,6 @@ void update_hover(Studio& s, std::optional<glm::vec2> pixel) {
                    c[0] + e.workspace_size[0] * (c[1] + e.workspace_size[1] * c[2]))] != 0;
     });
     if (hit) p.hovered_cell = hit->cell;
-}
-
-bool click_in_view(Studio& s, glm::vec2 pixel, bool shift) {
-    if (s.view.mode == ViewMode::Simulation) {
-        s.inspected_voxel = -1;
-        s.inspected_body.reset();
-        if (!s.shown || s.shown->replay.frames.empty() || s.view.size_px.x < 1.0f) return false;
-        const Ray ray = ray_through_pixel(s.view.camera, pixel, s.view.size_px);
-        const auto poses = engine::pose_at(s.shown->replay, s.clock.time_s);
-        if (const auto hit = pick_posed_voxel(ray, poses)) {
-            s.inspected_voxel = hit->voxel;
-            s.inspected_body = s.shown;
-        }
-        return false;
-    }
-    if (s.view.mode != ViewMode::Workspace) return false;
-    update_hover(s, pixel);
-    const auto& p = s.painter;
-    if (p.tool == PainterTool::Faces) return p.hovered_face && cycle_face(s, *p.hovered_face);
-    if (!p.hovered_cell) return false;
-    if (shift) {
-        const auto cell = *p.hovered_cell;
-        return apply_edit(s, with_override(s.document.experiment(), cell, PaintKind::Clear),
-                          paint_edit_label(cell, PaintKind::Clear, 0));
-    }
-    return paint_cell(s, *p.hovered_cell);
 }
 
 std::optional<VoxelReading> inspected_voxel(const Studio& s) {

@@ -7,7 +7,6 @@
 
 #include <imgui_internal.h>
 
-#include "app/gui/actions/studio_actions.hpp"
 
 namespace bhm::app::gui {
 
@@ -103,18 +102,6 @@ bool field_text(const char* label, std::string& value, const char* hint, bool mu
     const bool done = finished_edit();
     unit_and_hint("", hint);
     return done;
-}
-
-void commit_draft(Studio& studio, const std::string& label) {
-    if (!apply_edit(studio, studio.draft, label)) studio.draft = studio.document.experiment();
-    studio.draft_revision = studio.document.revision();
-}
-
-void sync_draft(Studio& studio) {
-    if (studio.draft_revision == studio.document.revision()) return;
-    if (ImGui::GetCurrentContext() && ImGui::IsAnyItemActive()) return;
-    studio.draft = studio.document.experiment();
-    studio.draft_revision = studio.document.revision();
 }
 
 void section_title(const char* title) {
