@@ -538,3 +538,28 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
                                                      << ", its pane ends at " << pane_right);
     }
 }
+
+TEST_CASE("studio verify: a damaged kept report is one readable line, not the JSON library's codes") {
+    // Issue 39, a low: the FEM tab showed "[json.exception.parse_error.101] ..." for a kept
+    // report.json cut short or of the wrong shape.
+    const auto dir = testing::fresh_dir("verify-damaged-report");
+    const std::vector<std::pair<std::string, std::string>> damaged = {
+        {"cut short", R"({"verdict": "agrees", "status": )"},
+        {"wrong type", R"({"verdict": 3, "status": "compared"})"},
+    };
+    for (const auto& [what, text] : damaged) {
+        const fs::path report_dir = dir / ("individual-" + std::to_string(what.size()));
+        fs::create_directories(report_dir);
+        std::ofstream(report_dir / "report.json") << text;
+        std::string message;
+        try {
+            read_verification(report_dir.string(), 1);
+        } catch (const std::runtime_error& e) {
+            message = e.what();
+        }
+        INFO(what << ": " << message);
+        CHECK(message.find("report.json") != std::string::npos);
+        CHECK(message.find("[json.exception") == std::string::npos);
+        CHECK(message.find('\n') == std::string::npos);
+    }
+}
