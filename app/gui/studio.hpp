@@ -184,6 +184,25 @@ struct CalibrationState {
     std::uint64_t applied_run_job = 0;  //!< the job last sent to the live run (0: none)
 };
 
+//! "Verify in FEM" (Analysis > FEM; verify_actions.cpp and panel_verify.cpp): the worker, its
+//! newest state, and the verification of the body shown (just computed, or kept in the run
+//! directory from an earlier session).
+struct VerifyState {
+    FemVerifier worker;
+    std::shared_ptr<const FemVerifyState> state;
+    std::uint64_t state_version = 0;
+    std::uint64_t job_reported = 0;  //!< the last ended job the status line has told of
+    std::shared_ptr<const FemVerification> result;
+    std::string kept_error;  //!< a kept report that could not be read
+    std::string result_key;  //!< "<run dir>#<id>" the kept report was looked up for
+    int load = 1;            //!< row of the verification drawn in the 3D view (+A)
+    //! The ids of the reports kept in the shown run's RUN_DIR/verify/ (Kept FEM reports), read
+    //! when another run is shown and after each verification ends.
+    std::vector<std::int64_t> kept_reports;
+    std::string kept_reports_key;  //!< "<run dir>#<job>" they were listed for
+    bool ghost = true;             //!< draw the FEM's shape over our static one
+};
+
 struct Studio {
     ExperimentDocument document;
     //! The copy the Experiment panel's fields edit while a field is active; committed through
@@ -240,21 +259,7 @@ struct Studio {
     std::uint64_t compared_version = 0;
     ChampionHistory champion_history;  //!< the shown run's champions/ folder
     int fitness_plot_overlays = 0;     //!< other runs' curves drawn in the last frame
-    //! "Verify in FEM" (Analysis > FEM): the worker, its newest state, and the verification of
-    //! the body shown (just computed, or kept in the run directory from an earlier session).
-    FemVerifier fem_verifier;
-    std::shared_ptr<const FemVerifyState> fem_state;
-    std::uint64_t fem_state_version = 0;
-    std::uint64_t fem_job_reported = 0;  //!< the last ended job the status line has told of
-    std::shared_ptr<const FemVerification> verification;
-    std::string verification_error;    //!< a kept report that could not be read
-    std::string verification_key;      //!< "<run dir>#<id>" the kept report was looked up for
-    int fem_load = 1;                  //!< row of the verification drawn in the 3D view (+A)
-    //! The ids of the reports kept in the shown run's RUN_DIR/verify/ (Kept FEM reports), read
-    //! when another run is shown and after each verification ends.
-    std::vector<std::int64_t> kept_reports;
-    std::string kept_reports_key;  //!< "<run dir>#<job>" they were listed for
-    bool fem_ghost = true;             //!< draw the FEM's shape over our static one
+    VerifyState verify;
     bool follow_champion = true;       //!< replace the shown body when a new champion appears
     std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected

@@ -71,7 +71,7 @@ void champions_tab(Studio& s) {
         if (ImGui::SmallButton("beside")) replay_champion(s, e, true);
         record_widget(s, "beside gen " + std::to_string(e.generation));
         ImGui::TableNextColumn();
-        ImGui::BeginDisabled(s.fem_verifier.running());
+        ImGui::BeginDisabled(s.verify.worker.running());
         if (ImGui::SmallButton("FEM")) verify_champion(s, e);
         ImGui::EndDisabled();
         record_widget(s, "verify gen " + std::to_string(e.generation));

@@ -186,7 +186,7 @@ void draw_population_panel(Studio& s) {
         exploit_cell(s, m.exploits, std::string("flags ") + id);
         ImGui::TableNextColumn();
         ImGui::PushID(id);
-        ImGui::BeginDisabled(s.fem_verifier.running() || !m.body);
+        ImGui::BeginDisabled(s.verify.worker.running() || !m.body);
         if (ImGui::SmallButton("FEM")) verify_individual(s, m.id);
         ImGui::EndDisabled();
         record_widget(s, std::string("verify ") + id);

@@ -298,7 +298,7 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
                  "beside (+y): " + s.compared->label + ", fitness " +
                      format_fitness(s.compared->fitness, s.compared->experiment.fitness.measure));
         if (const FemVerification* v = fem_overlay(s)) {
-            const auto& row = v->rows[static_cast<std::size_t>(s.fem_load)];
+            const auto& row = v->rows[static_cast<std::size_t>(s.verify.load)];
             text(v->agrees ? IM_COL32(30, 120, 50, 255) : IM_COL32(200, 40, 30, 255),
                  "FEM: " + fem_verdict_line(*v) + "; static at " + row.load +
                      ": ours solid, CalculiX as the grey ghost");

@@ -9,7 +9,7 @@ bool needs_animation(const Studio& s) {
     const bool evolving = run_is_live(phase) && phase != RunPhase::Paused;
     return s.clock.playing || evolving || s.simulator.busy() || s.compare_simulator.busy() ||
            s.calibration.session.running() ||
-           s.exports.frame_job.active || s.view.dragging || s.fem_verifier.running();
+           s.exports.frame_job.active || s.view.dragging || s.verify.worker.running();
 }
 
 bool RedrawGate::should_draw(const Studio& s, double now_s) {

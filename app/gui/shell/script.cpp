@@ -292,7 +292,7 @@ void step_wait_verify(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
     // Verify in FEM: until the worker has ended (finished, failed or cancelled).
     frames_until(
-        session, timeout_of(step, 120.0), [&] { return !s.fem_verifier.running(); },
+        session, timeout_of(step, 120.0), [&] { return !s.verify.worker.running(); },
         "the verification");
     session.frame();  // the frame that takes its last state
 }

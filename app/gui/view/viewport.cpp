@@ -116,11 +116,11 @@ render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterStat
 }
 
 const FemVerification* fem_overlay(const Studio& studio) {
-    const auto& v = studio.verification;
-    if (!studio.fem_ghost || !v || !studio.shown || v->id != studio.shown->id ||
+    const auto& v = studio.verify.result;
+    if (!studio.verify.ghost || !v || !studio.shown || v->id != studio.shown->id ||
         studio.view.mode != ViewMode::Simulation || v->fem_shape.empty())
         return nullptr;
-    if (studio.fem_load < 0 || studio.fem_load >= static_cast<int>(v->fem_shape.size()))
+    if (studio.verify.load < 0 || studio.verify.load >= static_cast<int>(v->fem_shape.size()))
         return nullptr;
     return v.get();
 }
@@ -131,7 +131,7 @@ render::DrawList build_view_draw_list(const Studio& s) {
         const auto& se = s.shown->experiment;
         render::Scene scene = simulation_scene(*s.shown, s.clock.time_s, s.view);
         // Verify in FEM: our static shape under the chosen load, the FEM's as a ghost over it.
-        if (const FemVerification* v = fem_overlay(s)) apply_fem_overlay(scene, *v, s.fem_load);
+        if (const FemVerification* v = fem_overlay(s)) apply_fem_overlay(scene, *v, s.verify.load);
         render::DrawList list = render::build_draw_list(scene);
         for (int f = 0; f < 6; ++f)
             if (se.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
