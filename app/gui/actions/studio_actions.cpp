@@ -613,9 +613,9 @@ bool simulating_status(const Studio& studio) {
     return !studio.status_is_error && studio.status.starts_with("simulating");
 }
 
-}  // namespace
-
-void update_studio(Studio& studio) {
+// The run shown this frame: a watched run directory (re-read twice a second), else the live
+// session, whose end the status line then reports.
+void take_run_snapshot(Studio& studio) {
     // The snapshot to show: a watched run directory, else the live (or last) session.
     if (studio.showing_run_directory) {
         // Twice a second is enough for a run that writes once per generation; stat() is cheap.
@@ -636,6 +636,10 @@ void update_studio(Studio& studio) {
             set_status(studio, studio.run->message, phase == RunPhase::Failed);
         studio.status_run_phase = phase;
     }
+}
+
+// A resumed run's experiment goes into the editor once its checkpoint is loaded.
+void adopt_resumed_run_experiment(Studio& studio) {
     // A resumed run's experiment, once loaded, becomes the editor's document (the run's own),
     // unless the editor holds unsaved edits of another one.
     if (studio.adopt_run_experiment && studio.run && studio.run->loaded &&
@@ -647,7 +651,10 @@ void update_studio(Studio& studio) {
             studio.view.camera_needs_framing = true;
         }
     }
+}
 
+// A new champion of the run shown is simulated for the 3D view (when following champions).
+void follow_new_champion(Studio& studio) {
     // A new champion: simulate it for the live view.
     if (studio.follow_champion && studio.run && studio.run->has_champion &&
         studio.run->champion.id != studio.requested_champion) {
@@ -656,7 +663,10 @@ void update_studio(Studio& studio) {
                            "champion #" + std::to_string(studio.run->champion.id) +
                                ", generation " + std::to_string(studio.run->champion_generation));
     }
+}
 
+// The simulators' newest bodies: the one shown and the one beside it; their failures.
+void take_simulated_bodies(Studio& studio) {
     // A finished simulation: show it (the clock keeps its time, so playback continues in step).
     if (studio.simulator.version() != studio.shown_version) {
         studio.shown_version = studio.simulator.version();
@@ -683,13 +693,27 @@ void update_studio(Studio& studio) {
     for (const BodySimulator* sim : {&studio.simulator, &studio.compare_simulator})
         if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))
             set_status(studio, "simulation failed: " + sim->last_error(), true);
-    update_calibration(studio);
-    update_verification(studio);
+}
+
+// The replay clock spans the body shown and moves on by this frame's time.
+void advance_replay_clock(Studio& studio) {
     if (studio.shown) {
         const auto& frames = studio.shown->replay.frames;
         studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);
     }
     studio.clock.advance(studio.frame_dt_s);
+}
+
+}  // namespace
+
+void update_studio(Studio& studio) {
+    take_run_snapshot(studio);
+    adopt_resumed_run_experiment(studio);
+    follow_new_champion(studio);
+    take_simulated_bodies(studio);
+    update_calibration(studio);
+    update_verification(studio);
+    advance_replay_clock(studio);
 }
 
 }  // namespace bhm::app::gui
