@@ -7,7 +7,6 @@
 
 #include <imgui_internal.h>
 
-
 namespace bhm::app::gui {
 
 namespace {
@@ -102,6 +101,16 @@ bool field_text(const char* label, std::string& value, const char* hint, bool mu
     const bool done = finished_edit();
     unit_and_hint("", hint);
     return done;
+}
+
+void wrapped_tooltip(const std::string& text) {
+    const float display_w = ImGui::GetIO().DisplaySize.x;
+    const float width = std::max(100.0f, std::min(display_w - 40.0f, ImGui::GetFontSize() * 35.0f));
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
 }
 
 void section_title(const char* title) {

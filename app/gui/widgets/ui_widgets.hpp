@@ -30,6 +30,9 @@ bool field_text(const char* label, std::string& value, const char* hint, bool mu
 
 //! A bold-ish section title with a separator line.
 void section_title(const char* title);
+//! A tooltip of `text` wrapped at 35 font sizes (at most the display's width less 40 px): a
+//! paragraph (a preset's description) stays on the screen instead of one line running off it.
+void wrapped_tooltip(const std::string& text);
 //! "(?)" marker with a tooltip.
 void help_marker(const char* text);
 //! Width for a field so the unit fits after it.
