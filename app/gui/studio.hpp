@@ -184,6 +184,25 @@ struct CalibrationState {
     std::uint64_t applied_run_job = 0;  //!< the job last sent to the live run (0: none)
 };
 
+//! The bodies the 3D view replays: the simulators that make them, the one shown, the one beside
+//! it, which champion is followed, and the voxel inspected (request_simulation and update_studio
+//! in studio_actions.cpp, the replay and population panels).
+struct ShownBodies {
+    BodySimulator simulator;
+    std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
+    std::uint64_t shown_version = 0;
+    //! A second body replayed beside the shown one (Analysis > Champions > beside).
+    BodySimulator compare_simulator;
+    std::shared_ptr<const SimulatedBody> compared;
+    std::uint64_t compared_version = 0;
+    bool follow_champion = true;  //!< replace the shown body when a new champion appears
+    std::int64_t requested_champion = -1;
+    //! Simulation mode: the voxel clicked (index into the replay of inspected_body), read at the
+    //! replay time while that body is the one shown.
+    int inspected_voxel = -1;
+    std::shared_ptr<const SimulatedBody> inspected_body;
+};
+
 //! "Verify in FEM" (Analysis > FEM; verify_actions.cpp and panel_verify.cpp): the worker, its
 //! newest state, and the verification of the body shown (just computed, or kept in the run
 //! directory from an earlier session).
@@ -250,23 +269,11 @@ struct Studio {
 
     CalibrationState calibration;
 
-    BodySimulator simulator;
-    std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
-    std::uint64_t shown_version = 0;
-    //! A second body replayed beside the shown one (Analysis > Champions > beside).
-    BodySimulator compare_simulator;
-    std::shared_ptr<const SimulatedBody> compared;
-    std::uint64_t compared_version = 0;
+    ShownBodies bodies;
     ChampionHistory champion_history;  //!< the shown run's champions/ folder
     int fitness_plot_overlays = 0;     //!< other runs' curves drawn in the last frame
     VerifyState verify;
-    bool follow_champion = true;       //!< replace the shown body when a new champion appears
-    std::int64_t requested_champion = -1;
     std::int64_t selected_id = -1;  //!< population row selected
-    //! Simulation mode: the voxel clicked (index into the replay of inspected_body), read at the
-    //! replay time while that body is the one shown.
-    int inspected_voxel = -1;
-    std::shared_ptr<const SimulatedBody> inspected_body;
 
     std::string status;  //!< one-line message in the status bar
     bool status_is_error = false;

@@ -244,8 +244,8 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
                                             {"wait_run": "finished", "timeout_s": 240},
                                             {"wait_simulation": true, "timeout_s": 120},
                                             {"click": "tab FEM"}, {"frames": 2}])"));
-        REQUIRE(studio.shown);
-        const auto id = studio.shown->id;
+        REQUIRE(studio.bodies.shown);
+        const auto id = studio.bodies.shown->id;
         CHECK_FALSE(studio.verify.result);  // nothing kept yet
         {
             // No ccx: the panel says so in red, the status line too; nothing hangs.
@@ -276,7 +276,8 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
         const FemVerification* overlay = fem_overlay(studio);
         REQUIRE(overlay);
         CHECK(studio.verify.result->rows[static_cast<std::size_t>(studio.verify.load)].load == "+A");
-        render::Scene scene = simulation_scene(*studio.shown, studio.clock.time_s, studio.view);
+        render::Scene scene =
+            simulation_scene(*studio.bodies.shown, studio.clock.time_s, studio.view);
         REQUIRE(apply_fem_overlay(scene, *overlay, studio.verify.load));
         REQUIRE(scene.ghost_poses);
         CHECK(scene.options.show_ghost);
@@ -408,8 +409,8 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
         CHECK(studio.verify.state->phase == FemVerifyPhase::Finished);
         CHECK(studio.verify.state->id == id);
         CHECK(studio.verify.state->label.rfind("individual #" + std::to_string(id), 0) == 0);
-        REQUIRE(studio.shown);
-        CHECK(studio.shown->id == id);  // the row's body is shown as well
+        REQUIRE(studio.bodies.shown);
+        CHECK(studio.bodies.shown->id == id);  // the row's body is shown as well
         REQUIRE_MESSAGE(studio.verify.result, studio.status);
         CHECK(studio.verify.result->id == id);
         verdict = studio.verify.result->verdict;
@@ -435,8 +436,8 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
                                      {{"wait_simulation", true}, {"timeout_s", 120}},
                                      {{"frames", 2}}}));
     CHECK_MESSAGE(again.status.find("(checkpoint)") != std::string::npos, again.status);
-    REQUIRE(again.shown);
-    CHECK(again.shown->id == id);
+    REQUIRE(again.bodies.shown);
+    CHECK(again.bodies.shown->id == id);
     REQUIRE_MESSAGE(again.verify.result, again.status);
     CHECK(again.verify.result->id == id);
     CHECK(again.verify.result->verdict == verdict);
@@ -447,7 +448,7 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
     set_view_mode(again, ViewMode::Simulation);
     const FemVerification* overlay = fem_overlay(again);
     REQUIRE(overlay);
-    render::Scene scene = simulation_scene(*again.shown, again.clock.time_s, again.view);
+    render::Scene scene = simulation_scene(*again.bodies.shown, again.clock.time_s, again.view);
     CHECK(apply_fem_overlay(scene, *overlay, again.verify.load));  // the ghost fits this body
 }
 
@@ -521,11 +522,12 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
     other.id = 2;
     other.label = "champion #2 of generation 3, compared with the body on the left";
     other.experiment = e;
-    other.framed_body = studio.shown->framed_body;
-    studio.compare_simulator.request(other);
+    other.framed_body = studio.bodies.shown->framed_body;
+    studio.bodies.compare_simulator.request(other);
     const auto end = Clock::now() + std::chrono::seconds(120);
-    while (!studio.compared && Clock::now() < end) session.frame();
-    REQUIRE(studio.compared);
+    while (!studio.bodies.compared && Clock::now() < end)
+        session.frame();
+    REQUIRE(studio.bodies.compared);
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
     REQUIRE(studio.view.split);
     for (const char* name : {"view overlay", "compared overlay"}) {

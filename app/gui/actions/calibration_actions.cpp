@@ -45,8 +45,8 @@ bool show_body_file(Studio& s, const std::string& path) {
         request.experiment = e;
         request.framed_body =
             std::make_shared<const evo::Body>(evo::apply_frame_and_overrides(e, body));
-        s.follow_champion = false;
-        s.simulator.request(std::move(request));
+        s.bodies.follow_champion = false;
+        s.bodies.simulator.request(std::move(request));
         set_status(s, "simulating " + absolute);
         return true;
     } catch (const std::exception& e) {
@@ -57,7 +57,7 @@ bool show_body_file(Studio& s, const std::string& path) {
 
 bool load_track(Studio& s, const std::string& path) {
     auto& c = s.calibration;
-    if (!s.shown || !s.shown->framed_body) {
+    if (!s.bodies.shown || !s.bodies.shown->framed_body) {
         set_status(s, "load track: show a body first (a champion, an individual or a body file)",
                    true);
         return false;
@@ -71,10 +71,10 @@ bool load_track(Studio& s, const std::string& path) {
         auto track = std::make_shared<const evo::MeasuredTrack>(evo::load_measured_track(absolute));
         c.track = track;
         c.track_path = absolute;
-        c.framed_body = s.shown->framed_body;
-        c.experiment = s.shown->experiment;
-        c.body_id = s.shown->id;
-        c.body_label = s.shown->label;
+        c.framed_body = s.bodies.shown->framed_body;
+        c.experiment = s.bodies.shown->experiment;
+        c.body_id = s.bodies.shown->id;
+        c.body_label = s.bodies.shown->label;
         CalibrationJob job;
         job.experiment = c.experiment;
         job.framed_body = c.framed_body;
@@ -142,7 +142,8 @@ bool cancel_calibration(Studio& s) {
 void show_calibrated_body(Studio& s) {
     const auto& c = s.calibration;
     const auto snap = c.snapshot;
-    if (!snap || !snap->result || !s.shown || s.shown->framed_body != c.framed_body) return;
+    if (!snap || !snap->result || !s.bodies.shown || s.bodies.shown->framed_body != c.framed_body)
+        return;
     // The replay (and a video exported from it) must move as the fitted values say, and a
     // champion compared beside it belongs to another question (issue 39, M7).
     clear_compared_body(s);
@@ -151,8 +152,8 @@ void show_calibrated_body(Studio& s) {
     request.label = c.body_label + ", calibrated against " + file_name(c.track_path);
     request.experiment = snap->result->calibrated.experiment;
     request.framed_body = c.framed_body;
-    s.follow_champion = false;
-    s.simulator.request(std::move(request));
+    s.bodies.follow_champion = false;
+    s.bodies.simulator.request(std::move(request));
 }
 
 bool apply_calibration(Studio& s) {

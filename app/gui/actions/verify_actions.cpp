@@ -38,15 +38,15 @@ bool start_verification(Studio& studio, FemVerifyRequest request) {
 }  // namespace
 
 bool verify_shown_body(Studio& studio) {
-    if (!studio.shown || !studio.shown->framed_body) {
+    if (!studio.bodies.shown || !studio.bodies.shown->framed_body) {
         set_status(studio, "verify in FEM: select a champion or an individual first", true);
         return false;
     }
     FemVerifyRequest request;
-    request.id = studio.shown->id;
-    request.label = studio.shown->label;
-    request.experiment = studio.shown->experiment;
-    request.framed_body = studio.shown->framed_body;
+    request.id = studio.bodies.shown->id;
+    request.label = studio.bodies.shown->label;
+    request.experiment = studio.bodies.shown->experiment;
+    request.framed_body = studio.bodies.shown->framed_body;
     request.run_dir = studio.run ? studio.run->run_dir : "";
     return start_verification(studio, std::move(request));
 }
@@ -129,9 +129,9 @@ bool show_kept_verification(Studio& studio, std::int64_t id) {
                         std::to_string(state.generation) + " (checkpoint)";
         request.experiment = run->experiment;
         request.framed_body = std::make_shared<const evo::Body>(found->phenotype.body);
-        studio.follow_champion = false;
+        studio.bodies.follow_champion = false;
         studio.selected_id = id;
-        studio.simulator.request(std::move(request));
+        studio.bodies.simulator.request(std::move(request));
         set_status(studio, "simulating individual #" + std::to_string(id) +
                                " from the checkpoint, with its kept FEM report");
         return true;
@@ -165,7 +165,7 @@ void update_verification(Studio& studio) {
             char seconds[32];
             std::snprintf(seconds, sizeof seconds, "%.1f s", st->elapsed_s);
             if (st->phase == FemVerifyPhase::Finished && st->result) {
-                if (studio.shown && studio.shown->id == st->id) {
+                if (studio.bodies.shown && studio.bodies.shown->id == st->id) {
                     studio.verify.result = st->result;
                     studio.verify.kept_error.clear();
                     studio.verify.load =
@@ -190,16 +190,17 @@ void update_verification(Studio& studio) {
         studio.verify.kept_reports_key = kept_key;
         studio.verify.kept_reports = kept_verifications(run_dir);
     }
-    const std::string key =
-        studio.shown && !run_dir.empty() ? run_dir + "#" + std::to_string(studio.shown->id) : "";
+    const std::string key = studio.bodies.shown && !run_dir.empty()
+                                ? run_dir + "#" + std::to_string(studio.bodies.shown->id)
+                                : "";
     if (key == studio.verify.result_key) return;
     studio.verify.result_key = key;
     studio.verify.result.reset();
     studio.verify.kept_error.clear();
     if (key.empty()) return;
     try {
-        auto kept =
-            read_verification(verification_dir(run_dir, studio.shown->id), studio.shown->id);
+        auto kept = read_verification(verification_dir(run_dir, studio.bodies.shown->id),
+                                      studio.bodies.shown->id);
         if (kept) {
             studio.verify.result = std::make_shared<const FemVerification>(std::move(*kept));
             studio.verify.load =

@@ -10,14 +10,15 @@ namespace bhm::app::gui {
 
 bool click_in_view(Studio& s, glm::vec2 pixel, bool shift) {
     if (s.view.mode == ViewMode::Simulation) {
-        s.inspected_voxel = -1;
-        s.inspected_body.reset();
-        if (!s.shown || s.shown->replay.frames.empty() || s.view.size_px.x < 1.0f) return false;
+        s.bodies.inspected_voxel = -1;
+        s.bodies.inspected_body.reset();
+        if (!s.bodies.shown || s.bodies.shown->replay.frames.empty() || s.view.size_px.x < 1.0f)
+            return false;
         const Ray ray = ray_through_pixel(s.view.camera, pixel, s.view.size_px);
-        const auto poses = engine::pose_at(s.shown->replay, s.clock.time_s);
+        const auto poses = engine::pose_at(s.bodies.shown->replay, s.clock.time_s);
         if (const auto hit = pick_posed_voxel(ray, poses)) {
-            s.inspected_voxel = hit->voxel;
-            s.inspected_body = s.shown;
+            s.bodies.inspected_voxel = hit->voxel;
+            s.bodies.inspected_body = s.bodies.shown;
         }
         return false;
     }

@@ -9,8 +9,8 @@ namespace bhm::app::gui {
 
 //! What a left click at `pixel` (view coordinates, top-left origin) does: cycle a face or paint a
 //! cell in Workspace mode; in Simulation mode pick the voxel of the shown body under it, as posed
-//! at the replay time (studio.inspected_voxel; a click beside the body clears it). Returns true
-//! when it changed the experiment.
+//! at the replay time (studio.bodies.inspected_voxel; a click beside the body clears it). Returns
+//! true when it changed the experiment.
 bool click_in_view(Studio& studio, glm::vec2 pixel, bool shift);
 
 }  // namespace bhm::app::gui

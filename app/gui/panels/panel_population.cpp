@@ -112,7 +112,7 @@ void draw_population_panel(Studio& s) {
     }
     const auto& run = *s.run;
     const auto measure = run.experiment.fitness.measure;
-    ImGui::BeginDisabled(s.follow_champion);
+    ImGui::BeginDisabled(s.bodies.follow_champion);
     if (tracked_button(s, "Follow champion")) follow_champion(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
@@ -149,7 +149,7 @@ void draw_population_panel(Studio& s) {
         ImGui::TableNextColumn();
         char id[48];
         std::snprintf(id, sizeof id, "#%lld", static_cast<long long>(m.id));
-        const bool selected = s.shown && s.shown->id == m.id;
+        const bool selected = s.bodies.shown && s.bodies.shown->id == m.id;
         // The row shows it; the "FEM" button at its end (drawn over the row) verifies it.
         if (ImGui::Selectable(
                 id, selected,

@@ -95,7 +95,7 @@ void result_section(Studio& s) {
     }
     const auto v = s.verify.result;  // shared: the worker may publish a newer one meanwhile
     if (!v) {
-        if (s.shown)
+        if (s.bodies.shown)
             ImGui::TextDisabled("Not verified yet: Verify in FEM checks it against CalculiX.");
         return;
     }
@@ -180,7 +180,7 @@ void kept_section(Studio& s) {
         const float width = ImGui::CalcTextSize(label).x + 2.0f * style.FramePadding.x;
         if (k > 0 && ImGui::GetItemRectMax().x + style.ItemSpacing.x + width < right)
             ImGui::SameLine();
-        const bool shown = s.shown && s.shown->id == id;
+        const bool shown = s.bodies.shown && s.bodies.shown->id == id;
         if (shown) ImGui::PushStyleColor(ImGuiCol_Button, kGood);
         const bool clicked = ImGui::Button(label);
         if (shown) ImGui::PopStyleColor();
@@ -197,12 +197,13 @@ void kept_section(Studio& s) {
 
 void draw_verify_panel(Studio& s) {
     const bool running = s.verify.worker.running();
-    ImGui::BeginDisabled(running || !s.shown);
+    ImGui::BeginDisabled(running || !s.bodies.shown);
     if (tracked_button(s, "Verify in FEM")) verify_shown_body(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
-    if (s.shown)
-        ImGui::TextDisabled("%s against CalculiX at rest, +A and -A", s.shown->label.c_str());
+    if (s.bodies.shown)
+        ImGui::TextDisabled("%s against CalculiX at rest, +A and -A",
+                            s.bodies.shown->label.c_str());
     else
         ImGui::TextDisabled("Select a champion or an individual to verify it.");
     progress_section(s);

@@ -238,7 +238,7 @@ void step_select(HeadlessStudio& session, const json& step) {
         "a champion");
     const auto id = s.run->champion.id;
     click_at(session, widget_centre(session, "individual #" + std::to_string(id)));
-    if (s.simulator.pending_id() != id && !(s.shown && s.shown->id == id))
+    if (s.bodies.simulator.pending_id() != id && !(s.bodies.shown && s.bodies.shown->id == id))
         throw ScriptError("the click did not select the champion #" + std::to_string(id));
 }
 
@@ -247,8 +247,9 @@ void step_wait_simulation(HeadlessStudio& session, const json& step) {
     frames_until(
         session, timeout_of(step, 120.0),
         [&] {
-            if (!s.simulator.last_error().empty()) throw ScriptError(s.simulator.last_error());
-            return !s.simulator.busy() && s.shown != nullptr;
+            if (!s.bodies.simulator.last_error().empty())
+                throw ScriptError(s.bodies.simulator.last_error());
+            return !s.bodies.simulator.busy() && s.bodies.shown != nullptr;
         },
         "the simulation");
 }
@@ -300,7 +301,7 @@ void step_wait_verify(HeadlessStudio& session, const json& step) {
 void step_replay(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
     const json& r = step.at("replay");
-    if (!s.shown) throw ScriptError("replay: no simulated body is shown");
+    if (!s.bodies.shown) throw ScriptError("replay: no simulated body is shown");
     if (r.contains("playing")) s.clock.playing = r.at("playing").get<bool>();
     if (r.contains("time_s")) s.clock.seek(r.at("time_s").get<double>());
     set_view_mode(s, ViewMode::Simulation);
