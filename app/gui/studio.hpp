@@ -24,9 +24,9 @@
 #include "app/gui/session/fem_verifier.hpp"
 #include "app/gui/session/replay_player.hpp"
 #include "app/gui/session/run_directory_watch.hpp"
+#include "app/gui/settings/key_chord.hpp"
 #include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/settings/studio_settings.hpp"
-#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/view/picking.hpp"
 #include "app/gui/welcome/welcome.hpp"
 #include "app/gui/widgets/file_dialog.hpp"
@@ -184,6 +184,44 @@ struct CalibrationState {
     std::uint64_t applied_run_job = 0;  //!< the job last sent to the live run (0: none)
 };
 
+//! The bodies the 3D view replays: the simulators that make them, the one shown, the one beside
+//! it, which champion is followed, and the voxel inspected (request_simulation and update_studio
+//! in studio_actions.cpp, the replay and population panels).
+struct ShownBodies {
+    BodySimulator simulator;
+    std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
+    std::uint64_t shown_version = 0;
+    //! A second body replayed beside the shown one (Analysis > Champions > beside).
+    BodySimulator compare_simulator;
+    std::shared_ptr<const SimulatedBody> compared;
+    std::uint64_t compared_version = 0;
+    bool follow_champion = true;  //!< replace the shown body when a new champion appears
+    std::int64_t requested_champion = -1;
+    //! Simulation mode: the voxel clicked (index into the replay of inspected_body), read at the
+    //! replay time while that body is the one shown.
+    int inspected_voxel = -1;
+    std::shared_ptr<const SimulatedBody> inspected_body;
+};
+
+//! "Verify in FEM" (Analysis > FEM; verify_actions.cpp and panel_verify.cpp): the worker, its
+//! newest state, and the verification of the body shown (just computed, or kept in the run
+//! directory from an earlier session).
+struct VerifyState {
+    FemVerifier worker;
+    std::shared_ptr<const FemVerifyState> state;
+    std::uint64_t state_version = 0;
+    std::uint64_t job_reported = 0;  //!< the last ended job the status line has told of
+    std::shared_ptr<const FemVerification> result;
+    std::string kept_error;  //!< a kept report that could not be read
+    std::string result_key;  //!< "<run dir>#<id>" the kept report was looked up for
+    int load = 1;            //!< row of the verification drawn in the 3D view (+A)
+    //! The ids of the reports kept in the shown run's RUN_DIR/verify/ (Kept FEM reports), read
+    //! when another run is shown and after each verification ends.
+    std::vector<std::int64_t> kept_reports;
+    std::string kept_reports_key;  //!< "<run dir>#<job>" they were listed for
+    bool ghost = true;             //!< draw the FEM's shape over our static one
+};
+
 struct Studio {
     ExperimentDocument document;
     //! The copy the Experiment panel's fields edit while a field is active; committed through
@@ -231,37 +269,11 @@ struct Studio {
 
     CalibrationState calibration;
 
-    BodySimulator simulator;
-    std::shared_ptr<const SimulatedBody> shown;  //!< body playing in the 3D view
-    std::uint64_t shown_version = 0;
-    //! A second body replayed beside the shown one (Analysis > Champions > beside).
-    BodySimulator compare_simulator;
-    std::shared_ptr<const SimulatedBody> compared;
-    std::uint64_t compared_version = 0;
+    ShownBodies bodies;
     ChampionHistory champion_history;  //!< the shown run's champions/ folder
     int fitness_plot_overlays = 0;     //!< other runs' curves drawn in the last frame
-    //! "Verify in FEM" (Analysis > FEM): the worker, its newest state, and the verification of
-    //! the body shown (just computed, or kept in the run directory from an earlier session).
-    FemVerifier fem_verifier;
-    std::shared_ptr<const FemVerifyState> fem_state;
-    std::uint64_t fem_state_version = 0;
-    std::uint64_t fem_job_reported = 0;  //!< the last ended job the status line has told of
-    std::shared_ptr<const FemVerification> verification;
-    std::string verification_error;    //!< a kept report that could not be read
-    std::string verification_key;      //!< "<run dir>#<id>" the kept report was looked up for
-    int fem_load = 1;                  //!< row of the verification drawn in the 3D view (+A)
-    //! The ids of the reports kept in the shown run's RUN_DIR/verify/ (Kept FEM reports), read
-    //! when another run is shown and after each verification ends.
-    std::vector<std::int64_t> kept_reports;
-    std::string kept_reports_key;  //!< "<run dir>#<job>" they were listed for
-    bool fem_ghost = true;             //!< draw the FEM's shape over our static one
-    bool follow_champion = true;       //!< replace the shown body when a new champion appears
-    std::int64_t requested_champion = -1;
+    VerifyState verify;
     std::int64_t selected_id = -1;  //!< population row selected
-    //! Simulation mode: the voxel clicked (index into the replay of inspected_body), read at the
-    //! replay time while that body is the one shown.
-    int inspected_voxel = -1;
-    std::shared_ptr<const SimulatedBody> inspected_body;
 
     std::string status;  //!< one-line message in the status bar
     bool status_is_error = false;

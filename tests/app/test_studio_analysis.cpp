@@ -123,17 +123,17 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     run_script(session,
                json::array({{{"click", "champion gen " + std::to_string(first.generation)}},
                             {{"wait_simulation", true}, {"timeout_s", 120}}}));
-    REQUIRE(studio.shown);
-    CHECK(studio.shown->id == first.id);
-    CHECK(studio.shown->fitness == doctest::Approx(first.fitness).epsilon(1e-9));
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->id == first.id);
+    CHECK(studio.bodies.shown->fitness == doctest::Approx(first.fitness).epsilon(1e-9));
     // Beside it: the newest champion, drawn next to the first one.
     const auto last = entries.back();
     run_script(session, json::array({{{"click", "beside gen " + std::to_string(last.generation)}},
                                      {{"frames", 2}}}));
-    for (int k = 0; k < 6000 && !studio.compared; ++k)  // simulated on its own worker
+    for (int k = 0; k < 6000 && !studio.bodies.compared; ++k)  // simulated on its own worker
         session.frame();
-    REQUIRE(studio.compared);
-    CHECK(studio.compared->id == last.id);
+    REQUIRE(studio.bodies.compared);
+    CHECK(studio.bodies.compared->id == last.id);
     session.frame();
     CHECK(studio.status.find("beside it") == 0);  // no stale "simulating ..." line
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
@@ -173,7 +173,7 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     REQUIRE_FALSE(studio.view.split);
     CHECK_FALSE(split_view_active(studio));
     const auto both = build_view_draw_list(studio);
-    studio.compared.reset();
+    studio.bodies.compared.reset();
     const auto one = build_view_draw_list(studio);
     CHECK(both.voxel_instance_count() > one.voxel_instance_count());
     CHECK(both.bounds.max.y > one.bounds.max.y);  // beside it along +y
@@ -186,7 +186,7 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     studio.view.color_by = ColorBy::Displacement;
     const auto by_displacement = build_view_draw_list(studio);
     REQUIRE(by_displacement.boxes.size() == by_material.boxes.size());
-    const auto& shown = *studio.shown;
+    const auto& shown = *studio.bodies.shown;
     const auto field = voxel_scalars(ColorBy::Displacement, shown.experiment, shown.replay,
                                      frame_index_at(shown.replay, 0.35), shown.series, {});
     int matched = 0, body_boxes = 0;
@@ -213,8 +213,8 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
                                         {"click": "time plot com"}])"));
     CHECK(studio.clock.time_s > 0.05);
     CHECK_FALSE(studio.clock.playing);
-    REQUIRE(studio.shown);
-    CHECK(studio.shown->series.t_s.size() == studio.shown->replay.frames.size());
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->series.t_s.size() == studio.bodies.shown->replay.frames.size());
 
     // The AFPO scatter shows the population.
     run_script(session, json::parse(R"([{"click": "tab Age vs fitness"}, {"frames": 2}])"));

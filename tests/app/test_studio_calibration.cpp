@@ -198,7 +198,7 @@ TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable
     CHECK_FALSE(load_track(s, track_path));  // no body shown yet
     CHECK(s.status_is_error);
     REQUIRE(show_body_file(s, body_path));
-    REQUIRE(frames_until([&] { return s.shown != nullptr; }, 60.0));
+    REQUIRE(frames_until([&] { return s.bodies.shown != nullptr; }, 60.0));
 
     // A bad track: one line naming the file and the row; nothing loaded.
     CHECK_FALSE(load_track(s, (dir / "bad.csv").string()));
@@ -337,7 +337,7 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
         return done();
     };
     REQUIRE(show_body_file(s, body_path));
-    REQUIRE(frames_until([&] { return s.shown != nullptr; }, 60.0));
+    REQUIRE(frames_until([&] { return s.bodies.shown != nullptr; }, 60.0));
     REQUIRE(load_track(s, track_path));
     REQUIRE(frames_until([&] { return !calibration_running(s); }, 60.0));
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
@@ -423,8 +423,9 @@ std::shared_ptr<const CalibrationSnapshot> calibrate_fixture(Studio& s, const Fi
     request.label = "bilayer";
     request.experiment = f.experiment;
     request.framed_body = f.body;
-    s.simulator.request(request);
-    REQUIRE(update_until(s, [&] { return s.shown != nullptr; }, 60.0));
+    s.bodies.simulator.request(request);
+    REQUIRE(update_until(
+        s, [&] { return s.bodies.shown != nullptr; }, 60.0));
     REQUIRE(load_track(s, track_path));
     REQUIRE(update_until(s, [&] { return !calibration_running(s); }, 60.0));
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
@@ -472,19 +473,22 @@ TEST_CASE("studio: after Apply the calibrated body is simulated again, alone in 
     other.label = "an unrelated champion";
     other.experiment = f.experiment;
     other.framed_body = f.body;
-    s.compare_simulator.request(other);
-    REQUIRE(update_until(s, [&] { return s.compared != nullptr; }, 60.0));
-    const auto before = s.shown;
+    s.bodies.compare_simulator.request(other);
+    REQUIRE(update_until(
+        s, [&] { return s.bodies.compared != nullptr; }, 60.0));
+    const auto before = s.bodies.shown;
     REQUIRE(apply_calibration(s));
-    CHECK(s.compared == nullptr);
+    CHECK(s.bodies.compared == nullptr);
     const double amplitude = s.document.experiment().actuation.temperature_amplitude_c;
     CHECK(amplitude == relative(snap->result->fitted[1].value, 1e-12));
     REQUIRE(update_until(
-        s, [&] { return s.shown && s.shown != before && !s.simulator.busy(); }, 60.0));
-    CHECK(s.shown->framed_body == f.body);
-    CHECK(s.shown->experiment.actuation.temperature_amplitude_c == amplitude);
-    CHECK_MESSAGE(s.shown->label.find("calibrated") != std::string::npos, s.shown->label);
-    CHECK(s.compared == nullptr);
+        s, [&] { return s.bodies.shown && s.bodies.shown != before && !s.bodies.simulator.busy(); },
+        60.0));
+    CHECK(s.bodies.shown->framed_body == f.body);
+    CHECK(s.bodies.shown->experiment.actuation.temperature_amplitude_c == amplitude);
+    CHECK_MESSAGE(s.bodies.shown->label.find("calibrated") != std::string::npos,
+                  s.bodies.shown->label);
+    CHECK(s.bodies.compared == nullptr);
 }
 
 TEST_CASE("studio session: the Calibrate tab browses for its files; exports go to the data folder") {
@@ -510,8 +514,8 @@ TEST_CASE("studio session: the Calibrate tab browses for its files; exports go t
     CHECK_FALSE(s.widgets.count("dialog entry tip.csv"));
     run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry bilayer.body.json"},
         {"wait_simulation": true}, {"frames": 1}, {"click": "Track..."}, {"frames": 1}])"));
-    REQUIRE(s.shown);
-    CHECK(s.shown->label == "body bilayer.body.json");
+    REQUIRE(s.bodies.shown);
+    CHECK(s.bodies.shown->label == "body bilayer.body.json");
     CHECK(s.calibration.body_field == (dir / "bilayer.body.json").string());
     REQUIRE(s.file_dialog.open);
     CHECK(s.file_dialog.purpose == FileDialogPurpose::LoadTrack);

@@ -15,7 +15,7 @@
 #include "app/cli/render_video.hpp"
 #include "app/gui/actions/export_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/redraw_gate.hpp"
 #include "app/gui/shell/script.hpp"
@@ -319,9 +319,9 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"replay": {"time_s": 0.35, "playing": false}},
                                         {"frames": 3}])"));
-    REQUIRE(studio.shown);
+    REQUIRE(studio.bodies.shown);
     REQUIRE(studio.view.mode == ViewMode::Simulation);
-    const auto& replay = studio.shown->replay;
+    const auto& replay = studio.bodies.shown->replay;
     const auto poses = engine::pose_at(replay, studio.clock.time_s);
     // The voxel nearest the eye: nothing hides its centre.
     const glm::vec3 eye = studio.view.camera.eye_position();
@@ -350,7 +350,7 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     input.buttons[0] = false;
     session.frame();
     session.frame();
-    REQUIRE(studio.inspected_voxel == nearest);
+    REQUIRE(studio.bodies.inspected_voxel == nearest);
     CHECK(drawn_now(studio, "voxel inspector"));
     const auto reading = inspected_voxel(studio);
     REQUIRE(reading);
@@ -401,7 +401,7 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     session.frame();
     input.buttons[0] = false;
     session.frame();
-    CHECK(studio.inspected_voxel == -1);
+    CHECK(studio.bodies.inspected_voxel == -1);
     CHECK_FALSE(inspected_voxel(studio));
     CHECK(picked_box().empty());
 }
@@ -416,8 +416,8 @@ TEST_CASE("studio details: exported frames carry a caption: experiment, body, fi
     testing::request_tiny_body(studio, e, 3, "champion #3, generation 2");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"frames": 2}])"));
-    REQUIRE(studio.shown);
-    const auto lines = export_caption_lines(*studio.shown, 0.25);
+    REQUIRE(studio.bodies.shown);
+    const auto lines = export_caption_lines(*studio.bodies.shown, 0.25);
     REQUIRE(lines.size() == 4);
     CHECK(lines[0] == "caption test");
     CHECK(lines[1] == "champion 3, generation 2");  // no '#': the dot font lacks it

@@ -8,11 +8,11 @@
 #include <fstream>
 
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
 #include "app/gui/widgets/file_dialog.hpp"
-#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "test_studio_fixtures.hpp"
 

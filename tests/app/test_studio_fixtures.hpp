@@ -33,7 +33,7 @@ inline void request_tiny_body(Studio& studio, const evo::Experiment& e, std::int
     body->size = {2, 2, 1};
     body->cells = {1, 2, 1, 2};
     request.framed_body = body;
-    studio.simulator.request(request);
+    studio.bodies.simulator.request(request);
 }
 
 //! Paper Table 1 materials on a small workspace held at x-; short times so a generation of a

@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
 #include "app/gui/view/viewport.hpp"

@@ -198,7 +198,7 @@ TEST_CASE("studio layout: the view names the body being simulated, not the one s
     testing::request_tiny_body(studio, e, 1, "champion #1, generation 0");
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"frames": 2}])"));
-    REQUIRE(studio.shown);
+    REQUIRE(studio.bodies.shown);
     REQUIRE(studio.view.mode == ViewMode::Simulation);
     CHECK_FALSE(drawn_now(studio, "simulating note"));
 
@@ -213,14 +213,15 @@ TEST_CASE("studio layout: the view names the body being simulated, not the one s
     big->size = {10, 8, 6};
     big->cells.assign(10 * 8 * 6, 1);
     next.framed_body = big;
-    studio.simulator.request(next);
+    studio.bodies.simulator.request(next);
     run_script(session, json::parse(R"([{"frames": 2}])"));
-    CHECK(studio.simulator.busy());
+    CHECK(studio.bodies.simulator.busy());
     CHECK(drawn_now(studio, "simulating note"));
-    REQUIRE(studio.shown);
-    CHECK(studio.shown->label == "champion #1, generation 0");  // still playing, named as old
-    studio.simulator.cancel();
-    frames_until(session, 60.0, [&] { return !studio.simulator.busy(); });
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->label ==
+          "champion #1, generation 0");  // still playing, named as old
+    studio.bodies.simulator.cancel();
+    frames_until(session, 60.0, [&] { return !studio.bodies.simulator.busy(); });
     session.frame();
     CHECK_FALSE(drawn_now(studio, "simulating note"));
 }

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/panels/material_picker.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
-#include "app/gui/widgets/material_picker.hpp"
 #include "evo/experiment/material_library.hpp"
 #include "test_studio_fixtures.hpp"
 

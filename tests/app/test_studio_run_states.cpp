@@ -123,7 +123,7 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
                                         {"frames": 2}])"));
     // Paused, with no replay playing and no body simulating: no redraw at full rate.
     studio.clock.playing = false;
-    frames_until(session, 120.0, [&] { return !studio.simulator.busy(); });
+    frames_until(session, 120.0, [&] { return !studio.bodies.simulator.busy(); });
     CHECK_FALSE(needs_animation(studio));
     // The note names what was edited (it named the measure, whatever the edit).
     CHECK(drawn_now(studio, "edited rules"));
@@ -214,17 +214,17 @@ TEST_CASE("studio run states: a new run never plays the last run's champion unde
     run_script(session, json::parse(R"([{"click": "Start"},
                                         {"wait_run": "finished", "timeout_s": 240},
                                         {"wait_simulation": true, "timeout_s": 120}])"));
-    REQUIRE(studio.shown);
-    CHECK(studio.shown->experiment.name == "first");
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->experiment.name == "first");
     e.name = "second";
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "second").string();
     run_script(session, json::parse(R"([{"click": "Start"}])"));
-    CHECK_FALSE(studio.shown);  // not the first run's body under the second run's panel
+    CHECK_FALSE(studio.bodies.shown);  // not the first run's body under the second run's panel
     run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240},
                                         {"wait_simulation": true, "timeout_s": 120}])"));
-    REQUIRE(studio.shown);
-    CHECK(studio.shown->experiment.name == "second");
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->experiment.name == "second");
 }
 
 TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no empty run folder") {

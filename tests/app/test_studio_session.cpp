@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "app/gui/actions/key_bindings.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/shell/headless_studio.hpp"
-#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/shell/script.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "render/image.hpp"
@@ -126,10 +126,10 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
     for (const char* name : {"run.json", "fitness.csv", "champion.json", "checkpoint.json"})
         CHECK_MESSAGE(std::filesystem::exists(dir / "run" / name), name);
     // The champion was simulated again for the view, with the same fitness evolution measured.
-    REQUIRE(studio.shown);
-    CHECK(studio.shown->id == run->champion.id);
-    CHECK(studio.shown->fitness == doctest::Approx(run->champion.fitness).epsilon(1e-9));
-    CHECK(studio.shown->label.find("champion #" + std::to_string(run->champion.id)) == 0);
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->id == run->champion.id);
+    CHECK(studio.bodies.shown->fitness == doctest::Approx(run->champion.fitness).epsilon(1e-9));
+    CHECK(studio.bodies.shown->label.find("champion #" + std::to_string(run->champion.id)) == 0);
     CHECK(studio.view.mode == ViewMode::Simulation);
     CHECK(studio.clock.time_s == doctest::Approx(0.3));
     CHECK(studio.clock.duration_s == doctest::Approx(0.4).epsilon(0.02));
@@ -149,7 +149,7 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
                                      {{"click", "Write frames"}},
                                      {{"frames", 8}},
                                      {{"export_view", view_png}, {"size", {320, 200}}}}));
-    CHECK(evo::load_body(studio.exports.champion_json_path) == *studio.shown->framed_body);
+    CHECK(evo::load_body(studio.exports.champion_json_path) == *studio.bodies.shown->framed_body);
     std::ifstream vxa(studio.exports.champion_vxa_path);
     const std::string vxa_text((std::istreambuf_iterator<char>(vxa)),
                                std::istreambuf_iterator<char>());
@@ -252,10 +252,10 @@ TEST_CASE("studio session: a simulated body replays at t = 5 s with the settle p
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"replay": {"time_s": 5.0, "playing": false}},
                                         {"frames": 2}])"));
-    REQUIRE(studio.shown);
+    REQUIRE(studio.bodies.shown);
     CHECK(studio.clock.time_s == 5.0);
     CHECK(studio.clock.duration_s == doctest::Approx(5.2).epsilon(0.01));
-    const auto& replay = studio.shown->replay;
+    const auto& replay = studio.bodies.shown->replay;
     CHECK(replay.settle_s == 0.2);
     const int frame = frame_index_at(replay, 5.0);
     CHECK(std::abs(replay.frames[static_cast<std::size_t>(frame)].time_s - 5.0) < 1.0 / 30.0);

@@ -244,9 +244,9 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
                                             {"wait_run": "finished", "timeout_s": 240},
                                             {"wait_simulation": true, "timeout_s": 120},
                                             {"click": "tab FEM"}, {"frames": 2}])"));
-        REQUIRE(studio.shown);
-        const auto id = studio.shown->id;
-        CHECK_FALSE(studio.verification);  // nothing kept yet
+        REQUIRE(studio.bodies.shown);
+        const auto id = studio.bodies.shown->id;
+        CHECK_FALSE(studio.verify.result);  // nothing kept yet
         {
             // No ccx: the panel says so in red, the status line too; nothing hangs.
             const fs::path empty = dir / "empty-path";
@@ -263,9 +263,9 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
         run_script(session, json::parse(R"([{"click": "Verify in FEM"},
                                             {"wait_verify": true, "timeout_s": 120},
                                             {"frames": 2}])"));
-        REQUIRE_MESSAGE(studio.verification, studio.status);
-        CHECK(studio.verification->id == id);
-        verdict = studio.verification->verdict;
+        REQUIRE_MESSAGE(studio.verify.result, studio.status);
+        CHECK(studio.verify.result->id == id);
+        verdict = studio.verify.result->verdict;
         CHECK_MESSAGE(studio.status.find(verdict) != std::string::npos, studio.status);
         CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
         const auto it = studio.widgets.find("fem verdict");
@@ -275,9 +275,10 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
         set_view_mode(studio, ViewMode::Simulation);
         const FemVerification* overlay = fem_overlay(studio);
         REQUIRE(overlay);
-        CHECK(studio.verification->rows[static_cast<std::size_t>(studio.fem_load)].load == "+A");
-        render::Scene scene = simulation_scene(*studio.shown, studio.clock.time_s, studio.view);
-        REQUIRE(apply_fem_overlay(scene, *overlay, studio.fem_load));
+        CHECK(studio.verify.result->rows[static_cast<std::size_t>(studio.verify.load)].load == "+A");
+        render::Scene scene =
+            simulation_scene(*studio.bodies.shown, studio.clock.time_s, studio.view);
+        REQUIRE(apply_fem_overlay(scene, *overlay, studio.verify.load));
         REQUIRE(scene.ghost_poses);
         CHECK(scene.options.show_ghost);
         CHECK(scene.ghost_poses->voxel_count() == scene.body.voxel_count());
@@ -285,7 +286,7 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
         const auto built = render::build_draw_list(scene);
         CHECK(built.translucent_boxes.size() >= static_cast<std::size_t>(scene.body.voxel_count()));
         run_script(session, json::parse(R"([{"click": "fem ghost"}, {"frames": 1}])"));
-        CHECK_FALSE(studio.fem_ghost);
+        CHECK_FALSE(studio.verify.ghost);
         CHECK_FALSE(fem_overlay(studio));
     }
     // Reopened: the champion shown again finds its report in the run directory.
@@ -294,9 +295,9 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
     REQUIRE(open_run_directory(again, run_dir.string()));
     run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
                                         {"click": "tab FEM"}, {"frames": 2}])"));
-    REQUIRE(again.verification);
-    CHECK(again.verification->verdict == verdict);
-    CHECK_FALSE(again.verification->fem_shape.empty());
+    REQUIRE(again.verify.result);
+    CHECK(again.verify.result->verdict == verdict);
+    CHECK_FALSE(again.verify.result->fem_shape.empty());
     const auto it = again.widgets.find("fem verdict");
     CHECK((it != again.widgets.end() && it->second.frame == again.frame));
 }
@@ -403,16 +404,16 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
                                          {{"wait_simulation", true}, {"timeout_s", 120}},
                                          {{"click", "tab FEM"}},
                                          {{"frames", 2}}}));
-        REQUIRE(studio.fem_state);
-        INFO("error: " << studio.fem_state->error);
-        CHECK(studio.fem_state->phase == FemVerifyPhase::Finished);
-        CHECK(studio.fem_state->id == id);
-        CHECK(studio.fem_state->label.rfind("individual #" + std::to_string(id), 0) == 0);
-        REQUIRE(studio.shown);
-        CHECK(studio.shown->id == id);  // the row's body is shown as well
-        REQUIRE_MESSAGE(studio.verification, studio.status);
-        CHECK(studio.verification->id == id);
-        verdict = studio.verification->verdict;
+        REQUIRE(studio.verify.state);
+        INFO("error: " << studio.verify.state->error);
+        CHECK(studio.verify.state->phase == FemVerifyPhase::Finished);
+        CHECK(studio.verify.state->id == id);
+        CHECK(studio.verify.state->label.rfind("individual #" + std::to_string(id), 0) == 0);
+        REQUIRE(studio.bodies.shown);
+        CHECK(studio.bodies.shown->id == id);  // the row's body is shown as well
+        REQUIRE_MESSAGE(studio.verify.result, studio.status);
+        CHECK(studio.verify.result->id == id);
+        verdict = studio.verify.result->verdict;
         CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
         const auto it = studio.widgets.find("fem verdict");
         CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
@@ -429,26 +430,26 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
     // checkpoint) with its report and ghost, without solving.
     const std::string kept = "kept report #" + std::to_string(id);
     run_script(session, json::array({{{"click", "tab FEM"}}, {{"frames", 2}}}));
-    CHECK(std::find(again.kept_reports.begin(), again.kept_reports.end(), id) !=
-          again.kept_reports.end());
+    CHECK(std::find(again.verify.kept_reports.begin(), again.verify.kept_reports.end(), id) !=
+          again.verify.kept_reports.end());
     run_script(session, json::array({{{"click", kept}},
                                      {{"wait_simulation", true}, {"timeout_s", 120}},
                                      {{"frames", 2}}}));
     CHECK_MESSAGE(again.status.find("(checkpoint)") != std::string::npos, again.status);
-    REQUIRE(again.shown);
-    CHECK(again.shown->id == id);
-    REQUIRE_MESSAGE(again.verification, again.status);
-    CHECK(again.verification->id == id);
-    CHECK(again.verification->verdict == verdict);
-    CHECK_FALSE(again.fem_verifier.running());  // shown, not solved again
-    CHECK_FALSE(again.fem_state);
+    REQUIRE(again.bodies.shown);
+    CHECK(again.bodies.shown->id == id);
+    REQUIRE_MESSAGE(again.verify.result, again.status);
+    CHECK(again.verify.result->id == id);
+    CHECK(again.verify.result->verdict == verdict);
+    CHECK_FALSE(again.verify.worker.running());  // shown, not solved again
+    CHECK_FALSE(again.verify.state);
     const auto it = again.widgets.find("fem verdict");
     CHECK((it != again.widgets.end() && it->second.frame == again.frame));
     set_view_mode(again, ViewMode::Simulation);
     const FemVerification* overlay = fem_overlay(again);
     REQUIRE(overlay);
-    render::Scene scene = simulation_scene(*again.shown, again.clock.time_s, again.view);
-    CHECK(apply_fem_overlay(scene, *overlay, again.fem_load));  // the ghost fits this body
+    render::Scene scene = simulation_scene(*again.bodies.shown, again.clock.time_s, again.view);
+    CHECK(apply_fem_overlay(scene, *overlay, again.verify.load));  // the ghost fits this body
 }
 
 TEST_CASE("studio verify: the kept reports of a run directory are listed by id") {
@@ -477,8 +478,8 @@ TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {
     REQUIRE(kept->rows.size() == 3);
     kept->dir = "RUN_DIR/verify/individual-7";  // the checkout's path would differ per machine
     Studio studio;
-    studio.verification = std::make_shared<const FemVerification>(std::move(*kept));
-    studio.fem_load = 1;
+    studio.verify.result = std::make_shared<const FemVerification>(std::move(*kept));
+    studio.verify.load = 1;
     HeadlessStudio session(studio, 1280, 900);
     run_script(session, json::parse(R"([{"click": "tab FEM"}, {"frames": 3}])"));
     for (const char* widget :
@@ -521,11 +522,12 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
     other.id = 2;
     other.label = "champion #2 of generation 3, compared with the body on the left";
     other.experiment = e;
-    other.framed_body = studio.shown->framed_body;
-    studio.compare_simulator.request(other);
+    other.framed_body = studio.bodies.shown->framed_body;
+    studio.bodies.compare_simulator.request(other);
     const auto end = Clock::now() + std::chrono::seconds(120);
-    while (!studio.compared && Clock::now() < end) session.frame();
-    REQUIRE(studio.compared);
+    while (!studio.bodies.compared && Clock::now() < end)
+        session.frame();
+    REQUIRE(studio.bodies.compared);
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
     REQUIRE(studio.view.split);
     for (const char* name : {"view overlay", "compared overlay"}) {
@@ -536,5 +538,30 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
                                       : studio.view.second.origin_px.x + studio.view.second.size_px.x;
         CHECK_MESSAGE(text.max.x <= pane_right, name << " reaches " << text.max.x
                                                      << ", its pane ends at " << pane_right);
+    }
+}
+
+TEST_CASE("studio verify: a damaged kept report is one readable line, not the JSON library's codes") {
+    // Issue 39, a low: the FEM tab showed "[json.exception.parse_error.101] ..." for a kept
+    // report.json cut short or of the wrong shape.
+    const auto dir = testing::fresh_dir("verify-damaged-report");
+    const std::vector<std::pair<std::string, std::string>> damaged = {
+        {"cut short", R"({"verdict": "agrees", "status": )"},
+        {"wrong type", R"({"verdict": 3, "status": "compared"})"},
+    };
+    for (const auto& [what, text] : damaged) {
+        const fs::path report_dir = dir / ("individual-" + std::to_string(what.size()));
+        fs::create_directories(report_dir);
+        std::ofstream(report_dir / "report.json") << text;
+        std::string message;
+        try {
+            read_verification(report_dir.string(), 1);
+        } catch (const std::runtime_error& e) {
+            message = e.what();
+        }
+        INFO(what << ": " << message);
+        CHECK(message.find("report.json") != std::string::npos);
+        CHECK(message.find("[json.exception") == std::string::npos);
+        CHECK(message.find('\n') == std::string::npos);
     }
 }

@@ -3,8 +3,11 @@
 // editor instead of an untitled paper-sized experiment, and Start held until the welcome closes.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
+
+#include <imgui_internal.h>  // the tooltip window
 
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/shell/headless_studio.hpp"
@@ -172,4 +175,31 @@ TEST_CASE("studio welcome: Close keeps the quick demo, and Start is offered agai
     CHECK_FALSE(studio.welcome_open);
     CHECK(studio.document.experiment().name == "quick-demo");
     CHECK_FALSE(studio.document.dirty());
+}
+
+TEST_CASE("studio welcome: a card's tooltip (its whole description) stays on the screen") {
+    // Issue 39, a low: hovering a preset showed its description as one line running off the
+    // right of the screen.
+    Studio studio;
+    studio.presets_dir = kPresets;
+    REQUIRE(open_welcome(studio));
+    HeadlessStudio session(studio, 1280, 800);
+    run_script(session, json::parse(R"([{"frames": 2}])"));
+    const auto longest = std::max_element(studio.welcome_cards.begin(), studio.welcome_cards.end(),
+                                          [](const PresetCard& a, const PresetCard& b) {
+                                              return a.description.size() < b.description.size();
+                                          });
+    REQUIRE(longest != studio.welcome_cards.end());
+    REQUIRE(longest->description.size() > 200);  // a paragraph, wider than the screen on one line
+    const auto card = studio.widgets.at("welcome preset " + longest->stem);
+    session.input().mouse = {(card.min.x + card.max.x) * 0.5f, (card.min.y + card.max.y) * 0.5f};
+    session.frame();
+    session.frame();
+    const ImGuiWindow* tooltip = ImGui::FindWindowByName("##Tooltip_00");
+    REQUIRE(tooltip);
+    REQUIRE(tooltip->Active);
+    INFO("tooltip at x " << tooltip->Pos.x << ", " << tooltip->Size.x << " px wide");
+    CHECK(tooltip->Pos.x >= 0.0f);
+    CHECK(tooltip->Pos.x + tooltip->Size.x <= 1280.0f);
+    CHECK(tooltip->Pos.y + tooltip->Size.y <= 800.0f);
 }

@@ -171,8 +171,8 @@ int main(int argc, char** argv) {
         }
     }
     // Show the benchmark champion, playing, and keep it there (no live-champion switching).
-    studio.follow_champion = false;
-    studio.shown = shown;
+    studio.bodies.follow_champion = false;
+    studio.bodies.shown = shown;
     studio.clock.playing = true;
     studio.clock.loop = true;
     set_view_mode(studio, ViewMode::Simulation);

@@ -45,8 +45,8 @@ bool show_body_file(Studio& s, const std::string& path) {
         request.experiment = e;
         request.framed_body =
             std::make_shared<const evo::Body>(evo::apply_frame_and_overrides(e, body));
-        s.follow_champion = false;
-        s.simulator.request(std::move(request));
+        s.bodies.follow_champion = false;
+        s.bodies.simulator.request(std::move(request));
         set_status(s, "simulating " + absolute);
         return true;
     } catch (const std::exception& e) {
@@ -57,7 +57,7 @@ bool show_body_file(Studio& s, const std::string& path) {
 
 bool load_track(Studio& s, const std::string& path) {
     auto& c = s.calibration;
-    if (!s.shown || !s.shown->framed_body) {
+    if (!s.bodies.shown || !s.bodies.shown->framed_body) {
         set_status(s, "load track: show a body first (a champion, an individual or a body file)",
                    true);
         return false;
@@ -71,10 +71,10 @@ bool load_track(Studio& s, const std::string& path) {
         auto track = std::make_shared<const evo::MeasuredTrack>(evo::load_measured_track(absolute));
         c.track = track;
         c.track_path = absolute;
-        c.framed_body = s.shown->framed_body;
-        c.experiment = s.shown->experiment;
-        c.body_id = s.shown->id;
-        c.body_label = s.shown->label;
+        c.framed_body = s.bodies.shown->framed_body;
+        c.experiment = s.bodies.shown->experiment;
+        c.body_id = s.bodies.shown->id;
+        c.body_label = s.bodies.shown->label;
         CalibrationJob job;
         job.experiment = c.experiment;
         job.framed_body = c.framed_body;
@@ -142,7 +142,8 @@ bool cancel_calibration(Studio& s) {
 void show_calibrated_body(Studio& s) {
     const auto& c = s.calibration;
     const auto snap = c.snapshot;
-    if (!snap || !snap->result || !s.shown || s.shown->framed_body != c.framed_body) return;
+    if (!snap || !snap->result || !s.bodies.shown || s.bodies.shown->framed_body != c.framed_body)
+        return;
     // The replay (and a video exported from it) must move as the fitted values say, and a
     // champion compared beside it belongs to another question (issue 39, M7).
     clear_compared_body(s);
@@ -151,8 +152,8 @@ void show_calibrated_body(Studio& s) {
     request.label = c.body_label + ", calibrated against " + file_name(c.track_path);
     request.experiment = snap->result->calibrated.experiment;
     request.framed_body = c.framed_body;
-    s.follow_champion = false;
-    s.simulator.request(std::move(request));
+    s.bodies.follow_champion = false;
+    s.bodies.simulator.request(std::move(request));
 }
 
 bool apply_calibration(Studio& s) {
@@ -264,48 +265,5 @@ void update_calibration(Studio& s) {
 }
 
 bool calibration_running(const Studio& s) { return s.calibration.session.running(); }
-
-namespace {
-
-std::optional<std::array<double, 3>> point_at(const evo::MeasuredTrack& track,
-                                              const evo::SimulatedTrack& preview,
-                                              std::size_t point, double t_s, bool measured_axes) {
-    const auto& t = track.t_s;
-    if (point >= track.points.size() || point >= preview.position_m.size() || t.empty() ||
-        t_s < t.front() || t_s > t.back())
-        return std::nullopt;
-    const auto& sim = preview.position_m[point];
-    // The preview stops early when it diverged: only its rows can be placed.
-    const std::size_t rows = std::min(t.size(), sim.size());
-    if (rows == 0 || t_s > t[rows - 1]) return std::nullopt;
-    const std::size_t hi = static_cast<std::size_t>(
-        std::max<std::ptrdiff_t>(1, std::upper_bound(t.begin(), t.begin() + rows, t_s) - t.begin()));
-    const std::size_t k1 = std::min(hi, rows - 1), k0 = k1 - (k1 > 0 ? 1 : 0);
-    const double w = t[k1] > t[k0] ? std::clamp((t_s - t[k0]) / (t[k1] - t[k0]), 0.0, 1.0) : 0.0;
-    const auto& measured = track.points[point].position_m;
-    std::array<double, 3> out{};
-    for (std::size_t a = 0; a < 3; ++a) {
-        auto lerp = [&](const std::vector<std::array<double, 3>>& v) {
-            return v[k0][a] + w * (v[k1][a] - v[k0][a]);
-        };
-        out[a] = measured_axes && track.points[point].axes[a] ? sim[0][a] + lerp(measured) - measured[0][a]
-                                             : lerp(sim);
-    }
-    return out;
-}
-
-}  // namespace
-
-std::optional<std::array<double, 3>> measured_point_at(const evo::MeasuredTrack& track,
-                                                       const evo::SimulatedTrack& preview,
-                                                       std::size_t point, double t_s) {
-    return point_at(track, preview, point, t_s, true);
-}
-
-std::optional<std::array<double, 3>> simulated_point_at(const evo::MeasuredTrack& track,
-                                                        const evo::SimulatedTrack& preview,
-                                                        std::size_t point, double t_s) {
-    return point_at(track, preview, point, t_s, false);
-}
 
 }  // namespace bhm::app::gui

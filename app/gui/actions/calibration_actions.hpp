@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/gui/studio.hpp"
+#include "app/gui/view/track_points.hpp"
 
 namespace bhm::app::gui {
 
@@ -44,17 +45,5 @@ std::string ticked_fit_list(const CalibrationState& calibration);
 void update_calibration(Studio& studio);
 //! The calibration is running (its clock, for the redraw gate).
 bool calibration_running(const Studio& studio);
-
-//! Where the measured point `point` of the track is at time t_s in the simulation's frame:
-//! the simulated point at the track's first row plus the measured displacement since that row,
-//! on the axes the track gives; on the others the simulated point at t_s. Nothing outside the
-//! track's time span.
-std::optional<std::array<double, 3>> measured_point_at(const evo::MeasuredTrack& track,
-                                                       const evo::SimulatedTrack& preview,
-                                                       std::size_t point, double t_s);
-//! The simulated point at t_s (interpolated between the preview's rows), over the same span.
-std::optional<std::array<double, 3>> simulated_point_at(const evo::MeasuredTrack& track,
-                                                        const evo::SimulatedTrack& preview,
-                                                        std::size_t point, double t_s);
 
 }  // namespace bhm::app::gui

@@ -33,9 +33,9 @@ bool check_size(Studio& s, int width, int height) {
 }
 
 const evo::Body* body_to_export(const Studio& s, const evo::Experiment** experiment) {
-    if (s.shown && s.shown->framed_body) {
-        *experiment = &s.shown->experiment;
-        return s.shown->framed_body.get();
+    if (s.bodies.shown && s.bodies.shown->framed_body) {
+        *experiment = &s.bodies.shown->experiment;
+        return s.bodies.shown->framed_body.get();
     }
     if (s.run && s.run->has_champion && s.run->champion.body) {
         *experiment = &s.run->experiment;
@@ -108,7 +108,7 @@ bool start_video_export(Studio& s, const std::string& path, int width, int heigh
 }
 
 bool start_frame_export(Studio& s, const std::string& folder, int width, int height, double fps) {
-    if (!s.shown || s.shown->replay.frames.empty()) {
+    if (!s.bodies.shown || s.bodies.shown->replay.frames.empty()) {
         set_status(s, "frame export: no simulated body to export", true);
         return false;
     }
@@ -153,13 +153,13 @@ void continue_frame_export(Studio& s, ViewRenderer& renderer) {
         job.video.reset();  // cancelled: ffmpeg is stopped, its temporary removed
         return;
     }
-    if (!s.shown) {
+    if (!s.bodies.shown) {
         job.active = false;
         set_status(s, "frame export stopped: the body is gone", true);
         return;
     }
     const double t = job.next / job.fps;
-    render::Scene scene = simulation_scene(*s.shown, t, s.view);
+    render::Scene scene = simulation_scene(*s.bodies.shown, t, s.view);
     const render::DrawList list = render::build_draw_list(scene);
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%05d.png", job.next);
@@ -167,7 +167,7 @@ void continue_frame_export(Studio& s, ViewRenderer& renderer) {
         render::Image image =
             renderer.draw_to_image(list, s.view.camera, job.width, job.height, 4);
         if (s.exports.caption)
-            render::draw_caption(image, export_caption_lines(*s.shown, t),
+            render::draw_caption(image, export_caption_lines(*s.bodies.shown, t),
                                  render::caption_scale_for(job.height));
         if (job.video)
             job.video->write(image);

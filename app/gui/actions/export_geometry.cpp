@@ -33,17 +33,18 @@ bool export_mesh(Studio& s, const std::string& path, bool deformed) {
         const evo::Experiment* experiment = nullptr;
         std::string when = "at rest";
         if (deformed) {
-            if (!s.shown || s.shown->replay.frames.empty()) {
+            if (!s.bodies.shown || s.bodies.shown->replay.frames.empty()) {
                 set_status(s, "mesh: no simulated body is shown to deform", true);
                 return false;
             }
             const double t = s.clock.time_s;
-            mesh = evo::deformed_surface(s.shown->replay, engine::pose_at(s.shown->replay, t));
-            experiment = &s.shown->experiment;
+            mesh = evo::deformed_surface(s.bodies.shown->replay,
+                                         engine::pose_at(s.bodies.shown->replay, t));
+            experiment = &s.bodies.shown->experiment;
             when = "at t = " + engine::format_number(t) + " s";
-        } else if (s.shown) {
-            const evo::Body& b = *s.shown->framed_body;
-            experiment = &s.shown->experiment;
+        } else if (s.bodies.shown) {
+            const evo::Body& b = *s.bodies.shown->framed_body;
+            experiment = &s.bodies.shown->experiment;
             mesh = evo::rest_surface(b.size, b.cells, experiment->voxel_size_m);
         } else if (s.run && s.run->has_champion && s.run->champion.body) {
             const evo::Body& b = *s.run->champion.body;
@@ -74,13 +75,13 @@ bool export_mesh(Studio& s, const std::string& path, bool deformed) {
 }
 
 bool export_vtk_series(Studio& s, const std::string& dir) {
-    if (!s.shown || s.shown->replay.frames.empty()) {
+    if (!s.bodies.shown || s.bodies.shown->replay.frames.empty()) {
         set_status(s, "ParaView series: no simulated body is shown", true);
         return false;
     }
     try {
-        const auto written =
-            evo::write_vtk_series(dir, s.shown->replay, s.shown->experiment.materials);
+        const auto written = evo::write_vtk_series(dir, s.bodies.shown->replay,
+                                                   s.bodies.shown->experiment.materials);
         set_status(s, "ParaView series written (" + std::to_string(written.frames) +
                           " frames): " + std::filesystem::absolute(written.pvd_path).string());
         return true;

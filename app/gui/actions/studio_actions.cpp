@@ -1,5 +1,6 @@
 #include "app/gui/actions/studio_actions.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -96,6 +97,24 @@ bool open_experiment(Studio& studio, const std::string& path) {
         set_status(studio, path + ": " + e.what(), true);
     }
     return false;
+}
+
+bool open_welcome(Studio& s) {
+    s.welcome_open = true;
+    s.welcome_cards = read_preset_cards(s.presets_dir);
+    const auto& cards = s.welcome_cards;
+    const auto demo = std::find_if(cards.begin(), cards.end(),
+                                   [](const PresetCard& c) { return c.stem == kStartHerePreset; });
+    if (demo == cards.end()) {
+        set_status(s, std::string("welcome: no ") + kStartHerePreset + ".json in " + s.presets_dir,
+                   true);
+        return false;
+    }
+    const auto recent = s.settings.recent_files;
+    const bool opened = open_experiment(s, demo->path);
+    s.settings.recent_files = recent;  // opened for the user, not by them
+    if (opened) set_status(s, "welcome: choose an experiment to start from");
+    return opened;
 }
 
 bool save_experiment_as(Studio& studio, const std::string& path) {
@@ -198,12 +217,12 @@ std::string fresh_run_dir(const evo::Experiment& e, const std::string& runs_root
 }  // namespace
 
 void forget_shown_bodies(Studio& studio) {
-    studio.simulator.cancel();
-    studio.compare_simulator.cancel();
-    studio.shown.reset();
-    studio.shown_version = studio.simulator.version();
-    studio.compared.reset();
-    studio.compared_version = studio.compare_simulator.version();
+    studio.bodies.simulator.cancel();
+    studio.bodies.compare_simulator.cancel();
+    studio.bodies.shown.reset();
+    studio.bodies.shown_version = studio.bodies.simulator.version();
+    studio.bodies.compared.reset();
+    studio.bodies.compared_version = studio.bodies.compare_simulator.version();
     studio.selected_id = -1;
 }
 
@@ -227,8 +246,8 @@ bool start_run(Studio& studio) {
         studio.run_dir_field.clear();
         studio.run_document = studio.document.identity();
         studio.adopt_run_experiment = false;
-        studio.follow_champion = true;
-        studio.requested_champion = -1;
+        studio.bodies.follow_champion = true;
+        studio.bodies.requested_champion = -1;
         set_status(studio, "evolution started: " + dir);
         return true;
     } catch (const std::exception& e) {
@@ -298,8 +317,8 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
         // no unsaved edits); until then no document of the editor belongs to the run.
         studio.run_document = 0;
         studio.adopt_run_experiment = true;
-        studio.follow_champion = true;
-        studio.requested_champion = -1;
+        studio.bodies.follow_champion = true;
+        studio.bodies.requested_champion = -1;
         set_status(studio, "resumed " + run_dir);
         return true;
     } catch (const std::exception& e) {
@@ -383,8 +402,8 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
         studio.run_directory.refresh();
         studio.showing_run_directory = true;
         forget_shown_bodies(studio);
-        studio.follow_champion = true;
-        studio.requested_champion = -1;
+        studio.bodies.follow_champion = true;
+        studio.bodies.requested_champion = -1;
         studio.run = studio.run_directory.snapshot();
         // The hidden folders of verifications a crash interrupted (never a finished report).
         remove_stale_partials(run_dir);
@@ -416,8 +435,8 @@ void close_run_directory(Studio& studio) {
     if (studio.showing_run_directory) {
         // Back to the live session's run: the directory's bodies are not its own.
         forget_shown_bodies(studio);
-        studio.follow_champion = true;
-        studio.requested_champion = -1;
+        studio.bodies.follow_champion = true;
+        studio.bodies.requested_champion = -1;
     }
     studio.showing_run_directory = false;
 }
@@ -441,7 +460,7 @@ void request_simulation(Studio& studio, const EvolutionSnapshot& run, const Popu
     request.label = label;
     request.experiment = run.experiment;
     request.framed_body = m.body;
-    studio.simulator.request(std::move(request));
+    studio.bodies.simulator.request(std::move(request));
 }
 
 }  // namespace
@@ -455,8 +474,8 @@ bool select_individual(Studio& studio, std::int64_t id) {
     }
     studio.selected_id = id;
     const bool champion = studio.run->has_champion && studio.run->champion.id == id;
-    studio.follow_champion = champion;
-    if (champion) studio.requested_champion = id;
+    studio.bodies.follow_champion = champion;
+    if (champion) studio.bodies.requested_champion = id;
     request_simulation(
         studio, *studio.run, *m,
         (champion ? "champion #" : "individual #") + std::to_string(id) +
@@ -483,13 +502,13 @@ bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
     try {
         SimulationRequest request = champion_request(studio, entry);
         if (beside) {
-            studio.compare_simulator.request(std::move(request));
+            studio.bodies.compare_simulator.request(std::move(request));
             set_status(studio, "simulating the champion of generation " +
                                    std::to_string(entry.generation) + " to show beside");
         } else {
-            studio.follow_champion = false;
+            studio.bodies.follow_champion = false;
             studio.selected_id = entry.id;
-            studio.simulator.request(std::move(request));
+            studio.bodies.simulator.request(std::move(request));
             set_status(studio,
                        "simulating the champion of generation " + std::to_string(entry.generation));
         }
@@ -501,8 +520,8 @@ bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
 }
 
 const evo::ExploitReport* shown_exploits(const Studio& studio) {
-    if (!studio.shown) return nullptr;
-    const auto id = studio.shown->id;
+    if (!studio.bodies.shown) return nullptr;
+    const auto id = studio.bodies.shown->id;
     if (studio.run) {
         if (studio.run->has_champion && studio.run->champion.id == id)
             return &studio.run->champion.exploits;
@@ -515,9 +534,9 @@ const evo::ExploitReport* shown_exploits(const Studio& studio) {
 }
 
 void clear_compared_body(Studio& studio) {
-    studio.compare_simulator.cancel();  // a compared body still being simulated goes too
-    studio.compared.reset();
-    studio.compared_version = studio.compare_simulator.version();
+    studio.bodies.compare_simulator.cancel();  // a compared body still being simulated goes too
+    studio.bodies.compared.reset();
+    studio.bodies.compared_version = studio.bodies.compare_simulator.version();
 }
 
 bool add_compared_run(Studio& studio, const std::string& run_dir) {
@@ -548,8 +567,8 @@ void remove_compared_run(Studio& studio, std::size_t index) {
 }
 
 void follow_champion(Studio& studio) {
-    studio.follow_champion = true;
-    studio.requested_champion = -1;  // update_studio requests it again
+    studio.bodies.follow_champion = true;
+    studio.bodies.requested_champion = -1;  // update_studio requests it again
 }
 
 void set_view_mode(Studio& studio, ViewMode mode) {
@@ -558,15 +577,15 @@ void set_view_mode(Studio& studio, ViewMode mode) {
 }
 
 void toggle_playback(Studio& studio) {
-    if (!studio.shown) return;
+    if (!studio.bodies.shown) return;
     if (!studio.clock.playing && studio.clock.time_s >= studio.clock.duration_s)
         studio.clock.time_s = 0.0;
     studio.clock.playing = !studio.clock.playing;
 }
 
 void step_replay(Studio& studio, int frames) {
-    if (!studio.shown) return;
-    const double fps = studio.shown->experiment.simulation.record_fps;
+    if (!studio.bodies.shown) return;
+    const double fps = studio.bodies.shown->experiment.simulation.record_fps;
     studio.clock.step_frames(frames, fps > 0.0 ? 1.0 / fps : 1.0 / 30.0);
 }
 
@@ -594,9 +613,9 @@ bool simulating_status(const Studio& studio) {
     return !studio.status_is_error && studio.status.starts_with("simulating");
 }
 
-}  // namespace
-
-void update_studio(Studio& studio) {
+// The run shown this frame: a watched run directory (re-read twice a second), else the live
+// session, whose end the status line then reports.
+void take_run_snapshot(Studio& studio) {
     // The snapshot to show: a watched run directory, else the live (or last) session.
     if (studio.showing_run_directory) {
         // Twice a second is enough for a run that writes once per generation; stat() is cheap.
@@ -617,6 +636,10 @@ void update_studio(Studio& studio) {
             set_status(studio, studio.run->message, phase == RunPhase::Failed);
         studio.status_run_phase = phase;
     }
+}
+
+// A resumed run's experiment goes into the editor once its checkpoint is loaded.
+void adopt_resumed_run_experiment(Studio& studio) {
     // A resumed run's experiment, once loaded, becomes the editor's document (the run's own),
     // unless the editor holds unsaved edits of another one.
     if (studio.adopt_run_experiment && studio.run && studio.run->loaded &&
@@ -628,49 +651,69 @@ void update_studio(Studio& studio) {
             studio.view.camera_needs_framing = true;
         }
     }
+}
 
+// A new champion of the run shown is simulated for the 3D view (when following champions).
+void follow_new_champion(Studio& studio) {
     // A new champion: simulate it for the live view.
-    if (studio.follow_champion && studio.run && studio.run->has_champion &&
-        studio.run->champion.id != studio.requested_champion) {
-        studio.requested_champion = studio.run->champion.id;
+    if (studio.bodies.follow_champion && studio.run && studio.run->has_champion &&
+        studio.run->champion.id != studio.bodies.requested_champion) {
+        studio.bodies.requested_champion = studio.run->champion.id;
         request_simulation(studio, *studio.run, studio.run->champion,
                            "champion #" + std::to_string(studio.run->champion.id) +
                                ", generation " + std::to_string(studio.run->champion_generation));
     }
+}
 
+// The simulators' newest bodies: the one shown and the one beside it; their failures.
+void take_simulated_bodies(Studio& studio) {
     // A finished simulation: show it (the clock keeps its time, so playback continues in step).
-    if (studio.simulator.version() != studio.shown_version) {
-        studio.shown_version = studio.simulator.version();
-        auto next = studio.simulator.latest();
-        if (next && (!studio.shown || next->id != studio.shown->id)) {
-            if (!studio.shown) {  // the first body of a session: start playing it
+    if (studio.bodies.simulator.version() != studio.bodies.shown_version) {
+        studio.bodies.shown_version = studio.bodies.simulator.version();
+        auto next = studio.bodies.simulator.latest();
+        if (next && (!studio.bodies.shown || next->id != studio.bodies.shown->id)) {
+            if (!studio.bodies.shown) {  // the first body of a session: start playing it
                 studio.clock.playing = true;
                 set_view_mode(studio, ViewMode::Simulation);
             }
         }
-        studio.shown = next;
+        studio.bodies.shown = next;
         // The "simulating ..." line would go stale now: say what is shown.
         if (next && simulating_status(studio)) set_status(studio, "showing " + next->label);
     }
-    if (studio.compare_simulator.version() != studio.compared_version) {
-        studio.compared_version = studio.compare_simulator.version();
-        studio.compared = studio.compare_simulator.latest();
+    if (studio.bodies.compare_simulator.version() != studio.bodies.compared_version) {
+        studio.bodies.compared_version = studio.bodies.compare_simulator.version();
+        studio.bodies.compared = studio.bodies.compare_simulator.latest();
         studio.view.camera_needs_framing = true;  // two bodies: frame both
-        if (studio.compared && simulating_status(studio))
+        if (studio.bodies.compared && simulating_status(studio))
             set_status(studio, std::string(studio.view.split ? "beside it (the right pane): "
                                                              : "beside it (+y): ") +
-                                   studio.compared->label);
+                                   studio.bodies.compared->label);
     }
-    for (const BodySimulator* sim : {&studio.simulator, &studio.compare_simulator})
+    for (const BodySimulator* sim : {&studio.bodies.simulator, &studio.bodies.compare_simulator})
         if (!sim->busy() && !sim->last_error().empty() && simulating_status(studio))
             set_status(studio, "simulation failed: " + sim->last_error(), true);
-    update_calibration(studio);
-    update_verification(studio);
-    if (studio.shown) {
-        const auto& frames = studio.shown->replay.frames;
+}
+
+// The replay clock spans the body shown and moves on by this frame's time.
+void advance_replay_clock(Studio& studio) {
+    if (studio.bodies.shown) {
+        const auto& frames = studio.bodies.shown->replay.frames;
         studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);
     }
     studio.clock.advance(studio.frame_dt_s);
+}
+
+}  // namespace
+
+void update_studio(Studio& studio) {
+    take_run_snapshot(studio);
+    adopt_resumed_run_experiment(studio);
+    follow_new_champion(studio);
+    take_simulated_bodies(studio);
+    update_calibration(studio);
+    update_verification(studio);
+    advance_replay_clock(studio);
 }
 
 }  // namespace bhm::app::gui

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/gui/studio.hpp"
+#include "app/gui/view/viewport.hpp"
 
 namespace bhm::app::gui {
 
@@ -24,6 +25,11 @@ std::string describe_problems(const std::string& prefix, const std::vector<evo::
 bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label);
 void new_experiment(Studio& studio);
 bool open_experiment(Studio& studio, const std::string& path);
+//! The first start (welcome/welcome.hpp): what a newcomer starts with: the quick demo in the editor
+//! (not "untitled" with the paper's 2000 generations and 48 h) behind the welcome, which holds
+//! Start until it is closed. The demo opened on the user's behalf is not a recent file. False (the
+//! status says why) when the quick demo is missing; the welcome opens anyway.
+bool open_welcome(Studio& studio);
 bool save_experiment_as(Studio& studio, const std::string& path);
 bool save_experiment(Studio& studio);  //!< to the current path (Save As when untitled)
 bool undo(Studio& studio);
@@ -123,9 +129,7 @@ bool verify_individual(Studio& studio, std::int64_t id);
 bool show_kept_verification(Studio& studio, std::int64_t id);
 //! Kills the solver of the verification in progress; nothing is written.
 void cancel_verification(Studio& studio);
-//! The verification of the body shown, with its shapes, when it is drawn in the 3D view now
-//! (Simulation mode, ghost on); null otherwise.
-const FemVerification* fem_overlay(const Studio& studio);
+//! fem_overlay (what of it the 3D view draws) is view/viewport.hpp's.
 //! The verdict as the studio shows it: with the tolerance it was judged by when the body was
 //! compared ("agrees within 3.1 % (tolerance 10 %)"), so a reader never has to hover for it.
 std::string fem_verdict_line(const FemVerification& verification);

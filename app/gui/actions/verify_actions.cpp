@@ -14,7 +14,7 @@ namespace bhm::app::gui {
 namespace {
 
 bool start_verification(Studio& studio, FemVerifyRequest request) {
-    if (studio.fem_verifier.running()) {
+    if (studio.verify.worker.running()) {
         set_status(studio, "a verification is running: cancel it first", true);
         return false;
     }
@@ -25,8 +25,8 @@ bool start_verification(Studio& studio, FemVerifyRequest request) {
         return false;
     }
     const std::string label = request.label;
-    studio.fem_verifier.start(std::move(request));
-    const auto state = studio.fem_verifier.state();
+    studio.verify.worker.start(std::move(request));
+    const auto state = studio.verify.worker.state();
     if (state && state->phase == FemVerifyPhase::Failed) {
         set_status(studio, "verify in FEM: " + state->error, true);
         return false;
@@ -38,22 +38,22 @@ bool start_verification(Studio& studio, FemVerifyRequest request) {
 }  // namespace
 
 bool verify_shown_body(Studio& studio) {
-    if (!studio.shown || !studio.shown->framed_body) {
+    if (!studio.bodies.shown || !studio.bodies.shown->framed_body) {
         set_status(studio, "verify in FEM: select a champion or an individual first", true);
         return false;
     }
     FemVerifyRequest request;
-    request.id = studio.shown->id;
-    request.label = studio.shown->label;
-    request.experiment = studio.shown->experiment;
-    request.framed_body = studio.shown->framed_body;
+    request.id = studio.bodies.shown->id;
+    request.label = studio.bodies.shown->label;
+    request.experiment = studio.bodies.shown->experiment;
+    request.framed_body = studio.bodies.shown->framed_body;
     request.run_dir = studio.run ? studio.run->run_dir : "";
     return start_verification(studio, std::move(request));
 }
 
 bool verify_champion(Studio& studio, const ChampionEntry& entry) {
     if (!studio.run) return false;
-    if (studio.fem_verifier.running()) {
+    if (studio.verify.worker.running()) {
         set_status(studio, "a verification is running: cancel it first", true);
         return false;
     }
@@ -75,7 +75,7 @@ bool verify_champion(Studio& studio, const ChampionEntry& entry) {
 
 bool verify_individual(Studio& studio, std::int64_t id) {
     if (!studio.run) return false;
-    if (studio.fem_verifier.running()) {
+    if (studio.verify.worker.running()) {
         set_status(studio, "a verification is running: cancel it first", true);
         return false;
     }
@@ -129,9 +129,9 @@ bool show_kept_verification(Studio& studio, std::int64_t id) {
                         std::to_string(state.generation) + " (checkpoint)";
         request.experiment = run->experiment;
         request.framed_body = std::make_shared<const evo::Body>(found->phenotype.body);
-        studio.follow_champion = false;
+        studio.bodies.follow_champion = false;
         studio.selected_id = id;
-        studio.simulator.request(std::move(request));
+        studio.bodies.simulator.request(std::move(request));
         set_status(studio, "simulating individual #" + std::to_string(id) +
                                " from the checkpoint, with its kept FEM report");
         return true;
@@ -142,19 +142,9 @@ bool show_kept_verification(Studio& studio, std::int64_t id) {
 }
 
 void cancel_verification(Studio& studio) {
-    if (!studio.fem_verifier.running()) return;
-    studio.fem_verifier.cancel();
+    if (!studio.verify.worker.running()) return;
+    studio.verify.worker.cancel();
     set_status(studio, "cancelling the verification");
-}
-
-const FemVerification* fem_overlay(const Studio& studio) {
-    const auto& v = studio.verification;
-    if (!studio.fem_ghost || !v || !studio.shown || v->id != studio.shown->id ||
-        studio.view.mode != ViewMode::Simulation || v->fem_shape.empty())
-        return nullptr;
-    if (studio.fem_load < 0 || studio.fem_load >= static_cast<int>(v->fem_shape.size()))
-        return nullptr;
-    return v.get();
 }
 
 std::string fem_verdict_line(const FemVerification& v) {
@@ -165,20 +155,20 @@ std::string fem_verdict_line(const FemVerification& v) {
 }
 
 void update_verification(Studio& studio) {
-    if (studio.fem_verifier.version() != studio.fem_state_version) {
-        studio.fem_state_version = studio.fem_verifier.version();
-        studio.fem_state = studio.fem_verifier.state();
-        const auto& st = studio.fem_state;
+    if (studio.verify.worker.version() != studio.verify.state_version) {
+        studio.verify.state_version = studio.verify.worker.version();
+        studio.verify.state = studio.verify.worker.state();
+        const auto& st = studio.verify.state;
         // Each job's end once, even when it started and ended between two frames.
-        if (st && st->phase != FemVerifyPhase::Running && st->job != studio.fem_job_reported) {
-            studio.fem_job_reported = st->job;
+        if (st && st->phase != FemVerifyPhase::Running && st->job != studio.verify.job_reported) {
+            studio.verify.job_reported = st->job;
             char seconds[32];
             std::snprintf(seconds, sizeof seconds, "%.1f s", st->elapsed_s);
             if (st->phase == FemVerifyPhase::Finished && st->result) {
-                if (studio.shown && studio.shown->id == st->id) {
-                    studio.verification = st->result;
-                    studio.verification_error.clear();
-                    studio.fem_load =
+                if (studio.bodies.shown && studio.bodies.shown->id == st->id) {
+                    studio.verify.result = st->result;
+                    studio.verify.kept_error.clear();
+                    studio.verify.load =
                         std::min<int>(1, static_cast<int>(st->result->rows.size()) - 1);
                 }
                 set_status(studio, st->label + ": " + fem_verdict_line(*st->result) + ", " +
@@ -195,28 +185,29 @@ void update_verification(Studio& studio) {
     const std::string run_dir = studio.run ? studio.run->run_dir : "";
     // The reports kept in that run directory: listed again when another run is shown or a
     // verification has ended (it may have added one).
-    const std::string kept_key = run_dir + "#" + std::to_string(studio.fem_job_reported);
-    if (kept_key != studio.kept_reports_key) {
-        studio.kept_reports_key = kept_key;
-        studio.kept_reports = kept_verifications(run_dir);
+    const std::string kept_key = run_dir + "#" + std::to_string(studio.verify.job_reported);
+    if (kept_key != studio.verify.kept_reports_key) {
+        studio.verify.kept_reports_key = kept_key;
+        studio.verify.kept_reports = kept_verifications(run_dir);
     }
-    const std::string key =
-        studio.shown && !run_dir.empty() ? run_dir + "#" + std::to_string(studio.shown->id) : "";
-    if (key == studio.verification_key) return;
-    studio.verification_key = key;
-    studio.verification.reset();
-    studio.verification_error.clear();
+    const std::string key = studio.bodies.shown && !run_dir.empty()
+                                ? run_dir + "#" + std::to_string(studio.bodies.shown->id)
+                                : "";
+    if (key == studio.verify.result_key) return;
+    studio.verify.result_key = key;
+    studio.verify.result.reset();
+    studio.verify.kept_error.clear();
     if (key.empty()) return;
     try {
-        auto kept =
-            read_verification(verification_dir(run_dir, studio.shown->id), studio.shown->id);
+        auto kept = read_verification(verification_dir(run_dir, studio.bodies.shown->id),
+                                      studio.bodies.shown->id);
         if (kept) {
-            studio.verification = std::make_shared<const FemVerification>(std::move(*kept));
-            studio.fem_load =
-                std::min<int>(1, static_cast<int>(studio.verification->rows.size()) - 1);
+            studio.verify.result = std::make_shared<const FemVerification>(std::move(*kept));
+            studio.verify.load =
+                std::min<int>(1, static_cast<int>(studio.verify.result->rows.size()) - 1);
         }
     } catch (const std::exception& e) {
-        studio.verification_error = e.what();
+        studio.verify.kept_error = e.what();
     }
 }
 

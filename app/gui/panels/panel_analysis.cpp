@@ -26,7 +26,7 @@ void champions_tab(Studio& s) {
                                         : "No champion saved yet.");
         return;
     }
-    ImGui::BeginDisabled(!s.compared);
+    ImGui::BeginDisabled(!s.bodies.compared);
     if (tracked_button(s, "Clear beside")) clear_compared_body(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
@@ -50,7 +50,7 @@ void champions_tab(Studio& s) {
         ImGui::TableNextColumn();
         char label[48];
         std::snprintf(label, sizeof label, "%d##champion", e.generation);
-        const bool shown = s.shown && s.shown->id == e.id;
+        const bool shown = s.bodies.shown && s.bodies.shown->id == e.id;
         // The whole row replays it (only the "gen" cell did); "beside" overlaps it.
         if (ImGui::Selectable(label, shown,
                               ImGuiSelectableFlags_SpanAllColumns |
@@ -71,7 +71,7 @@ void champions_tab(Studio& s) {
         if (ImGui::SmallButton("beside")) replay_champion(s, e, true);
         record_widget(s, "beside gen " + std::to_string(e.generation));
         ImGui::TableNextColumn();
-        ImGui::BeginDisabled(s.fem_verifier.running());
+        ImGui::BeginDisabled(s.verify.worker.running());
         if (ImGui::SmallButton("FEM")) verify_champion(s, e);
         ImGui::EndDisabled();
         record_widget(s, "verify gen " + std::to_string(e.generation));
@@ -117,11 +117,11 @@ void scatter_tab(Studio& s) {
 }
 
 void time_plots_tab(Studio& s) {
-    if (!s.shown || s.shown->series.t_s.empty()) {
+    if (!s.bodies.shown || s.bodies.shown->series.t_s.empty()) {
         ImGui::TextDisabled("Select an individual or a champion: its simulation is plotted here.");
         return;
     }
-    const auto& series = s.shown->series;
+    const auto& series = s.bodies.shown->series;
     const float each = std::max(
         50.0f, (ImGui::GetContentRegionAvail().y - 2.0f * ImGui::GetStyle().ItemSpacing.y) / 3.0f);
     const float width = ImGui::GetContentRegionAvail().x;

@@ -13,8 +13,8 @@
 
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -49,7 +49,7 @@ void track_controls(Studio& s) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("browse for a body file (*.json) to show");
     path_field(s, "##track file", "TRACK.csv (docs/track-format.md)", c.track_field);
     ImGui::SameLine();
-    ImGui::BeginDisabled(running || !s.shown);
+    ImGui::BeginDisabled(running || !s.bodies.shown);
     if (tracked_button(s, "Load track")) load_track(s, c.track_field);
     ImGui::SameLine();
     if (tracked_button(s, "Track...")) show_file_dialog(s, FileDialogPurpose::LoadTrack);
@@ -57,8 +57,8 @@ void track_controls(Studio& s) {
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("browse for a measured track (*.csv, docs/track-format.md)");
     if (!c.track) {
-        ImGui::TextDisabled(s.shown ? "Load a track onto %s." : "Show a body first.",
-                            s.shown ? s.shown->label.c_str() : "");
+        ImGui::TextDisabled(s.bodies.shown ? "Load a track onto %s." : "Show a body first.",
+                            s.bodies.shown ? s.bodies.shown->label.c_str() : "");
         return;
     }
     std::string points;
@@ -71,7 +71,7 @@ void track_controls(Studio& s) {
     ImGui::TextWrapped("%s: %zu rows, %.3g to %.3g s; %s; on %s", c.track_path.c_str(),
                        c.track->t_s.size(), c.track->t_s.front(), c.track->t_s.back(),
                        points.c_str(), c.body_label.c_str());
-    if (s.shown && s.shown->framed_body != c.framed_body)
+    if (s.bodies.shown && s.bodies.shown->framed_body != c.framed_body)
         ImGui::TextColored(ImColor(kWarning), "The body shown is not the track's: no overlay.");
 }
 

@@ -5,8 +5,8 @@
 #include <imgui.h>
 
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/panels/field_editor.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/widgets/field_editor.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

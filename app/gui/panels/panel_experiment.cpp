@@ -6,12 +6,13 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/draft_edits.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
+#include "app/gui/panels/field_editor.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
+#include "app/gui/panels/material_picker.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/widgets/field_editor.hpp"
-#include "app/gui/widgets/file_dialog_widget.hpp"
-#include "app/gui/widgets/material_picker.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/validated_envelope.hpp"

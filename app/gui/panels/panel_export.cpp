@@ -68,7 +68,7 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
         ImGui::SameLine();
         if (tracked_button(s, "Cancel")) x.frame_job.active = false;
     } else {
-        ImGui::BeginDisabled(!s.shown);
+        ImGui::BeginDisabled(!s.bodies.shown);
         if (tracked_button(s, "Write frames"))
             start_frame_export(s, x.frames_folder, x.frames_width, x.frames_height, x.frames_fps);
         ImGui::EndDisabled();
@@ -81,7 +81,7 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
                           "time into every frame (and video)");
     hint("frame_00000.png ... over the whole simulated time");
     path_field(s, "##video path", x.video_path);
-    ImGui::BeginDisabled(!s.shown || x.frame_job.active);
+    ImGui::BeginDisabled(!s.bodies.shown || x.frame_job.active);
     if (tracked_button(s, "Write video"))
         start_video_export(s, x.video_path, x.frames_width, x.frames_height, x.frames_fps);
     ImGui::EndDisabled();
@@ -105,7 +105,7 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     record_widget(s, "mesh deformed");
     hint("closed surface in metres: .stl, or .obj with a .mtl (a group per material)");
     path_field(s, "##vtk folder", x.vtk_folder);
-    ImGui::BeginDisabled(!s.shown);
+    ImGui::BeginDisabled(!s.bodies.shown);
     if (tracked_button(s, "Write ParaView series")) export_vtk_series(s, x.vtk_folder);
     ImGui::EndDisabled();
     hint("series.pvd, one .vtu per replay frame and the centre of mass path (.vtp)");

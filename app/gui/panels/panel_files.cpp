@@ -7,7 +7,7 @@
 #include <imgui.h>
 
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"

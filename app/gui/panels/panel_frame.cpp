@@ -4,11 +4,11 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/key_bindings.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
 #include "app/gui/panels/panels.hpp"
-#include "app/gui/shell/key_bindings.hpp"
-#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

@@ -112,7 +112,7 @@ void draw_population_panel(Studio& s) {
     }
     const auto& run = *s.run;
     const auto measure = run.experiment.fitness.measure;
-    ImGui::BeginDisabled(s.follow_champion);
+    ImGui::BeginDisabled(s.bodies.follow_champion);
     if (tracked_button(s, "Follow champion")) follow_champion(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
@@ -149,7 +149,7 @@ void draw_population_panel(Studio& s) {
         ImGui::TableNextColumn();
         char id[48];
         std::snprintf(id, sizeof id, "#%lld", static_cast<long long>(m.id));
-        const bool selected = s.shown && s.shown->id == m.id;
+        const bool selected = s.bodies.shown && s.bodies.shown->id == m.id;
         // The row shows it; the "FEM" button at its end (drawn over the row) verifies it.
         if (ImGui::Selectable(
                 id, selected,
@@ -186,7 +186,7 @@ void draw_population_panel(Studio& s) {
         exploit_cell(s, m.exploits, std::string("flags ") + id);
         ImGui::TableNextColumn();
         ImGui::PushID(id);
-        ImGui::BeginDisabled(s.fem_verifier.running() || !m.body);
+        ImGui::BeginDisabled(s.verify.worker.running() || !m.body);
         if (ImGui::SmallButton("FEM")) verify_individual(s, m.id);
         ImGui::EndDisabled();
         record_widget(s, std::string("verify ") + id);

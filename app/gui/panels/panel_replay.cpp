@@ -18,7 +18,7 @@ namespace {
 
 void timeline(Studio& s, float height) {
     auto& clock = s.clock;
-    const double settle = s.shown ? s.shown->experiment.simulation.settle_s : 0.0;
+    const double settle = s.bodies.shown ? s.bodies.shown->experiment.simulation.settle_s : 0.0;
     const double duration = std::max(clock.duration_s, 1e-9);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -30,18 +30,18 @@ void timeline(Studio& s, float height) {
     const ImVec2 hi{origin.x + width - pad, origin.y + height - ImGui::GetFontSize() - 4.0f};
     auto x_of = [&](double t) { return lo.x + float(t / duration) * (hi.x - lo.x); };
 
-    if (ImGui::IsItemActive() && s.shown) {  // click or drag: scrub
+    if (ImGui::IsItemActive() && s.bodies.shown) {  // click or drag: scrub
         const float mx = std::clamp(ImGui::GetIO().MousePos.x, lo.x, hi.x);
         clock.seek((mx - lo.x) / (hi.x - lo.x) * duration);
         clock.playing = false;
     }
     dl->AddRectFilled(lo, hi, IM_COL32(246, 247, 249, 255));
-    if (s.shown && settle > 0.0) {
+    if (s.bodies.shown && settle > 0.0) {
         dl->AddRectFilled(lo, {x_of(std::min(settle, duration)), hi.y},
                           IM_COL32(150, 160, 175, 90));
         dl->AddText({lo.x + 4.0f, lo.y + 1.0f}, IM_COL32(70, 75, 85, 255), "settle");
     }
-    if (!s.shown) return;
+    if (!s.bodies.shown) return;
     const auto ticks =
         nice_ticks({0.0, duration}, std::max(2, static_cast<int>((hi.x - lo.x) / 70.0f)));
     const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1.0;
@@ -54,7 +54,7 @@ void timeline(Studio& s, float height) {
                     IM_COL32(60, 60, 60, 255), label.c_str());
     }
     dl->AddRect(lo, hi, IM_COL32(120, 120, 120, 255));
-    if (s.shown) {
+    if (s.bodies.shown) {
         const float x = x_of(clock.time_s);
         dl->AddLine({x, lo.y}, {x, hi.y}, IM_COL32(214, 69, 56, 255), 2.5f);
         dl->AddTriangleFilled({x - 6.0f, lo.y}, {x + 6.0f, lo.y}, {x, lo.y + 8.0f},
@@ -66,7 +66,7 @@ void timeline(Studio& s, float height) {
 
 void draw_replay_panel(Studio& s) {
     auto& clock = s.clock;
-    ImGui::BeginDisabled(!s.shown);
+    ImGui::BeginDisabled(!s.bodies.shown);
     if (tracked_button(s, "|<")) clock.seek(0.0);
     ImGui::SameLine();
     if (tracked_button(s, "<")) step_replay(s, -1);
@@ -94,8 +94,8 @@ void draw_replay_panel(Studio& s) {
     ImGui::Checkbox("loop", &clock.loop);
     ImGui::EndDisabled();
     if (ImGui::GetContentRegionAvail().x > ImGui::GetFontSize() * 22.0f) ImGui::SameLine();
-    if (s.shown) {
-        const double settle = s.shown->experiment.simulation.settle_s;
+    if (s.bodies.shown) {
+        const double settle = s.bodies.shown->experiment.simulation.settle_s;
         ImGui::Text("t = %.3f s / %.3f s   %s", clock.time_s, clock.duration_s,
                     clock.time_s < settle ? "(settling, actuation off)" : "(actuated)");
     } else {

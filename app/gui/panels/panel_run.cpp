@@ -6,10 +6,11 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/draft_edits.hpp"
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/settings/studio_paths.hpp"
-#include "app/gui/widgets/file_dialog_widget.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
 namespace bhm::app::gui {

@@ -61,7 +61,7 @@ void pair_cell(double fem, double ours, const std::optional<double>& difference,
 }
 
 void progress_section(Studio& s) {
-    const auto& st = s.fem_state;
+    const auto& st = s.verify.state;
     if (!st) return;
     if (st->phase == FemVerifyPhase::Running) {
         const double elapsed =
@@ -88,14 +88,14 @@ void progress_section(Studio& s) {
 }
 
 void result_section(Studio& s) {
-    if (!s.verification_error.empty()) {
+    if (!s.verify.kept_error.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, kBad);
-        ImGui::TextWrapped("kept report unreadable: %s", s.verification_error.c_str());
+        ImGui::TextWrapped("kept report unreadable: %s", s.verify.kept_error.c_str());
         ImGui::PopStyleColor();
     }
-    const auto v = s.verification;  // shared: the worker may publish a newer one meanwhile
+    const auto v = s.verify.result;  // shared: the worker may publish a newer one meanwhile
     if (!v) {
-        if (s.shown)
+        if (s.bodies.shown)
             ImGui::TextDisabled("Not verified yet: Verify in FEM checks it against CalculiX.");
         return;
     }
@@ -118,7 +118,7 @@ void result_section(Studio& s) {
     if (v->fem_shape.empty()) {
         ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");
     } else {
-        ImGui::Checkbox("FEM ghost in the 3D view", &s.fem_ghost);
+        ImGui::Checkbox("FEM ghost in the 3D view", &s.verify.ghost);
         record_widget(s, "fem ghost");
         ImGui::SameLine();
         ImGui::TextDisabled("our static shape at the chosen load, CalculiX's as the grey ghost");
@@ -144,8 +144,8 @@ void result_section(Studio& s) {
             ImGui::TableNextColumn();
             char label[64];
             std::snprintf(label, sizeof label, "%s##fem row", r.load.c_str());
-            if (ImGui::RadioButton(label, s.fem_load == static_cast<int>(k)))
-                s.fem_load = static_cast<int>(k);
+            if (ImGui::RadioButton(label, s.verify.load == static_cast<int>(k)))
+                s.verify.load = static_cast<int>(k);
             record_widget(s, "fem load " + r.load);
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("%s: temperature change %+.3g degC of the active voxels",
@@ -166,21 +166,21 @@ void result_section(Studio& s) {
 
 // Every report kept in the run directory: a member's too, which a reopened run does not list.
 void kept_section(Studio& s) {
-    if (s.kept_reports.empty() || !s.run) return;
+    if (s.verify.kept_reports.empty() || !s.run) return;
     ImGui::Separator();
     ImGui::TextDisabled("Kept FEM reports (%s/verify): choose one to show its body with it",
                         s.run->run_dir.c_str());
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     const ImGuiStyle& style = ImGui::GetStyle();
     ImGui::PushID("kept reports");
-    for (std::size_t k = 0; k < s.kept_reports.size(); ++k) {
-        const std::int64_t id = s.kept_reports[k];
+    for (std::size_t k = 0; k < s.verify.kept_reports.size(); ++k) {
+        const std::int64_t id = s.verify.kept_reports[k];
         char label[48];
         std::snprintf(label, sizeof label, "#%lld", static_cast<long long>(id));
         const float width = ImGui::CalcTextSize(label).x + 2.0f * style.FramePadding.x;
         if (k > 0 && ImGui::GetItemRectMax().x + style.ItemSpacing.x + width < right)
             ImGui::SameLine();
-        const bool shown = s.shown && s.shown->id == id;
+        const bool shown = s.bodies.shown && s.bodies.shown->id == id;
         if (shown) ImGui::PushStyleColor(ImGuiCol_Button, kGood);
         const bool clicked = ImGui::Button(label);
         if (shown) ImGui::PopStyleColor();
@@ -196,13 +196,14 @@ void kept_section(Studio& s) {
 }  // namespace
 
 void draw_verify_panel(Studio& s) {
-    const bool running = s.fem_verifier.running();
-    ImGui::BeginDisabled(running || !s.shown);
+    const bool running = s.verify.worker.running();
+    ImGui::BeginDisabled(running || !s.bodies.shown);
     if (tracked_button(s, "Verify in FEM")) verify_shown_body(s);
     ImGui::EndDisabled();
     ImGui::SameLine();
-    if (s.shown)
-        ImGui::TextDisabled("%s against CalculiX at rest, +A and -A", s.shown->label.c_str());
+    if (s.bodies.shown)
+        ImGui::TextDisabled("%s against CalculiX at rest, +A and -A",
+                            s.bodies.shown->label.c_str());
     else
         ImGui::TextDisabled("Select a champion or an individual to verify it.");
     progress_section(s);

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/actions/view_clicks.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/view/renderer.hpp"
 #include "app/gui/view/viewport.hpp"
@@ -73,7 +74,7 @@ void toolbar(Studio& s) {
             ImGui::SetTooltip(
                 "colour the body by material, displacement from t = 0, volumetric "
                 "strain, or the actuation signal of its muscle voxels");
-        if (s.compared) {
+        if (s.bodies.compared) {
             next_item(item_width("split", true));
             if (ImGui::Checkbox("split", &s.view.split)) s.view.camera_needs_framing = true;
             record_widget(s, "split");
@@ -157,7 +158,7 @@ class OverlayText {
 };
 
 void pane_overlay(Studio& s, ImVec2 origin, ImVec2 size) {
-    const auto& c = *s.compared;
+    const auto& c = *s.bodies.compared;
     OverlayText text(s, "compared overlay", origin, size);
     text.line(IM_COL32(30, 34, 40, 255), "compared: " + c.label);
     text.line(IM_COL32(90, 96, 106, 255),
@@ -273,16 +274,16 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     char buf[256];
     // A body asked for and not simulated yet (a new champion, a selected row): said first, so
     // the body still playing is never taken for it (issue 25 item 6).
-    const std::string pending = s.simulator.pending_label();
-    const bool waiting = !pending.empty() && (!s.shown || s.shown->label != pending);
+    const std::string pending = s.bodies.simulator.pending_label();
+    const bool waiting = !pending.empty() && (!s.bodies.shown || s.bodies.shown->label != pending);
     if (s.view.mode == ViewMode::Simulation && waiting) {
         const ImVec2 from = lines.at();
         text(IM_COL32(190, 110, 0, 255), "simulating " + pending + " ...");
         s.widgets["simulating note"] =
             WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, lines.at().y}, s.frame};
     }
-    if (s.view.mode == ViewMode::Simulation && s.shown) {
-        const auto& b = *s.shown;
+    if (s.view.mode == ViewMode::Simulation && s.bodies.shown) {
+        const auto& b = *s.bodies.shown;
         const auto measure = b.experiment.fitness.measure;
         text(dark, waiting ? "shown until then: " + b.label : b.label);
         std::snprintf(buf, sizeof buf, "t = %.3f s   fitness %s   bend angle %.2f deg",
@@ -292,12 +293,12 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
         if (b.diverged) text(IM_COL32(200, 40, 30, 255), "diverged: " + b.divergence_reason);
         if (const auto* flags = shown_exploits(s); flags && flags->any())
             text(IM_COL32(200, 40, 30, 255), "exploit flags: " + exploit_summary(*flags));
-        if (s.compared && !s.view.split)
-            text(dim,
-                 "beside (+y): " + s.compared->label + ", fitness " +
-                     format_fitness(s.compared->fitness, s.compared->experiment.fitness.measure));
+        if (s.bodies.compared && !s.view.split)
+            text(dim, "beside (+y): " + s.bodies.compared->label + ", fitness " +
+                          format_fitness(s.bodies.compared->fitness,
+                                         s.bodies.compared->experiment.fitness.measure));
         if (const FemVerification* v = fem_overlay(s)) {
-            const auto& row = v->rows[static_cast<std::size_t>(s.fem_load)];
+            const auto& row = v->rows[static_cast<std::size_t>(s.verify.load)];
             text(v->agrees ? IM_COL32(30, 120, 50, 255) : IM_COL32(200, 40, 30, 255),
                  "FEM: " + fem_verdict_line(*v) + "; static at " + row.load +
                      ": ours solid, CalculiX as the grey ghost");

@@ -10,7 +10,7 @@
 #include <imgui.h>
 
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/welcome/thumbnails.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
@@ -32,8 +32,7 @@ void card(Studio& s, std::size_t i, unsigned texture, float width) {
     const bool chosen =
         ImGui::Selectable("##card", false, 0, ImVec2(width, kThumbH + text_h + 6.0f));
     record_widget(s, "welcome preset " + c.stem);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s\n\n%s", c.path.c_str(), c.description.c_str());
+    if (ImGui::IsItemHovered()) wrapped_tooltip(c.path + "\n\n" + c.description);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 img{at.x + (width - kThumbW) * 0.5f, at.y + 2.0f};
     if (texture) {
@@ -160,9 +159,8 @@ void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& t
         request_new_experiment(s);
     }
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "the paper's materials on an 8x8x7 workspace held at x- "
-            "(the paper's 2000 generations and 48 h: set the budget first)");
+        wrapped_tooltip("the paper's materials on an 8x8x7 workspace held at x- "
+                        "(the paper's 2000 generations and 48 h: set the budget first)");
     ImGui::SameLine();
     if (tracked_button(s, "Close")) s.welcome_open = false;
     if (!open) s.welcome_open = false;

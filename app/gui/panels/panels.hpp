@@ -27,6 +27,10 @@ void draw_help_window(Studio& studio);
 //! and the 3D view's legend. Renders missing thumbnails (UI thread).
 void draw_welcome_window(Studio& studio, ViewRenderer& renderer, WelcomeThumbnails& thumbnails);
 void draw_status_bar(Studio& studio);
+//! The modal dialogs of the questions of actions/unsaved_guard.hpp (buttons recorded for scripts: "Save changes",
+//! "Discard changes", "Cancel", "Finish generation, then quit", "Quit now").
+void draw_confirm_dialogs(Studio& studio);
+
 //! A table cell with the exploit flags' letters in red (E escaped, D detached motion, T
 //! tentacle), their measures on hover; recorded under `widget` for scripts.
 void exploit_cell(Studio& studio, const evo::ExploitReport& report, const std::string& widget);

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/verify_report.hpp"
 
@@ -34,7 +35,7 @@ json read_json(const fs::path& path) {
     try {
         return json::parse(in);
     } catch (const json::exception& e) {
-        throw std::runtime_error(path.string() + ": " + e.what());
+        throw std::runtime_error(path.string() + ": " + evo::without_json_tags(e.what()));
     }
 }
 
@@ -170,7 +171,8 @@ std::optional<FemVerification> read_verification(const std::string& dir, std::in
             v.rows.push_back(row);
         }
     } catch (const json::exception& e) {
-        throw std::runtime_error(report_path.string() + ": " + e.what());
+        throw std::runtime_error(report_path.string() + ": " +
+                                 evo::without_json_tags(e.what()));
     }
     const fs::path shapes_path = fs::path(dir) / "shapes.json";
     if (fs::exists(shapes_path, ec)) {

@@ -7,16 +7,16 @@ namespace bhm::app::gui {
 bool needs_animation(const Studio& s) {
     const RunPhase phase = s.evolution.phase();
     const bool evolving = run_is_live(phase) && phase != RunPhase::Paused;
-    return s.clock.playing || evolving || s.simulator.busy() || s.compare_simulator.busy() ||
-           s.calibration.session.running() ||
-           s.exports.frame_job.active || s.view.dragging || s.fem_verifier.running();
+    return s.clock.playing || evolving || s.bodies.simulator.busy() ||
+           s.bodies.compare_simulator.busy() || s.calibration.session.running() ||
+           s.exports.frame_job.active || s.view.dragging || s.verify.worker.running();
 }
 
 bool RedrawGate::should_draw(const Studio& s, double now_s) {
     // Every published snapshot (run, simulated bodies) moves the stamp.
-    const std::uint64_t stamp = s.evolution.version() * 1000003u +
-                                s.simulator.version() * 1009u + s.compare_simulator.version() +
-                                s.calibration.session.version() * 7919u;
+    const std::uint64_t stamp =
+        s.evolution.version() * 1000003u + s.bodies.simulator.version() * 1009u +
+        s.bodies.compare_simulator.version() + s.calibration.session.version() * 7919u;
     if (input_ || stamp != stamp_) settle_ = kSettleFrames;
     input_ = false;
     stamp_ = stamp;

@@ -11,8 +11,8 @@
 
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/export_actions.hpp"
+#include "app/gui/actions/key_bindings.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/view/scene.hpp"
 #include "app/gui/view/viewport.hpp"
 #include "engine/io/text_file.hpp"
@@ -126,6 +126,208 @@ void click_cell(HeadlessStudio& session, const json& step) {
     throw ScriptError("cell (" + std::to_string(cell[0]) + ", " + std::to_string(cell[1]) + ", " +
                       std::to_string(cell[2]) +
                       ") is hidden from this view (use a slice or another view)");
+}
+
+// One function per kind of step (the table script_steps() names them).
+
+void step_load(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    if (!open_experiment(s, step.at("load").get<std::string>())) throw ScriptError(s.status);
+}
+
+void step_set(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    set_experiment_field(s, step.at("set").get<std::string>(), step.at("value"));
+}
+
+void step_click(HeadlessStudio& session, const json& step) {
+    click_at(session, widget_centre(session, step.at("click").get<std::string>()), false,
+             step.value("fast", false));
+}
+
+void step_click_face(HeadlessStudio& session, const json& step) {
+    click_face(session, step.at("click_face").get<std::string>(), step.value("fast", false));
+}
+
+void step_drag(HeadlessStudio& session, const json& step) {
+    const auto by = step.at("by").get<std::array<float, 2>>();
+    drag_widget(session, step.at("drag").get<std::string>(), {by[0], by[1]});
+}
+
+void step_resize(HeadlessStudio& session, const json& step) {
+    const auto size = step.at("resize").get<std::array<int, 2>>();
+    if (!session.set_display_size(size[0], size[1]))
+        throw ScriptError("resize: 1..the starting size in each direction");
+    session.frame();
+}
+
+void step_click_cell(HeadlessStudio& session, const json& step) {
+    click_cell(session, step);
+}
+
+void step_key(HeadlessStudio& session, const json& step) {
+    press_key(session, step.at("key").get<std::string>(), step.value("fast", false),
+              step.value("hold", 0));
+}
+
+void step_type(HeadlessStudio& session, const json& step) {
+    // Characters as a window's char callback gets them, all in one event batch.
+    const std::string text = step.at("type").get<std::string>();
+    for (const char* c = text.c_str(); *c;) {
+        unsigned int codepoint = 0;
+        const int used = ImTextCharFromUtf8(&codepoint, c, nullptr);
+        if (used <= 0) break;
+        session.input().keys.character(codepoint);
+        c += used;
+    }
+    session.frame();
+}
+
+void step_view(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const auto view = render::parse_named_view(step.at("view").get<std::string>());
+    if (!view) throw ScriptError("unknown view (iso, front, top, side)");
+    set_named_view(s, *view);
+}
+
+void step_mode(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const std::string mode = step.at("mode").get<std::string>();
+    if (mode != "workspace" && mode != "simulation")
+        throw ScriptError("mode is workspace or simulation");
+    set_view_mode(s, mode == "workspace" ? ViewMode::Workspace : ViewMode::Simulation);
+}
+
+void step_wait_generations(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const int n = step.at("wait_generations").get<int>();
+    frames_until(
+        session, timeout_of(step, 300.0),
+        [&] {
+            const auto run = s.evolution.snapshot();
+            if (run && run->phase == RunPhase::Failed)
+                throw ScriptError("the run failed: " + run->message);
+            return run && (run->generation >= n ||
+                           (!run_is_live(run->phase) && run->phase != RunPhase::Idle));
+        },
+        std::to_string(n) + " generations");
+    const auto run = s.evolution.snapshot();
+    if (!run || run->generation < n)
+        throw ScriptError("the run ended after " + std::to_string(run ? run->generation : 0) +
+                          " generations");
+}
+
+void step_wait_run(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const std::string want = step.at("wait_run").get<std::string>();
+    frames_until(
+        session, timeout_of(step, 300.0),
+        [&] {
+            const auto phase = s.evolution.phase();
+            return run_phase_name(phase) == want;
+        },
+        "the run to be " + want);
+}
+
+void step_select(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    if (step.at("select") != "champion")
+        throw ScriptError("select: only \"champion\" is supported");
+    frames_until(
+        session, timeout_of(step, 30.0), [&] { return s.run && s.run->has_champion; },
+        "a champion");
+    const auto id = s.run->champion.id;
+    click_at(session, widget_centre(session, "individual #" + std::to_string(id)));
+    if (s.bodies.simulator.pending_id() != id && !(s.bodies.shown && s.bodies.shown->id == id))
+        throw ScriptError("the click did not select the champion #" + std::to_string(id));
+}
+
+void step_wait_simulation(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    frames_until(
+        session, timeout_of(step, 120.0),
+        [&] {
+            if (!s.bodies.simulator.last_error().empty())
+                throw ScriptError(s.bodies.simulator.last_error());
+            return !s.bodies.simulator.busy() && s.bodies.shown != nullptr;
+        },
+        "the simulation");
+}
+
+void step_show_body(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    if (!show_body_file(s, step.at("show_body").get<std::string>())) throw ScriptError(s.status);
+}
+
+void step_load_track(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    if (!load_track(s, step.at("load_track").get<std::string>())) throw ScriptError(s.status);
+}
+
+void step_calibrate(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    // The fit list as --fit names it; the boxes of the Calibrate tab follow it.
+    const std::string list = step.at("calibrate").get<std::string>();
+    auto& c = s.calibration;
+    for (std::size_t i = 0; i < c.fit_names.size(); ++i)
+        c.fit_on[i] = ("," + list + ",").find("," + c.fit_names[i] + ",") != std::string::npos;
+    if (step.contains("max_simulations")) c.max_simulations = step.at("max_simulations").get<int>();
+    if (!start_calibration(s)) throw ScriptError(s.status);
+}
+
+void step_wait_calibration(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    frames_until(
+        session, timeout_of(step, 600.0),
+        [&] {
+            const auto snap = s.calibration.session.snapshot();
+            return !s.calibration.session.running() && snap &&
+                   snap->phase != CalibrationPhase::Running;
+        },
+        "the calibration");
+    const auto snap = s.calibration.session.snapshot();
+    if (snap->phase == CalibrationPhase::Failed) throw ScriptError(snap->error);
+}
+
+void step_wait_verify(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    // Verify in FEM: until the worker has ended (finished, failed or cancelled).
+    frames_until(
+        session, timeout_of(step, 120.0), [&] { return !s.verify.worker.running(); },
+        "the verification");
+    session.frame();  // the frame that takes its last state
+}
+
+void step_replay(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const json& r = step.at("replay");
+    if (!s.bodies.shown) throw ScriptError("replay: no simulated body is shown");
+    if (r.contains("playing")) s.clock.playing = r.at("playing").get<bool>();
+    if (r.contains("time_s")) s.clock.seek(r.at("time_s").get<double>());
+    set_view_mode(s, ViewMode::Simulation);
+    session.frame(0.0);
+}
+
+void step_frames(HeadlessStudio& session, const json& step) {
+    for (int i = step.at("frames").get<int>(); i > 0; --i)
+        session.frame();
+}
+
+void step_screenshot(HeadlessStudio& session, const json& step) {
+    render::write_png(step.at("screenshot").get<std::string>(), session.capture());
+}
+
+void step_export_view(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    const auto size = step.value("size", std::array<int, 2>{1280, 720});
+    if (!export_screenshot(s, session.app().renderer(),
+                           step.at("export_view").get<std::string>(), size[0], size[1]))
+        throw ScriptError(s.status);
+}
+
+void step_save(HeadlessStudio& session, const json& step) {
+    Studio& s = session.studio();
+    if (!save_experiment_as(s, step.at("save").get<std::string>())) throw ScriptError(s.status);
 }
 
 }  // namespace
@@ -252,146 +454,122 @@ void set_experiment_field(Studio& studio, const std::string& path, const json& v
         throw ScriptError("set " + path + " refused: " + studio.edit_problems.front().to_string());
 }
 
+const std::vector<ScriptStep>& script_steps() {
+    static const std::vector<ScriptStep> steps = {
+        {"load", step_load,
+         R"({"load": "exp.json"})",
+         "File > Open"},
+        {"save", step_save,
+         R"({"save": "exp.json"})",
+         "File > Save As"},
+        {"set", step_set,
+         R"({"set": "simulation.settle_s", "value": 0.2})",
+         "edits one experiment field by its JSON path (as in `bhm validate` messages, "
+         "e.g. `materials[1].poisson_ratio`); validated and undoable; a refused value "
+         "fails the step with the validator's message"},
+        {"click", step_click,
+         R"({"click": "Start", "fast": true})",
+         "clicks a widget by its label (`fast`: the pointer arrives, presses and "
+         "releases in one event batch, as a quick click or xdotool does; also on "
+         "`click_face` and `click_cell`): buttons (Start, Pause, Resume, Stop, Undo, "
+         "Redo, Open..., Save As..., Save PNG, Write frames, Save VXA, Iso, ...), `face "
+         "x+` (Constraints panel), `welcome preset quick-demo` (a welcome card), `dialog "
+         "entry x.json`, `dialog ok` (the file dialog), `3d view compared` (the split "
+         "view's second pane), `individual #12` (Population row), `timeline`, `3d view`, "
+         "`design strip` (the folded left column's button), `fitness tab com_final_3d` "
+         "(a measure's tab)"},
+        {"click_face", step_click_face,
+         R"({"click_face": "x+"})",
+         "selects the Faces tool and clicks the face's centre in the 3D view (it must "
+         "face the camera)"},
+        {"click_cell", step_click_cell,
+         R"({"click_cell": [x, y, z], "brush": "fixed", "material": 2, "shift": false})",
+         "selects the Voxels tool (and brush) and clicks the cell where it can be seen"},
+        {"type", step_type,
+         R"({"type": "runs/a"})",
+         "types characters into the text field that has the keyboard, as a window's char "
+         "callback gets them (one event batch)"},
+        {"key", step_key,
+         R"({"key": "ctrl+z", "fast": true})",
+         "presses a shortcut (`ctrl+`, `shift+`, letters, digits, `f1`..`f12`, `space`, "
+         "`left`, `right`, `up`, `down`, `home`, `end`, `tab`, `enter`, `escape`, "
+         "`backspace`, `delete`); `fast`: pressed and released, Ctrl too, before the "
+         "next frame; `{\"key\": \"down\", \"hold\": 3}`: held for 3 of the system's key "
+         "repeats (one a frame, as the window's key callback gets them) before the "
+         "release"},
+        {"view", step_view,
+         R"({"view": "iso"})",
+         "named view: iso, front, top, side"},
+        {"mode", step_mode,
+         R"({"mode": "simulation"})",
+         "3D view mode: workspace or simulation"},
+        {"wait_generations", step_wait_generations,
+         R"({"wait_generations": 2, "timeout_s": 120})",
+         "draws frames until the run has completed that many generations (fails if it "
+         "ends first)"},
+        {"wait_run", step_wait_run,
+         R"({"wait_run": "finished"})",
+         "draws frames until the run is `running`, `paused`, `stopped`, `finished` or "
+         "`failed`"},
+        {"select", step_select,
+         R"({"select": "champion"})",
+         "clicks the champion's row in the Population panel"},
+        {"wait_simulation", step_wait_simulation,
+         R"({"wait_simulation": true})",
+         "draws frames until the body asked for is simulated and shown"},
+        {"show_body", step_show_body,
+         R"({"show_body": "body.json"})",
+         "Calibrate > Show body"},
+        {"load_track", step_load_track,
+         R"({"load_track": "tip.csv"})",
+         "Calibrate > Load track onto the body shown"},
+        {"calibrate", step_calibrate,
+         R"({"calibrate": "E,amplitude", "max_simulations": 100})",
+         "ticks those parameters (the others off) and presses Calibrate"},
+        {"wait_calibration", step_wait_calibration,
+         R"({"wait_calibration": true, "timeout_s": 600})",
+         "draws frames until the calibration (or the track's simulation) has ended; a "
+         "failed one fails the step"},
+        {"wait_verify", step_wait_verify,
+         R"({"wait_verify": true, "timeout_s": 120})",
+         "draws frames until Verify in FEM has ended (finished, failed or cancelled)"},
+        {"replay", step_replay,
+         R"({"replay": {"time_s": 5.0, "playing": false}})",
+         "sets the replay clock (and shows the simulation)"},
+        {"frames", step_frames,
+         R"({"frames": 10})",
+         "draws frames"},
+        {"drag", step_drag,
+         R"({"drag": "splitter right", "by": [-100, 0]})",
+         "presses on a widget, moves by that many pixels over several frames, releases "
+         "(`splitter left`, `splitter right`, `splitter replay`, `splitter run`, "
+         "`splitter plot`)"},
+        {"resize", step_resize,
+         R"({"resize": [640, 400]})",
+         "the window's size from now on (at most the size it started with)"},
+        {"screenshot", step_screenshot,
+         R"({"screenshot": "ui.png"})",
+         "the whole window as drawn"},
+        {"export_view", step_export_view,
+         R"({"export_view": "view.png", "size": [1920, 1080]})",
+         "the 3D view rendered off-screen at that size"},
+    };
+    return steps;
+}
+
 void run_step(HeadlessStudio& session, const json& step) {
-    Studio& s = session.studio();
     if (!step.is_object() || step.empty())
         throw ScriptError("a step is a JSON object such as {\"frames\": 3}");
-    if (step.contains("load")) {
-        if (!open_experiment(s, step.at("load").get<std::string>())) throw ScriptError(s.status);
-    } else if (step.contains("set")) {
-        set_experiment_field(s, step.at("set").get<std::string>(), step.at("value"));
-    } else if (step.contains("click")) {
-        click_at(session, widget_centre(session, step.at("click").get<std::string>()), false,
-                 step.value("fast", false));
-    } else if (step.contains("click_face")) {
-        click_face(session, step.at("click_face").get<std::string>(), step.value("fast", false));
-    } else if (step.contains("drag")) {
-        const auto by = step.at("by").get<std::array<float, 2>>();
-        drag_widget(session, step.at("drag").get<std::string>(), {by[0], by[1]});
-    } else if (step.contains("resize")) {
-        const auto size = step.at("resize").get<std::array<int, 2>>();
-        if (!session.set_display_size(size[0], size[1]))
-            throw ScriptError("resize: 1..the starting size in each direction");
-        session.frame();
-    } else if (step.contains("click_cell")) {
-        click_cell(session, step);
-    } else if (step.contains("key")) {
-        press_key(session, step.at("key").get<std::string>(), step.value("fast", false),
-                  step.value("hold", 0));
-    } else if (step.contains("type")) {
-        // Characters as a window's char callback gets them, all in one event batch.
-        const std::string text = step.at("type").get<std::string>();
-        for (const char* c = text.c_str(); *c;) {
-            unsigned int codepoint = 0;
-            const int used = ImTextCharFromUtf8(&codepoint, c, nullptr);
-            if (used <= 0) break;
-            session.input().keys.character(codepoint);
-            c += used;
-        }
-        session.frame();
-    } else if (step.contains("view")) {
-        const auto view = render::parse_named_view(step.at("view").get<std::string>());
-        if (!view) throw ScriptError("unknown view (iso, front, top, side)");
-        set_named_view(s, *view);
-    } else if (step.contains("mode")) {
-        const std::string mode = step.at("mode").get<std::string>();
-        if (mode != "workspace" && mode != "simulation")
-            throw ScriptError("mode is workspace or simulation");
-        set_view_mode(s, mode == "workspace" ? ViewMode::Workspace : ViewMode::Simulation);
-    } else if (step.contains("wait_generations")) {
-        const int n = step.at("wait_generations").get<int>();
-        frames_until(
-            session, timeout_of(step, 300.0),
-            [&] {
-                const auto run = s.evolution.snapshot();
-                if (run && run->phase == RunPhase::Failed)
-                    throw ScriptError("the run failed: " + run->message);
-                return run && (run->generation >= n ||
-                               (!run_is_live(run->phase) && run->phase != RunPhase::Idle));
-            },
-            std::to_string(n) + " generations");
-        const auto run = s.evolution.snapshot();
-        if (!run || run->generation < n)
-            throw ScriptError("the run ended after " + std::to_string(run ? run->generation : 0) +
-                              " generations");
-    } else if (step.contains("wait_run")) {
-        const std::string want = step.at("wait_run").get<std::string>();
-        frames_until(
-            session, timeout_of(step, 300.0),
-            [&] {
-                const auto phase = s.evolution.phase();
-                return run_phase_name(phase) == want;
-            },
-            "the run to be " + want);
-    } else if (step.contains("select")) {
-        if (step.at("select") != "champion")
-            throw ScriptError("select: only \"champion\" is supported");
-        frames_until(
-            session, timeout_of(step, 30.0), [&] { return s.run && s.run->has_champion; },
-            "a champion");
-        const auto id = s.run->champion.id;
-        click_at(session, widget_centre(session, "individual #" + std::to_string(id)));
-        if (s.simulator.pending_id() != id && !(s.shown && s.shown->id == id))
-            throw ScriptError("the click did not select the champion #" + std::to_string(id));
-    } else if (step.contains("wait_simulation")) {
-        frames_until(
-            session, timeout_of(step, 120.0),
-            [&] {
-                if (!s.simulator.last_error().empty()) throw ScriptError(s.simulator.last_error());
-                return !s.simulator.busy() && s.shown != nullptr;
-            },
-            "the simulation");
-    } else if (step.contains("show_body")) {
-        if (!show_body_file(s, step.at("show_body").get<std::string>())) throw ScriptError(s.status);
-    } else if (step.contains("load_track")) {
-        if (!load_track(s, step.at("load_track").get<std::string>())) throw ScriptError(s.status);
-    } else if (step.contains("calibrate")) {
-        // The fit list as --fit names it; the boxes of the Calibrate tab follow it.
-        const std::string list = step.at("calibrate").get<std::string>();
-        auto& c = s.calibration;
-        for (std::size_t i = 0; i < c.fit_names.size(); ++i)
-            c.fit_on[i] = ("," + list + ",").find("," + c.fit_names[i] + ",") != std::string::npos;
-        if (step.contains("max_simulations")) c.max_simulations = step.at("max_simulations").get<int>();
-        if (!start_calibration(s)) throw ScriptError(s.status);
-    } else if (step.contains("wait_calibration")) {
-        frames_until(
-            session, timeout_of(step, 600.0),
-            [&] {
-                const auto snap = s.calibration.session.snapshot();
-                return !s.calibration.session.running() && snap &&
-                       snap->phase != CalibrationPhase::Running;
-            },
-            "the calibration");
-        const auto snap = s.calibration.session.snapshot();
-        if (snap->phase == CalibrationPhase::Failed) throw ScriptError(snap->error);
-    } else if (step.contains("wait_verify")) {
-        // Verify in FEM: until the worker has ended (finished, failed or cancelled).
-        frames_until(
-            session, timeout_of(step, 120.0), [&] { return !s.fem_verifier.running(); },
-            "the verification");
-        session.frame();  // the frame that takes its last state
-    } else if (step.contains("replay")) {
-        const json& r = step.at("replay");
-        if (!s.shown) throw ScriptError("replay: no simulated body is shown");
-        if (r.contains("playing")) s.clock.playing = r.at("playing").get<bool>();
-        if (r.contains("time_s")) s.clock.seek(r.at("time_s").get<double>());
-        set_view_mode(s, ViewMode::Simulation);
-        session.frame(0.0);
-    } else if (step.contains("frames")) {
-        for (int i = step.at("frames").get<int>(); i > 0; --i)
-            session.frame();
-    } else if (step.contains("screenshot")) {
-        render::write_png(step.at("screenshot").get<std::string>(), session.capture());
-    } else if (step.contains("export_view")) {
-        const auto size = step.value("size", std::array<int, 2>{1280, 720});
-        if (!export_screenshot(s, session.app().renderer(),
-                               step.at("export_view").get<std::string>(), size[0], size[1]))
-            throw ScriptError(s.status);
-    } else if (step.contains("save")) {
-        if (!save_experiment_as(s, step.at("save").get<std::string>())) throw ScriptError(s.status);
-    } else {
-        throw ScriptError("unknown step " + step.dump());
-    }
+    for (const ScriptStep& kind : script_steps())
+        if (step.contains(kind.name)) return kind.run(session, step);
+    throw ScriptError("unknown step " + step.dump());
+}
+
+std::string script_reference() {
+    std::string out = "| step | does |\n|---|---|\n";
+    for (const ScriptStep& kind : script_steps())
+        out += std::string("| `") + kind.example + "` | " + kind.help + " |\n";
+    return out;
 }
 
 void run_script(HeadlessStudio& session, const json& steps,

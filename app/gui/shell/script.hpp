@@ -1,31 +1,13 @@
 #pragma once
 // Scripted sessions for headless runs and tests: a JSON list of steps, each driving the studio
 // through the same mouse and keyboard paths a person uses (documented in docs/studio.md).
-//   {"load": "exp.json"}                       open an experiment (File > Open)
-//   {"set": "simulation.settle_s", "value": 0.2}  edit one field (validated, undoable)
-//   {"click": "Start"}                        click a widget by its label (buttons, rows)
-//   {"click_face": "x+"}                      Faces tool, click the face in the 3D view
-//   {"click_cell": [x, y, z], "brush": "fixed"|"forbidden"|"material"|"clear", "material": k}
-//   {"key": "ctrl+z"}                         press a shortcut (key_bindings.hpp)
-//   {"type": "runs/a"}                        type characters into the text field with the keyboard
-//   {"view": "iso"|"front"|"top"|"side"}     named camera view (keys 1-4)
-//   {"mode": "workspace"|"simulation"}
-//   {"wait_generations": 2, "timeout_s": 120}  frames until the run has completed that many
-//   {"wait_run": "finished"|"paused"|"stopped", "timeout_s": 60}
-//   {"select": "champion"}                    click the champion's row in the Population panel
-//   {"wait_simulation": true, "timeout_s": 60}  frames until the body asked for is shown
-//   {"wait_verify": true, "timeout_s": 60}      frames until Verify in FEM has ended
-//   {"replay": {"time_s": 5.0, "playing": false}}  scrub the replay
-//   {"frames": 10}                            draw that many frames
-//   {"screenshot": "ui.png"}                  the whole window, as drawn
-//   {"export_view": "view.png", "size": [w, h]}  off-screen render of the 3D view
-//   {"save": "exp.json"}                      File > Save As
-//   {"drag": "splitter right", "by": [-100, 0]}  press on a widget, move, release
-//   {"resize": [w, h]}                        the window's size (at most the one it started with)
-//   "fast": true on click, click_face, click_cell, key: press and release in one event batch
+// Each kind of step is one row of script_steps(): its key, the function that runs it, an example
+// and what it does. docs/studio.md's table of steps is that table's text (script_reference();
+// tests/app/test_studio_script_reference.cpp fails when they differ and prints it).
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -45,8 +27,21 @@ nlohmann::json load_script(const std::string& path);
 void run_script(HeadlessStudio& session, const nlohmann::json& steps,
                 const std::function<void(int, const nlohmann::json&)>& after_step = {});
 
-//! One step (exposed for tests).
+//! One step (exposed for tests): the first kind of script_steps() the object has a key of runs
+//! it; throws ScriptError for a step of no known kind.
 void run_step(HeadlessStudio& session, const nlohmann::json& step);
+
+//! One kind of step.
+struct ScriptStep {
+    const char* name;  //!< the step's key, e.g. "load"
+    void (*run)(HeadlessStudio& session, const nlohmann::json& step);
+    const char* example;  //!< a whole step, as docs/studio.md shows it
+    const char* help;     //!< what it does (Markdown, one table cell)
+};
+//! Every kind of step, in the order docs/studio.md lists them.
+const std::vector<ScriptStep>& script_steps();
+//! docs/studio.md's table of steps: its header and one row per kind, each line ending in "\n".
+std::string script_reference();
 
 //! Sets one experiment field by a dotted path ("materials[1].poisson_ratio") through the JSON
 //! form, the parser and apply_edit; throws ScriptError with the validator's message when refused.

@@ -10,9 +10,9 @@
 
 #include <imgui.h>
 
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/key_bindings.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/shell/headless_studio.hpp"
-#include "app/gui/shell/key_bindings.hpp"
 #include "app/gui/shell/key_event_queue.hpp"
 #include "app/gui/shell/redraw_gate.hpp"
 #include "app/gui/shell/script.hpp"

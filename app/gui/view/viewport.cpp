@@ -2,9 +2,8 @@
 
 #include <glm/glm.hpp>
 
-#include "app/gui/actions/calibration_actions.hpp"
-#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/view/scene.hpp"
+#include "app/gui/view/track_points.hpp"
 #include "engine/replay.hpp"
 
 namespace bhm::app::gui {
@@ -30,8 +29,8 @@ constexpr glm::vec4 kSimulatedPoint{0.93f, 0.49f, 0.13f, 1.0f};
 void add_track_overlay(render::DrawList& list, const Studio& s) {
     const auto& c = s.calibration;
     const auto snap = c.snapshot;
-    if (!c.track || !s.shown || s.shown->framed_body != c.framed_body || !snap || !snap->preview ||
-        snap->track != c.track)
+    if (!c.track || !s.bodies.shown || s.bodies.shown->framed_body != c.framed_body || !snap ||
+        !snap->preview || snap->track != c.track)
         return;
     const auto& track = *c.track;
     const auto& preview = *snap->preview;
@@ -116,19 +115,29 @@ render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterStat
     return list;
 }
 
+const FemVerification* fem_overlay(const Studio& studio) {
+    const auto& v = studio.verify.result;
+    if (!studio.verify.ghost || !v || !studio.bodies.shown || v->id != studio.bodies.shown->id ||
+        studio.view.mode != ViewMode::Simulation || v->fem_shape.empty())
+        return nullptr;
+    if (studio.verify.load < 0 || studio.verify.load >= static_cast<int>(v->fem_shape.size()))
+        return nullptr;
+    return v.get();
+}
+
 render::DrawList build_view_draw_list(const Studio& s) {
     const auto& e = s.document.experiment();
-    if (s.view.mode == ViewMode::Simulation && s.shown) {
-        const auto& se = s.shown->experiment;
-        render::Scene scene = simulation_scene(*s.shown, s.clock.time_s, s.view);
+    if (s.view.mode == ViewMode::Simulation && s.bodies.shown) {
+        const auto& se = s.bodies.shown->experiment;
+        render::Scene scene = simulation_scene(*s.bodies.shown, s.clock.time_s, s.view);
         // Verify in FEM: our static shape under the chosen load, the FEM's as a ghost over it.
-        if (const FemVerification* v = fem_overlay(s)) apply_fem_overlay(scene, *v, s.fem_load);
+        if (const FemVerification* v = fem_overlay(s)) apply_fem_overlay(scene, *v, s.verify.load);
         render::DrawList list = render::build_draw_list(scene);
         for (int f = 0; f < 6; ++f)
             if (se.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
                 add_fixed_face_hatch(list, se.workspace_size, se.voxel_size_m,
                                      static_cast<evo::Face>(f));
-        if (s.compared && !s.view.split) {
+        if (s.bodies.compared && !s.view.split) {
             // Side by side: the compared body on the same clock, one workspace further along +y.
             const render::DrawList other = compared_view_draw_list(s);
             const float gap = static_cast<float>((se.workspace_size[1] + 2) * se.voxel_size_m);
@@ -136,8 +145,8 @@ render::DrawList build_view_draw_list(const Studio& s) {
         }
         // The voxel clicked (read at the bottom of the view), as posed now.
         if (inspected_voxel(s) && !fem_overlay(s))
-            add_posed_voxel_highlight(list, engine::pose_at(s.shown->replay, s.clock.time_s),
-                                      s.inspected_voxel, kPickedVoxel);
+            add_posed_voxel_highlight(list, engine::pose_at(s.bodies.shown->replay, s.clock.time_s),
+                                      s.bodies.inspected_voxel, kPickedVoxel);
         add_track_overlay(list, s);
         return list;
     }
@@ -152,14 +161,15 @@ render::DrawList build_view_draw_list(const Studio& s) {
 }
 
 bool split_view_active(const Studio& s) {
-    return s.view.mode == ViewMode::Simulation && s.view.split && s.compared && s.shown;
+    return s.view.mode == ViewMode::Simulation && s.view.split && s.bodies.compared &&
+           s.bodies.shown;
 }
 
 render::DrawList compared_view_draw_list(const Studio& s) {
-    if (!s.compared) return {};
-    const auto& ce = s.compared->experiment;
+    if (!s.bodies.compared) return {};
+    const auto& ce = s.bodies.compared->experiment;
     render::DrawList list =
-        render::build_draw_list(simulation_scene(*s.compared, s.clock.time_s, s.view));
+        render::build_draw_list(simulation_scene(*s.bodies.compared, s.clock.time_s, s.view));
     for (int f = 0; f < 6; ++f)
         if (ce.boundary.faces[static_cast<std::size_t>(f)] == evo::BoundaryKind::Fixed)
             add_fixed_face_hatch(list, ce.workspace_size, ce.voxel_size_m,
@@ -171,7 +181,7 @@ void frame_view_camera(Studio& s, const render::DrawList& list, float aspect) {
     if (!s.view.camera_needs_framing) return;
     render::Bounds bounds = list.workspace_bounds.valid ? list.workspace_bounds : list.bounds;
     if (s.view.mode == ViewMode::Simulation &&
-        (s.view.show_start_beside || (s.compared && !s.view.split)))
+        (s.view.show_start_beside || (s.bodies.compared && !s.view.split)))
         bounds.add(list.bounds);
     render::frame_bounds(s.view.camera, bounds, aspect);
     s.view.camera.distance_m /= std::max(0.05f, s.view.zoom);
@@ -198,40 +208,16 @@ void update_hover(Studio& s, std::optional<glm::vec2> pixel) {
     if (hit) p.hovered_cell = hit->cell;
 }
 
-bool click_in_view(Studio& s, glm::vec2 pixel, bool shift) {
-    if (s.view.mode == ViewMode::Simulation) {
-        s.inspected_voxel = -1;
-        s.inspected_body.reset();
-        if (!s.shown || s.shown->replay.frames.empty() || s.view.size_px.x < 1.0f) return false;
-        const Ray ray = ray_through_pixel(s.view.camera, pixel, s.view.size_px);
-        const auto poses = engine::pose_at(s.shown->replay, s.clock.time_s);
-        if (const auto hit = pick_posed_voxel(ray, poses)) {
-            s.inspected_voxel = hit->voxel;
-            s.inspected_body = s.shown;
-        }
-        return false;
-    }
-    if (s.view.mode != ViewMode::Workspace) return false;
-    update_hover(s, pixel);
-    const auto& p = s.painter;
-    if (p.tool == PainterTool::Faces) return p.hovered_face && cycle_face(s, *p.hovered_face);
-    if (!p.hovered_cell) return false;
-    if (shift) {
-        const auto cell = *p.hovered_cell;
-        return apply_edit(s, with_override(s.document.experiment(), cell, PaintKind::Clear),
-                          paint_edit_label(cell, PaintKind::Clear, 0));
-    }
-    return paint_cell(s, *p.hovered_cell);
-}
-
 std::optional<VoxelReading> inspected_voxel(const Studio& s) {
-    if (s.inspected_voxel < 0 || !s.inspected_body || s.inspected_body != s.shown) return {};
-    const SimulatedBody& b = *s.shown;
+    if (s.bodies.inspected_voxel < 0 || !s.bodies.inspected_body ||
+        s.bodies.inspected_body != s.bodies.shown)
+        return {};
+    const SimulatedBody& b = *s.bodies.shown;
     const engine::Replay& r = b.replay;
-    const auto v = static_cast<std::size_t>(s.inspected_voxel);
+    const auto v = static_cast<std::size_t>(s.bodies.inspected_voxel);
     if (v >= r.voxel_cell.size() || r.frames.empty()) return {};
     VoxelReading out;
-    out.voxel = s.inspected_voxel;
+    out.voxel = s.bodies.inspected_voxel;
     const int cell = r.voxel_cell[v];
     out.cell = {cell % r.nx, (cell / r.nx) % r.ny, cell / (r.nx * r.ny)};
     out.material = r.voxel_material[v];

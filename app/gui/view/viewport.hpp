@@ -24,6 +24,9 @@ render::DrawList build_view_draw_list(const Studio& studio);
 //! The split view shows the compared body in a pane of its own (Simulation mode, a compared body
 //! and split on).
 bool split_view_active(const Studio& studio);
+//! The verification of the body shown, with its shapes, when it is drawn in the 3D view now
+//! (Simulation mode, ghost on); null otherwise.
+const FemVerification* fem_overlay(const Studio& studio);
 //! The compared body's draw list for the split view's second pane (no offset); empty without one.
 render::DrawList compared_view_draw_list(const Studio& studio);
 
@@ -35,12 +38,6 @@ const evo::Body* painter_context_body(const Studio& studio);
 
 //! Updates painter.hovered_face / hovered_cell for the mouse at `pixel` (view coordinates).
 void update_hover(Studio& studio, std::optional<glm::vec2> pixel);
-
-//! What a left click at `pixel` (view coordinates, top-left origin) does: cycle a face or paint a
-//! cell in Workspace mode; in Simulation mode pick the voxel of the shown body under it, as posed
-//! at the replay time (studio.inspected_voxel; a click beside the body clears it). Returns true
-//! when it changed the experiment.
-bool click_in_view(Studio& studio, glm::vec2 pixel, bool shift);
 
 //! The clicked voxel at the replay time: what the colour modes show for it (body_analysis.hpp).
 struct VoxelReading {

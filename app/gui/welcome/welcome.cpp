@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <map>
 
-#include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/studio.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -71,24 +70,6 @@ bool is_first_start(const std::string& settings_path, bool settings_file_existed
                     const StudioSettings& settings) {
     if (settings_path.empty()) return false;
     return !settings_file_existed || settings.recent_files.empty();
-}
-
-bool open_welcome(Studio& s) {
-    s.welcome_open = true;
-    s.welcome_cards = read_preset_cards(s.presets_dir);
-    const auto& cards = s.welcome_cards;
-    const auto demo = std::find_if(cards.begin(), cards.end(),
-                                   [](const PresetCard& c) { return c.stem == kStartHerePreset; });
-    if (demo == cards.end()) {
-        set_status(s, std::string("welcome: no ") + kStartHerePreset + ".json in " + s.presets_dir,
-                   true);
-        return false;
-    }
-    const auto recent = s.settings.recent_files;
-    const bool opened = open_experiment(s, demo->path);
-    s.settings.recent_files = recent;  // opened for the user, not by them
-    if (opened) set_status(s, "welcome: choose an experiment to start from");
-    return opened;
 }
 
 const std::vector<LegendEntry>& view_legend() {

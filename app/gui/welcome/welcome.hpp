@@ -9,7 +9,6 @@
 
 namespace bhm::app::gui {
 
-struct Studio;
 struct StudioSettings;
 
 //! One preset of the gallery.
@@ -38,12 +37,6 @@ std::vector<PresetCard> read_preset_cards(const std::string& dir,
 //! experiment in it. Headless runs without --settings-dir keep no settings: never a first start.
 bool is_first_start(const std::string& settings_path, bool settings_file_existed,
                     const StudioSettings& settings);
-
-//! What a newcomer starts with: the quick demo in the editor (not "untitled" with the paper's
-//! 2000 generations and 48 h) behind the welcome, which holds Start until it is closed. The demo
-//! opened on the user's behalf is not a recent file. False (the status says why) when the quick
-//! demo is missing; the welcome opens anyway.
-bool open_welcome(Studio& studio);
 
 //! The colours and marks of the 3D view, one line each (the welcome's legend and F1).
 struct LegendEntry {

@@ -3,7 +3,7 @@
 // no ImGui file dialog and no native dialog library that fits (apt-cache search: imgui,
 // file dialog, nativefiledialog, tinyfiledialogs, portable-file-dialogs give only libimgui-dev
 // and a Perl/Tk widget), so this is a small one. The model is plain data over
-// std::filesystem (testable without ImGui); widgets/file_dialog_widget.cpp draws it.
+// std::filesystem (testable without ImGui); panels/file_dialog_widget.cpp draws it.
 // Folders first, then the files the purpose can use (*.json experiments, or run directories);
 // Up / Down move, Enter opens a folder or chooses, Backspace goes to the parent folder (when
 // the name field is empty), Escape cancels; a typed path (absolute, or relative to the folder

@@ -7,8 +7,6 @@
 
 #include <imgui_internal.h>
 
-#include "app/gui/actions/studio_actions.hpp"
-
 namespace bhm::app::gui {
 
 namespace {
@@ -105,16 +103,14 @@ bool field_text(const char* label, std::string& value, const char* hint, bool mu
     return done;
 }
 
-void commit_draft(Studio& studio, const std::string& label) {
-    if (!apply_edit(studio, studio.draft, label)) studio.draft = studio.document.experiment();
-    studio.draft_revision = studio.document.revision();
-}
-
-void sync_draft(Studio& studio) {
-    if (studio.draft_revision == studio.document.revision()) return;
-    if (ImGui::GetCurrentContext() && ImGui::IsAnyItemActive()) return;
-    studio.draft = studio.document.experiment();
-    studio.draft_revision = studio.document.revision();
+void wrapped_tooltip(const std::string& text) {
+    const float display_w = ImGui::GetIO().DisplaySize.x;
+    const float width = std::max(100.0f, std::min(display_w - 40.0f, ImGui::GetFontSize() * 35.0f));
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
 }
 
 void section_title(const char* title) {

@@ -18,7 +18,8 @@ bool tracked_button(Studio& studio, const char* label, ImVec2 size = ImVec2(0, 0
 bool area_button(const char* id, ImVec2 size, ImGuiButtonFlags flags = 0);
 
 //! Field editors bound to studio.draft. They return true when an edit is complete (Enter, focus
-//! left, a drag released, a box ticked): the caller then calls commit_draft with a label.
+//! left, a drag released, a box ticked): the caller then calls commit_draft
+//! (actions/draft_edits.hpp) with a label.
 //! The unit is printed after the field; the hint (ranges, paper values) shows on hover.
 bool field_double(const char* label, double& value, const char* unit, const char* hint,
                   const char* format = "%.6g");
@@ -27,13 +28,11 @@ bool field_u64(const char* label, std::uint64_t& value, const char* hint);
 bool field_bool(const char* label, bool& value, const char* hint);
 bool field_text(const char* label, std::string& value, const char* hint, bool multiline = false);
 
-//! Applies studio.draft through apply_edit (validation, undo); reverts the draft when refused.
-void commit_draft(Studio& studio, const std::string& label);
-//! Re-reads the draft from the document when it changed and no field is being edited.
-void sync_draft(Studio& studio);
-
 //! A bold-ish section title with a separator line.
 void section_title(const char* title);
+//! A tooltip of `text` wrapped at 35 font sizes (at most the display's width less 40 px): a
+//! paragraph (a preset's description) stays on the screen instead of one line running off it.
+void wrapped_tooltip(const std::string& text);
 //! "(?)" marker with a tooltip.
 void help_marker(const char* text);
 //! Width for a field so the unit fits after it.

@@ -1,4 +1,4 @@
-#include "app/gui/widgets/material_picker.hpp"
+#include "app/gui/panels/material_picker.hpp"
 
 #include <cctype>
 #include <cstdio>

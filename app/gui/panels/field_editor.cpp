@@ -1,4 +1,4 @@
-#include "app/gui/widgets/field_editor.hpp"
+#include "app/gui/panels/field_editor.hpp"
 
 #include <cstdio>
 #include <stdexcept>
@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/draft_edits.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 

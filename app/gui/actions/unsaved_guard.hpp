@@ -3,7 +3,8 @@
 // closing the window first ask what to do with unsaved edits (Save, Discard, Cancel: Cancel keeps
 // the document and its undo history as they were), and quitting while a run is going asks whether
 // to wait for the generation in progress or abandon it (the last checkpoint is kept either way).
-// The action waits in studio.pending until answered; draw_confirm_dialogs shows the questions.
+// The action waits in studio.pending until answered; panels/panel_confirm_dialogs.cpp shows
+// the questions.
 #include <string>
 
 #include "app/gui/studio.hpp"
@@ -32,8 +33,5 @@ std::string quit_run_question(const Studio& studio);
 
 //! Per frame: a quit waiting for the generation in progress goes on once the run has paused.
 void update_pending_action(Studio& studio);
-//! The modal dialogs of the questions above (buttons recorded for scripts: "Save changes",
-//! "Discard changes", "Cancel", "Finish generation, then quit", "Quit now").
-void draw_confirm_dialogs(Studio& studio);
 
 }  // namespace bhm::app::gui

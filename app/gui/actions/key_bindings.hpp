@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/gui/settings/key_chord.hpp"
+
 namespace bhm::app::gui {
 
 struct Studio;
@@ -48,21 +50,6 @@ const std::vector<KeyBinding>& key_bindings();
 
 //! Mouse gestures of the 3D view, for the help panel (pairs: gesture, what it does).
 const std::vector<std::pair<const char*, const char*>>& mouse_gestures();
-
-//! Parses "ctrl+z", "shift+f5", "space", "f1", "left" into a key and modifiers.
-struct KeyChord {
-    int key = 0;
-    bool ctrl = false, shift = false;
-    //! The system's key repeat while the key is held (GLFW_REPEAT), not a new press: shortcuts
-    //! act once per press, the file dialog's Up / Down move on with it.
-    bool repeat = false;
-};
-std::optional<KeyChord> parse_key_chord(const std::string& text);
-
-//! What one key event of the window (GLFW key, action and modifiers) adds to studio.key_presses:
-//! a press, or a repeat while the key is held; nothing for a release. The window's key callback
-//! and the headless script's held keys both go through it.
-std::optional<KeyChord> key_event_chord(int key, int action, int mods);
 
 //! Runs the bound actions of the presses since the last frame (studio.key_presses, filled by the
 //! window's key callback or the headless input; emptied here). Call between NewFrame and Render.

@@ -1,4 +1,4 @@
-#include "app/gui/widgets/file_dialog_widget.hpp"
+#include "app/gui/panels/file_dialog_widget.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -9,7 +9,7 @@
 
 #include "app/gui/actions/calibration_actions.hpp"
 #include "app/gui/actions/studio_actions.hpp"
-#include "app/gui/document/unsaved_guard.hpp"
+#include "app/gui/actions/unsaved_guard.hpp"
 #include "app/gui/settings/studio_paths.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
