@@ -107,7 +107,8 @@ void result_section(Studio& s) {
     record_widget(s, "fem verdict");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
-            "the largest relative difference over every load and measure;\n"
+            "judged on the experiment's own fitness measure (the largest over the loads);\n"
+            "a measure too small to divide by never decides; every measure is in the table.\n"
             "agrees when at most %.0f %% (docs/verify.md)",
             100.0 * v->tolerance);
     if (!v->compared) return;
