@@ -6,6 +6,8 @@
 // The CalculiX cases skip (loudly) only where ccx is not installed.
 #include <doctest/doctest.h>
 
+#include "support/ccx_skip.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -36,12 +38,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-bool skip_without_ccx() {
-    if (evo::ccx_available()) return false;
-    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
-    WARN(false);
-    return true;
-}
+using bhm::test::skip_without_ccx;
 
 // An nx x ny x nz bilayer held at x-: the bottom layer muscle (cte 0.01), the rest passive.
 FemVerifyRequest bilayer_request(std::array<int, 3> size, const fs::path& run_dir) {

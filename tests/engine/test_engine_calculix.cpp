@@ -6,6 +6,8 @@
 // (scripts/setup.sh installs calculix-ccx, so CI always runs it).
 #include <doctest/doctest.h>
 
+#include "support/ccx_skip.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -25,12 +27,7 @@ namespace {
 constexpr double kL = 0.01;  // voxel size of every scene (m)
 constexpr double kE = 5e6;
 
-bool skip_without_ccx() {
-    if (ccx::available()) return false;
-    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
-    WARN(false);  // shows in every report that the comparison did not run
-    return true;
-}
+using bhm::test::skip_without_ccx;
 
 // Runs a world to static equilibrium (1e-4 relative change of `probe` over 0.05 s slices).
 double settle(World& w, const std::function<double(const World&)>& probe) {

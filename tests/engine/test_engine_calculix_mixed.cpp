@@ -7,6 +7,8 @@
 // docs/physics.md ("Bodies of several materials") has the table these cases print.
 #include <doctest/doctest.h>
 
+#include "support/ccx_skip.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -58,12 +60,7 @@ std::vector<MixedScene> mixed_scenes() {
     };
 }
 
-bool skip_without_ccx() {
-    if (ccx::available()) return false;
-    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
-    WARN(false);
-    return true;
-}
+using bhm::test::skip_without_ccx;
 
 std::vector<ccx::Material> materials(const MixedScene& s, double contrast, double nu) {
     const double cte = s.load == Load::Heat ? kCte : 0.0;

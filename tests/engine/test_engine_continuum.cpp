@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "calculix.hpp"
+#include "support/ccx_skip.hpp"
 #include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/quasi_static.hpp"
@@ -227,11 +228,7 @@ TEST_CASE("continuum: held-out attachments and necks against CalculiX at nu 0, 0
 }
 
 TEST_CASE("continuum: the stored references are CalculiX's (one case re-solved)") {
-    if (!engine::test::ccx::available()) {
-        MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
-        WARN(false);
-        return;
-    }
+    if (bhm::test::skip_without_ccx()) return;
     const Reference& r = reference("p1e", 0.35);
     const Measures fem = fem_measures(continuum_body("p1e", 0.35), 2);
     CHECK(fem.tip * 1e3 == doctest::Approx(r.tip2).epsilon(0.002));

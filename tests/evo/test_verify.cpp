@@ -7,6 +7,8 @@
 // installed.
 #include <doctest/doctest.h>
 
+#include "support/ccx_skip.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -23,12 +25,7 @@ namespace {
 
 constexpr double kL = 0.01;
 
-bool skip_without_ccx() {
-    if (evo::ccx_available()) return false;
-    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
-    WARN(false);
-    return true;
-}
+using bhm::test::skip_without_ccx;
 
 // An nx x ny x nz box of material 1 (passive) whose z < active_layers layers are material 2
 // (cte 0.01 /degC), held at its x = 0 layer.

@@ -3,6 +3,8 @@
 // is solved with large rotations while small loads keep the quick linear solve.
 #include <doctest/doctest.h>
 
+#include "support/ccx_skip.hpp"
+
 #include <string>
 
 #include "evo/verify/ccx_run.hpp"
@@ -13,12 +15,7 @@ using namespace bhm;
 
 namespace {
 
-bool skip_without_ccx() {
-    if (evo::ccx_available()) return false;
-    MESSAGE("SKIPPED: CalculiX (ccx) is not installed; scripts/setup.sh installs calculix-ccx");
-    WARN(false);
-    return true;
-}
+using bhm::test::skip_without_ccx;
 
 // A 10x2x2 bilayer (E 5 MPa): its z = 0 layer active (cte 0.01 /degC), held at its x = 0 layer,
 // actuated by +-amplitude_c.
