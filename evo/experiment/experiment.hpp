@@ -161,6 +161,25 @@ struct NoveltySettings {
     bool operator==(const NoveltySettings&) const = default;
 };
 
+//! What a continuum check in the evolution loop does to a body it found out (docs/verify.md,
+//! "CalculiX in the evolution loop"): flag records and shows it; penalise scales its fitness by
+//! the FEM's static score over ours (at most 1); reject makes a body that differs beyond the
+//! tolerance invalid, so it can be neither selected nor champion.
+enum class VerifyPolicy { Flag, Penalise, Reject };
+inline constexpr std::array<const char*, 3> kVerifyPolicyNames = {"flag", "penalise", "reject"};
+
+//! evolution.verify: multi-fidelity evolution. After every `every_generations` generations the
+//! `top_k` best distinct bodies not checked before are solved in CalculiX beside the next
+//! generation's simulations; their results apply from that generation on.
+struct LoopVerifySettings {
+    int every_generations = 0;  //!< 0: no checks in the loop
+    int top_k = 3;
+    VerifyPolicy policy = VerifyPolicy::Flag;
+    double tolerance = 0.10;  //!< largest relative difference that still agrees
+    bool enabled() const { return every_generations > 0; }
+    bool operator==(const LoopVerifySettings&) const = default;
+};
+
 struct Evolution {
     Algorithm algorithm = Algorithm::Afpo;
     int population = 50;
@@ -175,6 +194,7 @@ struct Evolution {
     CppnSettings cppn;
     NeatSettings neat;  //!< used when algorithm is Neat
     NoveltySettings novelty;
+    LoopVerifySettings verify;
     bool operator==(const Evolution&) const = default;
 };
 

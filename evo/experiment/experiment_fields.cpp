@@ -228,6 +228,20 @@ const ExperimentField kExperimentFields[] = {
     {.path = "evolution.novelty.with_fitness", .label = "With fitness", .unit = "",
      .help = "fitness as a second objective beside novelty (finds better benders)",
      BHM_BOOLEAN(evolution.novelty.with_fitness)},
+    {.path = "evolution.verify.every_generations", .label = "Verify every", .unit = "generations",
+     .help = "solve the best bodies in CalculiX after every this many generations, beside the "
+             "next generation's simulations (docs/verify.md)",
+     .range = {0, 1e8}, .note = "(0 = off)", BHM_INTEGER(evolution.verify.every_generations)},
+    {.path = "evolution.verify.top_k", .label = "Verify top K", .unit = "bodies",
+     .help = "best distinct bodies checked each time (those checked before are skipped)",
+     .range = {1, 1000}, BHM_INTEGER(evolution.verify.top_k)},
+    {.path = "evolution.verify.policy", .label = "Verify policy", .unit = "",
+     .help = "flag: record and show; penalise: fitness times the FEM's static score over ours "
+             "(at most 1); reject: a body that differs beyond the tolerance is invalid",
+     BHM_CHOICE(evolution.verify.policy, VerifyPolicy, kVerifyPolicyNames)},
+    {.path = "evolution.verify.tolerance", .label = "Verify tolerance", .unit = "",
+     .help = "largest relative difference from the FEM that still agrees; 0.1 = 10 %",
+     .range = {0, 10, kOpen}, .format = "%.3g", BHM_NUMBER(evolution.verify.tolerance)},
 };
 
 const MaterialField kMaterialFields[] = {

@@ -300,6 +300,7 @@ json experiment_to_json(const Experiment& e) {
     if (ev.algorithm != Algorithm::Neat && ev.neat == NeatSettings{}) j["evolution"].erase("neat");
     if (ev.algorithm != Algorithm::Novelty && ev.novelty == NoveltySettings{})
         j["evolution"].erase("novelty");
+    if (ev.verify == LoopVerifySettings{}) j["evolution"].erase("verify");
     return j;
 }
 

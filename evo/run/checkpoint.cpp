@@ -18,6 +18,7 @@
 #include "evo/experiment/json_reader.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/crc32.hpp"
+#include "evo/run/loop_check_json.hpp"
 
 namespace bhm::evo {
 
@@ -92,6 +93,7 @@ json history_row_to_json(const HistoryRow& h) {
                         {"archive_threshold", n.archive_threshold},
                         {"champion_fitness", n.champion_fitness}};
     }
+    if (h.verify) j["verify"] = loop_check_row_to_json(*h.verify);
     return j;
 }
 
@@ -136,6 +138,8 @@ HistoryRow history_row_from_json(const json& j, const std::string& path) {
         row.champion_fitness = n.number("champion_fitness");
         h.novelty = row;
     }
+    if (j.contains("verify"))  // runs with checks in the loop only
+        h.verify = loop_check_row_from_json(j.at("verify"), f.join("verify"));
     return h;
 }
 
@@ -248,6 +252,7 @@ json run_state_to_json(const RunState& s) {
         e.fitness = c.fitness;
         json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
         if (c.physics) change["physics"] = physics_to_json(*c.physics, s.experiment);
+        if (c.verify) change["verify"] = loop_verify_settings_to_json(*c.verify);
         changes.push_back(std::move(change));
     }
     json cache = json::array();
@@ -289,6 +294,12 @@ json run_state_to_json(const RunState& s) {
     if (s.experiment.evolution.algorithm == Algorithm::Neat) j["neat"] = neat_state_to_json(s.neat);
     if (s.experiment.evolution.algorithm == Algorithm::Novelty)
         j["novelty_archive"] = novelty_archive_to_json(s.novelty_archive);
+    if (!s.loop_checks.empty()) {
+        json checks = json::array();
+        for (const auto& c : s.loop_checks)
+            checks.push_back(loop_check_to_json(c));
+        j["loop_checks"] = checks;
+    }
     j["champion"] = s.champion ? json{{"generation_found", s.champion->generation_found},
                                       {"individual", individual_to_json(s.champion->individual)}}
                                : json(nullptr);
@@ -355,10 +366,12 @@ RunState run_state_from_json(const json& j, const std::string& label) {
             const Fields c(changes[i], item("rule_changes", i));
             RuleChange change{static_cast<int>(c.integer("generation")),
                               fitness_from_json(c.at("fitness"), s.experiment, c.join("fitness")),
-                              std::nullopt};
+                              std::nullopt, std::nullopt};
             if (changes[i].contains("physics"))
                 change.physics =
                     physics_from_json(c.at("physics"), s.experiment, c.join("physics"));
+            if (changes[i].contains("verify"))
+                change.verify = loop_verify_settings_from_json(c.at("verify"), c.join("verify"));
             s.rule_changes.push_back(std::move(change));
         }
 
@@ -366,6 +379,11 @@ RunState run_state_from_json(const json& j, const std::string& label) {
             s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
         if (s.experiment.evolution.algorithm == Algorithm::Novelty && s.generation >= 0)
             s.novelty_archive = novelty_archive_from_json(f.at("novelty_archive"));
+        if (j.contains("loop_checks")) {  // runs with continuum checks in the loop only
+            const auto& checks = f.array("loop_checks");
+            for (std::size_t i = 0; i < checks.size(); ++i)
+                s.loop_checks.push_back(loop_check_from_json(checks[i], item("loop_checks", i)));
+        }
 
         if (!f.at("champion").is_null()) {
             const Fields c(f.at("champion"), "champion");

@@ -100,6 +100,8 @@ EvolutionRun::EvolutionRun(Start start, RunOptions options)
     threads_ = resolve_thread_count(options_.threads.value_or(evolution.threads));
     evaluator_ =
         options_.evaluator ? options_.evaluator : std::make_shared<ThreadEvaluator>(threads_);
+    checker_ = options_.checker;
+    require_checker(evolution.verify);
     if (generation_budget_ < 0) throw std::invalid_argument("the generation budget must be >= 0");
     if (!(wall_budget_s_ > 0.0))
         throw std::invalid_argument("the wall-time budget must be > 0 hours");
@@ -242,6 +244,28 @@ void EvolutionRun::request_physics_change(const PhysicsRules& physics) {
     ++pending_serial_;
 }
 
+void EvolutionRun::require_checker(const LoopVerifySettings& settings) const {
+    if (!settings.enabled()) return;
+    if (!checker_)
+        throw std::invalid_argument(
+            "evolution.verify: checks in the loop need a continuum checker, and this front end "
+            "has none; set evolution.verify.every_generations to 0");
+    if (const std::string why = checker_->unavailable(); !why.empty())
+        throw std::invalid_argument("evolution.verify: " + why);
+}
+
+void EvolutionRun::request_verify_change(const LoopVerifySettings& settings) {
+    if (settings.every_generations < 0)
+        throw std::invalid_argument("evolution.verify.every_generations: must be >= 0");
+    if (settings.top_k < 1) throw std::invalid_argument("evolution.verify.top_k: must be >= 1");
+    if (!(settings.tolerance > 0.0))
+        throw std::invalid_argument("evolution.verify.tolerance: must be above 0");
+    require_checker(settings);
+    std::lock_guard lock(control_mutex_);
+    pending_verify_ = settings;
+    ++pending_serial_;
+}
+
 void EvolutionRun::change_physics_now(const PhysicsRules& physics) {
     request_physics_change(physics);
     restart_.store(true);
@@ -336,14 +360,28 @@ bool EvolutionRun::run_generation() {
         } catch (const EvaluationCancelled&) {
             return false;
         }
+        const LoopCheckIndex checks = index_checks(state_.loop_checks);
         for (auto& m : rescored.population)
-            rescore_member(m, rules);
+            rescore_member(m, rules, checks);
         physics_cache.emplace(state_.cache.capacity());
         for (std::size_t j = 0; j < reevaluation.simulated_hashes.size(); ++j)
             physics_cache->insert(reevaluation.simulated_hashes[j],
                                   reevaluation.simulated_reports[j]);
     }
     if (rescored.changed) algorithm->rules_changed(context, rescored.population, search);
+
+    // The continuum checks of the last generation's best run beside this one's simulations
+    // (evo/run/loop_check.hpp); started here, not after the commit, so that a run resumed from
+    // that commit starts the same checks. Leaving this function early cancels them.
+    std::unique_ptr<LoopCheckJob> check_job;
+    if (checker_ && is_check_generation(rules.evolution.verify, g - 1)) {
+        auto picks = pick_for_check(
+            rescored.population, rescored.champion ? &rescored.champion->individual : nullptr,
+            rules.evolution.verify, index_checks(state_.loop_checks));
+        if (!picks.empty())
+            check_job = std::make_unique<LoopCheckJob>(checker_, rules, g - 1, std::move(picks),
+                                                       options_.out_dir);
+    }
 
     Rng rng;
     rng.set_state(state_.rng);
@@ -365,14 +403,35 @@ bool EvolutionRun::run_generation() {
     const std::size_t first_new = pool.size();
     for (auto& f : brood.fresh)
         pool.push_back(std::move(f));
+
+    // The checks land before selection, and every member (the new ones, cache hits of a checked
+    // body, the champion) is judged under the policy with all checks made so far.
+    std::vector<LoopCheck> landed;
+    if (check_job) {
+        auto results = check_job->join(&stop_);
+        if (!results) return false;
+        landed = std::move(*results);
+    }
+    std::optional<ChampionRecord> champion = rescored.champion;
+    if (rules.evolution.verify.enabled() || !state_.loop_checks.empty()) {
+        std::vector<LoopCheck> all = state_.loop_checks;
+        all.insert(all.end(), landed.begin(), landed.end());
+        const LoopCheckIndex checks = index_checks(all);
+        for (auto& m : pool)
+            apply_loop_check(m, rules, checks);
+        if (champion) {
+            apply_loop_check(champion->individual, rules, checks);
+            if (!champion->individual.valid) champion.reset();  // rejected: never champion
+        }
+    }
     std::optional<Individual> pool_best;
     if (algorithm->champion_from_pool()) pool_best = best_member(pool);
     Selection selection = algorithm->select(context, std::move(pool), first_new, search);
 
-    std::optional<ChampionRecord> champion = rescored.champion;
     const Individual& contender = pool_best ? *pool_best : best_member(selection.population);
     const bool new_champion =
-        !champion || contender.report.fitness > champion->individual.report.fitness;
+        !champion ||
+        (contender.valid && contender.report.fitness > champion->individual.report.fitness);
     if (new_champion) champion = ChampionRecord{contender, g};
 
     GenerationTally tally;
@@ -383,6 +442,8 @@ bool EvolutionRun::run_generation() {
     if (rescored.physics_changed) tally.reevaluation = &reevaluation;
     tally.clones = brood.clones;
     tally.newcomers_skipped = brood.newcomers_skipped;
+    if (check_job) tally.checks_landed = &landed;
+    tally.verify_changed = rescored.verify_changed;
     // The generation's clock stops here, before its files are written: it kept running in
     // progress() while they were, so a live figure ran past the time committed below and went
     // back when the generation's snapshot came.
@@ -416,21 +477,30 @@ EvolutionRun::Rescored EvolutionRun::rescore_for_pending_rules(
             out.changed = true;
             out.physics_changed = true;
         }
+        if (pending_verify_ && *pending_verify_ != out.rules.evolution.verify) {
+            out.rules.evolution.verify = *pending_verify_;
+            applied_serial = pending_serial_;
+            out.changed = true;
+            out.verify_changed = true;
+        }
     }
     if (!out.changed) return out;
     ++out.rules_version;
+    const LoopCheckIndex checks = index_checks(state_.loop_checks);
     for (auto& m : out.population)
-        rescore_member(m, out.rules);
+        rescore_member(m, out.rules, checks);
     out.champion.reset();  // re-established from the re-scored population
     return out;
 }
 
-void EvolutionRun::rescore_member(Individual& m, const Experiment& rules) const {
+void EvolutionRun::rescore_member(Individual& m, const Experiment& rules,
+                                  const LoopCheckIndex& checks) const {
     m.valid = constraint_violation(rules.fitness.constraints, rules.boundary, developer_.space(),
                                    m.phenotype)
                   .empty();
     m.report.fitness = m.valid ? fitness_under(m.report, rules.fitness) : kInvalidFitness;
     m.valid = m.valid && !rejected_by_exploit(m.report.exploits, rules.fitness.constraints);
+    apply_loop_check(m, rules, checks);
 }
 
 void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed,
@@ -440,8 +510,15 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
                                      const Rng& rng, Selection selection, SearchState search,
                                      ChampionRecord champion, const GenerationTally& tally,
                                      bool new_champion) {
-    const HistoryRow row =
-        make_history_row(tally, selection, search, champion.individual.report.fitness);
+    HistoryRow row = make_history_row(tally, selection, search, champion.individual.report.fitness);
+    if (tally.checks_landed)
+        state_.loop_checks.insert(state_.loop_checks.end(), tally.checks_landed->begin(),
+                                  tally.checks_landed->end());
+    if (rules.evolution.verify.enabled() || tally.checks_landed) {
+        static const std::vector<LoopCheck> none;
+        row.verify = loop_check_row(tally.checks_landed ? *tally.checks_landed : none,
+                                    &champion.individual, index_checks(state_.loop_checks));
+    }
     state_.experiment = rules;
     state_.generation = tally.generation;
     state_.next_id = next_id;
@@ -458,7 +535,9 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
     if (rules_changed)
         state_.rule_changes.push_back(
             {tally.generation, rules.fitness,
-             physics_changed ? std::optional<PhysicsRules>(physics_of(rules)) : std::nullopt});
+             physics_changed ? std::optional<PhysicsRules>(physics_of(rules)) : std::nullopt,
+             tally.verify_changed ? std::optional<LoopVerifySettings>(rules.evolution.verify)
+                                  : std::nullopt});
     if (physics_cache) state_.cache = *physics_cache;  // no result of the old physics is kept
     const CachedEvaluation& evaluation = *tally.evaluation;
     for (std::size_t j = 0; j < evaluation.simulated_hashes.size(); ++j)
@@ -468,6 +547,7 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
         if (rules_changed && pending_serial_ == applied_serial) {
             pending_fitness_.reset();
             pending_physics_.reset();
+            pending_verify_.reset();
         }
     }
     ++session_generations_;

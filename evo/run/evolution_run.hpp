@@ -44,6 +44,7 @@
 #include "evo/evaluate/evaluator.hpp"
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/generation_report.hpp"
+#include "evo/run/loop_check.hpp"
 #include "evo/run/physics_rules.hpp"
 #include "evo/run/run_output.hpp"
 #include "evo/run/run_state.hpp"
@@ -62,6 +63,10 @@ struct RunOptions {
     std::string writer = "bhm";
     //! Where simulations run; null: a ThreadEvaluator with `threads` threads in this process.
     std::shared_ptr<Evaluator> evaluator;
+    //! The continuum checks of evolution.verify (evo/run/loop_check.hpp; the CalculiX one is
+    //! evo/verify/continuum_checker.hpp). Needed only when the experiment asks for checks: a run
+    //! that does and has none, or one that cannot run here, is refused with the reason.
+    std::shared_ptr<ContinuumChecker> checker;
 };
 
 //! How far the generation in progress is: a consistent snapshot, cheap enough to poll every frame.
@@ -155,6 +160,11 @@ class EvolutionRun {
     void request_physics_change(const PhysicsRules& physics);
     //! As request_physics_change, abandoning the generation in flight (as change_fitness_now).
     void change_physics_now(const PhysicsRules& physics);
+    //! New continuum-check settings (evolution.verify: how often, how many, the policy) from the
+    //! next generation on, recorded as a rule change: the population is re-scored under the new
+    //! policy with the checks already made (no new simulation). Throws std::invalid_argument for
+    //! settings out of range, or checks where the run has no usable checker.
+    void request_verify_change(const LoopVerifySettings& settings);
 
     std::shared_ptr<const GenerationReport> latest_report() const;
     //! Thread-safe: from any thread at any time, also while run() executes.
@@ -194,10 +204,14 @@ class EvolutionRun {
         int rules_version = 0;
         bool changed = false;
         bool physics_changed = false;  //!< every member must be simulated again
+        bool verify_changed = false;   //!< the continuum checks' settings changed
     };
     Rescored rescore_for_pending_rules(std::uint64_t& applied_serial) const;
     //! m's fitness, validity and exploit rejection under rules (its report's measures kept).
-    void rescore_member(Individual& m, const Experiment& rules) const;
+    void rescore_member(Individual& m, const Experiment& rules,
+                        const LoopCheckIndex& checks) const;
+    //! Refuses checks in the loop that this run cannot make (no checker, or it cannot run here).
+    void require_checker(const LoopVerifySettings& settings) const;
     //! The generation's results become the run's state: history, cache, checkpoint and files,
     //! then the report is published.
     //! physics_cache: after a physics change, the cache that replaces the run's (the
@@ -229,6 +243,7 @@ class EvolutionRun {
     double wall_budget_s_ = 0.0;
     int threads_ = 1;
     std::shared_ptr<Evaluator> evaluator_;
+    std::shared_ptr<ContinuumChecker> checker_;
     std::vector<std::string> resume_warnings_;
     std::string checkpoint_path_;
 
@@ -246,6 +261,7 @@ class EvolutionRun {
     double paused_s_ = 0.0;                              //!< completed pauses, under control_mutex_
     std::optional<Fitness> pending_fitness_;
     std::optional<PhysicsRules> pending_physics_;
+    std::optional<LoopVerifySettings> pending_verify_;
     std::uint64_t pending_serial_ = 0;
 
     mutable std::mutex report_mutex_;

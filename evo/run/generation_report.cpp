@@ -88,9 +88,16 @@ GenerationReport make_generation_report(const RunState& state, const Selection& 
     report.new_champion = new_champion;
     report.species = row.species;
     report.novelty = row.novelty;
+    report.verify = state.experiment.evolution.verify;
+    report.loop_checks = state.loop_checks;
+    const LoopCheckIndex checks = index_checks(report.loop_checks);
     for (std::size_t k = 0; k < state.population.size(); ++k) {
         const auto& m = state.population[k];
         MemberSummary entry = summary_of(m);
+        if (const auto it = checks.find(m.phenotype.hash); it != checks.end()) {
+            entry.check = it->second->outcome;
+            entry.check_worst = it->second->worst;
+        }
         entry.pareto_rank = state.pareto_rank[k];
         entry.species = k < selection.species.size() ? selection.species[k] : 0;
         if (k < selection.novelty.size()) entry.novelty = selection.novelty[k];

@@ -39,6 +39,10 @@ struct GenerationReport {
     double elapsed_s = 0.0;          //!< across resumes
     double simulations_per_s = 0.0;  //!< this generation
     double eta_s = -1.0;             //!< to the generation or wall budget; -1 unknown
+    //! Continuum checks in the loop: the settings in force and every check made so far (the
+    //! champion's is the one whose hash is its phenotype's; members carry theirs).
+    LoopVerifySettings verify;
+    std::vector<LoopCheck> loop_checks;
 };
 
 //! The best member: valid first, then fitness desc, age asc, id asc.
@@ -57,6 +61,9 @@ struct GenerationTally {
     int newcomers_skipped = 0;
     double generation_wall_s = 0.0;  //!< this generation, paused time excluded
     double wall_s = 0.0;             //!< elapsed across resumes at the generation's end
+    //! The continuum checks that landed in this generation (evolution.verify; null: none ran).
+    const std::vector<LoopCheck>* checks_landed = nullptr;
+    bool verify_changed = false;  //!< a rule change set the checks' settings
 };
 
 //! fitness.csv's row for the selected population (species and novelty from the search state and

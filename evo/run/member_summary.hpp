@@ -5,7 +5,10 @@
 // the body it shares between frames). One shape, so a field added here reaches all three.
 #include <cstdint>
 
+#include <optional>
+
 #include "evo/evaluate/exploit_flags.hpp"
+#include "evo/run/loop_check.hpp"
 #include "evo/search/individual.hpp"
 
 namespace bhm::evo {
@@ -24,6 +27,10 @@ struct MemberSummary {
     //! negative when unknown (other algorithms, or a resumed run before its next generation).
     double novelty = -1.0;
     ExploitReport exploits;  //!< escaped / detached_motion / tentacle and their measures
+    //! Its body's continuum check in the loop (evolution.verify), where one was made: the
+    //! outcome and the deciding difference (the studio's badge). Only in generation reports.
+    std::optional<LoopCheckOutcome> check;
+    double check_worst = 0.0;
     double active_fraction() const {
         return voxels > 0 ? static_cast<double>(active_voxels) / voxels : 0.0;
     }

@@ -10,6 +10,7 @@
 
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/run/loop_check_json.hpp"
 
 namespace bhm::evo {
 
@@ -57,6 +58,12 @@ Experiment RunInfo::current() const {
         e = with_physics(e, *it->physics);
         break;
     }
+    // The continuum checks' policy of the last change that set it.
+    for (auto it = rule_changes.rbegin(); it != rule_changes.rend(); ++it) {
+        if (!it->verify) continue;
+        e.evolution.verify = *it->verify;
+        break;
+    }
     return e;
 }
 
@@ -76,9 +83,12 @@ RunInfo read_run_info(const std::string& run_dir) {
             !c["generation"].is_number_integer())
             throw std::runtime_error(where + ": expected {generation, fitness}");
         RuleChange change{c["generation"].get<int>(),
-                          with_fitness(info.started, c["fitness"], where).fitness, std::nullopt};
+                          with_fitness(info.started, c["fitness"], where).fitness, std::nullopt,
+                          std::nullopt};
         if (c.contains("physics"))
             change.physics = physics_from_json(c["physics"], info.started, where + ".physics");
+        if (c.contains("verify"))  // FieldError names the file and the field
+            change.verify = loop_verify_settings_from_json(c["verify"], where + ".verify");
         info.rule_changes.push_back(std::move(change));
     }
     return info;

@@ -13,6 +13,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
+#include "evo/run/loop_check_json.hpp"
 #include "evo/run/run_directory.hpp"
 
 namespace bhm::evo {
@@ -27,11 +28,14 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
     // Novelty search runs add their novelty and archive figures (docs/evolution.md).
     const bool novelty = std::any_of(history.begin(), history.end(),
                                      [](const HistoryRow& h) { return h.novelty.has_value(); });
+    // Runs with continuum checks in the loop add theirs (docs/verify.md).
+    const bool verify = std::any_of(history.begin(), history.end(),
+                                    [](const HistoryRow& h) { return h.verify.has_value(); });
     std::string out = std::string(kFitnessCsvHeader) + (species ? ",species" : "") +
                       (novelty ? ",best_novelty,median_novelty,archive_size,archive_added,"
                                  "archive_threshold,champion_fitness"
                                : "") +
-                      "\n";
+                      (verify ? ",verified,champion_agrees,worst_difference" : "") + "\n";
     for (const auto& h : history) {
         // Integers and the to_chars-based numbers never depend on the locale.
         const long long wall_ms = static_cast<long long>(h.wall_s * 1000.0 + 0.5);
@@ -54,6 +58,13 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
                    "," + std::to_string(n.archive_added) + "," +
                    engine::format_number(n.archive_threshold) + "," +
                    engine::format_number(n.champion_fitness);
+        }
+        if (verify) {
+            // Empty where nothing was checked: "no answer" is not "disagrees".
+            const LoopCheckRow v = h.verify.value_or(LoopCheckRow{});
+            out += "," + std::to_string(v.verified) + "," +
+                   (v.champion_agrees ? (*v.champion_agrees ? "1" : "0") : "") + "," +
+                   (v.worst_difference ? engine::format_number(*v.worst_difference) : "");
         }
         out += "\n";
     }
@@ -83,6 +94,7 @@ json run_info_json(const Experiment& original, const RunState& state) {
         e.fitness = c.fitness;
         json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
         if (c.physics) change["physics"] = physics_to_json(*c.physics, original);
+        if (c.verify) change["verify"] = loop_verify_settings_to_json(*c.verify);
         changes.push_back(std::move(change));
     }
     return {{"bhm_version", BHM_VERSION_STRING},

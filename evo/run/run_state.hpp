@@ -11,6 +11,7 @@
 #include "evo/search/individual.hpp"
 #include "evo/search/neat_species.hpp"
 #include "evo/search/novelty_archive.hpp"
+#include "evo/run/loop_check.hpp"
 #include "evo/run/physics_rules.hpp"
 
 namespace bhm::evo {
@@ -49,6 +50,8 @@ struct HistoryRow {
     double best_simulated_s = 0.0;        //!< where the best member's simulation stopped
     double best_periodic_residual = 0.0;  //!< its last period-to-period residual (voxels)
     std::optional<NoveltyRow> novelty;  //!< novelty search only
+    //! Runs with continuum checks in the loop (evolution.verify) only.
+    std::optional<LoopCheckRow> verify;
     bool operator==(const HistoryRow&) const = default;
 };
 
@@ -66,6 +69,8 @@ struct RuleChange {
     int generation = 0;
     Fitness fitness;
     std::optional<PhysicsRules> physics;
+    //! Set when the change set the continuum checks' policy (evolution.verify).
+    std::optional<LoopVerifySettings> verify;
 };
 
 struct RunState {
@@ -87,6 +92,8 @@ struct RunState {
     FitnessCache cache;
     NeatState neat;  //!< evolution.algorithm = "neat" only: innovation counters, species
     NoveltyArchive novelty_archive;  //!< evolution.algorithm = "novelty" only
+    //! Every continuum check applied so far (evolution.verify), in the order they landed.
+    std::vector<LoopCheck> loop_checks;
 };
 
 }  // namespace bhm::evo

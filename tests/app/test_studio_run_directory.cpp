@@ -87,7 +87,7 @@ TEST_CASE("studio run directory: history, champion and rule changes are read and
     out.write_fitness_csv(history);
     evo::Fitness changed = e.fitness;
     changed.measure = evo::FitnessMeasure::ComFinal3d;
-    state.rule_changes.push_back({2, changed, std::nullopt});
+    state.rule_changes.push_back({2, changed, std::nullopt, std::nullopt});
     out.write_run_info(e, state);
     REQUIRE(watch.refresh());
     snap = watch.snapshot();
