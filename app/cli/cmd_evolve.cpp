@@ -17,6 +17,7 @@
 #include "evo/run/batch.hpp"
 #include "evo/run/checkpoint.hpp"
 #include "evo/run/evolution_run.hpp"
+#include "evo/verify/continuum_checker.hpp"
 
 namespace bhm::app {
 
@@ -153,6 +154,9 @@ int evolve(ArgParser& args) {
     evo::RunOptions options;
     options.out_dir = args.get("--out");
     options.writer = "bhm evolve";
+    // evolution.verify's checks (CalculiX beside the simulations; under MPI on this, the
+    // coordinating, process while the ranks simulate).
+    options.checker = std::make_shared<evo::CalculixChecker>();
     if (args.has("--resume")) {
         check_existing_dir("--out", options.out_dir);
         // A run file replaced by a folder would fail only when first rewritten, a whole

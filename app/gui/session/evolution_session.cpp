@@ -7,6 +7,7 @@
 
 #include "evo/run/evolution_run.hpp"
 #include "evo/run/run_directory.hpp"
+#include "evo/verify/continuum_checker.hpp"
 
 namespace bhm::app::gui {
 
@@ -216,6 +217,7 @@ void EvolutionSession::start(const evo::Experiment& experiment, const std::strin
     join_finished();
     evo::RunOptions options;
     options.out_dir = run_dir;
+    options.checker = std::make_shared<evo::CalculixChecker>();  // evolution.verify
     // Built here so a bad folder (one holding a checkpoint, unwritable) is reported at once; the
     // constructor only creates the folder and writes run.json. Handing the built run to the
     // thread also makes the very first snapshot complete (rules, budget), so the Run panel is
@@ -236,6 +238,7 @@ void EvolutionSession::resume_from(const std::string& run_dir) {
         [run_dir] {
             evo::RunOptions options;
             options.out_dir = run_dir;
+            options.checker = std::make_shared<evo::CalculixChecker>();
             return evo::EvolutionRun::resume(options);
         },
         run_dir, "resuming: loading the checkpoint");
