@@ -108,7 +108,10 @@ int export_body(ArgParser& parser) {
         if (parser.has("--body"))
             throw UsageError("--body is for an experiment file; a run directory has its champion");
         // The champion was judged under the rules in force at the end (the last rule change).
-        experiment = evo::read_run_info(source).current();
+        const evo::RunInfo info = evo::read_run_info(source);
+        for (const auto& w : info.warnings)
+            std::cerr << "bhm export: warning: " << w << "\n";
+        experiment = info.current();
         body = evo::read_champion_file(source, experiment).body;
     } else {
         if (!parser.has("--body")) throw UsageError("an experiment file needs --body BODY.json");

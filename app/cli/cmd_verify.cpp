@@ -91,7 +91,10 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
     if (top < kFewestRanked)
         std::cerr << "warning: --top " << top << ": fewer than " << kFewestRanked
                   << " bodies; their rank correlations will be flagged as too few to mean much\n";
-    const evo::Experiment e = evo::read_run_info(run_dir).current();
+    const evo::RunInfo info = evo::read_run_info(run_dir);
+    for (const auto& w : info.warnings)
+        std::cerr << "bhm verify: warning: " << w << "\n";
+    const evo::Experiment e = info.current();
     const auto history = evo::read_champion_history(run_dir, e);
     // K distinct bodies, best recorded fitness first (later champions first among equals).
     std::vector<const evo::ChampionFile*> picked;

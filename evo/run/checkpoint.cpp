@@ -225,6 +225,24 @@ Fitness fitness_from_json(const json& fitness_json, const Experiment& base,
     }
 }
 
+//! The checkpoint's rule changes (its fitness and physics blocks are read against `rules`, the
+//! checkpoint's own experiment).
+std::vector<RuleChange> rule_changes_from_json(const json& changes, const Experiment& rules) {
+    std::vector<RuleChange> out;
+    for (std::size_t i = 0; i < changes.size(); ++i) {
+        const Fields c(changes[i], item("rule_changes", i));
+        RuleChange change{static_cast<int>(c.integer("generation")),
+                          fitness_from_json(c.at("fitness"), rules, c.join("fitness")),
+                          std::nullopt, std::nullopt};
+        if (changes[i].contains("physics"))
+            change.physics = physics_from_json(c.at("physics"), rules, c.join("physics"));
+        if (changes[i].contains("verify"))
+            change.verify = loop_verify_settings_from_json(c.at("verify"), c.join("verify"));
+        out.push_back(std::move(change));
+    }
+    return out;
+}
+
 }  // namespace
 
 json individual_to_json(const Individual& ind) {
@@ -361,19 +379,7 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         if (static_cast<int>(s.history.size()) != s.generation + 1)
             f.fail("history", "expected one row per completed generation");
 
-        const auto& changes = f.array("rule_changes");
-        for (std::size_t i = 0; i < changes.size(); ++i) {
-            const Fields c(changes[i], item("rule_changes", i));
-            RuleChange change{static_cast<int>(c.integer("generation")),
-                              fitness_from_json(c.at("fitness"), s.experiment, c.join("fitness")),
-                              std::nullopt, std::nullopt};
-            if (changes[i].contains("physics"))
-                change.physics =
-                    physics_from_json(c.at("physics"), s.experiment, c.join("physics"));
-            if (changes[i].contains("verify"))
-                change.verify = loop_verify_settings_from_json(c.at("verify"), c.join("verify"));
-            s.rule_changes.push_back(std::move(change));
-        }
+        s.rule_changes = rule_changes_from_json(f.array("rule_changes"), s.experiment);
 
         if (s.experiment.evolution.algorithm == Algorithm::Neat && s.generation >= 0)
             s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
@@ -511,6 +517,28 @@ void save_checkpoint(const std::string& dir, const RunState& state, bool current
             throw std::runtime_error(previous.string() + ": cannot keep the replaced checkpoint (" +
                                      ec.message() + ")");
     });
+}
+
+std::optional<CheckpointRules> read_checkpoint_rules(const std::string& dir) {
+    for (const char* name : {kCheckpointFile, kPreviousCheckpointFile}) {
+        const std::string path = (fs::path(dir) / name).string();
+        std::error_code ec;
+        if (!fs::is_regular_file(path, ec)) continue;
+        try {
+            std::vector<std::string> notes;
+            const json j =
+                parse_checkpoint_text(engine::read_text(path, engine::kLargeFileCap), notes);
+            const Fields f(j, "");
+            CheckpointRules out;
+            out.path = path;
+            out.experiment = parse_experiment(f.at("experiment"), path + ":experiment");
+            out.rule_changes = rule_changes_from_json(f.array("rule_changes"), out.experiment);
+            return out;
+        } catch (const std::exception&) {
+            continue;  // damaged: the previous one, else none (resuming says why)
+        }
+    }
+    return std::nullopt;
 }
 
 LoadedCheckpoint load_checkpoint(const std::string& dir) {

@@ -13,6 +13,7 @@
 //
 // Phenotypes are not stored: they are developed again from the genomes on load, and each one must
 // match its recorded hash (a check that the decoder and the experiment are unchanged).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,18 @@ nlohmann::json parse_checkpoint_text(const std::string& text, std::vector<std::s
 //! is moved to DIR/checkpoint.damaged.json instead and checkpoint.prev.json stays as it is.
 void save_checkpoint(const std::string& dir, const RunState& state,
                      bool current_is_damaged = false);
+
+//! What a checkpoint says of the rules, read without developing its population: the
+//! experiment in force (the current rules) and every rule change. The checksummed record that
+//! run.json's copy is checked against (run_directory.hpp, read_run_info).
+struct CheckpointRules {
+    Experiment experiment;
+    std::vector<RuleChange> rule_changes;
+    std::string path;  //!< the file read
+};
+//! From checkpoint.json, else checkpoint.prev.json; nullopt when neither exists or both are
+//! damaged (loading them says why).
+std::optional<CheckpointRules> read_checkpoint_rules(const std::string& dir);
 
 struct LoadedCheckpoint {
     RunState state;

@@ -76,7 +76,13 @@ std::unique_ptr<EvolutionRun> EvolutionRun::resume(RunOptions options) {
     s.resumed = true;
     s.lock = std::move(lock);
     try {
-        s.original = read_run_info(options.out_dir).started;
+        RunInfo info = read_run_info(options.out_dir);
+        s.original = std::move(info.started);
+        // run.json disagreed with the checkpoint: the checkpoint is the record; run.json is
+        // rewritten from it, and the run says so.
+        for (auto& w : info.warnings)
+            s.warnings.push_back(std::move(w) + "; run.json rewritten from it");
+        s.rewrite_run_info = !info.warnings.empty();
     } catch (const std::exception& e) {
         s.warnings.push_back(std::string(e.what()) +
                              "; rewritten from the checkpoint's experiment (its current rules)");
@@ -553,7 +559,6 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
     ++session_generations_;
 
     if (output_) {
-        if (rules_changed) output_->write_run_info(original_experiment_, state_);
         output_->write_fitness_csv(state_.history);
         if (new_champion) output_->write_champion(rules, *state_.champion);
         // Resumed from the backup (checkpoint.json was damaged): the backup is the one good
@@ -562,6 +567,9 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
             fs::path(checkpoint_path_).filename() == kPreviousCheckpointFile;
         output_->write_checkpoint(state_, resumed_from_backup);
         checkpoint_path_ = output_->path(kCheckpointFile);
+        // After the checkpoint, the record run.json is checked against: a crash between the two
+        // leaves run.json behind it, which a resume reconciles (read_run_info).
+        if (rules_changed) output_->write_run_info(original_experiment_, state_);
     }
 
     auto report = std::make_shared<GenerationReport>(

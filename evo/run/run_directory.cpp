@@ -10,6 +10,7 @@
 
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/run/checkpoint.hpp"
 #include "evo/run/loop_check_json.hpp"
 
 namespace bhm::evo {
@@ -50,6 +51,7 @@ Experiment with_fitness(const Experiment& experiment, const json& fitness,
 }  // namespace
 
 Experiment RunInfo::current() const {
+    if (checkpoint_rules) return *checkpoint_rules;
     Experiment e = started;
     if (!rule_changes.empty()) e.fitness = rule_changes.back().fitness;
     // The physics of the last change that set it (a calibration applied to the live run).
@@ -67,6 +69,20 @@ Experiment RunInfo::current() const {
     return e;
 }
 
+namespace {
+
+void reconcile_with_checkpoint(const std::string& run_dir, const std::string& path, RunInfo& info) {
+    const auto truth = read_checkpoint_rules(run_dir);
+    if (!truth) return;
+    if (truth->rule_changes != info.rule_changes || truth->experiment != info.current())
+        info.warnings.push_back(path + ": its rules differ from the checkpoint's (" + truth->path +
+                                ", checksummed); using the checkpoint's");
+    info.rule_changes = truth->rule_changes;
+    info.checkpoint_rules = truth->experiment;
+}
+
+}  // namespace
+
 RunInfo read_run_info(const std::string& run_dir) {
     const std::string path = path_in(run_dir, kRunInfoFile);
     const json run = read_json_object(path);
@@ -74,7 +90,10 @@ RunInfo read_run_info(const std::string& run_dir) {
     RunInfo info;
     info.started = parse_experiment(run["experiment"], path + ":experiment");
     const auto changes = run.find("rule_changes");
-    if (changes == run.end()) return info;
+    if (changes == run.end()) {
+        reconcile_with_checkpoint(run_dir, path, info);
+        return info;
+    }
     if (!changes->is_array()) throw std::runtime_error(path + ":rule_changes: expected an array");
     for (std::size_t i = 0; i < changes->size(); ++i) {
         const json& c = (*changes)[i];
@@ -91,6 +110,7 @@ RunInfo read_run_info(const std::string& run_dir) {
             change.verify = loop_verify_settings_from_json(c["verify"], where + ".verify");
         info.rule_changes.push_back(std::move(change));
     }
+    reconcile_with_checkpoint(run_dir, path, info);
     return info;
 }
 

@@ -4,6 +4,7 @@
 // view of a run directory and the Python module all read through here. Each reader names the
 // file, and the field or row, in what it throws.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,11 +24,20 @@ inline constexpr const char* kChampionFile = "champion.json";
 struct RunInfo {
     Experiment started;
     std::vector<RuleChange> rule_changes;  //!< in order
-    //! The rules in force now: the started experiment with the last change's fitness section
-    //! and the physics of the last change that set physics.
+    //! The rules in force as the run's checkpoint records them (checksummed), where it has one.
+    std::optional<Experiment> checkpoint_rules;
+    //! Where run.json disagreed with the checkpoint (and the checkpoint's record was taken).
+    std::vector<std::string> warnings;
+    //! The rules in force now: the checkpoint's where there is one, else the started experiment
+    //! with the last change's fitness section, the physics of the last change that set physics
+    //! and the continuum checks of the last change that set them.
     Experiment current() const;
 };
-//! Throws std::runtime_error "PATH: field: message" when run.json is missing or malformed.
+//! run.json, checked against the checkpoint: run.json is rewritten by the run but not
+//! checksummed, so where its rule changes or the rules they make differ from the checkpoint's,
+//! the checkpoint's are taken and a warning names both files (a physics change present only in
+//! run.json made exports and `bhm verify` use it). Throws std::runtime_error "PATH: field:
+//! message" when run.json is missing or malformed.
 RunInfo read_run_info(const std::string& run_dir);
 
 //! champion.json: the best individual found so far, under the rules in force when it was found.

@@ -71,6 +71,7 @@ struct RuleChange {
     std::optional<PhysicsRules> physics;
     //! Set when the change set the continuum checks' policy (evolution.verify).
     std::optional<LoopVerifySettings> verify;
+    bool operator==(const RuleChange&) const = default;
 };
 
 struct RunState {

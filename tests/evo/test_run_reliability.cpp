@@ -1,5 +1,6 @@
 // What keeps a run directory's work safe: checkpoint checksums and versions, the one-writer lock,
-// a damaged run.json repaired with a warning that names it.
+// a damaged run.json repaired with a warning that names it, run.json's rules checked against the
+// checkpoint's.
 #include <doctest/doctest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include "evo/run/checkpoint.hpp"
 #include "evo/run/crc32.hpp"
 #include "evo/run/evolution_run.hpp"
+#include "evo/run/run_directory.hpp"
 #include "evo/run/run_lock.hpp"
 #include "evo_test_support.hpp"
 #include "run_test_support.hpp"
@@ -169,5 +171,43 @@ TEST_CASE("a damaged run.json is named, repaired from the checkpoint, and the ru
         nlohmann::json::parse(bhm::test::read_file(dir / "run.json"));  // really rewritten
     CHECK(run_json.at("experiment").at("name") == "tiny");
     CHECK(resumed->run() == StopReason::GenerationBudget);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("run.json's rule changes are checked against the checkpoint: a change only run.json "
+          "holds is named, not used, and a resume rewrites run.json from the checkpoint") {
+    const auto e = test::tiny_experiment();
+    const fs::path dir = bhm::test::scratch_dir("rel-runjson-rules", false);
+    EvolutionRun(e, run_options(2, 2, dir.string())).run();
+    // A clean run: no warning, and the rules in force are the experiment's.
+    const RunInfo clean = read_run_info(dir.string());
+    CHECK(clean.warnings.empty());
+    CHECK(clean.current() == e);
+
+    // Forge a physics change (E x 3) into run.json alone: the checkpoint never saw it.
+    auto run_json = nlohmann::json::parse(bhm::test::read_file(dir / "run.json"));
+    PhysicsRules stiffer = physics_of(e);
+    for (auto& m : stiffer.materials)
+        m.youngs_modulus_pa *= 3.0;
+    run_json["rule_changes"].push_back(
+        {{"generation", 1},
+         {"fitness", run_json["experiment"]["fitness"]},
+         {"physics", physics_to_json(stiffer, e)}});
+    spit(dir / "run.json", run_json.dump(2));
+
+    const RunInfo forged = read_run_info(dir.string());
+    REQUIRE(forged.warnings.size() == 1);
+    CHECK(forged.warnings[0].find((dir / "run.json").string()) == 0);
+    CHECK(forged.warnings[0].find("checkpoint") != std::string::npos);
+    CHECK(forged.rule_changes.empty());
+    CHECK(forged.current().materials == e.materials);  // not E x 3
+
+    auto resumed = EvolutionRun::resume(run_options(3, 2, dir.string()));
+    REQUIRE(resumed->resume_warnings().size() == 1);
+    CHECK(resumed->resume_warnings()[0].find("rewritten") != std::string::npos);
+    CHECK(read_run_info(dir.string()).warnings.empty());  // run.json agrees again
+    CHECK(nlohmann::json::parse(bhm::test::read_file(dir / "run.json"))["rule_changes"].empty());
+    CHECK(resumed->run() == StopReason::GenerationBudget);
+    resumed.reset();
     fs::remove_all(dir);
 }
