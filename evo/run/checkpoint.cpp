@@ -312,6 +312,7 @@ json run_state_to_json(const RunState& s) {
     if (s.experiment.evolution.algorithm == Algorithm::Neat) j["neat"] = neat_state_to_json(s.neat);
     if (s.experiment.evolution.algorithm == Algorithm::Novelty)
         j["novelty_archive"] = novelty_archive_to_json(s.novelty_archive);
+    if (s.pending_checks) j["pending_checks"] = pending_checks_to_json(*s.pending_checks);
     if (!s.loop_checks.empty()) {
         json checks = json::array();
         for (const auto& c : s.loop_checks)
@@ -385,6 +386,8 @@ RunState run_state_from_json(const json& j, const std::string& label) {
             s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
         if (s.experiment.evolution.algorithm == Algorithm::Novelty && s.generation >= 0)
             s.novelty_archive = novelty_archive_from_json(f.at("novelty_archive"));
+        if (j.contains("pending_checks"))
+            s.pending_checks = pending_checks_from_json(f.at("pending_checks"), "pending_checks");
         if (j.contains("loop_checks")) {  // runs with continuum checks in the loop only
             const auto& checks = f.array("loop_checks");
             for (std::size_t i = 0; i < checks.size(); ++i)

@@ -376,18 +376,25 @@ bool EvolutionRun::run_generation() {
     }
     if (rescored.changed) algorithm->rules_changed(context, rescored.population, search);
 
-    // The continuum checks of the last generation's best run beside this one's simulations
-    // (evo/run/loop_check.hpp); started here, not after the commit, so that a run resumed from
-    // that commit starts the same checks. Leaving this function early cancels them.
-    std::unique_ptr<LoopCheckJob> check_job;
-    if (checker_ && is_check_generation(rules.evolution.verify, g - 1)) {
+    // The continuum checks (evo/run/loop_check.hpp): picked from the last generation's best at
+    // the beginning of this one, they run beside the simulations of every_generations
+    // generations and land before a selection. New rules drop checks made for the old ones.
+    std::optional<PendingChecks> pending = state_.pending_checks;
+    if (rescored.changed && (pending || check_job_)) {
+        check_job_.reset();
+        pending.reset();
+    }
+    if (!pending && checker_ && is_check_generation(rules.evolution.verify, g - 1)) {
         auto picks = pick_for_check(
             rescored.population, rescored.champion ? &rescored.champion->individual : nullptr,
             rules.evolution.verify, index_checks(state_.loop_checks));
-        if (!picks.empty())
-            check_job = std::make_unique<LoopCheckJob>(checker_, rules, g - 1, std::move(picks),
-                                                       options_.out_dir);
+        if (!picks.empty()) pending = PendingChecks{g - 1, std::move(picks)};
     }
+    if (pending && !check_job_ && checker_)
+        check_job_ = std::make_unique<LoopCheckJob>(checker_, rules, pending->generation,
+                                                    pending->picks, options_.out_dir);
+    const bool checks_land =
+        pending && check_job_ && g >= landing_generation(rules.evolution.verify, pending->generation);
 
     Rng rng;
     rng.set_state(state_.rng);
@@ -413,10 +420,15 @@ bool EvolutionRun::run_generation() {
     // The checks land before selection, and every member (the new ones, cache hits of a checked
     // body, the champion) is judged under the policy with all checks made so far.
     std::vector<LoopCheck> landed;
-    if (check_job) {
-        auto results = check_job->join(&stop_);
-        if (!results) return false;
+    if (checks_land) {
+        auto results = check_job_->join(&stop_);
+        if (!results) {  // stopped: the next attempt at this generation starts them again
+            check_job_.reset();
+            return false;
+        }
         landed = std::move(*results);
+        check_job_.reset();
+        pending.reset();
     }
     std::optional<ChampionRecord> champion = rescored.champion;
     if (rules.evolution.verify.enabled() || !state_.loop_checks.empty()) {
@@ -448,7 +460,8 @@ bool EvolutionRun::run_generation() {
     if (rescored.physics_changed) tally.reevaluation = &reevaluation;
     tally.clones = brood.clones;
     tally.newcomers_skipped = brood.newcomers_skipped;
-    if (check_job) tally.checks_landed = &landed;
+    if (checks_land) tally.checks_landed = &landed;
+    if (pending) tally.pending_checks = &*pending;
     tally.verify_changed = rescored.verify_changed;
     // The generation's clock stops here, before its files are written: it kept running in
     // progress() while they were, so a live figure ran past the time committed below and went
@@ -517,6 +530,9 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
                                      ChampionRecord champion, const GenerationTally& tally,
                                      bool new_champion) {
     HistoryRow row = make_history_row(tally, selection, search, champion.individual.report.fitness);
+    state_.pending_checks = tally.pending_checks
+                                ? std::optional<PendingChecks>(*tally.pending_checks)
+                                : std::nullopt;
     if (tally.checks_landed)
         state_.loop_checks.insert(state_.loop_checks.end(), tally.checks_landed->begin(),
                                   tally.checks_landed->end());

@@ -244,6 +244,10 @@ class EvolutionRun {
     int threads_ = 1;
     std::shared_ptr<Evaluator> evaluator_;
     std::shared_ptr<ContinuumChecker> checker_;
+    //! The checks of state_.pending_checks (or of the generation in progress's picks), running
+    //! beside the generations until they land; kept across generations, cancelled by a change
+    //! of rules or when the run is destroyed.
+    std::unique_ptr<LoopCheckJob> check_job_;
     std::vector<std::string> resume_warnings_;
     std::string checkpoint_path_;
 

@@ -64,6 +64,8 @@ struct GenerationTally {
     //! The continuum checks that landed in this generation (evolution.verify; null: none ran).
     const std::vector<LoopCheck>* checks_landed = nullptr;
     bool verify_changed = false;  //!< a rule change set the checks' settings
+    //! The checks still to land after this generation (null: none).
+    const PendingChecks* pending_checks = nullptr;
 };
 
 //! fitness.csv's row for the selected population (species and novelty from the search state and

@@ -13,6 +13,10 @@ bool is_check_generation(const LoopVerifySettings& settings, int generation) {
            (generation + 1) % settings.every_generations == 0;
 }
 
+int landing_generation(const LoopVerifySettings& settings, int picked) {
+    return picked + std::max(1, settings.every_generations);
+}
+
 LoopCheckIndex index_checks(const std::vector<LoopCheck>& checks) {
     LoopCheckIndex index;
     for (const auto& c : checks)

@@ -9,10 +9,12 @@
 // (RunOptions::checker), as they hand in an Evaluator.
 //
 // Determinism: the bodies checked after generation g are a pure function of the state committed
-// at g, the job is started at the beginning of generation g + 1 (so a run resumed from g's
-// checkpoint starts the same job) and always joined before g + 1's selection, and a check's
-// figures are those of a deterministic solve. So a run with checks, stopped and resumed, is the
-// uninterrupted run bit for bit.
+// at g; they are picked at the beginning of generation g + 1 and kept in the state from its
+// commit on (PendingChecks), so a run resumed anywhere before they land starts the same checks;
+// they are always joined before the selection of generation g + N (N = every_generations), and a
+// check's figures are those of a deterministic solve. A change of rules before they land drops
+// them (they were made for the old rules), in the uninterrupted and the resumed run alike. So a
+// run with checks, stopped and resumed, is the uninterrupted run bit for bit.
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -53,7 +55,21 @@ struct LoopCheckRequest {
     std::int64_t id = 0;
     std::uint64_t hash = 0;
     Body body;
+    bool operator==(const LoopCheckRequest&) const = default;
 };
+
+//! Bodies picked for checking whose results have not landed yet: kept in the checkpoint, so a
+//! run resumed before they land starts the same checks again.
+struct PendingChecks {
+    int generation = 0;  //!< picked from this generation's population
+    std::vector<LoopCheckRequest> picks;
+    bool operator==(const PendingChecks&) const = default;
+};
+
+//! The generation whose selection the checks picked from `picked` land in: every_generations
+//! later (at least one), so they run beside that many generations' simulations and land just
+//! before the next bodies are picked.
+int landing_generation(const LoopVerifySettings& settings, int picked);
 
 //! Checks one body in a continuum model. Called on the check job's thread, one body at a time.
 class ContinuumChecker {

@@ -4,7 +4,9 @@
 #include <cinttypes>
 #include <cstdio>
 
+#include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_fields.hpp"
+#include "evo/genome/body_ops.hpp"
 
 namespace bhm::evo {
 
@@ -53,6 +55,36 @@ LoopCheck loop_check_from_json(const nlohmann::json& j, const std::string& path)
     c.engine_score = f.number("engine_score");
     c.verdict = f.string("verdict");
     return c;
+}
+
+nlohmann::json pending_checks_to_json(const PendingChecks& pending) {
+    nlohmann::json picks = nlohmann::json::array();
+    for (const auto& p : pending.picks)
+        picks.push_back(
+            {{"id", p.id}, {"phenotype_hash", hex(p.hash)}, {"body", body_to_json(p.body)}});
+    return {{"generation", pending.generation}, {"picks", picks}};
+}
+
+PendingChecks pending_checks_from_json(const nlohmann::json& j, const std::string& path) {
+    const Fields f(j, path);
+    PendingChecks pending;
+    pending.generation = static_cast<int>(f.integer("generation"));
+    const auto& picks = f.array("picks");
+    for (std::size_t i = 0; i < picks.size(); ++i) {
+        const Fields p(picks[i], item(f.join("picks"), i));
+        LoopCheckRequest request;
+        request.id = p.integer("id");
+        request.hash = p.hex64("phenotype_hash");
+        try {
+            request.body = parse_body(p.at("body"), p.join("body"));
+        } catch (const std::exception& e) {
+            throw FieldError(e.what());
+        }
+        if (hash_body(request.body) != request.hash)
+            p.fail("body", "does not match its phenotype_hash");
+        pending.picks.push_back(std::move(request));
+    }
+    return pending;
 }
 
 nlohmann::json loop_verify_settings_to_json(const LoopVerifySettings& s) {

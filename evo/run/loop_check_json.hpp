@@ -14,6 +14,11 @@ nlohmann::json loop_check_to_json(const LoopCheck& check);
 //! Throws FieldError (json_fields.hpp) naming `path` and the field.
 LoopCheck loop_check_from_json(const nlohmann::json& j, const std::string& path);
 
+//! The picks waiting to land, each body whole (the body file's form): a resumed run checks them
+//! even where the individuals have left the population.
+nlohmann::json pending_checks_to_json(const PendingChecks& pending);
+PendingChecks pending_checks_from_json(const nlohmann::json& j, const std::string& path);
+
 nlohmann::json loop_verify_settings_to_json(const LoopVerifySettings& settings);
 LoopVerifySettings loop_verify_settings_from_json(const nlohmann::json& j,
                                                   const std::string& path);

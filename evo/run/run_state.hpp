@@ -95,6 +95,8 @@ struct RunState {
     NoveltyArchive novelty_archive;  //!< evolution.algorithm = "novelty" only
     //! Every continuum check applied so far (evolution.verify), in the order they landed.
     std::vector<LoopCheck> loop_checks;
+    //! Bodies picked for checking whose results land in a later generation.
+    std::optional<PendingChecks> pending_checks;
 };
 
 }  // namespace bhm::evo

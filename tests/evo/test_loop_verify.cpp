@@ -189,8 +189,8 @@ TEST_CASE("loop checks in a run: they land a generation later, in the state, fil
         badges += last->population[k].check.has_value();
     }
     CHECK(badges > 0);
-    // Checked after generations 1 and 3 (landing in 2 and 4); generation 5's checks would land in
-    // generation 6, which this run never runs.
+    // Picked after generations 1 and 3, each landing every_generations (2) later, in 3 and 5:
+    // generation 5's picks would be made in generation 6, which this run never runs.
     REQUIRE_FALSE(s.loop_checks.empty());
     std::set<int> from;
     std::set<std::uint64_t> hashes;
@@ -203,7 +203,7 @@ TEST_CASE("loop checks in a run: they land a generation later, in the state, fil
     for (const auto& h : s.history) {
         CAPTURE(h.generation);
         REQUIRE(h.verify.has_value());
-        CHECK(h.verify->verified == (h.generation == 2 || h.generation == 4 ? 2 : 0));
+        CHECK(h.verify->verified == (h.generation == 3 || h.generation == 5 ? 2 : 0));
     }
     // Penalise: every member whose body was found to differ carries its fitness times 0.6.
     const auto index = index_checks(s.loop_checks);
@@ -218,10 +218,12 @@ TEST_CASE("loop checks in a run: they land a generation later, in the state, fil
     // The checkpoint keeps the checks exactly.
     const auto loaded = load_checkpoint(dir.string());
     CHECK(loaded.state.loop_checks == s.loop_checks);
+    CHECK_FALSE(loaded.state.pending_checks.has_value());  // all landed by the last generation
 
-    // Stopped after generation 2 (the checks of generation 1 landed; those of 3 not yet started)
-    // and after generation 3 (its checks pending): each resumed run equals the uninterrupted one.
-    for (const int stop_at : {2, 3}) {
+    // Stopped after generation 2 and after 4 (picks waiting in the checkpoint: the resumed run
+    // starts their checks again) and after 3 (just landed): each resumed run equals the
+    // uninterrupted one.
+    for (const int stop_at : {2, 3, 4}) {
         CAPTURE(stop_at);
         const auto parts = test::fresh_dir("loop-verify", "parts-" + std::to_string(stop_at));
         {
@@ -232,6 +234,8 @@ TEST_CASE("loop checks in a run: they land a generation later, in the state, fil
             });
             REQUIRE(first.run() == StopReason::StopRequested);
         }
+        const auto waiting = load_checkpoint(parts.string()).state.pending_checks;
+        CHECK(waiting.has_value() == (stop_at != 3));
         auto resumed = EvolutionRun::resume(
             with_checker(run_options(6, 2, parts.string()), std::make_shared<FakeChecker>()));
         CHECK(resumed->run() == StopReason::GenerationBudget);
@@ -315,7 +319,7 @@ TEST_CASE("loop checks with CalculiX: the files where the studio finds them, and
                                      std::make_shared<CalculixChecker>()));
     CHECK(run.run() == StopReason::GenerationBudget);
     const auto& checks = run.state().loop_checks;
-    REQUIRE(checks.size() == 1);  // after generation 1, landing in 2; generation 3's never land
+    REQUIRE(checks.size() == 1);  // picked after generation 1, landing in 3
     const LoopCheck& c = checks.front();
     CAPTURE(c.verdict);
     CHECK(c.compared());
@@ -330,7 +334,7 @@ TEST_CASE("loop checks with CalculiX: the files where the studio finds them, and
         EvolutionRun first(e, with_checker(run_options(4, 1, parts.string()),
                                            std::make_shared<CalculixChecker>()));
         first.set_report_callback([&](auto r) {
-            if (r->generation == 1) first.request_stop();  // its check not yet started
+            if (r->generation == 2) first.request_stop();  // its pick waits in the checkpoint
         });
         REQUIRE(first.run() == StopReason::StopRequested);
     }
