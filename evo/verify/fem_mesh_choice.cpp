@@ -120,6 +120,28 @@ FemMeshChoice choose_fem_mesh(const engine::BodySpec& spec) {
                    std::to_string(n.width_voxels) + " voxels across";
         return c;
     }
+    // A held voxel clamped at a point or along a line (one inside the body: its fixed nodes are
+    // its centre, its rotation held by ties) is a singular support: its sag grows as the mesh is
+    // refined, so the mesh its ties were measured on stays (docs/verify.md).
+    const FemModel probe = build_fem_model(spec, {FemElement::C3D8I, 2});
+    if (!probe.rotation_ties.empty()) {
+        const FemTie& t = probe.rotation_ties.front();
+        std::array<int, 3> voxel{};
+        for (int a = 0; a < 3; ++a)
+            voxel[static_cast<std::size_t>(a)] =
+                (probe.node_grid[static_cast<std::size_t>(t.dependent - 1)][a] +
+                 probe.node_grid[static_cast<std::size_t>(t.independent - 1)][a]) /
+                (2 * probe.points_per_voxel);
+        c.point_clamp = true;
+        c.mesh = {FemElement::C3D8I, 2};
+        char why[200];
+        std::snprintf(why, sizeof why,
+                      ": held voxel (%d, %d, %d) is clamped at a point or along a line, where "
+                      "refining does not converge",
+                      voxel[0], voxel[1], voxel[2]);
+        c.reason = describe_fem_mesh(c.mesh) + why;
+        return c;
+    }
     // Narrow: quadratic bricks, 2 per voxel edge, within the cap; else the default, and why.
     const FemMeshOptions refined{FemElement::C3D20R, 2};
     if (fem_mesh_cost(voxels, refined) <= kMeshCostCapNodes) {

@@ -5,8 +5,8 @@
 // 1x1 neck): there the re-entrant corners and the small clamp need quadratic elements and more of
 // them across. So the body's narrowest section is measured: one 1 voxel across gets C3D20R with
 // 2 elements per voxel edge (within 5 % of C3D20R with 4 there, at a twentieth of its solve),
-// unless that passes the cost cap; a body whose sections are all at least 2 voxels across keeps
-// C3D8I with 2. docs/verify.md, "The automatic mesh", has the measured figures.
+// unless that passes the cost cap or a held voxel is clamped at a point (where no refinement
+// converges); a body whose sections are all at least 2 voxels across keeps C3D8I with 2. docs/verify.md, "The automatic mesh", has the measured figures.
 #include <array>
 #include <string>
 
@@ -46,6 +46,10 @@ struct FemMeshChoice {
     bool automatic = true;
     NarrowestSection narrowest;  //!< automatic only
     bool capped = false;         //!< refinement was wanted but passed kMeshCostCapNodes
+    //! A held voxel is clamped at a point or along a line (held inside the body): a singular
+    //! support whose sag grows with refinement (2.06 mm at C3D8I 2, 3.06 mm at C3D20R 2 on the
+    //! 12x3x3 bar of docs/verify.md), so C3D8I with 2 stays.
+    bool point_clamp = false;
     //! "C3D20R, 2 per voxel edge: narrowest section 1 voxel across (the held patch at voxel
     //! (0, 1, 1))", "C3D8I, 2 per voxel edge: every section at least 3 voxels across", or
     //! "C3D20R, 4 per voxel edge: chosen by the caller (--element, --subdivision)".

@@ -307,7 +307,7 @@ TEST_CASE("studio verify: Cancel during our engine's run stops within a slice, w
     // closer than it comes within a slice for seconds (no relative tolerance), so that its phase
     // lasts long enough for the cancel to land in it, not after it: uncancelled, its three loads
     // took 24 s on the shared 2-core build machine.
-    request.options.mesh.subdivision = 1;
+    request.options.mesh = evo::FemMeshOptions{evo::FemElement::C3D8I, 1};
     request.options.engine.tolerance = 0.0;
     request.options.engine.max_time_s = 30.0;
     FemVerifier verifier;

@@ -29,11 +29,13 @@ float progress_fraction(const FemVerifyState& st) {
         case evo::VerifyPhase::Meshing:
             return 0.02f;
         case evo::VerifyPhase::Solving:
-            return 0.05f + 0.55f * static_cast<float>(p.load - 1) / n;
+            return 0.05f + 0.45f * static_cast<float>(p.load - 1) / n;
         case evo::VerifyPhase::Engine:
-            return 0.6f + 0.35f * static_cast<float>(p.load - 1) / n;
+            return 0.5f + 0.3f * static_cast<float>(p.load - 1) / n;
         case evo::VerifyPhase::Comparing:
-            return 0.97f;
+            return 0.8f;
+        case evo::VerifyPhase::SecondMesh:  // the mesh error's solve, after the comparison
+            return 0.82f + 0.15f * static_cast<float>(p.load - 1) / n;
     }
     return 0.0f;
 }
