@@ -114,9 +114,24 @@ void result_section(Studio& s) {
             "agrees when at most %.0f %% (docs/verify.md)",
             100.0 * v->tolerance);
     if (!v->compared) return;
+    // Beside the verdict: how far the FEM's own answer moves with its mesh (absent in reports
+    // written before the studio estimated it).
+    if (!v->mesh_error.empty()) {
+        ImGui::TextUnformatted(v->mesh_error.c_str());
+        record_widget(s, "fem mesh error");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "the deciding measure of the FEM solved again on a second mesh (twice or half\n"
+                "the elements per voxel edge): a difference between the models well above it\n"
+                "is the models', not the mesh's (docs/verify.md)");
+    }
     ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
                         v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
                         v->dir.c_str());
+    if (!v->mesh_reason.empty()) {
+        ImGui::TextDisabled("mesh %s", v->mesh_reason.c_str());
+        record_widget(s, "fem mesh");
+    }
     // Above the table, so that a short tile still shows it.
     if (v->fem_shape.empty()) {
         ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");
