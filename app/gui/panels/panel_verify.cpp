@@ -128,8 +128,10 @@ void result_section(Studio& s) {
     ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
                         v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
                         v->dir.c_str());
-    if (!v->mesh_reason.empty()) {
-        ImGui::TextDisabled("mesh %s", v->mesh_reason.c_str());
+    if (!v->mesh_reason.empty()) {  // wrapped: the reason names a voxel and can be long
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("mesh %s", v->mesh_reason.c_str());
+        ImGui::PopStyleColor();
         record_widget(s, "fem mesh");
     }
     // Above the table, so that a short tile still shows it.
