@@ -111,9 +111,10 @@ FemMeshChoice choose_fem_mesh(const engine::BodySpec& spec) {
         voxels += m != 0;
     const NarrowestSection& n = c.narrowest;
     char where[160];
-    std::snprintf(where, sizeof where, "narrowest section %d voxel%s across (%s at voxel (%d, %d, %d))",
-                  n.width_voxels, n.width_voxels == 1 ? "" : "s",
-                  n.held ? "the held patch" : "a neck or thin part", n.at[0], n.at[1], n.at[2]);
+    std::snprintf(where, sizeof where,
+                  "narrowest section %d voxel%s across (%s at voxel (%d, %d, %d))", n.width_voxels,
+                  n.width_voxels == 1 ? "" : "s", n.held ? "the held patch" : "a neck or thin part",
+                  n.at[0], n.at[1], n.at[2]);
     if (n.width_voxels > kNarrowSectionVoxels) {
         c.mesh = {FemElement::C3D8I, 2};
         c.reason = describe_fem_mesh(c.mesh) + ": every section at least " +

@@ -6,7 +6,8 @@
 // them across. So the body's narrowest section is measured: one 1 voxel across gets C3D20R with
 // 2 elements per voxel edge (within 5 % of C3D20R with 4 there, at a twentieth of its solve),
 // unless that passes the cost cap or a held voxel is clamped at a point (where no refinement
-// converges); a body whose sections are all at least 2 voxels across keeps C3D8I with 2. docs/verify.md, "The automatic mesh", has the measured figures.
+// converges); a body whose sections are all at least 2 voxels across keeps C3D8I with 2.
+// docs/verify.md, "The automatic mesh", has the measured figures.
 #include <array>
 #include <string>
 
@@ -23,9 +24,9 @@ namespace bhm::evo {
 //! narrowest is the smallest of all: 1 for a body held by a single voxel, a 1x1 or 1x2 neck, or a
 //! part one voxel thick.
 struct NarrowestSection {
-    int width_voxels = 0;           //!< 0 when the body has no material voxel
-    std::array<int, 3> at{};        //!< a voxel where it is (the first in lattice order)
-    bool held = false;              //!< the clamp (held voxels), not a free part
+    int width_voxels = 0;     //!< 0 when the body has no material voxel
+    std::array<int, 3> at{};  //!< a voxel where it is (the first in lattice order)
+    bool held = false;        //!< the clamp (held voxels), not a free part
 };
 NarrowestSection narrowest_section(const engine::BodySpec& spec);
 

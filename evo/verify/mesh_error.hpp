@@ -20,10 +20,10 @@ namespace bhm::evo {
 inline constexpr double kMeshErrorCapNodes = 2.0 * kMeshCostCapNodes;
 
 struct MeshErrorEstimate {
-    int subdivision = 0;       //!< the second mesh's elements per voxel edge
-    int first_subdivision = 0; //!< the verification's
-    double relative = 0.0;     //!< |second - first| / |first| of the deciding measure (largest load)
-    double fem_cpu_s = 0.0;    //!< the second solve's ccx CPU time
+    int subdivision = 0;        //!< the second mesh's elements per voxel edge
+    int first_subdivision = 0;  //!< the verification's
+    double relative = 0.0;      //!< |second - first| / |first|, deciding measure, largest load
+    double fem_cpu_s = 0.0;     //!< the second solve's ccx CPU time
     //! Non-empty when the second mesh was not solved: "4 per edge would be about 114688 nodes,
     //! over the 80000 cap" (relative is then 0).
     std::string skipped;

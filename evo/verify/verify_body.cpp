@@ -134,7 +134,8 @@ std::vector<FemLoad> loads_of(const engine::BodySpec& spec) {
     const double amplitude = spec.actuation.temperature_amplitude_c;
     bool active = false;
     for (int m : spec.material)
-        active = active || (m != 0 && spec.materials[static_cast<std::size_t>(m - 1)].cte_per_c != 0.0);
+        active = active ||
+                 (m != 0 && spec.materials[static_cast<std::size_t>(m - 1)].cte_per_c != 0.0);
     if (active && amplitude != 0.0) {
         loads.push_back({"+A", amplitude});
         loads.push_back({"-A", -amplitude});

@@ -1,7 +1,8 @@
 #pragma once
 // How far a verification has come (meshing, CalculiX solving load i of n, our engine at load i of
-// n, comparing, then the mesh-error estimate's second mesh) and how it is stopped: a caller's cancel flag, polled by the ccx driver (which
-// then kills the solver) and by our engine's quasi-static run between slices.
+// n, comparing, then the mesh-error estimate's second mesh) and how it is stopped: a caller's
+// cancel flag, polled by the ccx driver (which then kills the solver) and by our engine's
+// quasi-static run between slices.
 #include <atomic>
 #include <functional>
 #include <stdexcept>

@@ -152,7 +152,7 @@ TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geomet
     CHECK(l.output.find("FEM mesh error") == std::string::npos);
 }
 
-TEST_CASE("bhm verify: the automatic mesh is printed and reported; --element, --subdivision override it") {
+TEST_CASE("bhm verify: the automatic mesh is printed and reported; --element, --subdivision win") {
     if (!evo::ccx_available()) {
         MESSAGE("SKIPPED: CalculiX (ccx) is not installed");
         WARN(false);

@@ -114,8 +114,9 @@ TEST_CASE("verify mesh: a voxel held inside the body is a point clamp and keeps 
     CHECK(c.point_clamp);
     CHECK(c.mesh.element == evo::FemElement::C3D8I);
     CHECK(c.mesh.subdivision == 2);
-    CHECK(c.reason == "C3D8I, 2 per voxel edge: held voxel (1, 1, 1) is clamped at a point or "
-                      "along a line, where refining does not converge");
+    CHECK(c.reason ==
+          "C3D8I, 2 per voxel edge: held voxel (1, 1, 1) is clamped at a point or "
+          "along a line, where refining does not converge");
     // The single held voxel at the end of a body is clamped over its face: no point clamp.
     CHECK_FALSE(evo::choose_fem_mesh(single_held()).point_clamp);
 }
@@ -133,7 +134,8 @@ TEST_CASE("verify mesh: past the cost cap the cheap mesh stays, and the reason s
     CHECK(c.mesh.subdivision == 2);
     CHECK(c.reason.find("would pass the cost cap (1600 voxels") != std::string::npos);
     // A smaller plate of the same thickness is refined.
-    const auto small = evo::choose_fem_mesh(held_body(20, 20, 1, [](int, int, int) { return true; }));
+    const auto small =
+        evo::choose_fem_mesh(held_body(20, 20, 1, [](int, int, int) { return true; }));
     CHECK_FALSE(small.capped);
     CHECK(small.mesh.element == evo::FemElement::C3D20R);
 }
