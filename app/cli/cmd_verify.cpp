@@ -31,11 +31,17 @@ constexpr long long kFewestRanked = 5;
 
 evo::VerifyOptions options_of(const ArgParser& parser) {
     evo::VerifyOptions o;
-    o.mesh.element = evo::parse_fem_element(parser.get("--element", "C3D8I"));
-    o.mesh.subdivision = static_cast<int>(parser.get_int("--subdivision", 2));
-    if (o.mesh.subdivision < 1 || o.mesh.subdivision > 4)
-        throw UsageError("--subdivision: " + std::to_string(o.mesh.subdivision) +
-                         " is not in [1, 4]");
+    // Either option fixes the mesh (the other at its old default, C3D8I or 2 per edge); without
+    // both the mesh is chosen from the body's narrowest section (fem_mesh_choice.hpp).
+    if (parser.has("--element") || parser.has("--subdivision")) {
+        evo::FemMeshOptions mesh;
+        mesh.element = evo::parse_fem_element(parser.get("--element", "C3D8I"));
+        mesh.subdivision = static_cast<int>(parser.get_int("--subdivision", 2));
+        if (mesh.subdivision < 1 || mesh.subdivision > 4)
+            throw UsageError("--subdivision: " + std::to_string(mesh.subdivision) +
+                             " is not in [1, 4]");
+        o.mesh = mesh;
+    }
     if (parser.has("--nlgeom") && parser.has("--linear"))
         throw UsageError("--nlgeom and --linear exclude each other");
     o.geometry = parser.has("--nlgeom")   ? evo::FemGeometry::Nonlinear
@@ -60,18 +66,18 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     const auto v = evo::verify_body(spec, e.fitness.measure, options);
     nlohmann::json report = evo::write_verification(v, options, out.string());
     std::cout << body_path << ": " << v.verdict() << "\n";
+    if (v.status == evo::VerifyStatus::Compared)
+        std::cout << "  FEM mesh " << v.mesh.reason << "\n";
     if (v.status == evo::VerifyStatus::Compared && !parser.has("--no-mesh-error")) {
-        const auto error = evo::estimate_mesh_error(spec, e.fitness.measure, v, options);
+        const auto error = evo::estimate_mesh_error(spec, v, options);
+        if (error && !error->skipped.empty()) {
+            std::cout << "  " << evo::describe_mesh_error(*error) << "\n";
+        } else if (error) {
+            std::cout << "  " << evo::describe_mesh_error(*error) << " on "
+                      << evo::verify_measure_label(*v.decision.decided_by) << "\n";
+        }
         if (error) {
-            std::printf("  FEM mesh error: %s moves %.1f %% at %d element(s) per voxel edge "
-                        "against %d\n",
-                        evo::verify_measure_label(*v.decision.decided_by), 100.0 * error->relative,
-                        error->subdivision, options.mesh.subdivision);
-            report["fem_mesh_error"] = {{"measure",
-                                         evo::verify_measure_key(*v.decision.decided_by)},
-                                        {"elements_per_voxel_edge", error->subdivision},
-                                        {"relative_difference", error->relative},
-                                        {"cpu_s", error->fem_cpu_s}};
+            report["fem_mesh_error"] = evo::mesh_error_json(*error, v);
             evo::write_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
         }
     }
@@ -149,7 +155,7 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
                   << c->fitness << "): " << v.verdict() << "\n";
         if (v.status == evo::VerifyStatus::Compared)
             std::cout << "  beside it: " << v.beside() << "\n  FEM steps " << v.geometry_reason
-                      << "\n";
+                      << "\n  FEM mesh " << v.mesh.reason << "\n";
         if (v.status != evo::VerifyStatus::Compared) continue;
         recorded.push_back(c->fitness);
         fem.push_back(v.fem_score);
@@ -202,7 +208,10 @@ int cmd_verify(const Args& args) {
         "deformed mesh (legacy VTK) to DIR. With a RUN_DIR, the K best distinct champions of\n"
         "the run's history and the Spearman rank correlation of our fitness and the FEM's.\n"
         "The FEM's steps are geometrically nonlinear when our engine's answer turns a voxel\n"
-        "or bends more than 10 degrees (--nlgeom, --linear force either).\n"
+        "or bends more than 10 degrees (--nlgeom, --linear force either). Its mesh is refined\n"
+        "where the body is narrow: C3D20R, 2 per voxel edge, where a section is 1 voxel\n"
+        "across (a single held voxel, a 1x1 neck), else C3D8I, 2 per edge (--element and\n"
+        "--subdivision choose another).\n"
         "Free bodies (walkers) and detached parts are reported as outside the continuum's\n"
         "reach. docs/verify.md explains the model and its measured accuracy.\n"
         "Exit status: 0 when every body was verified or reported, 1 on an error (ccx missing,\n"
@@ -214,8 +223,12 @@ int cmd_verify(const Args& args) {
                   "folder for report.json and the VTK meshes (default BODY-verify, or "
                   "RUN_DIR/verify)",
                   PathRole::OutputDir);
-    parser.option("--element", "TYPE", "C3D8I (default) or C3D20R");
-    parser.option("--subdivision", "N", "elements per voxel edge, 1 to 4 (default 2)");
+    parser.option("--element", "TYPE",
+                  "C3D8I or C3D20R (default: automatic, C3D20R where a section is 1 voxel "
+                  "across, else C3D8I)");
+    parser.option("--subdivision", "N",
+                  "elements per voxel edge, 1 to 4 (default: automatic, 2; with --element "
+                  "alone, 2)");
     parser.flag("--nlgeom",
                 "geometrically nonlinear steps, always (default: when our engine turns a voxel "
                 "or bends more than 10 deg)");

@@ -128,6 +128,56 @@ std::vector<Vec> fem_voxel_displacements(const FemModel& m, const NodalDisplacem
     return out;
 }
 
+// The load steps: rest, and +A and -A where some voxel is active and the amplitude is not 0.
+std::vector<FemLoad> loads_of(const engine::BodySpec& spec) {
+    std::vector<FemLoad> loads{{"rest", 0.0}};
+    const double amplitude = spec.actuation.temperature_amplitude_c;
+    bool active = false;
+    for (int m : spec.material)
+        active = active ||
+                 (m != 0 && spec.materials[static_cast<std::size_t>(m - 1)].cte_per_c != 0.0);
+    if (active && amplitude != 0.0) {
+        loads.push_back({"+A", amplitude});
+        loads.push_back({"-A", -amplitude});
+    }
+    return loads;
+}
+
+// One ccx solve of every load, reporting its progress; throws on a missing block.
+CcxResult run_fem(const FemModel& model, const engine::BodySpec& spec,
+                  const std::vector<FemLoad>& loads, bool nlgeom, const VerifyOptions& options) {
+    const VerifyControl& control = options.control;
+    const int load_count = static_cast<int>(loads.size());
+    const std::string deck = ccx_deck(model, spec, loads, nlgeom);
+    control.report({VerifyPhase::Solving, 1, load_count});
+    CcxWatch watch;
+    watch.cancel = control.cancel;
+    watch.steps_done = [&](int done) {
+        control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+    };
+    CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
+    if (fem.blocks.size() != loads.size())
+        throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
+                                 " displacement blocks for " + std::to_string(loads.size()) +
+                                 " load steps");
+    return fem;
+}
+
+// The FEM's side of one load's comparison (fem, fem_rms_m, fem_largest_m); returns its voxel
+// displacements.
+std::vector<Vec> fem_side(const engine::BodySpec& spec, const Geometry& g, const FemModel& model,
+                          const NodalDisplacements& block, LoadComparison& c) {
+    auto theirs = fem_voxel_displacements(model, block);
+    c.fem = measure(spec, g, theirs);
+    double f2 = 0.0;
+    for (const auto& u : theirs) {
+        c.fem_largest_m = std::max(c.fem_largest_m, norm(u));
+        f2 += u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+    }
+    c.fem_rms_m = std::sqrt(f2 / static_cast<double>(theirs.size()));
+    return theirs;
+}
+
 }  // namespace
 
 std::string describe_progress(const VerifyProgress& p) {
@@ -141,6 +191,8 @@ std::string describe_progress(const VerifyProgress& p) {
             return "our engine at load" + of;
         case VerifyPhase::Comparing:
             return "comparing";
+        case VerifyPhase::SecondMesh:
+            return "mesh error: CalculiX solving the second mesh, load" + of;
     }
     return "";
 }
@@ -210,13 +262,34 @@ std::string continuum_reach_problem(const engine::BodySpec& s) {
     return "";
 }
 
+FemAnswer solve_fem(const engine::BodySpec& spec, const FemMeshOptions& mesh, bool nlgeom,
+                    const VerifyOptions& options) {
+    if (options.control.cancelled()) throw VerifyCancelled();
+    options.control.report({VerifyPhase::Meshing, 0, 0});
+    const FemModel model = build_fem_model(spec, mesh);
+    const auto loads = loads_of(spec);
+    const CcxResult fem = run_fem(model, spec, loads, nlgeom, options);
+    const Geometry g = geometry_of(spec, model.voxel_cells);
+    FemAnswer out;
+    out.cpu_s = fem.cpu_s;
+    out.wall_s = fem.wall_s;
+    out.nodes = model.node_count();
+    for (std::size_t k = 0; k < loads.size(); ++k) {
+        LoadComparison c;
+        c.load = loads[k].name;
+        c.temperature_c = loads[k].temperature_c;
+        fem_side(spec, g, model, fem.blocks[k], c);
+        out.loads.push_back(std::move(c));
+    }
+    return out;
+}
+
 BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitness,
                              const VerifyOptions& options) {
     BodyVerification out;
     out.tolerance = options.tolerance;
     out.floors = options.floors;
     out.measure = verify_measure_of(fitness);
-    double amplitude = spec.actuation.temperature_amplitude_c;
     for (int c = 0; c < spec.cell_count(); ++c) {
         const int m = spec.material[static_cast<std::size_t>(c)];
         if (m == 0) continue;
@@ -238,28 +311,14 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     const VerifyControl& control = options.control;
     if (control.cancelled()) throw VerifyCancelled();
     control.report({VerifyPhase::Meshing, 0, 0});
-    out.fem_model = build_fem_model(spec, options.mesh);
+    out.mesh = options.mesh ? explicit_fem_mesh(*options.mesh) : choose_fem_mesh(spec);
+    out.fem_model = build_fem_model(spec, out.mesh.mesh);
     out.fem_nodes = out.fem_model.node_count();
     out.fem_elements = static_cast<int>(out.fem_model.elements.size());
-    std::vector<FemLoad> loads{{"rest", 0.0}};
-    if (out.active_voxels > 0 && amplitude != 0.0) {
-        loads.push_back({"+A", amplitude});
-        loads.push_back({"-A", -amplitude});
-    }
+    const std::vector<FemLoad> loads = loads_of(spec);
     const int load_count = static_cast<int>(loads.size());
     auto solve = [&](bool nlgeom) {
-        const std::string deck = ccx_deck(out.fem_model, spec, loads, nlgeom);
-        control.report({VerifyPhase::Solving, 1, load_count});
-        CcxWatch watch;
-        watch.cancel = control.cancel;
-        watch.steps_done = [&](int done) {
-            control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
-        };
-        CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
-        if (fem.blocks.size() != loads.size())
-            throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
-                                     " displacement blocks for " + std::to_string(loads.size()) +
-                                     " load steps");
+        CcxResult fem = run_fem(out.fem_model, spec, loads, nlgeom, options);
         out.fem_cpu_s += fem.cpu_s;  // both solves when the automatic choice needs the second
         out.fem_wall_s += fem.wall_s;
         return fem;
@@ -322,11 +381,10 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
 
     for (std::size_t k = 0; k < loads.size(); ++k) {
         const QuasiStaticResult& ours = answers[k];
-        const auto theirs = fem_voxel_displacements(out.fem_model, fem.blocks[k]);
         LoadComparison c;
         c.load = loads[k].name;
         c.temperature_c = loads[k].temperature_c;
-        c.fem = measure(spec, g, theirs);
+        const auto theirs = fem_side(spec, g, out.fem_model, fem.blocks[k], c);
         c.engine = measure(spec, g, ours.displacement_m);
         Vec tip_difference{};
         for (int a = 0; a < 3; ++a)
@@ -341,17 +399,13 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             std::hypot(c.engine.com_m[0] - c.fem.com_m[0], c.engine.com_m[1] - c.fem.com_m[1],
                        c.engine.com_m[2] - c.fem.com_m[2]),
             std::hypot(c.fem.com_m[0], c.fem.com_m[1], c.fem.com_m[2]), smallest_m);
-        double d2 = 0.0, f2 = 0.0;
-        for (std::size_t v = 0; v < theirs.size(); ++v) {
-            c.fem_largest_m = std::max(c.fem_largest_m, norm(theirs[v]));
+        double d2 = 0.0;
+        for (std::size_t v = 0; v < theirs.size(); ++v)
             for (int a = 0; a < 3; ++a) {
                 const double d = ours.displacement_m[v][a] - theirs[v][a];
                 d2 += d * d;
-                f2 += theirs[v][a] * theirs[v][a];
             }
-        }
         const double n = static_cast<double>(theirs.size());
-        c.fem_rms_m = std::sqrt(f2 / n);
         c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
         out.worst_any = std::max(out.worst_any, c.differences.worst());
         c.engine_shape = ours.shape;

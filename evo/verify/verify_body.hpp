@@ -12,6 +12,7 @@
 #include "engine/body_spec.hpp"
 #include "evo/experiment/experiment.hpp"
 #include "evo/verify/ccx_run.hpp"
+#include "evo/verify/fem_mesh_choice.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/quasi_static.hpp"
 #include "evo/verify/verdict.hpp"
@@ -24,7 +25,9 @@ namespace bhm::evo {
 enum class FemGeometry { Automatic, Linear, Nonlinear };
 
 struct VerifyOptions {
-    FemMeshOptions mesh;  // C3D8I, 2 per voxel edge: 0.3 % of a mesh 8x finer (docs/verify.md)
+    //! None: the automatic mesh, refined where the body is narrow (fem_mesh_choice.hpp); set, the
+    //! caller's (`--element`, `--subdivision`).
+    std::optional<FemMeshOptions> mesh;
     FemGeometry geometry = FemGeometry::Automatic;
     //! Automatic: nonlinear when our engine turns a voxel, or bends the root-to-tip line, by more
     //! than this at some load (docs/verify.md, "Linear or nonlinear").
@@ -88,6 +91,7 @@ struct BodyVerification {
     double fem_score = 0.0, engine_score = 0.0;
     double fem_cpu_s = 0.0, fem_wall_s = 0.0, engine_cpu_s = 0.0;
     int fem_nodes = 0, fem_elements = 0;
+    FemMeshChoice mesh;           //!< the mesh solved, and why (automatic or the caller's)
     bool nlgeom = false;          //!< the FEM's steps were geometrically nonlinear
     std::string geometry_reason;  //!< why: "--linear", or our engine's largest rotation
     double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
@@ -103,6 +107,17 @@ struct BodyVerification {
 
 //! Why a body cannot be compared (no held voxel, voxels not attached to a held one), or "".
 std::string continuum_reach_problem(const engine::BodySpec& spec);
+
+//! The FEM's answer alone on `mesh` (no engine run, no comparison): each load's `fem`,
+//! `fem_rms_m` and `fem_largest_m`, in verify_body's load order, steps nonlinear when `nlgeom`.
+//! What the mesh-error estimate compares, reusing the first verification's engine answer.
+struct FemAnswer {
+    std::vector<LoadComparison> loads;
+    double cpu_s = 0.0, wall_s = 0.0;
+    int nodes = 0;
+};
+FemAnswer solve_fem(const engine::BodySpec& spec, const FemMeshOptions& mesh, bool nlgeom,
+                    const VerifyOptions& options);
 
 //! Checks one body (the engine input of a framed body, make_body_spec). Throws
 //! std::runtime_error with one line: body too large, ccx missing, a failed solve, an engine that

@@ -1,7 +1,8 @@
 #pragma once
 // How far a verification has come (meshing, CalculiX solving load i of n, our engine at load i of
-// n, comparing) and how it is stopped: a caller's cancel flag, polled by the ccx driver (which
-// then kills the solver) and by our engine's quasi-static run between slices.
+// n, comparing, then the mesh-error estimate's second mesh) and how it is stopped: a caller's
+// cancel flag, polled by the ccx driver (which then kills the solver) and by our engine's
+// quasi-static run between slices.
 #include <atomic>
 #include <functional>
 #include <stdexcept>
@@ -9,7 +10,8 @@
 
 namespace bhm::evo {
 
-enum class VerifyPhase { Meshing, Solving, Engine, Comparing };
+//! SecondMesh: the mesh-error estimate's CalculiX solve (mesh_error.hpp), after the comparison.
+enum class VerifyPhase { Meshing, Solving, Engine, Comparing, SecondMesh };
 
 struct VerifyProgress {
     VerifyPhase phase = VerifyPhase::Meshing;
@@ -17,7 +19,8 @@ struct VerifyProgress {
     int loads = 0;  //!< loads in all
 };
 
-//! "meshing", "CalculiX solving load 2 of 3", "our engine at load 1 of 3", "comparing".
+//! "meshing", "CalculiX solving load 2 of 3", "our engine at load 1 of 3", "comparing",
+//! "mesh error: CalculiX solving the second mesh, load 1 of 3".
 std::string describe_progress(const VerifyProgress& progress);
 
 //! Thrown when the cancel flag was raised; not a std::runtime_error, so that a caller that keeps

@@ -104,8 +104,10 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
     j["measures"] = measures;
     j["tip_cell"] = v.tip_cell;
     j["fem"] = {{"solver", "CalculiX ccx"},
-                {"element", fem_element_name(options.mesh.element)},
-                {"elements_per_voxel_edge", options.mesh.subdivision},
+                {"element", fem_element_name(v.mesh.mesh.element)},
+                {"elements_per_voxel_edge", v.mesh.mesh.subdivision},
+                {"mesh_choice", v.mesh.automatic ? "automatic" : "explicit"},
+                {"mesh_reason", v.mesh.reason},
                 {"nlgeom", v.nlgeom},
                 {"geometry_choice", options.geometry == FemGeometry::Automatic ? "automatic"
                                     : options.geometry == FemGeometry::Linear  ? "linear"
@@ -116,6 +118,12 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                 {"elements", v.fem_elements},
                 {"cpu_s", v.fem_cpu_s},
                 {"wall_s", v.fem_wall_s}};
+    if (v.mesh.automatic)
+        j["fem"]["narrowest_section"] = {{"voxels", v.mesh.narrowest.width_voxels},
+                                         {"at_voxel", v.mesh.narrowest.at},
+                                         {"held", v.mesh.narrowest.held},
+                                         {"capped", v.mesh.capped},
+                                         {"point_clamp", v.mesh.point_clamp}};
     j["engine"] = {{"method", "constant temperature change, floor off, damped until at rest"},
                    {"global_damping_ratio", options.engine.global_damping_ratio},
                    {"rest_tolerance", options.engine.tolerance},

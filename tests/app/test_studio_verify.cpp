@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -143,6 +144,9 @@ TEST_CASE("studio verify: the worker publishes its phases and lands the report i
     CHECK(position("CalculiX solving load 1 of 3") >= 0);
     CHECK(position("our engine at load 1 of 3") > position("CalculiX solving load 1 of 3"));
     CHECK(position("our engine at load 3 of 3") > position("our engine at load 1 of 3"));
+    // Then the FEM's own mesh error, as bhm verify estimates it: a second mesh, FEM only.
+    CHECK(position("mesh error: CalculiX solving the second mesh, load 1 of 3") >
+          position("our engine at load 3 of 3"));
     CHECK(st->elapsed_s > 0.0);
 
     const fs::path kept = dir / "verify" / "individual-7";
@@ -156,6 +160,18 @@ TEST_CASE("studio verify: the worker publishes its phases and lands the report i
     std::ifstream in(kept / "report.json");
     const json report = json::parse(in);
     CHECK(v.verdict == report.at("verdict").get<std::string>());
+    // The 20x2x2 bilayer is 2 voxels across everywhere: the automatic mesh keeps C3D8I, 2 per
+    // edge, and the mesh error compares it with 4.
+    CHECK(v.mesh_reason == "C3D8I, 2 per voxel edge: every section at least 2 voxels across");
+    REQUIRE(report.contains("fem_mesh_error"));
+    CHECK(report["fem_mesh_error"]["elements_per_voxel_edge"] == 4);
+    const double moved = report["fem_mesh_error"]["relative_difference"].get<double>();
+    CHECK(moved > 0.0);
+    CHECK(moved < 0.05);
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "FEM mesh error ~%.1f %% (2 vs 4 per edge)",
+                  100.0 * moved);
+    CHECK(v.mesh_error == expected);
     REQUIRE(v.rows.size() == 3);
     CHECK(v.rows[1].load == "+A");
     CHECK(v.rows[1].fem_bend_deg ==
@@ -207,6 +223,35 @@ TEST_CASE("studio verify: Cancel kills ccx and leaves no report, no partial fold
         CHECK_FALSE(fs::exists(fs::path("/proc") / std::to_string(pid)));
         if (!cwd.empty()) CHECK_FALSE(fs::exists(cwd));  // its temporary folder went too
     }
+    CHECK_FALSE(fs::exists(dir / "verify" / "individual-7"));
+    CHECK_FALSE(partial_left(dir / "verify"));
+}
+
+TEST_CASE("studio verify: Cancel during the mesh error's second solve leaves no report") {
+    if (skip_without_ccx()) return;
+    const auto dir = testing::fresh_dir("verify-cancel-mesh-error");
+    FemVerifier verifier;
+    // The 20x2x2 bilayer: its second mesh (C3D8I, 4 per edge, 5120 elements) solves for seconds.
+    REQUIRE(verifier.start(bilayer_request({20, 2, 2}, dir)));
+    bool second = false;
+    const auto start = Clock::now();
+    while (verifier.running() && !second && Clock::now() - start < std::chrono::seconds(120)) {
+        const auto st = verifier.state();
+        second = st && st->progress.phase == evo::VerifyPhase::SecondMesh;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    REQUIRE_MESSAGE(second, "the mesh error's solve was never seen running");
+    const auto cancelled_at = Clock::now();
+    verifier.cancel();
+    while (verifier.running() && Clock::now() - cancelled_at < std::chrono::seconds(30))
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    const double took = std::chrono::duration<double>(Clock::now() - cancelled_at).count();
+    MESSAGE("cancel during the second mesh took " << took << " s");
+    CHECK(took < 2.0);
+    const auto st = verifier.state();
+    REQUIRE(st);
+    CHECK(st->phase == FemVerifyPhase::Cancelled);
+    CHECK(ccx_children().empty());
     CHECK_FALSE(fs::exists(dir / "verify" / "individual-7"));
     CHECK_FALSE(partial_left(dir / "verify"));
 }
@@ -267,6 +312,12 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
         CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
         const auto it = studio.widgets.find("fem verdict");
         CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+        // Beside the verdict, the FEM's own mesh error; below it, the mesh and why.
+        CHECK(studio.verify.result->mesh_error.rfind("FEM mesh error ~", 0) == 0);
+        for (const char* widget : {"fem mesh error", "fem mesh"}) {
+            const auto w = studio.widgets.find(widget);
+            CHECK_MESSAGE((w != studio.widgets.end() && w->second.frame == studio.frame), widget);
+        }
 
         // The 3D view: our static shape at +A with the FEM's as a ghost over it.
         set_view_mode(studio, ViewMode::Simulation);
@@ -307,7 +358,7 @@ TEST_CASE("studio verify: Cancel during our engine's run stops within a slice, w
     // closer than it comes within a slice for seconds (no relative tolerance), so that its phase
     // lasts long enough for the cancel to land in it, not after it: uncancelled, its three loads
     // took 24 s on the shared 2-core build machine.
-    request.options.mesh.subdivision = 1;
+    request.options.mesh = evo::FemMeshOptions{evo::FemElement::C3D8I, 1};
     request.options.engine.tolerance = 0.0;
     request.options.engine.max_time_s = 30.0;
     FemVerifier verifier;
@@ -506,6 +557,10 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
     REQUIRE(kept);
     REQUIRE(kept->compared);
     CHECK(fem_verdict_line(*kept) == kept->verdict + " (tolerance 10 %)");
+    // A verdict that states its tolerance itself (every one written since issue 40) gets it once.
+    FemVerification current = *kept;
+    current.verdict = "differs by 27.7 % (tolerance 10 %) on the centre of mass";
+    CHECK(fem_verdict_line(current) == current.verdict);
 
     auto e = testing::tiny_experiment({2, 2, 1});
     Studio studio;

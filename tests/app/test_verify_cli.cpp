@@ -127,7 +127,11 @@ TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geomet
     CHECK(r.output.find("(tolerance 10 %) on the centre of mass") != std::string::npos);
     CHECK(r.output.find("  beside it: ") != std::string::npos);
     CHECK(r.output.find("FEM steps nonlinear: our engine ") != std::string::npos);
-    CHECK(r.output.find("FEM mesh error: the centre of mass moves ") != std::string::npos);
+    // The 5x3x3 body held by its whole x = 0 face is wide: the automatic mesh keeps C3D8I.
+    CHECK(r.output.find("  FEM mesh C3D8I, 2 per voxel edge: every section at least 3 voxels "
+                        "across\n") != std::string::npos);
+    CHECK(r.output.find("  FEM mesh error ~") != std::string::npos);
+    CHECK(r.output.find(" (2 vs 4 per edge) on the centre of mass\n") != std::string::npos);
     std::ifstream in(f.path("auto/report.json"));
     const auto j = nlohmann::json::parse(in);
     CHECK(j["experiment_measure"] == "com_displacement");
@@ -135,6 +139,10 @@ TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geomet
     CHECK(j["fem"]["geometry_choice"] == "automatic");
     CHECK(j["engine"]["largest_voxel_rotation_deg"].get<double>() > 10.0);
     CHECK(j["fem_mesh_error"]["elements_per_voxel_edge"] == 4);
+    CHECK(j["fem_mesh_error"]["first_elements_per_voxel_edge"] == 2);
+    CHECK(j["fem"]["mesh_choice"] == "automatic");
+    CHECK(j["fem"]["element"] == "C3D8I");
+    CHECK(j["fem"]["narrowest_section"]["voxels"] == 3);
 
     const auto l = bhm_run("verify " + f.experiment + " --body " + f.body + " --linear --no-mesh-error --out " +
                            f.path("linear"));
@@ -142,6 +150,65 @@ TEST_CASE("bhm verify: the verdict on the experiment's measure, the FEM's geomet
     REQUIRE(l.status == 0);
     CHECK(l.output.find("FEM steps linear (--linear)") != std::string::npos);
     CHECK(l.output.find("FEM mesh error") == std::string::npos);
+}
+
+TEST_CASE("bhm verify: the automatic mesh is printed and reported; --element, --subdivision win") {
+    if (!evo::ccx_available()) {
+        MESSAGE("SKIPPED: CalculiX (ccx) is not installed");
+        WARN(false);
+        return;
+    }
+    // A passive 5x3x3 body whose x = 0 layer keeps only its middle voxel (held): narrow.
+    Fixture f;
+    evo::Body b;
+    b.size = {5, 3, 3};
+    b.cells.assign(static_cast<std::size_t>(b.cell_count()), 1);
+    for (int z = 0; z < 3; ++z)
+        for (int y = 0; y < 3; ++y)
+            if (y != 1 || z != 1) b.cells[static_cast<std::size_t>(b.index(0, y, z))] = 0;
+    const std::string narrow = f.path("narrow.json");
+    evo::save_body(narrow, b);
+    auto report = [&](const std::string& dir) {
+        std::ifstream in(f.path(dir + "/report.json"));
+        return nlohmann::json::parse(in);
+    };
+
+    const auto a = bhm_run("verify " + f.experiment + " --body " + narrow +
+                           " --no-mesh-error --out " + f.path("auto"));
+    INFO(a.output);
+    REQUIRE(a.status == 0);
+    CHECK(a.output.find("  FEM mesh C3D20R, 2 per voxel edge: narrowest section 1 voxel across "
+                        "(the held patch at voxel (0, 1, 1))\n") != std::string::npos);
+    const auto ja = report("auto");
+    CHECK(ja["fem"]["element"] == "C3D20R");
+    CHECK(ja["fem"]["elements_per_voxel_edge"] == 2);
+    CHECK(ja["fem"]["mesh_choice"] == "automatic");
+    CHECK(ja["fem"]["mesh_reason"].get<std::string>().rfind("C3D20R, 2 per voxel edge: ", 0) == 0);
+    CHECK(ja["fem"]["narrowest_section"]["voxels"] == 1);
+    CHECK(ja["fem"]["narrowest_section"]["held"] == true);
+
+    // --subdivision alone: the old default element at that subdivision, said to be the caller's.
+    const auto s = bhm_run("verify " + f.experiment + " --body " + narrow +
+                           " --subdivision 1 --no-mesh-error --out " + f.path("explicit"));
+    INFO(s.output);
+    REQUIRE(s.status == 0);
+    CHECK(s.output.find("  FEM mesh C3D8I, 1 per voxel edge: chosen by the caller") !=
+          std::string::npos);
+    const auto js = report("explicit");
+    CHECK(js["fem"]["element"] == "C3D8I");
+    CHECK(js["fem"]["elements_per_voxel_edge"] == 1);
+    CHECK(js["fem"]["mesh_choice"] == "explicit");
+    CHECK_FALSE(js["fem"].contains("narrowest_section"));
+
+    // --element alone on the wide body: that element at 2 per edge.
+    const auto e = bhm_run("verify " + f.experiment + " --body " + f.body +
+                           " --element C3D20R --linear --no-mesh-error --out " + f.path("element"));
+    INFO(e.output);
+    REQUIRE(e.status == 0);
+    const auto je = report("element");
+    CHECK(je["fem"]["element"] == "C3D20R");
+    CHECK(je["fem"]["elements_per_voxel_edge"] == 2);
+    CHECK(je["fem"]["mesh_choice"] == "explicit");
 }
 
 TEST_CASE("bhm verify RUN_DIR --top 2: each champion's verdict and the rank correlation") {

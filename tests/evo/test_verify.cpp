@@ -170,8 +170,7 @@ TEST_CASE("verify: a body held by a single voxel agrees with the refined continu
         for (int y = 0; y < 3; ++y)
             if (y != 1 || z != 1) s.material[s.cell_index(0, y, z)] = 0;
     evo::VerifyOptions fine;
-    fine.mesh.element = evo::FemElement::C3D20R;
-    fine.mesh.subdivision = 4;
+    fine.mesh = evo::FemMeshOptions{evo::FemElement::C3D20R, 4};
     const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, fine);
     MESSAGE(v.verdict());
     REQUIRE(v.loads.size() == 1);  // no active voxel: rest only

@@ -5,6 +5,8 @@
 
 #include "support/ccx_skip.hpp"
 
+#include <atomic>
+#include <optional>
 #include <string>
 
 #include "evo/verify/ccx_run.hpp"
@@ -86,8 +88,18 @@ TEST_CASE("verify geometry: the FEM's own mesh error from a second mesh, beside 
     const auto s = bilayer(0.5);
     const evo::VerifyOptions options;  // C3D8I, 2 per voxel edge
     const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, options);
-    const auto e = evo::estimate_mesh_error(s, evo::FitnessMeasure::ComMaxYz, v, options);
+    // Only the FEM is solved again: our engine's answer is reused. Its cancel flag raised, a
+    // second engine run would throw VerifyCancelled at its first slice.
+    std::atomic<bool> raised{true};
+    evo::VerifyOptions second = options;
+    second.engine.cancel = &raised;
+    std::optional<evo::MeshErrorEstimate> e;
+    CHECK_NOTHROW(e = evo::estimate_mesh_error(s, v, second));
     REQUIRE(e);
+    CHECK(e->skipped.empty());
+    CHECK(e->first_subdivision == 2);
+    CHECK(evo::describe_mesh_error(*e).rfind("FEM mesh error ~", 0) == 0);
+    CHECK(evo::describe_mesh_error(*e).find("(2 vs 4 per edge)") != std::string::npos);
     MESSAGE(v.verdict() << "; the FEM's centre of mass YZ moves " << 100.0 * e->relative
                         << " % at 4 elements per voxel edge against 2 (ccx " << e->fem_cpu_s
                         << " s CPU)");

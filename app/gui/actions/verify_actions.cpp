@@ -148,7 +148,8 @@ void cancel_verification(Studio& studio) {
 }
 
 std::string fem_verdict_line(const FemVerification& v) {
-    if (!v.compared) return v.verdict;
+    // Verdicts since issue 40 state their tolerance themselves; older kept reports do not.
+    if (!v.compared || v.verdict.find("(tolerance ") != std::string::npos) return v.verdict;
     char tolerance[48];
     std::snprintf(tolerance, sizeof tolerance, " (tolerance %.3g %%)", 100.0 * v.tolerance);
     return v.verdict + tolerance;

@@ -29,11 +29,13 @@ float progress_fraction(const FemVerifyState& st) {
         case evo::VerifyPhase::Meshing:
             return 0.02f;
         case evo::VerifyPhase::Solving:
-            return 0.05f + 0.55f * static_cast<float>(p.load - 1) / n;
+            return 0.05f + 0.45f * static_cast<float>(p.load - 1) / n;
         case evo::VerifyPhase::Engine:
-            return 0.6f + 0.35f * static_cast<float>(p.load - 1) / n;
+            return 0.5f + 0.3f * static_cast<float>(p.load - 1) / n;
         case evo::VerifyPhase::Comparing:
-            return 0.97f;
+            return 0.8f;
+        case evo::VerifyPhase::SecondMesh:  // the mesh error's solve, after the comparison
+            return 0.82f + 0.15f * static_cast<float>(p.load - 1) / n;
     }
     return 0.0f;
 }
@@ -112,9 +114,26 @@ void result_section(Studio& s) {
             "agrees when at most %.0f %% (docs/verify.md)",
             100.0 * v->tolerance);
     if (!v->compared) return;
+    // Beside the verdict: how far the FEM's own answer moves with its mesh (absent in reports
+    // written before the studio estimated it).
+    if (!v->mesh_error.empty()) {
+        ImGui::TextUnformatted(v->mesh_error.c_str());
+        record_widget(s, "fem mesh error");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "the deciding measure of the FEM solved again on a second mesh (twice or half\n"
+                "the elements per voxel edge): a difference between the models well above it\n"
+                "is the models', not the mesh's (docs/verify.md)");
+    }
     ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
                         v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
                         v->dir.c_str());
+    if (!v->mesh_reason.empty()) {  // wrapped: the reason names a voxel and can be long
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("mesh %s", v->mesh_reason.c_str());
+        ImGui::PopStyleColor();
+        record_widget(s, "fem mesh");
+    }
     // Above the table, so that a short tile still shows it.
     if (v->fem_shape.empty()) {
         ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");

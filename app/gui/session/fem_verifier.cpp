@@ -19,7 +19,9 @@
 
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/json_reader.hpp"
+#include "evo/experiment/experiment_io.hpp"
 #include "evo/verify/ccx_run.hpp"
+#include "evo/verify/mesh_error.hpp"
 #include "evo/verify/verify_report.hpp"
 
 namespace bhm::app::gui {
@@ -152,6 +154,16 @@ std::optional<FemVerification> read_verification(const std::string& dir, std::in
         v.fem_cpu_s = r.at("fem").at("cpu_s").get<double>();
         v.fem_nodes = r.at("fem").at("nodes").get<int>();
         v.element = r.at("fem").at("element").get<std::string>();
+        v.mesh_reason = r.at("fem").value("mesh_reason", "");
+        if (r.contains("fem_mesh_error")) {
+            const auto& m = r.at("fem_mesh_error");
+            evo::MeshErrorEstimate e;
+            e.subdivision = m.at("elements_per_voxel_edge").get<int>();
+            e.first_subdivision = m.value("first_elements_per_voxel_edge", 0);
+            e.skipped = m.value("skipped", "");
+            if (e.skipped.empty()) e.relative = m.at("relative_difference").get<double>();
+            v.mesh_error = evo::describe_mesh_error(e);
+        }
         v.engine_cpu_s = r.at("engine").at("cpu_s").get<double>();
         for (const auto& l : r.at("loads")) {
             FemLoadRow row;
@@ -242,6 +254,10 @@ void FemVerifier::work(FemVerifyRequest request, FemVerifyState state) {
         const auto verification =
             evo::verify_body(spec, request.experiment.fitness.measure, options);
         if (cancel_.load()) throw evo::VerifyCancelled();
+        // The FEM's own error from a second mesh (our engine's answer reused): cancellable and
+        // reported like the rest.
+        const auto mesh_error = evo::estimate_mesh_error(spec, verification, options);
+        if (cancel_.load()) throw evo::VerifyCancelled();
         state.step = "writing the report";
         publish();
         const fs::path final_dir = verification_dir(request.run_dir, request.id);
@@ -255,7 +271,11 @@ void FemVerifier::work(FemVerifyRequest request, FemVerifyState state) {
             throw std::runtime_error("cannot create a folder in " +
                                      final_dir.parent_path().string());
         partial = pattern;
-        evo::write_verification(verification, options, partial.string());
+        nlohmann::json report = evo::write_verification(verification, options, partial.string());
+        if (mesh_error) {
+            report["fem_mesh_error"] = evo::mesh_error_json(*mesh_error, verification);
+            evo::write_file_atomically((partial / "report.json").string(), report.dump(2) + "\n");
+        }
         if (cancel_.load()) throw evo::VerifyCancelled();
         move_into_place(partial, final_dir);
         partial.clear();

@@ -1,6 +1,7 @@
 #pragma once
 // "Verify in FEM" (issue 27, docs/verify.md) for the studio: one body checked against CalculiX
-// by evo::verify_body on a worker thread that never touches GL or ImGui. The worker publishes an
+// by evo::verify_body, then the FEM's own mesh error from a second mesh (evo::estimate_mesh_error,
+// as bhm verify does), on a worker thread that never touches GL or ImGui. The worker publishes an
 // immutable FemVerifyState (phase, load i of n, the result or the error) into a LatestSlot at
 // every step; the UI takes the newest one at the start of a frame. The report goes into the run
 // directory as one folder (RUN_DIR/verify/individual-<id>/: report.json, shapes.json and the
@@ -44,6 +45,10 @@ struct FemVerification {
     double fem_cpu_s = 0.0, engine_cpu_s = 0.0;
     int fem_nodes = 0;
     std::string element;
+    std::string mesh_reason;  //!< the mesh and why (automatic, or the caller's); "" in old reports
+    //! The FEM's own mesh error (report.json's fem_mesh_error): "FEM mesh error ~5.2 % (2 vs 4
+    //! per edge)", "FEM mesh error not estimated: ...", or "" where the report has none.
+    std::string mesh_error;
     std::vector<FemLoadRow> rows;
     std::vector<int> voxel_cells;                  //!< lattice cell per voxel of the shapes
     std::vector<engine::VoxelPoses> fem_shape;     //!< per row: the FEM's deformed voxels
