@@ -148,16 +148,24 @@ void loop_checks_line(Studio& s, const EvolutionSnapshot& run) {
         : champion->outcome == evo::LoopCheckOutcome::Agrees  ? "; champion agrees"
         : champion->outcome == evo::LoopCheckOutcome::Differs ? "; champion differs"
                                                               : "; champion not compared";
-    char text[96];
-    std::snprintf(text, sizeof text, "; %zu checked, %d agree", run.loop_checks.size(), agree);
-    ImGui::TextWrapped("%s%s%s", describe_verify_settings(verify).c_str(), text,
-                       of_champion.c_str());
+    // Short, so it fits the panel's width in one or two lines; the whole settings on hover.
+    char text[160];
+    if (verify.enabled())
+        std::snprintf(text, sizeof text, "CalculiX every %d gen, top %d, %s: %zu checked, %d agree",
+                      verify.every_generations, verify.top_k,
+                      evo::kVerifyPolicyNames[static_cast<std::size_t>(verify.policy)],
+                      run.loop_checks.size(), agree);
+    else
+        std::snprintf(text, sizeof text, "CalculiX checks off: %zu checked, %d agree",
+                      run.loop_checks.size(), agree);
+    ImGui::TextWrapped("%s%s", text, of_champion.c_str());
     record_widget(s, "loop checks");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
-            "the best bodies not checked before are solved in CalculiX beside the next\n"
+            "%s\nthe best bodies not checked before are solved in CalculiX beside the next\n"
             "generation's simulations; their badges are in Analysis > Population and\n"
-            "Champions and over the 3D view (docs/verify.md)");
+            "Champions and over the 3D view (docs/verify.md)",
+            describe_verify_settings(verify).c_str());
     if (pending) {
         ImGui::TextColored(ImVec4(0.75f, 0.45f, 0.0f, 1.0f), "sent, from the next generation: %s",
                            describe_verify_settings(*sent).c_str());
