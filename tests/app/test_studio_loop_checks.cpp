@@ -136,16 +136,20 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
     Studio studio;
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
-    HeadlessStudio session(studio, 1024, 800);
-    run_script(session, json::parse(R"([{"click": "Start"},
+    HeadlessStudio session(studio, 1024, 1400);  // tall: the editor's Evolution section opened
+    run_script(session, json::parse(R"([{"click": "header Evolution"}, {"frames": 2},
+                                        {"click": "Start"},
                                         {"wait_generations": 1, "timeout_s": 240},
                                         {"click": "Pause"},
                                         {"wait_run": "paused", "timeout_s": 120},
-                                        {"set": "evolution.verify.every_generations", "value": 1},
+                                        {"frames": 2}])"));
+    CHECK_FALSE(drawn_now(studio, "Apply checks to run"));  // nothing edited yet
+    run_script(session, json::parse(R"([{"set": "evolution.verify.every_generations", "value": 1},
                                         {"set": "evolution.verify.top_k", "value": 1},
                                         {"frames": 2}])"));
     CHECK(verify_differs_from_run(studio));
     CHECK(drawn_now(studio, "edited rules"));
+    CHECK(drawn_now(studio, "Apply checks to run"));
     CHECK(describe_rules_to_send(studio) ==
           "CalculiX checks every 1 generation, top 1, policy flag, tolerance 0.1");
     {
@@ -165,11 +169,15 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
                                         {"set": "evolution.verify.policy", "value": "reject"},
                                         {"apply_rules": true},
                                         {"frames": 2}])"));
+    INFO("status: " << studio.status);
     CHECK_FALSE(studio.status_is_error);
     REQUIRE(studio.evolution.sent_verify());
     CHECK(studio.evolution.sent_verify()->policy == evo::VerifyPolicy::Reject);
     CHECK_FALSE(rules_differ_from_run(studio));
     CHECK_FALSE(drawn_now(studio, "edited rules"));
+    CHECK_FALSE(drawn_now(studio, "Apply checks to run"));
+    // Nothing left to send: the script step says so rather than pass silently.
+    CHECK_THROWS_AS(run_script(session, json::parse(R"([{"apply_rules": true}])")), ScriptError);
     CHECK(drawn_now(studio, "loop checks pending"));
     const int at = studio.evolution.snapshot()->generation;
     CHECK(studio.evolution.snapshot()->experiment.evolution.verify.policy ==
