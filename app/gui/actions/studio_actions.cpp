@@ -266,9 +266,11 @@ bool pause_run(Studio& studio) {
 bool resume_run(Studio& studio) {
     const auto phase = studio.evolution.phase();
     if (phase != RunPhase::Paused && phase != RunPhase::Pausing) return false;
-    if (rules_differ_from_run(studio)) apply_rules_to_run(studio);
+    // A refused change (the status says why) does not hold the run: it goes on under the rules
+    // it has, and the edits wait in the editor.
+    const bool refused = rules_differ_from_run(studio) && !apply_rules_to_run(studio);
     studio.evolution.resume();
-    set_status(studio, "evolution resumed");
+    if (!refused) set_status(studio, "evolution resumed");
     return true;
 }
 
@@ -358,10 +360,42 @@ std::optional<evo::Fitness> run_fitness_rules(const Studio& studio) {
     return snapshot->experiment.fitness;
 }
 
-bool rules_differ_from_run(const Studio& studio) {
+std::optional<evo::LoopVerifySettings> run_verify_settings(const Studio& studio) {
+    if (const evo::LoopVerifySettings* sent = studio.evolution.sent_verify()) return *sent;
+    const auto snapshot = studio.evolution.snapshot();
+    if (!snapshot || !snapshot->loaded) return std::nullopt;
+    return snapshot->experiment.evolution.verify;
+}
+
+namespace {
+
+bool fitness_differs_from_run(const Studio& studio) {
     if (!editing_run_document(studio)) return false;
     const auto rules = run_fitness_rules(studio);
     return rules && !(*rules == studio.document.experiment().fitness);
+}
+
+}  // namespace
+
+bool verify_differs_from_run(const Studio& studio) {
+    if (!editing_run_document(studio)) return false;
+    const auto verify = run_verify_settings(studio);
+    return verify && !(*verify == studio.document.experiment().evolution.verify);
+}
+
+bool rules_differ_from_run(const Studio& studio) {
+    return fitness_differs_from_run(studio) || verify_differs_from_run(studio);
+}
+
+std::string describe_rules_to_send(const Studio& studio) {
+    std::string what;
+    if (fitness_differs_from_run(studio))
+        what = describe_fitness_change(*run_fitness_rules(studio),
+                                       studio.document.experiment().fitness);
+    if (verify_differs_from_run(studio))
+        what += (what.empty() ? "" : "; ") +
+                describe_verify_settings(studio.document.experiment().evolution.verify);
+    return what;
 }
 
 bool apply_rules_to_run(Studio& studio) {
@@ -379,12 +413,33 @@ bool apply_rules_to_run(Studio& studio) {
         return false;
     }
     const auto& doc = studio.document.experiment();
-    if (const auto rules = run_fitness_rules(studio); !rules || *rules == doc.fitness) return false;
-    evo::Experiment rules = snapshot->experiment;
-    rules.fitness = doc.fitness;
-    studio.evolution.change_rules(rules);
-    set_status(studio,
-               "fitness rules changed: the population is re-scored before the next generation");
+    const bool fitness = fitness_differs_from_run(studio);
+    const bool verify = verify_differs_from_run(studio);
+    if (!fitness && !verify) return false;
+    // The checks first: they are the part the run may refuse (CalculiX missing, a setting out of
+    // range), and a refusal then sends nothing, so the edits stay to be fixed and sent again.
+    if (verify) {
+        try {
+            studio.evolution.change_verify(doc.evolution.verify);
+        } catch (const std::exception& e) {
+            set_status(studio, std::string("the run's continuum checks were not changed: ") +
+                                   e.what(),
+                       true);
+            return false;
+        }
+    }
+    if (fitness) {
+        evo::Experiment rules = snapshot->experiment;
+        rules.fitness = doc.fitness;
+        studio.evolution.change_rules(rules);
+    }
+    set_status(studio, fitness && verify ? "fitness rules and CalculiX checks changed: the "
+                                           "population is re-scored before the next generation"
+                       : fitness ? "fitness rules changed: the population is re-scored before "
+                                   "the next generation"
+                                 : "CalculiX checks changed: " +
+                                       describe_verify_settings(doc.evolution.verify) +
+                                       " from the next generation");
     return true;
 }
 

@@ -65,8 +65,11 @@ bool resume_stopped_run(Studio& studio);
 //! with (its run.json) becomes the editor's document and starts from generation 0 in a new
 //! folder, as the CLI's message proposes. Refused while the editor holds unsaved edits.
 bool restart_from_run_info(Studio& studio);
-//! Sends the document's fitness rules (measure, constraints, objectives) to the paused or running
-//! session; the population is re-scored before the next generation and the change is marked.
+//! Sends the document's fitness rules (measure, constraints, objectives) and continuum-check
+//! settings (evolution.verify) to the paused or running session, where they differ from the
+//! run's; the population is re-scored before the next generation and the change is marked. A
+//! refused check setting (CalculiX missing, out of range) sends nothing: false, and the status
+//! says why.
 bool apply_rules_to_run(Studio& studio);
 //! The editor shows the live run's own document (the one it was started from, or the resumed
 //! run's experiment): only then can its rule edits be sent to the run.
@@ -76,9 +79,18 @@ bool editing_run_document(const Studio& studio);
 //! What a live run can take between generations is its fitness rules (measure, constraints,
 //! objectives); boundary changes alter the bodies themselves and need a new run.
 std::optional<evo::Fitness> run_fitness_rules(const Studio& studio);
-//! The run's document is in the editor and its fitness rules differ from the live run's (those
-//! already sent to it count: the message of edits to apply goes as soon as they are sent).
+//! The live run's continuum-check settings as they will be for its next generation: the last
+//! ones sent to it, else those in force; none while no run is loaded.
+std::optional<evo::LoopVerifySettings> run_verify_settings(const Studio& studio);
+//! The run's document is in the editor and its evolution.verify differs from the live run's.
+bool verify_differs_from_run(const Studio& studio);
+//! The run's document is in the editor and its fitness rules or continuum-check settings differ
+//! from the live run's (those already sent to it count: the message of edits to apply goes as
+//! soon as they are sent).
 bool rules_differ_from_run(const Studio& studio);
+//! What Apply would send: "min fill 0.05; CalculiX checks every 2 generations, ..." ("" when
+//! nothing differs).
+std::string describe_rules_to_send(const Studio& studio);
 //! The document's boundary (faces, frame, overrides) differs from the live run's: it applies to
 //! the next run only.
 bool boundary_differs_from_run(const Studio& studio);

@@ -9,6 +9,7 @@
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/session/champion_history.hpp"
+#include "app/gui/widgets/check_badge.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -34,13 +35,17 @@ void champions_tab(Studio& s) {
                         entries.size());
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
-    if (!ImGui::BeginTable("champions", 7, flags, ImGui::GetContentRegionAvail())) return;
+    // CalculiX in the loop: the badge of each champion whose body was checked (the live run's
+    // checks, matched by id; a watched directory's files do not hold them).
+    const bool checks = s.run && !s.run->loop_checks.empty();
+    if (!ImGui::BeginTable("champions", 7 + checks, flags, ImGui::GetContentRegionAvail())) return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("gen");
     ImGui::TableSetupColumn("id");
     ImGui::TableSetupColumn("fitness");
     ImGui::TableSetupColumn("voxels");
     ImGui::TableSetupColumn("flags");
+    if (checks) ImGui::TableSetupColumn("CalculiX");
     ImGui::TableSetupColumn("");
     ImGui::TableSetupColumn("");
     ImGui::TableHeadersRow();
@@ -66,6 +71,11 @@ void champions_tab(Studio& s) {
         ImGui::Text("%d", e.voxels);
         ImGui::TableNextColumn();
         exploit_cell(s, e.exploits, "champion flags gen " + std::to_string(e.generation));
+        if (checks) {
+            ImGui::TableNextColumn();
+            draw_check_badge(s, loop_check_of(*s.run, e.id),
+                             "champion check gen " + std::to_string(e.generation));
+        }
         ImGui::TableNextColumn();
         ImGui::PushID(e.generation);
         if (ImGui::SmallButton("beside")) replay_champion(s, e, true);

@@ -198,8 +198,8 @@ void draw_constraints_panel(Studio& s) {
     if (rules_differ_from_run(s) || boundary_differs_from_run(s)) section_title("Live run");
     if (rules_differ_from_run(s)) {
         ImGui::TextWrapped(
-            "The fitness rules (measure, constraints) differ from the run's. "
-            "Applying them re-scores the population before the next generation "
+            "The fitness rules (measure, constraints) or CalculiX checks differ from the "
+            "run's. Applying them re-scores the population before the next generation "
             "and marks the change in the fitness plot.");
         if (tracked_button(s, "Apply to run")) apply_rules_to_run(s);
     }

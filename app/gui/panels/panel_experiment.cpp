@@ -168,6 +168,15 @@ void evolution_section(Studio& s) {
           "evolution.max_neutral_retries", "evolution.seed", "evolution.threads"})
         experiment_field(s, path);
     fields_under(s, "evolution.cppn.");
+    // CalculiX in the loop (docs/verify.md): unlike the fields above, a live run takes these
+    // between generations, as a rule change, when they are sent.
+    ImGui::TextDisabled("CalculiX in the loop");
+    fields_under(s, "evolution.verify.");
+    if (verify_differs_from_run(s)) {
+        ImGui::TextWrapped("These differ from the live run's: Apply (or Resume) sends them, and "
+                           "they take effect from its next generation.");
+        if (tracked_button(s, "Apply checks to run")) apply_rules_to_run(s);
+    }
 }
 
 }  // namespace

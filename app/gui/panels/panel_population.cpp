@@ -1,6 +1,6 @@
 // The Fitness panel (the plot) and the Population panel: the current population with the Pareto
-// front marked; a click on a row simulates that individual for the 3D view, its "FEM" button
-// verifies it (Analysis > FEM).
+// front marked and, in runs with CalculiX in the loop, each checked body's badge; a click on a
+// row simulates that individual for the 3D view, its "FEM" button verifies it (Analysis > FEM).
 #include <algorithm>
 #include <cstdio>
 
@@ -8,6 +8,7 @@
 
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
+#include "app/gui/widgets/check_badge.hpp"
 #include "app/gui/widgets/fitness_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 
@@ -130,7 +131,10 @@ void draw_population_panel(Studio& s) {
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
     // Novelty search selects on novelty: its members show it beside their fitness.
     const bool novelty = run.experiment.evolution.algorithm == evo::Algorithm::Novelty;
-    if (!ImGui::BeginTable("population", novelty ? 9 : 8, flags, ImGui::GetContentRegionAvail()))
+    // CalculiX in the loop: a column of badges, only in runs that check (or have checked).
+    const bool checks = run.experiment.evolution.verify.enabled() || !run.loop_checks.empty();
+    if (!ImGui::BeginTable("population", 8 + novelty + checks, flags,
+                           ImGui::GetContentRegionAvail()))
         return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("id");
@@ -142,6 +146,7 @@ void draw_population_panel(Studio& s) {
     ImGui::TableSetupColumn("active");
     ImGui::TableSetupColumn(neat ? "species" : "front");
     ImGui::TableSetupColumn("flags");
+    if (checks) ImGui::TableSetupColumn("CalculiX");
     ImGui::TableSetupColumn("");
     ImGui::TableHeadersRow();
     for (const auto& m : run.population) {
@@ -184,6 +189,10 @@ void draw_population_panel(Studio& s) {
             ImGui::TextUnformatted(m.pareto_rank == 0 ? "*" : "");
         ImGui::TableNextColumn();
         exploit_cell(s, m.exploits, std::string("flags ") + id);
+        if (checks) {
+            ImGui::TableNextColumn();
+            draw_check_badge(s, loop_check_of(run, m.id), std::string("check ") + id);
+        }
         ImGui::TableNextColumn();
         ImGui::PushID(id);
         ImGui::BeginDisabled(s.verify.worker.running() || !m.body);

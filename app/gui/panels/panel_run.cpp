@@ -94,12 +94,9 @@ void controls(Studio& s) {
             "do not reach the run.");
     } else if (rules_differ_from_run(s)) {
         // What differs, named: the measure is only one of the rules a user may have edited.
-        const auto rules = run_fitness_rules(s);
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.75f, 0.45f, 0.0f, 1.0f));
-        ImGui::TextWrapped(
-            "Edited rules (%s) will apply %s.",
-            describe_fitness_change(*rules, s.document.experiment().fitness).c_str(),
-            phase == RunPhase::Paused ? "on Resume" : "after Apply (Constraints)");
+        ImGui::TextWrapped("Edited rules (%s) will apply %s.", describe_rules_to_send(s).c_str(),
+                           phase == RunPhase::Paused ? "on Resume" : "after Apply to run");
         ImGui::PopStyleColor();
         record_widget(s, "edited rules");
     }
@@ -130,6 +127,50 @@ void failure(Studio& s, const EvolutionSnapshot& run) {
     }
     failure_message(s, run.message);
     if (!run.run_dir.empty()) ImGui::TextDisabled("folder: %s", run.run_dir.c_str());
+}
+
+// CalculiX in the loop (evolution.verify): the settings in force, how many bodies were checked
+// and how the champion's check came out; settings sent and not yet in force, in orange.
+void loop_checks_line(Studio& s, const EvolutionSnapshot& run) {
+    const auto& verify = run.experiment.evolution.verify;
+    const evo::LoopVerifySettings* sent =
+        s.showing_run_directory ? nullptr : s.evolution.sent_verify();
+    const bool pending = sent && !(*sent == verify) && run_is_live(s.evolution.phase());
+    if (!verify.enabled() && run.loop_checks.empty() && !pending) return;
+    int agree = 0;
+    for (const auto& c : run.loop_checks)
+        agree += c.outcome == evo::LoopCheckOutcome::Agrees;
+    const evo::LoopCheck* champion =
+        run.has_champion ? loop_check_of(run, run.champion.id) : nullptr;
+    const std::string of_champion =
+        !run.has_champion ? ""
+        : !champion       ? "; champion not checked"
+        : champion->outcome == evo::LoopCheckOutcome::Agrees  ? "; champion agrees"
+        : champion->outcome == evo::LoopCheckOutcome::Differs ? "; champion differs"
+                                                              : "; champion not compared";
+    // Short, so it fits the panel's width in one or two lines; the whole settings on hover.
+    char text[160];
+    if (verify.enabled())
+        std::snprintf(text, sizeof text, "CalculiX every %d gen, top %d, %s: %zu checked, %d agree",
+                      verify.every_generations, verify.top_k,
+                      evo::kVerifyPolicyNames[static_cast<std::size_t>(verify.policy)],
+                      run.loop_checks.size(), agree);
+    else
+        std::snprintf(text, sizeof text, "CalculiX checks off: %zu checked, %d agree",
+                      run.loop_checks.size(), agree);
+    ImGui::TextWrapped("%s%s", text, of_champion.c_str());
+    record_widget(s, "loop checks");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "%s\nthe best bodies not checked before are solved in CalculiX beside the next\n"
+            "generation's simulations; their badges are in Analysis > Population and\n"
+            "Champions and over the 3D view (docs/verify.md)",
+            describe_verify_settings(verify).c_str());
+    if (pending) {
+        ImGui::TextColored(ImVec4(0.75f, 0.45f, 0.0f, 1.0f), "sent, from the next generation: %s",
+                           describe_verify_settings(*sent).c_str());
+        record_widget(s, "loop checks pending");
+    }
 }
 
 void status(Studio& s) {
@@ -196,6 +237,7 @@ void status(Studio& s) {
         }
         ImGui::EndTable();
     }
+    loop_checks_line(s, *run);
     if (!s.showing_run_directory && progress.running && run_is_live(phase) &&
         progress.generation >= run->generation) {
         // Per-simulation progress of the generation in progress.

@@ -13,6 +13,7 @@
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/view/renderer.hpp"
 #include "app/gui/view/viewport.hpp"
+#include "app/gui/widgets/check_badge.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "render/colormap.hpp"
 
@@ -140,13 +141,16 @@ class OverlayText {
     ~OverlayText() {
         s_.widgets[name_] = WidgetRect{{from_.x, from_.y}, {right_, at_.y}, s_.frame};
     }
-    void line(ImU32 color, const std::string& text) {
+    //! Returns the line's bottom-right corner (its top-left is at() before the call).
+    ImVec2 line(ImU32 color, const std::string& text) {
         ImFont* font = ImGui::GetFont();
         const float size = ImGui::GetFontSize();
         ImGui::GetWindowDrawList()->AddText(font, size, at_, color, text.c_str(), nullptr, wrap_);
         const ImVec2 extent = font->CalcTextSizeA(size, FLT_MAX, wrap_, text.c_str());
         right_ = std::max(right_, at_.x + extent.x);
+        const ImVec2 corner{at_.x + extent.x, at_.y + extent.y};
         at_.y += extent.y + ImGui::GetStyle().ItemSpacing.y;
+        return corner;
     }
     ImVec2 at() const { return at_; }
 
@@ -293,6 +297,16 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
         if (b.diverged) text(IM_COL32(200, 40, 30, 255), "diverged: " + b.divergence_reason);
         if (const auto* flags = shown_exploits(s); flags && flags->any())
             text(IM_COL32(200, 40, 30, 255), "exploit flags: " + exploit_summary(*flags));
+        // CalculiX in the loop: the shown body's badge, the verdict on hover.
+        if (const evo::LoopCheck* check = s.run ? loop_check_of(*s.run, b.id) : nullptr) {
+            const CheckBadge badge = check_badge(*check);
+            const ImVec2 from = lines.at();
+            const ImVec2 to = lines.line(ImGui::ColorConvertFloat4ToU32(badge.color),
+                                         badge.text + "  (CalculiX in the loop)");
+            s.widgets["view check badge"] =
+                WidgetRect{{from.x, from.y}, {to.x, to.y}, s.frame};
+            if (ImGui::IsMouseHoveringRect(from, to)) ImGui::SetTooltip("%s", badge.tooltip.c_str());
+        }
         if (s.bodies.compared && !s.view.split)
             text(dim, "beside (+y): " + s.bodies.compared->label + ", fitness " +
                           format_fitness(s.bodies.compared->fitness,

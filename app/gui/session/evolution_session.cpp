@@ -61,8 +61,21 @@ std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitne
     return what.empty() ? "rules re-applied" : what;
 }
 
-std::string describe_rule_change(const evo::Experiment& started, const evo::Fitness& initial,
-                                 const std::vector<evo::RuleChange>& changes, std::size_t i) {
+std::string describe_verify_settings(const evo::LoopVerifySettings& v) {
+    if (!v.enabled()) return "CalculiX checks off";
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "CalculiX checks every %d generation%s, top %d, policy %s, tolerance %.3g",
+                  v.every_generations, v.every_generations == 1 ? "" : "s", v.top_k,
+                  evo::kVerifyPolicyNames[static_cast<std::size_t>(v.policy)], v.tolerance);
+    return text;
+}
+
+namespace {
+
+// The fitness and physics part of describe_rule_change.
+std::string describe_rules_part(const evo::Experiment& started, const evo::Fitness& initial,
+                                const std::vector<evo::RuleChange>& changes, std::size_t i) {
     const evo::RuleChange& c = changes[i];
     const evo::Fitness& before = i == 0 ? initial : changes[i - 1].fitness;
     if (!c.physics) return describe_fitness_change(before, c.fitness);
@@ -77,6 +90,31 @@ std::string describe_rule_change(const evo::Experiment& started, const evo::Fitn
     }
     const std::string physics = evo::describe_physics_change(was, *c.physics);
     return before == c.fitness ? physics : describe_fitness_change(before, c.fitness) + "; " + physics;
+}
+
+}  // namespace
+
+std::string describe_rule_change(const evo::Experiment& started, const evo::Fitness& initial,
+                                 const std::vector<evo::RuleChange>& changes, std::size_t i) {
+    const evo::RuleChange& c = changes[i];
+    if (!c.verify) return describe_rules_part(started, initial, changes, i);
+    // A change of the continuum checks alone leaves the fitness as it was: say only what it set.
+    const evo::Fitness& before = i == 0 ? initial : changes[i - 1].fitness;
+    const std::string verify = describe_verify_settings(*c.verify);
+    if (before == c.fitness && !c.physics) return verify;
+    return describe_rules_part(started, initial, changes, i) + "; " + verify;
+}
+
+const evo::LoopCheck* loop_check_of(const EvolutionSnapshot& run, std::int64_t id) {
+    if (run.loop_checks.empty()) return nullptr;
+    const PopulationMember* member = nullptr;
+    if (run.has_champion && run.champion.id == id) member = &run.champion;
+    for (const auto& m : run.population)
+        if (!member && m.id == id) member = &m;
+    // The last check wins, as evo::index_checks has it.
+    for (auto it = run.loop_checks.rbegin(); it != run.loop_checks.rend(); ++it)
+        if (member ? it->hash == member->hash : it->id == id) return &*it;
+    return nullptr;
 }
 
 // Shared with the run thread. The run thread owns `run`; the UI thread only calls its
@@ -140,6 +178,16 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         snap->simulations_per_s = report->simulations_per_s;
         snap->eta_s = report->eta_s;
     }
+    snap->loop_checks = state.loop_checks;
+    const evo::LoopCheckIndex checks = evo::index_checks(snap->loop_checks);
+    // The badge's figures (evo's summary_of leaves them to the generation report).
+    const auto with_check = [&](PopulationMember& p, const evo::Individual& m) {
+        p.hash = m.phenotype.hash;
+        if (const auto it = checks.find(p.hash); it != checks.end()) {
+            p.check = it->second->outcome;
+            p.check_worst = it->second->worst;
+        }
+    };
     const auto species_of = evo::species_of_members(state.neat, state.population.size());
     for (std::size_t k = 0; k < state.population.size(); ++k) {
         const auto& m = state.population[k];
@@ -150,6 +198,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         p.pareto_rank = k < state.pareto_rank.size() ? state.pareto_rank[k] : 0;
         p.novelty = k < state.novelty.size() ? state.novelty[k] : -1.0;
         p.body = std::make_shared<const evo::Body>(m.phenotype.body);
+        with_check(p, m);
         snap->population.push_back(std::move(p));
     }
     std::stable_sort(
@@ -162,6 +211,7 @@ std::shared_ptr<EvolutionSnapshot> snapshot_of(EvolutionSession::Shared& sh, Run
         snap->best_fitness = c.report.fitness;
         PopulationMember& p = snap->champion;
         static_cast<evo::MemberSummary&>(p) = evo::summary_of(c);
+        with_check(p, c);
         // The population's copy when the champion is in it, so the pointer is shared.
         for (const auto& m : snap->population)
             if (m.id == c.id) p.body = m.body;
@@ -258,6 +308,7 @@ void EvolutionSession::launch(std::unique_ptr<evo::EvolutionRun> ready,
     }
     shared_ = shared;
     sent_rules_.reset();
+    sent_verify_.reset();
     phase_ = RunPhase::Running;
     slot_.publish(snapshot_of(*shared, RunPhase::Running, first_message));
     thread_ = std::thread([this, shared, make = std::move(make)] {
@@ -450,6 +501,16 @@ void EvolutionSession::change_physics(const evo::PhysicsRules& physics) {
         shared_->run->request_physics_change(physics);
     else
         shared_->run->change_physics_now(physics);
+}
+
+void EvolutionSession::change_verify(const evo::LoopVerifySettings& settings) {
+    if (!shared_ || !run_is_live(phase_.load())) throw std::runtime_error("no live run");
+    std::lock_guard lock(shared_->mutex);
+    if (!shared_->run) throw std::runtime_error("the run is still loading its checkpoint");
+    // Not restarting the generation in flight: the checks and the policy act between
+    // generations (the checks of this one start with the next), so the change waits for it.
+    shared_->run->request_verify_change(settings);
+    sent_verify_ = settings;
 }
 
 void EvolutionSession::change_rules(const evo::Experiment& experiment) {

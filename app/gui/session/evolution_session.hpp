@@ -52,6 +52,16 @@ class EvolutionSession {
     //! (evo::EvolutionRun::request_physics_change). Throws std::runtime_error when no run is
     //! live or loaded, std::invalid_argument for physics the run cannot take.
     void change_physics(const evo::PhysicsRules& physics);
+    //! New continuum-check settings (evolution.verify: how often, how many, the policy) from the
+    //! next generation on, recorded as a rule change (evo::EvolutionRun::request_verify_change;
+    //! the generation in flight finishes under the old ones). Throws std::runtime_error when no
+    //! run is live or loaded, std::invalid_argument for settings the run refuses (out of range,
+    //! or checks where CalculiX cannot run), before anything is queued.
+    void change_verify(const evo::LoopVerifySettings& settings);
+    //! The settings last sent by change_verify to this run (null before any). UI thread only.
+    const evo::LoopVerifySettings* sent_verify() const {
+        return sent_verify_ ? &*sent_verify_ : nullptr;
+    }
     //! The rules last sent by change_rules to this run (null before any): in force from the next
     //! generation, while the snapshot still shows the old ones. UI thread only.
     const evo::Experiment* sent_rules() const { return sent_rules_ ? &*sent_rules_ : nullptr; }
@@ -82,6 +92,7 @@ class EvolutionSession {
     std::atomic<RunPhase> phase_{RunPhase::Idle};
     std::shared_ptr<Shared> shared_;
     std::optional<evo::Experiment> sent_rules_;
+    std::optional<evo::LoopVerifySettings> sent_verify_;
     std::thread thread_;
 };
 

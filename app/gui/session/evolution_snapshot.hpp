@@ -42,6 +42,9 @@ struct RuleChangeNote {
 //! run directory's champion files have) and the body, shared between snapshots and the views.
 struct PopulationMember : evo::MemberSummary {
     std::shared_ptr<const evo::Body> body;  //!< framed phenotype (what is simulated)
+    //! Its phenotype's hash: what a continuum check in the loop applies to (a twin checked
+    //! under another id counts, as it does for the run's policy).
+    std::uint64_t hash = 0;
 };
 
 struct EvolutionSnapshot {
@@ -71,7 +74,17 @@ struct EvolutionSnapshot {
     bool has_champion = false;
     PopulationMember champion;  //!< best so far under the current rules
     int champion_generation = 0;
+    //! Continuum checks in the loop (evolution.verify; the settings in force are
+    //! experiment.evolution.verify): every check applied so far, in the order they landed. The
+    //! members' check and check_worst are their bodies' (evo::index_checks: a later check of
+    //! the same body wins). Empty for a watched run directory (its files do not hold them).
+    std::vector<evo::LoopCheck> loop_checks;
 };
+
+//! The continuum check that applies to individual `id` of `run`: its body's (by phenotype hash)
+//! where it is the champion or in the population, else the last check made of that id (an
+//! earlier champion that left the population); null when none.
+const evo::LoopCheck* loop_check_of(const EvolutionSnapshot& run, std::int64_t id);
 
 //! How far the generation in progress is, read live every frame (evo::EvolutionRun::progress,
 //! thread-safe): the Run panel's per-simulation progress, elapsed time, simulations/s and ETA
@@ -102,9 +115,12 @@ LiveFigures live_figures(const EvolutionSnapshot& run, const LiveProgress& progr
 //! "measure com_final_3d, min fill 0.2, reject tentacle": what changes from `before` to `after`
 //! ("rules re-applied" when nothing does), for the plots' markers and the Run panel.
 std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitness& after);
+//! "CalculiX checks every 2 generations, top 1, policy penalise, tolerance 0.1" (or "CalculiX
+//! checks off"): the continuum checks' settings, for the Run panel and the plots' markers.
+std::string describe_verify_settings(const evo::LoopVerifySettings& settings);
 //! The note of changes[i] (its fitness change against the one before, or `initial` for the
-//! first; and, where it set physics, what changed in it against the physics in force before:
-//! `started`'s or an earlier change's).
+//! first; where it set physics, what changed in it against the physics in force before:
+//! `started`'s or an earlier change's; where it set the continuum checks, their new settings).
 std::string describe_rule_change(const evo::Experiment& started, const evo::Fitness& initial,
                                  const std::vector<evo::RuleChange>& changes, std::size_t i);
 

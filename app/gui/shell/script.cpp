@@ -1,5 +1,6 @@
 #include "app/gui/shell/script.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "app/gui/view/scene.hpp"
 #include "app/gui/view/viewport.hpp"
 #include "engine/io/text_file.hpp"
+#include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_reader.hpp"
 
@@ -289,6 +291,16 @@ void step_wait_calibration(HeadlessStudio& session, const json& step) {
     if (snap->phase == CalibrationPhase::Failed) throw ScriptError(snap->error);
 }
 
+void step_apply_rules(HeadlessStudio& session, const json&) {
+    Studio& s = session.studio();
+    // What Apply to run does (Constraints, or the checks' own button): the edits the live run
+    // can take between generations. Nothing to send is an error too: the script expected some.
+    if (!rules_differ_from_run(s))
+        throw ScriptError("apply_rules: the editor's rules and checks are the live run's");
+    if (!apply_rules_to_run(s)) throw ScriptError(s.status);
+    session.frame();
+}
+
 void step_wait_verify(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
     // Verify in FEM: until the worker has ended (finished, failed or cancelled).
@@ -435,12 +447,21 @@ void set_experiment_field(Studio& studio, const std::string& path, const json& v
             token += c;
     }
     flush();
+    // A field of the experiment's table may be absent from its JSON (experiment_to_json leaves
+    // out blocks at their defaults, such as evolution.verify): it is added, as the editor would.
+    const auto fields = evo::experiment_fields();
+    const bool in_table = std::any_of(fields.begin(), fields.end(),
+                                      [&](const evo::ExperimentField& f) { return path == f.path; });
+    bool done = false;
     try {
-        json& target = doc.at(json::json_pointer(pointer));
-        target = value;
+        const json::json_pointer at(pointer);
+        if (in_table || doc.contains(at)) {
+            doc[at] = value;
+            done = true;
+        }
     } catch (const json::exception&) {
-        throw ScriptError("set: the experiment has no field '" + path + "'");
     }
+    if (!done) throw ScriptError("set: the experiment has no field '" + path + "'");
     evo::Experiment next;
     try {
         next = evo::parse_experiment(doc, document_label(studio.document));
@@ -530,6 +551,12 @@ const std::vector<ScriptStep>& script_steps() {
          R"({"wait_calibration": true, "timeout_s": 600})",
          "draws frames until the calibration (or the track's simulation) has ended; a "
          "failed one fails the step"},
+        {"apply_rules", step_apply_rules,
+         R"({"apply_rules": true})",
+         "Apply to run: sends the editor's fitness rules and CalculiX checks "
+         "(`evolution.verify`, e.g. after `{\"set\": \"evolution.verify.policy\", "
+         "\"value\": \"reject\"}`) to the live run, from its next generation; fails when "
+         "nothing differs or the run refuses them (the status's message)"},
         {"wait_verify", step_wait_verify,
          R"({"wait_verify": true, "timeout_s": 120})",
          "draws frames until Verify in FEM has ended (finished, failed or cancelled)"},
