@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "engine/io/text_file.hpp"
 
@@ -120,7 +121,10 @@ MeasuredTrack parse_measured_track(const std::string& text, const std::string& l
     MeasuredTrack track;
     track.source = label;
     Directives d;
-    std::istringstream in(text);
+    // Spreadsheets save "CSV UTF-8" with a byte order mark before the first line: it is not part
+    // of the header (or comment) it precedes.
+    constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+    std::istringstream in(text.starts_with(kUtf8Bom) ? text.substr(kUtf8Bom.size()) : text);
     std::string line;
     int line_no = 0;
     bool have_header = false;
@@ -129,6 +133,13 @@ MeasuredTrack parse_measured_track(const std::string& text, const std::string& l
     while (std::getline(in, line)) {
         ++line_no;
         const std::string where = label + ": line " + std::to_string(line_no);
+        // Refused before any of the line is quoted in a message: what() ends at a NUL, so an
+        // error quoting a cell with one lost its own end (issue 41 R8). A UTF-16 file has one in
+        // every character.
+        if (const auto nul = line.find('\0'); nul != std::string::npos)
+            throw std::runtime_error(where + ": a NUL byte at character " +
+                                     std::to_string(nul + 1) +
+                                     " (a track is text: save a UTF-16 file as CSV UTF-8)");
         const std::string t = trim(line);
         if (t.empty()) continue;
         if (t[0] == '#') {

@@ -98,3 +98,33 @@ TEST_CASE("a track file that cannot be read is one line naming it, and a folder 
     const std::string folder = std::string(BHM_SOURCE_DIR) + "/tests/data";
     CHECK(error_of(folder) == folder + ": is a directory, not a file");
 }
+
+TEST_CASE("a track saved as CSV UTF-8 with a byte order mark reads as the same track without") {
+    const std::string text = "# units: m\nt_s,tip.x\n0,0\n0.1,0.001\n0.2,0.002\n";
+    const auto plain = parse_measured_track(text, "t.csv");
+    const auto marked = parse_measured_track("\xEF\xBB\xBF" + text, "t.csv");
+    CHECK(marked.t_s == plain.t_s);
+    CHECK(marked.points[0].position_m == plain.points[0].position_m);
+    // And where the header itself is the first line.
+    CHECK(parse_measured_track("\xEF\xBB\xBFt_s,tip.x\n0,0\n0.1,0\n0.2,0\n", "t.csv").t_s.size() ==
+          3);
+    // Only at the start: elsewhere it is a bad cell like any other.
+    CHECK(error_of("t_s,tip.x\n0,0\n\xEF\xBB\xBF" "0.1,0\n0.2,0\n") ==
+          "t.csv: row 2 (line 3): '\xEF\xBB\xBF" "0.1' is not a number");
+}
+
+TEST_CASE("a NUL byte in a track is an error that names the file and the line, whole") {
+    using namespace std::string_literals;
+    const std::string nul_cell = "t_s,tip.x\n0,0\n0.1,0\0x\n0.2,0\n"s;
+    CHECK(error_of(nul_cell) ==
+          "t.csv: line 3: a NUL byte at character 6 (a track is text: save a UTF-16 file as CSV "
+          "UTF-8)");
+    // In the header's column names and in a directive's value, where it used to be quoted.
+    CHECK(error_of("t_s,tip\0.x\n0,0\n0.1,0\n0.2,0\n"s).starts_with("t.csv: line 1: a NUL byte"));
+    CHECK(error_of("# time_offset_s: 1\0\nt_s,tip.x\n0,0\n0.1,0\n0.2,0\n"s)
+              .ends_with("save a UTF-16 file as CSV UTF-8)"));
+    // A spreadsheet's "Unicode text": UTF-16 LE with its byte order mark.
+    std::string utf16 = "\xFF\xFE"s;
+    for (char c : "t_s,tip.x\n0,0\n"s) utf16 += std::string{c, '\0'};
+    CHECK(error_of(utf16).starts_with("t.csv: line 1: a NUL byte at character 4 "));
+}
