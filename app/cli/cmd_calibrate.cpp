@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -15,11 +16,13 @@
 #include "app/cli/commands.hpp"
 #include "app/cli/evolve_cluster.hpp"
 #include "app/cli/problem_report.hpp"
+#include "app/cli/simulation_limits.hpp"
 #include "app/cli/track_plot.hpp"
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/calibrate/fit_parameters.hpp"
 #include "evo/calibrate/measured_track.hpp"
 #include "evo/calibrate/track_simulation.hpp"
+#include "evo/evaluate/simulate.hpp"
 #include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -127,6 +130,23 @@ nlohmann::json report_json(const evo::CalibrationResult& r, const std::string& e
             {"wall_s", r.wall_s}};
 }
 
+// Every simulation of the calibration runs from 0 to the track's end: refused up front by the
+// rule bhm simulate obeys (app/cli/simulation_limits.hpp), where a track at time_offset_s 1e6 ran
+// for hours with no output (issue 41 R1). Checked at the experiment's own parameters, which the
+// before simulation runs: a trial of the fit scales E and density by at most 5 each way
+// (fit_parameters.cpp), so its step, sqrt(density / E), is at most 5 times shorter.
+void refuse_track_over_budget(const evo::Experiment& experiment, const evo::Body& framed,
+                              const std::string& body_path, const evo::MeasuredTrack& track) {
+    std::shared_ptr<const engine::Model> model;
+    try {
+        model = evo::model_of(experiment, framed);
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(body_path + ": cannot simulate: " + e.what());
+    }
+    if (const std::string why = track_budget_problem(*model, experiment, track); !why.empty())
+        throw std::runtime_error(why);
+}
+
 //! Set by cmd_calibrate for the command's duration: the MPI ranks when started by mpirun.
 EvolveCluster* g_cluster = nullptr;
 
@@ -154,6 +174,11 @@ int calibrate(ArgParser& args) {
     }
     const evo::MeasuredTrack track = evo::load_measured_track(track_path);
     const evo::Body framed = evo::apply_frame_and_overrides(experiment, body);
+    // Said before anything runs: a track in milliseconds started simulations 1000 times the
+    // experiment's length without a word (issue 41 R1).
+    const std::string span_warning = evo::track_span_warning(track, experiment);
+    if (!span_warning.empty()) std::cerr << "warning: " << span_warning << "\n";
+    refuse_track_over_budget(experiment, framed, body_path, track);
     if (simulate_only) {
         const auto sim = evo::simulate_track(evo::FitPoint{experiment, 0.0}, framed, track);
         create_output_dir(out_dir);
@@ -214,6 +239,7 @@ int calibrate(ArgParser& args) {
     evo::write_file_atomically(out_dir + "/simulated-after.csv",
                                simulated_csv(track, r.after, "Simulated after calibration"));
     auto report = report_json(r, experiment_path, body_path, track_path, options.threads);
+    if (!span_warning.empty()) report["warnings"].push_back(span_warning);
     if (track_plot_available()) {
         write_track_plot(out_dir + "/tracks.png", track, r.before, r.after);
         report["plot"] = "tracks.png";
@@ -229,7 +255,8 @@ int calibrate(ArgParser& args) {
     std::cout << "misfit " << r.misfit_before_m << " m -> " << r.misfit_after_m << " m (track motion "
               << r.motion_rms_m << " m), " << r.optimiser_simulations + r.jacobian_simulations + 2
               << " simulations, " << r.wall_s << " s\n";
-    for (const auto& w : report["warnings"]) std::cerr << "warning: " << w.get<std::string>() << "\n";
+    for (const auto& w : report["warnings"])
+        if (w != span_warning) std::cerr << "warning: " << w.get<std::string>() << "\n";  // said up front
     std::cout << "wrote " << out_dir << "/report.json\n";
     return 0;
 }

@@ -211,6 +211,7 @@ MeasuredTrack parse_measured_track(const std::string& text, const std::string& l
         }
     }
     if (!have_header) throw std::runtime_error(label + ": no header line (t_s,POINT.x,...)");
+    track.time_offset_s = d.time_offset_s;
     if (track.t_s.size() < kMinRows)
         throw std::runtime_error(label + ": row " + std::to_string(track.t_s.size()) +
                                  ": too short, a track needs at least " +

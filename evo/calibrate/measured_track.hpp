@@ -24,6 +24,9 @@ struct MeasuredTrack {
     std::vector<double> t_s;  //!< simulation time of each row (file time + time_offset_s), increasing
     std::vector<TrackPoint> points;
     std::string source;  //!< the file it was read from (for messages)
+    //! The header's time_offset_s, already in t_s: for messages that name the field that set the
+    //! track's span (track_wire does not carry it).
+    double time_offset_s = 0.0;
     std::size_t compared_values() const;  //!< rows x present axes over every point
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -94,6 +95,30 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
     sim.divergence_reason = world.divergence_reason();
     sim.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return sim;
+}
+
+const char* track_end_field(const MeasuredTrack& track) {
+    if (track.t_s.empty()) return "t_s";
+    // The offset set the end where it is more of it than the file's own last time.
+    const double file_end_s = track.t_s.back() - track.time_offset_s;
+    return std::abs(track.time_offset_s) > std::abs(file_end_s) ? "time_offset_s" : "t_s";
+}
+
+std::string track_span_warning(const MeasuredTrack& track, const Experiment& experiment) {
+    const double experiment_s = evaluation_seconds(experiment);
+    if (track.t_s.empty() || !(experiment_s > 0.0)) return {};
+    const double end_s = track.t_s.back();
+    const double ratio = end_s / experiment_s;
+    if (ratio <= kTrackSpanWarningFactor && ratio >= 1.0 / kTrackSpanWarningFactor) return {};
+    const std::string field = track_end_field(track);
+    char numbers[160];
+    std::snprintf(numbers, sizeof numbers,
+                  "the track ends at %.4g s, %.4g times the experiment's settle_s + evaluate_s "
+                  "(%.4g s)",
+                  end_s, ratio, experiment_s);
+    return track.source + ": " + field + ": " + numbers +
+           ", and every simulation of the calibration runs to its end: is " + field +
+           " in seconds?";
 }
 
 std::vector<double> track_residuals(const MeasuredTrack& track, const SimulatedTrack& sim) {

@@ -30,6 +30,21 @@ SimulatedTrack simulate_track(const FitPoint& point, const Body& framed_body,
                               const MeasuredTrack& track,
                               const std::atomic<bool>* cancel = nullptr);
 
+//! How far a track's end may lie from the experiment's settle_s + evaluate_s, either way, before
+//! track_span_warning speaks: 10 catches a t_s in milliseconds (1000 times) or minutes (1/60)
+//! and leaves a track of a few periods of a longer experiment alone.
+inline constexpr double kTrackSpanWarningFactor = 10.0;
+
+//! One line naming the track's file and the field that set its end (t_s, or time_offset_s where
+//! the offset is most of it) when the track ends more than kTrackSpanWarningFactor times after or
+//! before the experiment's settle_s + evaluate_s; empty otherwise. Every simulation of a fit runs
+//! from 0 to the track's end, so a track in the wrong unit costs 1000 times the time, or fits a
+//! fraction of a period (issue 41 R1).
+std::string track_span_warning(const MeasuredTrack& track, const Experiment& experiment);
+//! The field of the track's file that set its end, for messages: "time_offset_s" where the header's
+//! offset is more of it than the last row's own time, else "t_s".
+const char* track_end_field(const MeasuredTrack& track);
+
 //! The residuals, simulated minus measured position less their mean difference (per point and
 //! axis: the tracker's origin, fitted), over every row and present axis (metres); a diverged
 //! simulation gives an empty vector. Every row's tracking error counts alike: taken from the

@@ -126,3 +126,74 @@ TEST_CASE("bhm calibrate refuses a bad track with the row and a bad --fit as a u
     CHECK(no_track.exit_code == 2);
     CHECK(no_track.err.find("missing --track") != std::string::npos);
 }
+
+TEST_CASE("bhm calibrate refuses a track beyond bhm simulate's budget up front, naming file and field") {
+    const fs::path dir = fresh_dir("budget");
+    write_files(dir, 14.47);
+    const std::string track = (dir / "offset.csv").string();
+    std::ofstream(track) << "# time_offset_s: 1e6\nt_s,tip.x,tip.z\n0,0,0\n0.1,0,0\n0.2,0,0\n";
+    for (const std::string mode : {"--fit", "--simulate-only"}) {
+        CAPTURE(mode);
+        std::vector<std::string> args = {(dir / "experiment.json").string(), "--body",
+                                         (dir / "body.json").string(), "--track", track, mode};
+        if (mode == "--fit") args.push_back("amplitude");
+        args.insert(args.end(), {"--out", (dir / "out").string()});
+        // Before: each simulation of 1e6 s ran for hours with no output.
+        const auto run = run_calibrate(args);
+        CHECK(run.exit_code == 1);
+        // One line for the error, with bhm simulate's estimate; beside it the span's warning.
+        std::istringstream lines(run.err);
+        std::string line, error;
+        int errors = 0;
+        while (std::getline(lines, line)) {
+            if (!line.starts_with("bhm calibrate: ")) continue;
+            error = line;
+            ++errors;
+        }
+        CHECK(errors == 1);
+        CHECK(error.starts_with("bhm calibrate: " + track +
+                                ": time_offset_s: cannot simulate 1000000.2 s: needs "));
+        CHECK(error.find(" h per simulation of 8 voxels (the budget is ") != std::string::npos);
+        CHECK(run.err.find("warning: " + track + ": time_offset_s: the track ends at 1e+06 s") !=
+              std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "out"));
+    }
+}
+
+TEST_CASE("bhm calibrate warns once when a track ends far from the experiment's time") {
+    const fs::path dir = fresh_dir("span");
+    write_files(dir, 14.47);  // settle_s + evaluate_s = 0.2 s
+    auto args = [&](const std::string& track, std::vector<std::string> more) {
+        std::vector<std::string> a = {(dir / "experiment.json").string(), "--body",
+                                      (dir / "body.json").string(), "--track",
+                                      (dir / track).string(), "--out", (dir / "out").string()};
+        a.insert(a.end(), more.begin(), more.end());
+        return a;
+    };
+    auto count = [](const std::string& text, const std::string& part) {
+        int n = 0;
+        for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+        return n;
+    };
+    // t_s in milliseconds, within the budget: it runs, 100 times the experiment, said first.
+    std::ofstream(dir / "ms.csv") << "t_s,tip.x,tip.z\n0,0,0\n10,0,0\n20,0,0\n";
+    const auto ms = run_calibrate(args("ms.csv", {"--simulate-only"}));
+    CHECK(ms.exit_code == 0);
+    CHECK(ms.err.starts_with("warning: " + (dir / "ms.csv").string() +
+                             ": t_s: the track ends at 20 s, 100 times the experiment's settle_s + "
+                             "evaluate_s (0.2 s), and every simulation of the calibration runs to "
+                             "its end: is t_s in seconds?\n"));
+    // A fit of a track far too short keeps the warning in report.json, and says it once.
+    std::ofstream(dir / "short.csv") << "t_s,tip.x,tip.z\n0,0,0\n0.005,0,0\n0.01,0,0\n0.015,0,0\n";
+    const auto fit =
+        run_calibrate(args("short.csv", {"--fit", "amplitude", "--max-simulations", "1"}));
+    REQUIRE_MESSAGE(fit.exit_code == 0, fit.err);
+    CHECK(count(fit.err, "the track ends at 0.015 s, 0.075 times") == 1);
+    std::ifstream in(dir / "out" / "report.json");
+    const auto report = nlohmann::json::parse(in);
+    CHECK(count(report["warnings"].dump(), "the track ends at 0.015 s, 0.075 times") == 1);
+    // A track of the experiment's own length: no word.
+    const auto plain = run_calibrate(args("times.csv", {"--simulate-only"}));
+    CHECK(plain.exit_code == 0);
+    CHECK(plain.err.find("the track ends at") == std::string::npos);
+}

@@ -218,3 +218,27 @@ TEST_CASE("parameter names and points the body lacks are refused with one-line e
     CHECK_THROWS_WITH(simulate_track(FitPoint{e, 0.0}, body, track),
                       "t.csv: point 'voxel:99': that lattice cell holds no voxel in the body");
 }
+
+TEST_CASE("a track that ends far after or before the experiment's time is warned about by field") {
+    const Experiment e = calibration_experiment();  // settle_s + evaluate_s = 0.3 s
+    auto warning_of = [&](const std::string& text) {
+        return track_span_warning(parse_measured_track(text, "t.csv"), e);
+    };
+    // t_s in milliseconds: every simulation of the fit would run 1000 times the experiment.
+    CHECK(warning_of("t_s,tip.x\n0,0\n150,0\n300,0\n") ==
+          "t.csv: t_s: the track ends at 300 s, 1000 times the experiment's settle_s + "
+          "evaluate_s (0.3 s), and every simulation of the calibration runs to its end: is t_s "
+          "in seconds?");
+    // An offset that is most of the end is the field named.
+    CHECK(warning_of("# time_offset_s: 1e6\nt_s,tip.x\n0,0\n0.1,0\n0.2,0\n") ==
+          "t.csv: time_offset_s: the track ends at 1e+06 s, 3.333e+06 times the experiment's "
+          "settle_s + evaluate_s (0.3 s), and every simulation of the calibration runs to its "
+          "end: is time_offset_s in seconds?");
+    // In minutes: far too short.
+    CHECK(warning_of("t_s,tip.x\n0,0\n0.0025,0\n0.005,0\n")
+              .starts_with("t.csv: t_s: the track ends at 0.005 s, 0.01667 times"));
+    // Within 10 times either way, a track of a few periods or a longer film, nothing.
+    CHECK(warning_of("t_s,tip.x\n0,0\n0.1,0\n0.3,0\n").empty());
+    CHECK(warning_of("t_s,tip.x\n0,0\n1,0\n3,0\n").empty());
+    CHECK(warning_of("# time_offset_s: 0.02\nt_s,tip.x\n0,0\n0.01,0\n0.02,0\n").empty());
+}
