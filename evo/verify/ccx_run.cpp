@@ -5,14 +5,16 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -74,12 +76,20 @@ double children_cpu_s() {
            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
+// What ccx has written so far: "" while the file does not exist yet (the .sta early in a run).
+std::string read_text(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return "";
+    return engine::read_text(path.string(), engine::kLargeFileCap);
+}
+
 // The solver's first *ERROR line, else its last line: one line for the message.
 std::string first_error(const fs::path& log) {
-    std::ifstream in(log);
+    std::istringstream in(read_text(log));
     std::string line, last = "ccx printed nothing";
     while (std::getline(in, line)) {
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
+            line.pop_back();
         const auto start = line.find_first_not_of(' ');
         if (start == std::string::npos) continue;
         if (line.find("*ERROR") != std::string::npos) return line.substr(start);
@@ -88,23 +98,86 @@ std::string first_error(const fs::path& log) {
     return last;
 }
 
-// What ccx has written so far: "" while the file does not exist yet (the .sta early in a run).
-std::string read_text(const fs::path& path) {
+constexpr const char* kFolderPrefix = "bhm-ccx-";
+
+// The owner's pid in a solve folder's name ("bhm-ccx-1234-AbC123"); -1 for the older name
+// without one ("bhm-ccx-AbC123": mkdtemp's letters never hold a '-').
+long folder_owner(const std::string& name) {
+    const std::string rest = name.substr(std::string(kFolderPrefix).size());
+    const auto dash = rest.find('-');
+    if (dash == std::string::npos || dash == 0 || dash > 9) return -1;
+    const std::string pid = rest.substr(0, dash);
+    if (pid.find_first_not_of("0123456789") != std::string::npos) return -1;
+    return std::stol(pid);
+}
+
+bool process_gone(long pid) {
+    return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+// Seconds since anything in the folder last changed: the folder itself or any file directly in
+// it (a long solve keeps rewriting its .sta and .dat without touching the folder).
+double untouched_s(const fs::path& dir) {
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return "";
-    return engine::read_text(path.string(), engine::kLargeFileCap);
+    auto newest = fs::last_write_time(dir, ec);
+    if (ec) return 0.0;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        std::error_code time_ec;
+        const auto t = fs::last_write_time(it->path(), time_ec);
+        if (!time_ec && t > newest) newest = t;
+    }
+    return std::chrono::duration<double>(fs::file_time_type::clock::now() - newest).count();
 }
 
 }  // namespace
 
+int sweep_stale_ccx_folders(const std::string& parent) {
+    if (parent.empty()) return 0;
+    std::error_code ec;
+    fs::directory_iterator it(parent, ec);
+    if (ec) return 0;
+    const long me = static_cast<long>(::getpid());
+    int removed = 0;
+    for (const fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
+        const fs::path path = it->path();
+        const std::string name = path.filename().string();
+        if (name.rfind(kFolderPrefix, 0) != 0 || name.size() == std::string(kFolderPrefix).size())
+            continue;
+        // lstat: a real folder of ours, not a link, not another user's (/tmp is shared).
+        struct stat info {};
+        if (::lstat(path.c_str(), &info) != 0 || !S_ISDIR(info.st_mode) ||
+            info.st_uid != ::geteuid())
+            continue;
+        const long owner = folder_owner(name);
+        if (owner == me) continue;
+        const bool orphan = owner > 0 && process_gone(owner);
+        if (!orphan && untouched_s(path) <= kStaleCcxFolderAge_s) continue;
+        std::error_code remove_ec;
+        fs::remove_all(path, remove_ec);
+        if (!remove_ec) ++removed;
+    }
+    return removed;
+}
+
 CcxResult run_ccx(const std::string& name, const std::string& deck, int threads,
                   const std::string& keep_dir, const CcxWatch& watch) {
     if (!ccx_available())
-        throw std::runtime_error("ccx (CalculiX) is not on the PATH; install the Debian package "
-                                 "calculix-ccx");
+        throw std::runtime_error(
+            "ccx (CalculiX) is not on the PATH; install the Debian package "
+            "calculix-ccx");
     fs::path dir;
     if (keep_dir.empty()) {
-        std::string pattern = (fs::temp_directory_path() / "bhm-ccx-XXXXXX").string();
+        // Once per process, before its first folder: what solves of killed processes left.
+        static std::once_flag swept;
+        std::call_once(swept, [] {
+            std::error_code ec;
+            const fs::path temp = fs::temp_directory_path(ec);
+            if (!ec) sweep_stale_ccx_folders(temp.string());
+        });
+        // The pid in the name: a later process removes it once this one is gone.
+        std::string pattern =
+            (fs::temp_directory_path() / (kFolderPrefix + std::to_string(::getpid()) + "-XXXXXX"))
+                .string();
         if (::mkdtemp(pattern.data()) == nullptr)
             throw std::runtime_error("cannot create a temporary folder for ccx in " +
                                      fs::temp_directory_path().string());
@@ -142,9 +215,16 @@ CcxResult run_ccx(const std::string& name, const std::string& deck, int threads,
     const std::string dir_text = dir.string();
     const auto start = std::chrono::steady_clock::now();
     const double cpu_before = children_cpu_s();
+    const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
     if (pid < 0) throw std::runtime_error("cannot start ccx: fork failed");
     if (pid == 0) {
+        // Dies with us: a kill -9 of bhm left ccx solving for a minute (issue 41 R4). The signal
+        // comes when the thread that forked ends, and that thread waits below until ccx has;
+        // it survives the exec. Had the parent already died before prctl, we have been handed
+        // to another parent and would never get it: leave at once.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(125);
         ::setpgid(0, 0);  // its own group: a cancel kills whatever it started too
         if (::chdir(dir_text.c_str()) != 0) ::_exit(126);
         const int log_fd = ::open("ccx.log", O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -184,12 +264,11 @@ CcxResult run_ccx(const std::string& name, const std::string& deck, int threads,
         throw std::runtime_error("ccx (CalculiX) could not be started in " + dir_text);
     CcxResult result;
     result.cpu_s = children_cpu_s() - cpu_before;
-    result.wall_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::string where = keep_dir.empty() ? "" : " (see " + (dir / "ccx.log").string() + ")";
     if (rc != 0)
-        throw std::runtime_error("ccx failed to solve " + name + ": " + first_error(dir / "ccx.log") +
-                                 where);
+        throw std::runtime_error("ccx failed to solve " + name + ": " +
+                                 first_error(dir / "ccx.log") + where);
     const std::string log = read_text(dir / "ccx.log");
     if (log.find("*ERROR") != std::string::npos)
         throw std::runtime_error("ccx failed to solve " + name + ": " +

@@ -32,12 +32,26 @@ struct CcxWatch {
 };
 
 //! Solves `deck` (named `name` in the log) with `threads` solver threads, ccx a child process
-//! in its own process group. Throws std::runtime_error with one line: ccx missing, a failed solve
-//! (with the solver's first *ERROR line), or no displacements printed; VerifyCancelled when
-//! cancelled. The temporary folder is removed unless `keep_dir` is set (then the deck, .dat and
-//! log stay there and the message names it).
+//! in its own process group that dies with the thread that started it (PR_SET_PDEATHSIG), so a
+//! kill -9 of bhm leaves no solver running. Throws std::runtime_error with one line: ccx missing,
+//! a failed solve (with the solver's first *ERROR line), or no displacements printed;
+//! VerifyCancelled when cancelled. The temporary folder (`bhm-ccx-<pid>-XXXXXX` in the temporary
+//! directory) is removed unless `keep_dir` is set (then the deck, .dat and log stay there and the
+//! message names it); the first solve of a process sweeps those that killed processes left
+//! (sweep_stale_ccx_folders).
 CcxResult run_ccx(const std::string& name, const std::string& deck, int threads = 1,
                   const std::string& keep_dir = "", const CcxWatch& watch = {});
+
+//! A solve's temporary folder this long untouched (the folder and every file in it) is stale
+//! whoever made it: ccx rewrites its .sta every increment, and our solves take minutes. Also the
+//! only test for the older name without a pid and for an owner pid taken by another process.
+inline constexpr double kStaleCcxFolderAge_s = 6 * 3600.0;
+
+//! Removes from `parent` the temporary folders of solves that died with their process (a kill -9
+//! of bhm: issue 41 R4): `bhm-ccx-<pid>-XXXXXX` whose process is gone, and any `bhm-ccx-*`
+//! folder (also the older `bhm-ccx-XXXXXX`) untouched for kStaleCcxFolderAge_s. Only folders of
+//! this user, never this process's own, never through a link. Returns how many it removed.
+int sweep_stale_ccx_folders(const std::string& parent);
 
 //! Load steps completed according to the text of a ccx .sta file (a step counts once its step
 //! time reaches 1; exposed for tests).

@@ -14,11 +14,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -616,4 +619,54 @@ TEST_CASE("studio verify: a damaged kept report is one readable line, not the JS
         CHECK(message.find("[json.exception") == std::string::npos);
         CHECK(message.find('\n') == std::string::npos);
     }
+}
+
+namespace {
+
+// The message read_verification gives for a folder whose `fifo` is a named pipe, read on a thread:
+// a reader that opens the pipe as a file blocks until a writer comes (the studio froze, issue 41
+// R3), so after a generous wait (a loaded machine) the test plays the writer itself and fails
+// instead of hanging.
+std::string refusal_of_fifo(const fs::path& folder, const fs::path& fifo) {
+    std::promise<std::string> answer;
+    auto message = answer.get_future();
+    std::thread reader([&] {
+        try {
+            read_verification(folder.string(), 7);
+            answer.set_value("(read without an error)");
+        } catch (const std::exception& e) {
+            answer.set_value(e.what());
+        }
+    });
+    const bool prompt = message.wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+    while (message.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+        const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);  // wakes a blocked open
+        if (fd >= 0) ::close(fd);
+    }
+    reader.join();
+    CHECK_MESSAGE(prompt, fifo.string() << " was waited on, not refused");
+    return message.get();
+}
+
+}  // namespace
+
+TEST_CASE(
+    "studio verify: a FIFO named report.json or shapes.json is refused at once, not waited on") {
+    const auto dir = testing::fresh_dir("verify-fifo");
+    const fs::path kept = fs::path(BHM_SOURCE_DIR) / "tests" / "data" / "verify" / "individual-7";
+    int id = 0;
+    for (const char* name : {"report.json", "shapes.json"}) {
+        const fs::path folder = dir / "verify" / ("individual-" + std::to_string(++id));
+        fs::create_directories(folder);
+        for (const char* file : {"report.json", "shapes.json"})
+            if (std::string(file) != name) fs::copy_file(kept / file, folder / file);
+        REQUIRE(::mkfifo((folder / name).c_str(), 0644) == 0);
+        const std::string message = refusal_of_fifo(folder, folder / name);
+        INFO(std::string(name) << ": " << message);
+        CHECK(message.rfind((folder / name).string() + ": ", 0) == 0);  // names the file
+        CHECK(message.find("not a regular file") != std::string::npos);
+        CHECK(message.find('\n') == std::string::npos);
+    }
+    // A FIFO report is not listed as a kept one (a FIFO shapes.json is, and refused when read).
+    CHECK(kept_verifications(dir.string()) == std::vector<std::int64_t>{2});
 }

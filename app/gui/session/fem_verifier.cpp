@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -17,9 +16,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/text_file.hpp"
 #include "evo/experiment/body_spec_of.hpp"
-#include "evo/experiment/json_reader.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/mesh_error.hpp"
 #include "evo/verify/verify_report.hpp"
@@ -31,11 +31,14 @@ using nlohmann::json;
 
 namespace {
 
+// Through the capped reader (engine/io/text_file.hpp), like every reader of a run directory: a
+// FIFO named report.json would block an std::ifstream's open until a writer came, freezing the
+// studio (issue 41 R3); a device or folder would stream or fail with a library's text. Each is
+// refused at once as "PATH: reason".
 json read_json(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path.string() + ": cannot be read");
+    const std::string text = engine::read_text(path.string(), engine::kTextFileCap);
     try {
-        return json::parse(in);
+        return json::parse(text);
     } catch (const json::exception& e) {
         throw std::runtime_error(path.string() + ": " + evo::without_json_tags(e.what()));
     }

@@ -58,7 +58,8 @@ struct FemVerification {
 //! The folder of individual `id`'s verification in a run directory.
 std::string verification_dir(const std::string& run_dir, std::int64_t id);
 //! Reads a verification folder; nullopt when it holds no report.json. Throws std::runtime_error
-//! naming the file when one is unreadable.
+//! naming the file when one is unreadable, damaged or not a regular file (a FIFO, device or folder
+//! named report.json or shapes.json is refused at once, never waited on).
 std::optional<FemVerification> read_verification(const std::string& dir, std::int64_t id);
 //! The ids of the reports kept in RUN_DIR/verify/ (folders individual-<id> holding a
 //! report.json), ascending: a population member's is listed too, although a reopened run
