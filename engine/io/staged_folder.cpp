@@ -197,4 +197,37 @@ void StagedFolder::commit() {
     sync_folder(folder.parent_path());
 }
 
+StagedFiles::~StagedFiles() {
+    if (committed_) return;
+    for (const auto& [path, staged] : files_) ::unlink(staged.c_str());
+}
+
+std::string StagedFiles::stage(const std::string& path) {
+    files_.emplace_back(path, path + ".staged");
+    return files_.back().second;
+}
+
+void StagedFiles::commit() {
+    if (committed_) throw std::logic_error("staged files committed twice");
+    committed_ = true;
+    for (std::size_t i = 0; i < files_.size(); ++i) {
+        const auto& [path, staged] = files_[i];
+        if (::rename(staged.c_str(), path.c_str()) != 0) {
+            const int error = errno;
+            for (std::size_t j = i; j < files_.size(); ++j) ::unlink(files_[j].second.c_str());
+            throw std::runtime_error(path + ": cannot replace the file (" + error_text(error) +
+                                     ")");
+        }
+    }
+}
+
+std::string StagedFiles::as_final(const std::string& message) const {
+    std::string out = message;
+    for (const auto& [path, staged] : files_)
+        for (auto at = out.find(staged); at != std::string::npos;
+             at = out.find(staged, at + path.size()))
+            out.replace(at, staged.size(), path);
+    return out;
+}
+
 }  // namespace bhm::engine

@@ -16,6 +16,8 @@
 // before any work: the caller says which entry names are its own.
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace bhm::engine {
 
@@ -49,6 +51,30 @@ class StagedFolder {
 
   private:
     std::string path_, staging_;
+    bool committed_ = false;
+};
+
+//! The same promise for a command's outputs that are single files in different folders (bhm
+//! export's --vxa, --body-out, --mesh ...): each is written whole under a staged name beside it
+//! (PATH.staged), and only when every one is written are they renamed into place. Destroyed
+//! without commit(), the staged files are removed and no output is touched (issue 41 R6).
+class StagedFiles {
+  public:
+    StagedFiles() = default;
+    ~StagedFiles();
+    StagedFiles(const StagedFiles&) = delete;
+    StagedFiles& operator=(const StagedFiles&) = delete;
+
+    //! The name to write path's new contents to (PATH.staged), remembered for commit().
+    std::string stage(const std::string& path);
+    //! Renames every staged file over its path, in the order staged. Throws std::runtime_error
+    //! naming the file that could not be replaced (those before it are already in place).
+    void commit();
+    //! A message naming a staged file turned into one naming the output itself.
+    std::string as_final(const std::string& message) const;
+
+  private:
+    std::vector<std::pair<std::string, std::string>> files_;  //!< (path, staged name)
     bool committed_ = false;
 };
 
