@@ -18,6 +18,7 @@
 #include "app/cli/problem_report.hpp"
 #include "app/cli/simulation_limits.hpp"
 #include "app/cli/track_plot.hpp"
+#include "engine/io/staged_folder.hpp"
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/calibrate/fit_parameters.hpp"
 #include "evo/calibrate/measured_track.hpp"
@@ -55,12 +56,22 @@ nlohmann::json finite_or_null(double v) {
     return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
-void create_output_dir(const std::string& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw std::runtime_error(dir + ": cannot create output directory" +
-                                 (ec ? " (" + ec.message() + ")" : std::string()));
+// What bhm calibrate writes into its --out folder, which is replaced whole
+// (engine/io/staged_folder.hpp): a kill or a failed write leaves the old report whole (issue 41 R5).
+bool calibrate_output(const std::string& name) {
+    return name == "report.json" || name == "calibrated-experiment.json" ||
+           name == "simulated.csv" || name == "simulated-before.csv" ||
+           name == "simulated-after.csv" || name == "tracks.png";
+}
+
+// Runs write, naming the --out folder's file instead of its staging copy in an error.
+template <class Write>
+void staged_write(const engine::StagedFolder& staged, Write&& write) {
+    try {
+        write();
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(staged.as_final(e.what()));
+    }
 }
 
 // The simulated points as a track file (absolute positions, metres).
@@ -180,13 +191,16 @@ int calibrate(ArgParser& args) {
     if (!span_warning.empty()) std::cerr << "warning: " << span_warning << "\n";
     refuse_track_over_budget(experiment, framed, body_path, track);
     if (simulate_only) {
+        engine::StagedFolder staged(out_dir, calibrate_output);
         const auto sim = evo::simulate_track(evo::FitPoint{experiment, 0.0}, framed, track);
-        create_output_dir(out_dir);
-        evo::write_file_atomically(
-            out_dir + "/simulated.csv",
-            simulated_csv(track, sim,
-                          "Simulated by bhm calibrate --simulate-only: " + experiment_path + ", " +
-                              body_path + ", at the times of " + track_path));
+        staged_write(staged, [&] {
+            evo::write_file_atomically(
+                staged.file("simulated.csv"),
+                simulated_csv(track, sim,
+                              "Simulated by bhm calibrate --simulate-only: " + experiment_path +
+                                  ", " + body_path + ", at the times of " + track_path));
+        });
+        staged.commit();
         std::cout << "wrote " << out_dir << "/simulated.csv" << (sim.diverged ? " (diverged)" : "")
                   << "\n";
         return sim.diverged ? 1 : 0;
@@ -200,7 +214,8 @@ int calibrate(ArgParser& args) {
     if (!evo::calibration_available())
         throw std::runtime_error("bhm was built without NLopt (Debian's libnlopt-cxx-dev), so it "
                                  "cannot calibrate");
-    create_output_dir(out_dir);
+    // Before any simulation: a folder that cannot be written costs nothing.
+    engine::StagedFolder staged(out_dir, calibrate_output);
 
     evo::CalibrationOptions options;
     options.threads = evo::resolve_thread_count(static_cast<int>(threads_arg));
@@ -233,21 +248,24 @@ int calibrate(ArgParser& args) {
     calibrated.description += (calibrated.description.empty() ? "" : " ") +
                               std::string("Calibrated by bhm calibrate against ") + track_path +
                               " (" + out_dir + "/report.json).";
-    evo::save_experiment(out_dir + "/calibrated-experiment.json", calibrated);
-    evo::write_file_atomically(out_dir + "/simulated-before.csv",
-                               simulated_csv(track, r.before, "Simulated before calibration"));
-    evo::write_file_atomically(out_dir + "/simulated-after.csv",
-                               simulated_csv(track, r.after, "Simulated after calibration"));
     auto report = report_json(r, experiment_path, body_path, track_path, options.threads);
     if (!span_warning.empty()) report["warnings"].push_back(span_warning);
-    if (track_plot_available()) {
-        write_track_plot(out_dir + "/tracks.png", track, r.before, r.after);
-        report["plot"] = "tracks.png";
-    } else {
-        report["plot"] = nullptr;
-        report["warnings"].push_back("no plot: bhm was built without libpng");
-    }
-    evo::write_file_atomically(out_dir + "/report.json", report.dump(2) + "\n");
+    staged_write(staged, [&] {
+        evo::save_experiment(staged.file("calibrated-experiment.json"), calibrated);
+        evo::write_file_atomically(staged.file("simulated-before.csv"),
+                                   simulated_csv(track, r.before, "Simulated before calibration"));
+        evo::write_file_atomically(staged.file("simulated-after.csv"),
+                                   simulated_csv(track, r.after, "Simulated after calibration"));
+        if (track_plot_available()) {
+            write_track_plot(staged.file("tracks.png"), track, r.before, r.after);
+            report["plot"] = "tracks.png";
+        } else {
+            report["plot"] = nullptr;
+            report["warnings"].push_back("no plot: bhm was built without libpng");
+        }
+        evo::write_file_atomically(staged.file("report.json"), report.dump(2) + "\n");
+    });
+    staged.commit();
 
     for (const auto& f : r.fitted)
         std::cout << f.parameter.name << " = " << f.value << " +- " << f.sigma << " "
@@ -271,7 +289,7 @@ int cmd_calibrate(const Args& args) {
         .option("--body", "BODY.json", "the body the track was measured on (required)")
         .option("--track", "TRACK.csv", "the measured track (docs/track-format.md; required)")
         .option("--fit", "NAMES", "comma-separated parameters to fit: " + evo::fit_names_help())
-        .option("--out", "DIR", "output directory, created if missing (default: ./calibrate-out)",
+        .option("--out", "DIR", "output directory, replaced whole (default: ./calibrate-out)",
                 PathRole::OutputDir)
         .option("--threads", "N", "simulations at once in the scan and the uncertainty (default: all cores)")
         .option("--max-simulations", "N", "budget of the scan's and the optimiser's simulations (default 200)")

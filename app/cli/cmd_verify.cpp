@@ -11,6 +11,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "engine/io/staged_folder.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/run_directory.hpp"
@@ -28,6 +29,27 @@ namespace fs = std::filesystem;
 // Under this many compared bodies a rank correlation is flagged: with 4 bodies a perfect order
 // arises by chance once in 24 (docs/verify.md, "A run's top K").
 constexpr long long kFewestRanked = 5;
+
+// What bhm verify writes into its --out folder (evo/verify/verify_report.cpp, and rank-NN/ of a
+// run's top K): the folder is replaced whole (engine/io/staged_folder.hpp), so only these.
+bool verify_output(const std::string& name) {
+    const auto ends = [&](const std::string& suffix) {
+        return name.size() >= suffix.size() &&
+               name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    return name == "report.json" || name == "shapes.json" ||
+           (name.rfind("fem-", 0) == 0 && ends(".vtk")) || name.rfind("rank-", 0) == 0;
+}
+
+// Runs write, naming the --out folder's file instead of its staging copy in an error.
+template <class Write>
+auto staged_write(const engine::StagedFolder& staged, Write&& write) {
+    try {
+        return write();
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(staged.as_final(e.what()));
+    }
+}
 
 evo::VerifyOptions options_of(const ArgParser& parser) {
     evo::VerifyOptions o;
@@ -63,8 +85,12 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     const auto options = options_of(parser);
     const fs::path out =
         parser.get("--out", fs::path(body_path).stem().string() + "-verify");
+    // Staged before the solve: a folder that cannot be written costs no solve, and a kill or a
+    // failed write leaves the old report whole (issue 41 R5).
+    engine::StagedFolder staged(out.string(), verify_output);
     const auto v = evo::verify_body(spec, e.fitness.measure, options);
-    nlohmann::json report = evo::write_verification(v, options, out.string());
+    nlohmann::json report = staged_write(
+        staged, [&] { return evo::write_verification(v, options, staged.staging()); });
     std::cout << body_path << ": " << v.verdict() << "\n";
     if (v.status == evo::VerifyStatus::Compared)
         std::cout << "  FEM mesh " << v.mesh.reason << "\n";
@@ -78,9 +104,12 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
         }
         if (error) {
             report["fem_mesh_error"] = evo::mesh_error_json(*error, v);
-            evo::write_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
+            staged_write(staged, [&] {
+                evo::write_file_atomically(staged.file("report.json"), report.dump(2) + "\n");
+            });
         }
     }
+    staged.commit();
     if (v.status == evo::VerifyStatus::Compared) {
         std::cout << "  beside it: " << v.beside() << "\n";
         std::cout << "  FEM steps " << v.geometry_reason << "\n";
@@ -115,7 +144,11 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
     if (static_cast<long long>(picked.size()) > top) picked.resize(static_cast<std::size_t>(top));
 
     const auto options = options_of(parser);
-    const fs::path out = parser.get("--out", (fs::path(run_dir) / "verify").string());
+    // RUN_DIR/verify/ itself holds the evolve loop's and the studio's individual-N/ checks: the
+    // top K is a folder of its own there, replaced whole. Staged before any solve, so a run
+    // directory that cannot be written is refused at once, naming the folder (issue 41 R7).
+    const fs::path out = parser.get("--out", (fs::path(run_dir) / "verify" / "top").string());
+    engine::StagedFolder staged(out.string(), verify_output);
     nlohmann::json report;
     report["run_dir"] = run_dir;
     report["fitness_measure"] = evo::kFitnessNames[static_cast<std::size_t>(e.fitness.measure)];
@@ -145,7 +178,9 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
                       << "): error: " << error.what() << "\n";
             continue;
         }
-        nlohmann::json j = evo::write_verification(v, options, (out / folder).string());
+        nlohmann::json j = staged_write(staged, [&] {
+            return evo::write_verification(v, options, staged.file(folder));
+        });
         j["folder"] = folder;
         j["champion_id"] = c->id;
         j["generation_found"] = c->generation_found;
@@ -175,8 +210,10 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
     report["spearman_recorded_fitness_vs_fem"] = correlation(by_fitness);
     report["spearman_recorded_fitness_is_dynamic"] = true;
     report["spearman_too_few_bodies"] = too_few;
-    fs::create_directories(out);
-    evo::write_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
+    staged_write(staged, [&] {
+        evo::write_file_atomically(staged.file("report.json"), report.dump(2) + "\n");
+    });
+    staged.commit();
     auto text = [](double r) { return std::isnan(r) ? std::string("n/a") : std::to_string(r); };
     std::printf("Spearman rank correlation over %zu compared bodies%s:\n"
                 "  our engine's static score vs the FEM's static score: %s\n"
@@ -220,8 +257,8 @@ int cmd_verify(const Args& args) {
     parser.option("--body", "BODY", "body file to verify (with an EXPERIMENT)");
     parser.option("--top", "K", "distinct champions of a RUN_DIR to verify (default 10)");
     parser.option("--out", "DIR",
-                  "folder for report.json and the VTK meshes (default BODY-verify, or "
-                  "RUN_DIR/verify)",
+                  "folder for report.json and the VTK meshes, replaced whole (default "
+                  "BODY-verify, or RUN_DIR/verify/top)",
                   PathRole::OutputDir);
     parser.option("--element", "TYPE",
                   "C3D8I or C3D20R (default: automatic, C3D20R where a section is 1 voxel "

@@ -2,6 +2,7 @@
 // with a known amplitude is fitted back from another amplitude; the files it leaves; bad input.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "app/cli/commands.hpp"
 #include "evo/calibrate/calibrator.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "app/shell_run.hpp"
 #include "support/captured_command.hpp"
 #include "support/scratch.hpp"
 
@@ -196,4 +198,45 @@ TEST_CASE("bhm calibrate warns once when a track ends far from the experiment's 
     const auto plain = run_calibrate(args("times.csv", {"--simulate-only"}));
     CHECK(plain.exit_code == 0);
     CHECK(plain.err.find("the track ends at") == std::string::npos);
+}
+
+TEST_CASE("bhm calibrate --out: a write failing part way leaves the old folder whole") {
+    // Issue 41 R5: calibrated-experiment.json and the CSVs went in one by one, so a kill or a full
+    // disk at report.json left them beside the old outputs. The failure is injected
+    // (tests/reliability/fault_inject.c) where a kill would stop the writer.
+    if (!bhm::evo::calibration_available()) return;
+    const fs::path dir = fresh_dir("staged");
+    write_files(dir, 14.47);
+    const std::string bhm = std::string(BHM_BINARY_DIR) + "/bin/bhm";
+    const std::string common = " calibrate " + (dir / "experiment.json").string() + " --body " +
+                               (dir / "body.json").string() + " --track " +
+                               (dir / "times.csv").string() + " --out " + (dir / "out").string();
+    const auto first = bhm::test::run_shell(bhm + common + " --simulate-only");
+    REQUIRE_MESSAGE(first.status == 0, first.output);
+    const std::string old = bhm::test::read_file(dir / "out" / "simulated.csv");
+    auto names = [&] {
+        std::vector<std::string> all;
+        for (const auto& e : fs::directory_iterator(dir / "out"))
+            all.push_back(e.path().filename().string());
+        std::sort(all.begin(), all.end());
+        return all;
+    };
+    const auto failed = bhm::test::run_shell("BHM_FAULT_FILE=/report.json LD_PRELOAD=" +
+                                             std::string(BHM_FAULT_SHIM) + " " + bhm + common +
+                                             " --fit amplitude --max-simulations 1");
+    INFO(failed.output);
+    CHECK(failed.status == 1);
+    CHECK(failed.output.find((dir / "out" / "report.json").string() +
+                             ": cannot write (No space left on device)") != std::string::npos);
+    CHECK(names() == std::vector<std::string>{"simulated.csv"});
+    CHECK(bhm::test::read_file(dir / "out" / "simulated.csv") == old);
+    std::vector<std::string> beside;
+    for (const auto& e : fs::directory_iterator(dir)) beside.push_back(e.path().filename().string());
+    for (const auto& name : beside) CHECK(name.find(".staging-") == std::string::npos);
+    // Then the new folder whole, in place of the old one.
+    const auto good = bhm::test::run_shell(bhm + common + " --fit amplitude --max-simulations 1");
+    REQUIRE_MESSAGE(good.status == 0, good.output);
+    const auto after = names();
+    CHECK(std::find(after.begin(), after.end(), "simulated.csv") == after.end());
+    CHECK(fs::exists(dir / "out" / "report.json"));
 }
