@@ -15,6 +15,7 @@
 #include "app/cli/problem_report.hpp"
 #include "app/cli/render_scene.hpp"
 #include "app/cli/render_video.hpp"
+#include "engine/io/staged_folder.hpp"
 #include "engine/replay.hpp"
 #include "evo/evaluate/replay_measures.hpp"
 #include "evo/experiment/body_spec_of.hpp"
@@ -256,16 +257,23 @@ int render_command(ArgParser& args) {
     }
     if (sequence) {
         const std::filesystem::path dir(args.get("--out-dir"));
-        std::error_code ec;
-        std::filesystem::create_directories(dir, ec);
-        if (!std::filesystem::is_directory(dir))
-            throw std::runtime_error(dir.string() + ": cannot create directory");
+        // The frames are staged and swapped in whole (engine/io/staged_folder.hpp): a kill or a
+        // failed write leaves the old sequence, never old frames among new ones (issue 41 R5).
+        engine::StagedFolder staged(dir.string(), [](const std::string& name) {
+            return name.rfind("frame-", 0) == 0 && name.size() > 4 &&
+                   name.compare(name.size() - 4, 4, ".png") == 0;
+        });
         for (long long i = 0; i < frame_count; ++i) {
             draw(time_of(i, frame_count));
             char name[32];
             std::snprintf(name, sizeof name, "frame-%05lld.png", i);
-            render::write_png((dir / name).string(), image);
+            try {
+                render::write_png(staged.file(name), image);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error(staged.as_final(e.what()));
+            }
         }
+        staged.commit();
         std::cout << "wrote " << frame_count << " frames to " << dir.string() << " ("
                   << describe_time(first_s) << " to " << describe_time(last_s) << ")\n";
     }
@@ -322,7 +330,7 @@ int cmd_render(const Args& args) {
         .flag("--nearest", "show the last recorded frame at or before T instead of blending frames")
         .option("--frames", "N",
                 "with --out-dir: N images spread over the replay; with --video/--gif: N frames")
-        .option("--out-dir", "DIR", "folder for --frames (frame-00000.png, ...)",
+        .option("--out-dir", "DIR", "folder for --frames (frame-00000.png, ...), replaced whole",
                 PathRole::OutputDir)
         .option("--video", "FILE.mp4", "an H.264 video of the replay (needs ffmpeg on PATH)",
                 PathRole::OutputFile)

@@ -15,6 +15,7 @@
 #include "app/cli/simulate_progress.hpp"
 #include "app/cli/simulation_limits.hpp"
 #include "app/cli/simulation_report.hpp"
+#include "engine/io/staged_folder.hpp"
 #include "engine/limits.hpp"
 #include "engine/model.hpp"
 #include "engine/replay.hpp"
@@ -52,12 +53,10 @@ const char* const kSummary =
     "message),\n"
     "2 usage error, 3 the simulation diverged (the files are still written, with diverged: true).";
 
-void create_output_dir(const std::string& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw std::runtime_error(dir + ": cannot create output directory" +
-                                 (ec ? " (" + ec.message() + ")" : std::string()));
+// What bhm simulate writes into its --out folder, which is replaced whole
+// (engine/io/staged_folder.hpp): a kill or a failed write leaves the old run's files whole.
+bool simulate_output(const std::string& name) {
+    return name == "summary.json" || name == "trajectory.csv" || name == "replay.bin";
 }
 
 int simulate(ArgParser& args) {
@@ -95,7 +94,7 @@ int simulate(ArgParser& args) {
     }
     const std::string budget = simulation_seconds_problem(*model, experiment, total_s);
     if (!budget.empty()) throw std::runtime_error(experiment_path + ": " + budget);
-    create_output_dir(out_dir);
+    engine::StagedFolder staged(out_dir, simulate_output);
 
     SimulationRecorder recorder(*model, settle_s);
     ProgressLine progress(stderr, total_s, model->voxel_count(), ::isatty(STDERR_FILENO) != 0);
@@ -178,12 +177,15 @@ int simulate(ArgParser& args) {
                               {"stop_s", rest_stop_s},
                               {"resume_s", settle_s}};
 
-    const std::filesystem::path dir(out_dir);
-    engine::write_replay((dir / "replay.bin").string(), recorder.replay());
-    evo::write_file_atomically((dir / "trajectory.csv").string(),
-                               trajectory_csv(recorder.samples()));
-    // summary.json last: its presence means the other two files belong to this run.
-    evo::write_file_atomically((dir / "summary.json").string(), summary.dump(2) + "\n");
+    try {
+        engine::write_replay(staged.file("replay.bin"), recorder.replay());
+        evo::write_file_atomically(staged.file("trajectory.csv"),
+                                   trajectory_csv(recorder.samples()));
+        evo::write_file_atomically(staged.file("summary.json"), summary.dump(2) + "\n");
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(staged.as_final(e.what()));
+    }
+    staged.commit();
 
     if (stats.diverged) {
         std::cerr << "bhm simulate: the simulation diverged at t = " << stats.sim_time_s
@@ -208,7 +210,7 @@ int cmd_simulate(const Args& args) {
     parser.positional("EXPERIMENT.json", "the experiment (docs/experiment-format.md)")
         .option("--body", "BODY.json", "the body to simulate (required)")
         .option("--seconds", "T", "total simulated seconds (default: settle_s + evaluate_s)")
-        .option("--out", "DIR", "output directory, created if missing (default: ./sim-out)",
+        .option("--out", "DIR", "output directory, replaced whole (default: ./sim-out)",
                 PathRole::OutputDir)
         .option("--phase-seed", "N",
                 "seed of the per-voxel actuation phases when the experiment's phase is random "
