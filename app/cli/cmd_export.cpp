@@ -5,12 +5,16 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/problem_report.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/staged_folder.hpp"
 #include "engine/io/text_file.hpp"
 #include "engine/replay.hpp"
 #include "evo/experiment/body_spec_of.hpp"
@@ -73,8 +77,10 @@ void require_all_writable(ArgParser& parser) {
 }
 
 // The surface at rest, or deformed at --time (default: the replay's last frame).
+// Written under staged names; the lines to print once they are in place go to written.
 void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo::Body& framed,
-                const engine::Replay* replay) {
+                const engine::Replay* replay, engine::StagedFiles& staged,
+                std::vector<std::string>& written) {
     const std::string path = parser.get("--mesh");
     evo::SurfaceMesh mesh;
     std::string when = "at rest";
@@ -86,17 +92,21 @@ void write_mesh(ArgParser& parser, const evo::Experiment& experiment, const evo:
         mesh = evo::rest_surface(framed.size, framed.cells, experiment.voxel_size_m);
     }
     if (ends_with(path, ".stl") || ends_with(path, ".STL")) {
-        evo::write_file_atomically(path, evo::stl_binary(mesh));
+        evo::write_file_atomically(staged.stage(path), evo::stl_binary(mesh));
     } else {
         const std::filesystem::path mtl = std::filesystem::path(path).replace_extension(".mtl");
-        evo::write_file_atomically(mtl.string(), evo::mtl_document(experiment.materials));
+        evo::write_file_atomically(staged.stage(mtl.string()),
+                                   evo::mtl_document(experiment.materials));
         evo::write_file_atomically(
-            path, evo::obj_document(mesh, experiment.materials, mtl.filename().string()));
-        std::cout << "wrote " << mtl.string() << "\n";
+            staged.stage(path),
+            evo::obj_document(mesh, experiment.materials, mtl.filename().string()));
+        written.push_back(mtl.string());
     }
-    std::cout << "wrote " << path << " (" << mesh.triangles.size() << " triangles, "
-              << mesh.vertices.size() << " vertices, enclosed volume "
-              << engine::format_number(evo::enclosed_volume(mesh)) << " m^3, " << when << ")\n";
+    std::ostringstream line;
+    line << path << " (" << mesh.triangles.size() << " triangles, " << mesh.vertices.size()
+         << " vertices, enclosed volume " << engine::format_number(evo::enclosed_volume(mesh))
+         << " m^3, " << when << ")";
+    written.push_back(line.str());
 }
 
 int export_body(ArgParser& parser) {
@@ -147,27 +157,43 @@ int export_body(ArgParser& parser) {
                                      engine::format_number(last) + " s");
     }
     require_all_writable(parser);
-    if (parser.has("--vxa")) {
-        evo::save_vxa(parser.get("--vxa"), experiment, body);
-        std::cout << "wrote " << parser.get("--vxa") << "\n";
+    // All or nothing (issue 41 R6): every file is written whole under a staged name beside it
+    // first; a write that fails then (a full disk, an I/O error) removes the staged ones and
+    // leaves every output as it was. The VTK series, a folder staged on its own, goes last
+    // before the files are renamed into place.
+    std::vector<std::string> written;  // the lines "wrote ..." once all are in place
+    {
+        engine::StagedFiles staged;
+        try {
+            if (parser.has("--vxa")) {
+                evo::save_vxa(staged.stage(parser.get("--vxa")), experiment, body);
+                written.push_back(parser.get("--vxa"));
+            }
+            if (parser.has("--body-out")) {
+                evo::save_body(staged.stage(parser.get("--body-out")), body);
+                written.push_back(parser.get("--body-out"));
+            }
+            if (parser.has("--experiment-out")) {
+                evo::save_experiment(staged.stage(parser.get("--experiment-out")), experiment);
+                written.push_back(parser.get("--experiment-out"));
+            }
+            if (parser.has("--mesh"))
+                write_mesh(parser, experiment, body, replay ? &*replay : nullptr, staged,
+                           written);
+            if (parser.has("--vtk")) {
+                const engine::Replay series =
+                    replay ? *replay : evo::rest_replay(evo::make_body_spec(experiment, body));
+                const auto summary = evo::write_vtk_series(
+                    parser.get("--vtk"), series, experiment.materials, static_cast<int>(every));
+                written.push_back(summary.pvd_path + " (" + std::to_string(summary.frames) +
+                                  " frames) and " + summary.com_path);
+            }
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error(staged.as_final(e.what()) + "; nothing was written");
+        }
+        staged.commit();
     }
-    if (parser.has("--body-out")) {
-        evo::save_body(parser.get("--body-out"), body);
-        std::cout << "wrote " << parser.get("--body-out") << "\n";
-    }
-    if (parser.has("--experiment-out")) {
-        evo::save_experiment(parser.get("--experiment-out"), experiment);
-        std::cout << "wrote " << parser.get("--experiment-out") << "\n";
-    }
-    if (parser.has("--mesh")) write_mesh(parser, experiment, body, replay ? &*replay : nullptr);
-    if (parser.has("--vtk")) {
-        const engine::Replay series =
-            replay ? *replay : evo::rest_replay(evo::make_body_spec(experiment, body));
-        const auto written = evo::write_vtk_series(parser.get("--vtk"), series,
-                                                   experiment.materials, static_cast<int>(every));
-        std::cout << "wrote " << written.pvd_path << " (" << written.frames << " frames) and "
-                  << written.com_path << "\n";
-    }
+    for (const auto& file : written) std::cout << "wrote " << file << "\n";
     return 0;
 }
 

@@ -257,3 +257,24 @@ TEST_CASE("bhm import: our export round-trips exactly through the command line")
     CHECK(missing.output.find("nope.vxa") != std::string::npos);
     CHECK(bhm_run("import " + f.path("out.vxa")).status == 2);
 }
+
+TEST_CASE("bhm export: a write that fails after earlier outputs leaves every output as it was") {
+    // Issue 41 R6: the pre-check passes, then the disk fills while the mesh is written (an
+    // injected ENOSPC): the body file written before it was left replaced.
+    const Fixture f;
+    std::ofstream(f.path("b.json")) << "old body";
+    const auto r = test::run_shell("BHM_FAULT_FILE=" + f.path("m.stl") + " LD_PRELOAD=" +
+                                   BHM_FAULT_SHIM + " " + kBhm + " export " + kExperiment +
+                                   " --body " + f.body_path + " --body-out " + f.path("b.json") +
+                                   " --mesh " + f.path("m.stl"));
+    CHECK(r.status == 1);
+    CHECK(r.output.find(f.path("m.stl") + ": cannot write (No space left on device)") !=
+          std::string::npos);
+    CHECK(r.output.find("nothing was written") != std::string::npos);
+    CHECK(r.output.find('\n') == r.output.size() - 1);  // one line
+    CHECK(read_text(f.path("b.json")) == "old body");
+    CHECK_FALSE(fs::exists(f.path("m.stl")));
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(f.dir)) names.push_back(e.path().filename().string());
+    for (const auto& name : names) CHECK(name.find(".staged") == std::string::npos);
+}
