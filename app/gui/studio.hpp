@@ -163,6 +163,9 @@ struct CalibrationState {
     std::string track_field;  //!< the path typed in the tab
     std::string track_path;   //!< the track loaded (absolute)
     std::shared_ptr<const evo::MeasuredTrack> track;
+    //! evo::track_span_warning of the track loaded ("" when its span is near the experiment's):
+    //! shown in the Calibrate tab and the status line, since every simulation runs to its end.
+    std::string track_warning;
     //! The body the track was loaded onto (the one shown then) and its experiment: what the
     //! calibration simulates, whatever is shown later.
     std::shared_ptr<const evo::Body> framed_body;

@@ -534,3 +534,45 @@ TEST_CASE("studio session: the Calibrate tab browses for its files; exports go t
         CHECK(std::filesystem::path(*path).is_absolute());
     }
 }
+
+TEST_CASE("studio: Load track obeys bhm calibrate's budget up front and says a span far off") {
+    // Issue 41 R1: the preview ran to the track's end unchecked, hours for time_offset_s 1e6.
+    const auto dir = testing::fresh_dir("calibration-budget");
+    Fixture f;
+    const std::string body_path = (dir / "bilayer.body.json").string();
+    evo::save_body(body_path, evo::test::bilayer(false));
+    std::ofstream(dir / "far.csv")
+        << "# time_offset_s: 1e6\nt_s,tip.x,tip.z\n0,0,0\n0.1,0,0\n0.2,0,0\n";
+    std::ofstream(dir / "short.csv") << "t_s,tip.x,tip.z\n0,0,0\n0.005,0,0\n0.01,0,0\n";
+    Studio s;
+    s.document.reset(f.experiment, "");
+    REQUIRE(show_body_file(s, body_path));
+    const auto end = Clock::now() + std::chrono::seconds(120);
+    while (!s.bodies.shown && Clock::now() < end) {
+        update_studio(s);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    REQUIRE(s.bodies.shown);
+
+    CHECK_FALSE(load_track(s, (dir / "far.csv").string()));
+    INFO(s.status);
+    CHECK(s.status_is_error);
+    CHECK(s.status.find("far.csv: time_offset_s: cannot simulate 1000000.2 s: needs ") !=
+          std::string::npos);
+    CHECK(s.status.find('\n') == std::string::npos);
+    CHECK_FALSE(s.calibration.track);
+    CHECK_FALSE(calibration_running(s));
+
+    REQUIRE(load_track(s, (dir / "short.csv").string()));
+    CHECK_FALSE(s.status_is_error);
+    CHECK(s.calibration.track_warning.find("short.csv: t_s: the track ends at 0.01 s") !=
+          std::string::npos);
+    CHECK(s.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
+    while (calibration_running(s) && Clock::now() < end) {
+        update_studio(s);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    update_studio(s);
+    CHECK(s.status.rfind("track simulated", 0) == 0);
+    CHECK(s.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
+}

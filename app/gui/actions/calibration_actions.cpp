@@ -6,8 +6,11 @@
 #include <exception>
 #include <memory>
 
+#include "app/cli/simulation_limits.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/settings/studio_paths.hpp"
+#include "evo/calibrate/track_simulation.hpp"
+#include "evo/evaluate/simulate.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
@@ -69,6 +72,17 @@ bool load_track(Studio& s, const std::string& path) {
     try {
         const std::string absolute = absolute_path(path);
         auto track = std::make_shared<const evo::MeasuredTrack>(evo::load_measured_track(absolute));
+        // The preview simulates to the track's end, and so does every simulation of a fit: the
+        // rule bhm calibrate obeys (issue 41 R1) is checked before anything starts, where a track
+        // at time_offset_s 1e6 ran for hours, and a span far from the experiment's is said.
+        const auto& shown = *s.bodies.shown;
+        const auto model = evo::model_of(shown.experiment, *shown.framed_body);
+        if (const std::string why = track_budget_problem(*model, shown.experiment, *track);
+            !why.empty()) {
+            set_status(s, "load track: " + why, true);
+            return false;
+        }
+        c.track_warning = evo::track_span_warning(*track, shown.experiment);
         c.track = track;
         c.track_path = absolute;
         c.framed_body = s.bodies.shown->framed_body;
@@ -82,7 +96,8 @@ bool load_track(Studio& s, const std::string& path) {
         job.threads = c.threads;
         c.session.start(std::move(job));
         set_status(s, "track " + file_name(absolute) + " loaded onto " + c.body_label +
-                          ": simulating it at the track's times");
+                          ": simulating it at the track's times" +
+                          (c.track_warning.empty() ? "" : "; warning: " + c.track_warning));
         return true;
     } catch (const std::exception& e) {
         set_status(s, e.what(), true);
@@ -259,7 +274,10 @@ void update_calibration(Studio& s) {
                           ? "the track's body diverged: " + snap.preview->divergence_reason
                           : "track simulated: misfit " + number(snap.best_misfit_m) +
                                 " m against a motion of " +
-                                number(evo::track_motion_rms(*snap.track)) + " m",
+                                number(evo::track_motion_rms(*snap.track)) + " m" +
+                                (s.calibration.track_warning.empty()
+                                     ? ""
+                                     : "; warning: " + s.calibration.track_warning),
                    snap.preview->diverged);
     }
 }

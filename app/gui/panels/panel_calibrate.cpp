@@ -71,6 +71,8 @@ void track_controls(Studio& s) {
     ImGui::TextWrapped("%s: %zu rows, %.3g to %.3g s; %s; on %s", c.track_path.c_str(),
                        c.track->t_s.size(), c.track->t_s.front(), c.track->t_s.back(),
                        points.c_str(), c.body_label.c_str());
+    if (!c.track_warning.empty())
+        ImGui::TextColored(ImColor(kWarning), "Warning: %s", c.track_warning.c_str());
     if (s.bodies.shown && s.bodies.shown->framed_body != c.framed_body)
         ImGui::TextColored(ImColor(kWarning), "The body shown is not the track's: no overlay.");
 }
