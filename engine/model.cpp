@@ -367,10 +367,15 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             const double m_link = e * (0.5 * (octant_modulus[axis][v] + octant_modulus[axis][b]));
             // A half-link inside a wider region is stiffer (link_confinement.hpp): every mode of
             // the link, its normal stress with the Poisson coupling (rest_scale keeps m_link)
-            // included.
+            // included. A link across two materials is stiffer axially where the stiff face
+            // restrains the soft half's contraction (mixed_link_stiffening); together within the
+            // cap that keeps the stable step valid.
             const ConfinedLinkFactors confined =
                 confined_link_factors(d, v, b, axis, ma.poisson_ratio, mb.poisson_ratio);
-            const double k_axial = confined.axial * m_link * L;
+            const double k_axial =
+                std::min(kConfinedLinkCap,
+                         confined.axial * mixed_link_stiffening(d, v, b, axis, ma, mb)) *
+                m_link * L;
             if (pp.active) pp.rest_scale[axis][v] = static_cast<float>(-L / m_link);
             const double m_a = d.mass[v], m_b = d.mass[b];
             const double reduced_mass = m_a * m_b / (m_a + m_b);

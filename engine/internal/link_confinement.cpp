@@ -51,4 +51,39 @@ ConfinedLinkFactors confined_link_factors(const Model::Data& d, int v, int b, in
             series_factor(n_v, root_v, n_b, root_b)};
 }
 
+int same_material_lateral_neighbours(const Model::Data& d, int v, int axis) {
+    const BodySpec& spec = d.spec;
+    const int c = d.voxel_cell[v];
+    const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
+    const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
+    const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
+    int count = 0;
+    for (int lateral = 0; lateral < 3; ++lateral) {
+        if (lateral == axis) continue;
+        for (int s = -1; s <= 1; s += 2)
+            if (xyz[lateral] + s >= 0 && xyz[lateral] + s < limit[lateral] &&
+                spec.material[c + s * stride[lateral]] == spec.material[c])
+                ++count;
+    }
+    return count;
+}
+
+double mixed_link_stiffening(const Model::Data& d, int v, int b, int axis, const Material& mv,
+                             const Material& mb) {
+    const double e_v = mv.youngs_modulus_pa, e_b = mb.youngs_modulus_pa;
+    if (e_v == e_b) return 1.0;
+    const bool v_soft = e_v < e_b;
+    const double nu_v = mv.poisson_ratio, nu_b = mb.poisson_ratio;
+    const double layer = same_material_lateral_neighbours(d, v_soft ? v : b, axis) / 4.0;
+    const double e_soft = v_soft ? e_v : e_b, e_stiff = v_soft ? e_b : e_v;
+    const double nu_soft = v_soft ? nu_v : nu_b;
+    const double contrast = e_stiff / e_soft;
+    const double kappa =
+        1.0 + kMixedSoftStiffening * layer *
+                  std::pow(1.0 - 1.0 / contrast, kMixedContrastExponent) *
+                  std::pow(1.0 - 1.0 / poisson_wave_factor(nu_soft), kMixedPoissonExponent);
+    // Halves of stiffness proportional to E_soft kappa and E_stiff in series, over the plain pair.
+    return (contrast + 1.0) / (contrast / kappa + 1.0);
+}
+
 }  // namespace bhm::engine

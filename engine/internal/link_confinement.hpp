@@ -44,4 +44,32 @@ struct ConfinedLinkFactors {
 ConfinedLinkFactors confined_link_factors(const Model::Data& d, int v, int b, int axis, double nu_v,
                                           double nu_b);
 
+// A link joining two materials (issue 40: random mixtures). Both halves carry the link's normal
+// stress, and each contracts across it by nu sigma / E, the soft half `contrast` times more than
+// the stiff half it is bonded to. In the continuum the stiff face restrains the contraction of a
+// soft layer, so the soft material near the interface is stiffer along the link, toward its P-wave
+// modulus M (a bonded layer); the lattice let the halves contract apart, and soft layers between
+// stiff ones came out 8-42 % too soft at nu 0.35-0.49 (slices of 3-30x, 12x4x4), random 50/50 and
+// 30/70 mixtures up to 25 %, while nu = 0 was right (docs/physics.md, "Mixtures"). A bonded layer
+// confines only as far as it extends sideways (a rubber pad's shape factor): a soft voxel whose
+// neighbours across the link are stiff (a checkerboard) is not a layer, and stiffening it put the
+// 10x checkerboard 14 % stiff at nu 0.49. So the soft half is stiffer by
+//   kappa = 1 + c (n / 4) (1 - 1 / contrast)^p (1 - E / M)^q,
+// n the soft voxel's lateral neighbours (0..4) of its own material. kappa is 1 for one material
+// and at nu = 0 (M = E), and below M / E (the fully bonded layer) for every nu, since
+// 1 + c x^q <= 1 + x <= 1 / (1 - x) with x = 1 - E / M and c <= 1. c, p and q are fitted on the
+// slices alone (the fitting half, tests/engine/test_engine_calculix_mixed.cpp); the random
+// mixtures and the layered, cored, heated and checkerboard bodies are the held-out half.
+inline constexpr double kMixedSoftStiffening = 0.9;    //!< c above
+inline constexpr double kMixedContrastExponent = 2.0;  //!< p above
+inline constexpr double kMixedPoissonExponent = 1.5;   //!< q above
+
+//! Lateral neighbours of voxel `v` (across `axis`) of v's own material, 0..4.
+int same_material_lateral_neighbours(const Model::Data& d, int v, int axis);
+
+//! The factor on the axial stiffness of the link from `v` (material mv) to `b` (mb) along `axis`:
+//! (contrast + 1) / (contrast / kappa + 1), 1 where the two ends' Young's moduli are equal.
+double mixed_link_stiffening(const Model::Data& d, int v, int b, int axis, const Material& mv,
+                             const Material& mb);
+
 }  // namespace bhm::engine

@@ -45,6 +45,16 @@ struct MixedScene {
     std::function<int(int, int, int)> stiff;
 };
 
+// A number in [0, 1) fixed by a cell and a seed (splitmix64's finaliser over the packed cell).
+double random_cell(int x, int y, int z, std::uint64_t seed) {
+    std::uint64_t v = seed * 0x9E3779B97F4A7C15ull + (static_cast<std::uint64_t>(x) << 32) +
+                      (static_cast<std::uint64_t>(y) << 16) + static_cast<std::uint64_t>(z);
+    v = (v ^ (v >> 30)) * 0xBF58476D1CE4E5B9ull;
+    v = (v ^ (v >> 27)) * 0x94D049BB133111EBull;
+    v ^= v >> 31;
+    return static_cast<double>(v >> 11) * 0x1.0p-53;
+}
+
 std::vector<MixedScene> mixed_scenes() {
     return {
         {"layers-stiff-in-soft", 20, 8, 7, Load::Gravity,
@@ -57,6 +67,13 @@ std::vector<MixedScene> mixed_scenes() {
          [](int x, int y, int z) { return (x + y + z) % 2; }},
         {"core-shell", 20, 4, 4, Load::Gravity,
          [](int, int y, int z) { return y >= 1 && y <= 2 && z >= 1 && z <= 2 ? 1 : 0; }},
+        // Random mixtures (issue 40): each voxel stiff with probability one half (or 0.3), drawn
+        // from a hash of its cell, so the body is the same on every machine.
+        {"random50", 12, 4, 4, Load::Gravity,
+         [](int x, int y, int z) { return random_cell(x, y, z, 1) < 0.5 ? 1 : 0; }},
+        {"random30", 12, 4, 4, Load::Gravity,
+         [](int x, int y, int z) { return random_cell(x, y, z, 2) < 0.3 ? 1 : 0; }},
+        {"slices", 12, 4, 4, Load::Gravity, [](int x, int, int) { return x % 2; }},
     };
 }
 
@@ -241,22 +258,28 @@ constexpr RefinedTips kCheckerboardTips[] = {
     {10.0, 0.49, {-0.00091271, -0.00102981, -0.00105487, -0.00106772}},
 };
 
-// tip(r) = tip_0 - A r^-p through the tips at r = 2, 3, 4: p from the ratio of the two
-// differences (bisection; the ratio falls monotonically with p), then tip_0.
-double extrapolated_tip(const RefinedTips& t) {
-    const double t2 = t.tip[1], t3 = t.tip[2], t4 = t.tip[3];
-    const double ratio = (t4 - t3) / (t3 - t2);
-    auto ratio_at = [](double p) {
-        return (std::pow(3.0, -p) - std::pow(4.0, -p)) / (std::pow(2.0, -p) - std::pow(3.0, -p));
+// tip(r) = tip_0 - A r^-p through the tips at r = r0, r0 + 1, r0 + 2 elements per voxel: p from the
+// ratio of the two differences (bisection; the ratio falls monotonically with p), then tip_0.
+// Returns NaN where the three are not monotone in that way (no order in (0.05, 4) fits them).
+double extrapolated_tip(double t_a, double t_b, double t_c, int r0) {
+    const double ratio = (t_c - t_b) / (t_b - t_a);
+    const double ra = r0, rb = r0 + 1, rc = r0 + 2;
+    auto ratio_at = [&](double p) {
+        return (std::pow(rb, -p) - std::pow(rc, -p)) / (std::pow(ra, -p) - std::pow(rb, -p));
     };
     double lo = 0.05, hi = 4.0;
+    if (!(ratio < ratio_at(lo) && ratio > ratio_at(hi))) return std::nan("");
     for (int i = 0; i < 60; ++i) {
         const double mid = 0.5 * (lo + hi);
         (ratio_at(mid) > ratio ? lo : hi) = mid;
     }
     const double p = 0.5 * (lo + hi);
-    const double amplitude = (t4 - t3) / (std::pow(3.0, -p) - std::pow(4.0, -p));
-    return t4 + amplitude * std::pow(4.0, -p);
+    const double amplitude = (t_c - t_b) / (std::pow(rb, -p) - std::pow(rc, -p));
+    return t_c + amplitude * std::pow(rc, -p);
+}
+
+double extrapolated_tip(const RefinedTips& t) {
+    return extrapolated_tip(t.tip[1], t.tip[2], t.tip[3], 2);
 }
 
 }  // namespace
@@ -275,6 +298,96 @@ TEST_CASE("calculix: checkerboards of contrast 3 and 10 within 5% of the converg
                 << reference << " m (4 elements per voxel " << t.tip[3] << " m), error "
                 << 100.0 * (ours / reference - 1.0) << " %");
         CHECK(std::fabs(ours / reference - 1.0) < 0.05);
+    }
+}
+
+// Random mixtures and soft slices (issue 40). References: CalculiX at 1, 2 and 3 elements per
+// voxel (C3D20R, stored; regenerate with BHM_SCENE=random50 BHM_CONTRAST=10 BHM_NU=0.49
+// BHM_REFINE=3 and the probe above), extrapolated as the checkerboards'; the one-element tip is
+// solved live and must equal the stored one. Each reference's own uncertainty is printed: its
+// distance from the finest mesh. The slices (soft/stiff voxel layers across the beam) are the
+// fitting half of mixed_link_stiffening's three constants (engine/internal/link_confinement.hpp);
+// the random mixtures are held out, as are the layered, cored, heated and checkerboard bodies
+// above. Targets: up to 10x within 5 % of the extrapolated tip, 30x within 10 %.
+// Not here: random50 at 30x and nu 0.35, whose three meshes are not monotone (no reference), and
+// 30x at nu 0, whose references are uncertain by 5-12 % (order 0.3: edge contacts, as the
+// checkerboard's).
+namespace {
+
+enum class Half { Fitting, HeldOut };
+
+struct MixtureTips {
+    const char* scene;
+    double contrast, nu;
+    Half half;
+    bool in_ctest;  // the rest on demand: -tc="calculix table: random*" --no-skip
+    double tip[3];  // m, 1 to 3 elements per voxel
+};
+
+constexpr MixtureTips kMixtureTips[] = {
+    {"slices", 3, 0.49, Half::Fitting, false, {-0.00056435, -0.000572674, -0.000574434}},
+    {"slices", 10, 0.35, Half::Fitting, false, {-0.00160034, -0.00162021, -0.00162428}},
+    {"slices", 10, 0.49, Half::Fitting, true, {-0.00121704, -0.00125144, -0.00125896}},
+    {"slices", 30, 0.35, Half::Fitting, false, {-0.00429125, -0.00436025, -0.00437564}},
+    {"slices", 30, 0.49, Half::Fitting, false, {-0.00290364, -0.00302524, -0.00305422}},
+    {"random30", 3, 0, Half::HeldOut, false, {-0.000736509, -0.00073833, -0.000738685}},
+    {"random30", 3, 0.35, Half::HeldOut, false, {-0.000720033, -0.000724738, -0.000725848}},
+    {"random30", 3, 0.49, Half::HeldOut, false, {-0.000672847, -0.000683613, -0.000686218}},
+    {"random30", 10, 0, Half::HeldOut, false, {-0.00191152, -0.0019291, -0.00193469}},
+    {"random30", 10, 0.35, Half::HeldOut, false, {-0.00181912, -0.00184642, -0.00185514}},
+    {"random30", 10, 0.49, Half::HeldOut, true, {-0.00157689, -0.00163752, -0.00165251}},
+    {"random30", 30, 0.35, Half::HeldOut, false, {-0.00450508, -0.00461146, -0.00465698}},
+    {"random30", 30, 0.49, Half::HeldOut, true, {-0.00357854, -0.00383815, -0.00390619}},
+    {"random50", 3, 0, Half::HeldOut, false, {-0.000625476, -0.000627614, -0.000628102}},
+    {"random50", 3, 0.35, Half::HeldOut, false, {-0.000615477, -0.000619172, -0.000620215}},
+    {"random50", 3, 0.49, Half::HeldOut, true, {-0.000576498, -0.00058559, -0.00058811}},
+    {"random50", 10, 0, Half::HeldOut, false, {-0.00132254, -0.00134564, -0.00135363}},
+    {"random50", 10, 0.35, Half::HeldOut, true, {-0.00128197, -0.00130345, -0.00131249}},
+    {"random50", 10, 0.49, Half::HeldOut, true, {-0.00111745, -0.00115959, -0.00117351}},
+    {"random50", 30, 0.49, Half::HeldOut, false, {-0.00204432, -0.00217568, -0.00223042}},
+};
+
+struct MixtureOutcome {
+    double error = 0.0, tolerance = 0.0;
+};
+
+MixtureOutcome compare_mixture(const MixtureTips& t) {
+    const MixedScene& s = scene(t.scene);
+    CHECK(calculix_tip(s, t.contrast, t.nu) == doctest::Approx(t.tip[0]).epsilon(1e-4));
+    const double reference = extrapolated_tip(t.tip[0], t.tip[1], t.tip[2], 1);
+    REQUIRE(std::isfinite(reference));
+    const double ours = engine_tip(s, t.contrast, t.nu);
+    const MixtureOutcome o{ours / reference - 1.0, t.contrast <= 10.0 ? 0.05 : 0.10};
+    const std::string label =
+        std::string(t.scene) + (t.half == Half::Fitting ? " (fitting)" : " (held out)");
+    MESSAGE(label << ", contrast " << t.contrast << ", nu " << t.nu << ": tip " << ours
+                  << " m, CalculiX extrapolated " << reference << " m (+-"
+                  << 100.0 * std::fabs(t.tip[2] / reference - 1.0) << " %), error "
+                  << 100.0 * o.error << " %");
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("calculix: random mixtures within 5% (10x) and 10% (30x) of the converged continuum") {
+    if (skip_without_ccx()) return;
+    for (const MixtureTips& t : kMixtureTips) {
+        if (!t.in_ctest) continue;
+        CAPTURE(t.scene);
+        CAPTURE(t.contrast);
+        CAPTURE(t.nu);
+        const MixtureOutcome o = compare_mixture(t);
+        CHECK(std::fabs(o.error) < o.tolerance);
+    }
+}
+
+//   build/bin/test_engine -tc="calculix table: random*" --no-skip -s
+TEST_CASE("calculix table: random mixtures and slices, every stored case" * doctest::skip()) {
+    if (skip_without_ccx()) return;
+    for (const MixtureTips& t : kMixtureTips) {
+        CAPTURE(t.scene);
+        const MixtureOutcome o = compare_mixture(t);
+        CHECK(std::fabs(o.error) < o.tolerance);
     }
 }
 
