@@ -69,12 +69,18 @@ glm::vec3 hue_wheel(float t) {
 
 float ScalarRange::normalize(float value) const {
     // Any input, finite or not, gives a number in [0, 1]: 0.5 where nothing sensible exists (an
-    // empty, infinite or NaN range; a NaN value).
-    const float span = max - min;
-    if (!std::isfinite(span) || !(std::fabs(span) > 0.0f) || std::isnan(value)) return 0.5f;
-    const float t = (value - min) / span;  // +-inf for an infinite value: clamped below
+    // empty, infinite or NaN range; a NaN value). In double: the span of two finite floats is
+    // finite there (-3.4e38 to 3.4e38 overflows a float).
+    const double span = static_cast<double>(max) - static_cast<double>(min);
+    if (!std::isfinite(span) || !(std::fabs(span) > 0.0) || std::isnan(value)) return 0.5f;
+    const double t = (static_cast<double>(value) - min) / span;  // +-inf for an infinite value
     if (std::isnan(t)) return 0.5f;
-    return std::clamp(t, 0.0f, 1.0f);
+    return static_cast<float>(std::clamp(t, 0.0, 1.0));
+}
+
+ScalarRange ScalarExtent::range(bool symmetric, double fallback) const {
+    const double m = largest_ > 0.0 ? std::min(largest_, kMaxScaleMagnitude) : fallback;
+    return {symmetric ? -static_cast<float>(m) : 0.0f, static_cast<float>(m)};
 }
 
 glm::vec4 sample_color_map(ColorMapName map, float t) {

@@ -54,10 +54,11 @@ std::vector<float> voxel_displacement_m(const engine::VoxelPoses& poses,
     std::vector<float> out(static_cast<std::size_t>(poses.voxel_count()), 0.0f);
     for (int v = 0; v < n; ++v) {
         const std::size_t i = 3 * static_cast<std::size_t>(v);
-        const glm::vec3 d{poses.position_m[i] - rest.position_m[i],
-                          poses.position_m[i + 1] - rest.position_m[i + 1],
-                          poses.position_m[i + 2] - rest.position_m[i + 2]};
-        out[static_cast<std::size_t>(v)] = glm::length(d);
+        // In double: the square of a float near its largest (3.4e38) overflows.
+        const glm::dvec3 d =
+            glm::dvec3(poses.position_m[i], poses.position_m[i + 1], poses.position_m[i + 2]) -
+            glm::dvec3(rest.position_m[i], rest.position_m[i + 1], rest.position_m[i + 2]);
+        out[static_cast<std::size_t>(v)] = static_cast<float>(glm::length(d));
     }
     return out;
 }

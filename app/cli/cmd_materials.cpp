@@ -27,6 +27,13 @@ int list_materials(ArgParser& parser) {
     } catch (const evo::ValidationError& e) {
         return report_problems(e.problems);
     }
+    // What was not read, on stderr before the list (issue 41 R10): a skipped folder, FIFO or
+    // dangling link is a warning; a damaged file is every problem of it, and exit 1 after the
+    // materials that did read are listed.
+    for (const auto& p : library.skipped)
+        std::cerr << "bhm materials: warning: " << p.to_string() << "\n";
+    for (const auto& d : library.damaged)
+        print_problems(d.problems);
     const std::string filter =
         parser.positionals().empty() ? std::string() : lower(parser.positionals().front());
     int shown = 0;
@@ -40,6 +47,11 @@ int list_materials(ArgParser& parser) {
     }
     std::cout << shown << " of " << library.materials.size() << " material(s) in " << library.dir
               << "\n";
+    if (!library.damaged.empty()) {
+        std::cerr << "bhm materials: " << library.damaged.size()
+                  << " damaged file(s) left out; experiments naming them fail\n";
+        return 1;
+    }
     return 0;
 }
 
@@ -52,6 +64,8 @@ int cmd_materials(const Args& args) {
         "\"library\" key names), E, Poisson's ratio, density and, for active tissue, the\n"
         "contraction strain and frequency, each with the range reported and its source.\n"
         "FILTER keeps the materials whose id, name or category contains it.\n"
+        "Entries that are not files (folders, FIFOs, dangling links) are named on stderr\n"
+        "and skipped; an invalid file's problems are printed and the rest is listed.\n"
         "Exit status: 0, 1 when a library file is invalid, 2 on a usage error.");
     parser.positional("FILTER", "part of an id, name or category", false, false);
     parser.option("--dir", "DIR",

@@ -136,22 +136,21 @@ void apply_scalar_coloring(render::Scene& scene, ScalarColoring coloring,
             const engine::VoxelPoses lattice = render::rest_poses(body);
             options.voxel_scalar =
                 render::voxel_displacement_m(body.poses, rest_poses ? *rest_poses : lattice);
-            float largest = 0.0f;
+            render::ScalarExtent extent;
             for (float& d : options.voxel_scalar) {
-                d /= static_cast<float>(body.voxel_size_m);
-                largest = std::max(largest, d);
+                extent.add(static_cast<double>(d) / body.voxel_size_m);
+                d = static_cast<float>(static_cast<double>(d) / body.voxel_size_m);
             }
-            options.scalar_range = {0.0f, largest > 0.0f ? largest : 1.0f};
+            options.scalar_range = extent.range(false, 1.0);
             options.color_map = render::ColorMapName::Sequential;
             break;
         }
         case ScalarColoring::Strain: {
             options.voxel_scalar = render::voxel_volume_strain(body.poses, body.voxel_size_m);
-            float largest = 0.0f;
+            render::ScalarExtent extent;
             for (float s : options.voxel_scalar)
-                largest = std::max(largest, std::fabs(s));
-            if (!(largest > 0.0f)) largest = 0.1f;
-            options.scalar_range = {-largest, largest};
+                extent.add(s);
+            options.scalar_range = extent.range(true, 0.1);
             options.color_map = render::ColorMapName::Diverging;
             break;
         }
@@ -175,21 +174,23 @@ void apply_scalar_coloring(render::Scene& scene, ScalarColoring coloring,
 }
 
 render::ScalarRange replay_scalar_range(const engine::Replay& replay, ScalarColoring coloring) {
-    float largest = 0.0f;
+    // In double, finite values only, clamped (render::ScalarExtent): a replay holding 3.4e38 gave
+    // an infinite largest value and a "-inf to inf" scale (issue 41).
+    render::ScalarExtent extent;
     for (const auto& frame : replay.frames) {
         if (coloring == ScalarColoring::Displacement) {
             for (float d : render::voxel_displacement_m(frame, replay.frames.front()))
-                largest = std::max(largest, d / static_cast<float>(replay.voxel_size_m));
+                extent.add(static_cast<double>(d) / replay.voxel_size_m);
         } else if (coloring == ScalarColoring::Strain) {
             for (float e : render::voxel_volume_strain(frame, replay.voxel_size_m))
-                largest = std::max(largest, std::fabs(e));
+                extent.add(e);
         }
     }
     switch (coloring) {
         case ScalarColoring::Displacement:
-            return {0.0f, largest > 0.0f ? largest : 1.0f};
+            return extent.range(false, 1.0);
         case ScalarColoring::Strain:
-            return {-(largest > 0.0f ? largest : 0.1f), largest > 0.0f ? largest : 0.1f};
+            return extent.range(true, 0.1);
         case ScalarColoring::Phase:
             return {0.0f, 6.28318531f};
         case ScalarColoring::Material:

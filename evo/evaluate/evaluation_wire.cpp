@@ -7,6 +7,7 @@
 
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_reader.hpp"
 
 namespace bhm::evo {
 
@@ -100,7 +101,7 @@ nlohmann::json parse_json(Reader& in) {
     try {
         return nlohmann::json::parse(in.rest());
     } catch (const nlohmann::json::exception& e) {
-        throw WireError(in.what() + ": bad JSON: " + e.what());
+        throw WireError(in.what() + ": bad JSON: " + without_json_tags(e.what()));
     }
 }
 

@@ -27,6 +27,7 @@ namespace bhm::evo {
 
 namespace {
 
+namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string problems_summary(const std::vector<Problem>& problems) {
@@ -107,9 +108,19 @@ class LibraryFill {
         const MaterialLibrary* library = load(r, field);
         if (!library) return base;
         const LibraryMaterial* lm = library->find(base.library);
+        if (const DamagedLibraryFile* d = library->find_damaged(base.library); !lm && d) {
+            // Only the experiments naming a damaged file fail, and say which file (issue 41 R10).
+            r.problem(field, "'" + base.library +
+                                 "' cannot be used: its library file is damaged (" +
+                                 d->problems.front().to_string() + ")");
+            return base;
+        }
         if (!lm) {
             std::string message = "'" + base.library + "' is not in the material library " +
                                   library->dir;
+            for (const auto& skipped : library->skipped)
+                if (fs::path(skipped.file).stem() == base.library)
+                    message += " (" + skipped.file + " was " + skipped.message + ")";
             if (auto guess = closest_match(base.library, library->ids()); !guess.empty())
                 message += " (did you mean '" + guess + "'?)";
             r.problem(field, message + "; `bhm materials` lists it");
@@ -136,6 +147,7 @@ class LibraryFill {
             tried_ = true;
             try {
                 library_ = load_material_library(default_material_library_dir());
+                report_material_library_warnings(*library_);  // a damaged file, a FIFO skipped
             } catch (const ValidationError& e) {
                 error_ = e.problems.empty() ? std::string(e.what()) : e.problems[0].to_string();
             }

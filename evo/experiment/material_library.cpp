@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
+#include <set>
 
 #include "engine/io/text_file.hpp"
 #include "engine/limits.hpp"
@@ -117,6 +119,22 @@ const LibraryMaterial* MaterialLibrary::find(const std::string& id) const {
     return nullptr;
 }
 
+const DamagedLibraryFile* MaterialLibrary::find_damaged(const std::string& id) const {
+    for (const auto& d : damaged)
+        if (d.id == id) return &d;
+    return nullptr;
+}
+
+std::vector<std::string> MaterialLibrary::warnings() const {
+    std::vector<std::string> out;
+    for (const auto& p : skipped)
+        out.push_back(p.to_string());
+    for (const auto& d : damaged)
+        out.push_back(d.problems.front().to_string() + " (material '" + d.id +
+                      "' cannot be used; the rest of the library can)");
+    return out;
+}
+
 std::vector<std::string> MaterialLibrary::ids() const {
     std::vector<std::string> out;
     for (const auto& m : materials)
@@ -204,6 +222,36 @@ LibraryMaterial load_library_material(const std::string& path) {
     return parse_library_material(root, path, fs::path(path).stem().string());
 }
 
+namespace {
+
+// Why an entry of the library folder is not read, from its status alone (nothing is opened: a FIFO
+// would block the open until a writer came); "" for a regular file or a link to one.
+std::string unread_entry_reason(const fs::directory_entry& entry) {
+    std::error_code ec, link_ec;
+    const fs::file_status target = entry.status(ec);  // through a symbolic link
+    if (ec || target.type() == fs::file_type::not_found) {
+        if (entry.is_symlink(link_ec)) return "a symbolic link to a missing file";
+        return "cannot be examined (" + (ec ? ec.message() : std::string("gone")) + ")";
+    }
+    switch (target.type()) {
+        case fs::file_type::regular:
+            return "";
+        case fs::file_type::directory:
+            return "a folder (the library reads only the files directly in it)";
+        case fs::file_type::fifo:
+            return "a named pipe (FIFO), not a file";
+        case fs::file_type::socket:
+            return "a socket, not a file";
+        case fs::file_type::block:
+        case fs::file_type::character:
+            return "a device, not a file";
+        default:
+            return "not a regular file";
+    }
+}
+
+}  // namespace
+
 MaterialLibrary load_material_library(const std::string& dir) {
     MaterialLibrary library;
     library.dir = dir;
@@ -213,23 +261,50 @@ MaterialLibrary load_material_library(const std::string& dir) {
                                                  "(set BHM_MATERIALS_DIR to the library)"}});
     std::vector<std::string> paths;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-        std::error_code type_ec;
-        if (it->is_regular_file(type_ec) && it->path().extension() == ".json")
+        const std::string name = it->path().filename().string();
+        if (name.empty() || name[0] == '.') continue;  // hidden: an editor's or a tool's own
+        if (const std::string reason = unread_entry_reason(*it); !reason.empty())
+            library.skipped.push_back({it->path().string(), "(file)", "skipped: " + reason});
+        else if (it->path().extension() == ".json")
             paths.push_back(it->path().string());
     }
     if (ec) throw ValidationError({{dir, "(folder)", "cannot be listed: " + ec.message()}});
     std::sort(paths.begin(), paths.end());
-    std::vector<Problem> problems;
+    std::sort(library.skipped.begin(), library.skipped.end(),
+              [](const Problem& a, const Problem& b) { return a.file < b.file; });
     for (const auto& path : paths) {
         try {
             library.materials.push_back(load_library_material(path));
         } catch (const ValidationError& e) {
-            problems.insert(problems.end(), e.problems.begin(), e.problems.end());
+            library.damaged.push_back({fs::path(path).stem().string(), path, e.problems});
         }
     }
-    if (paths.empty()) problems.push_back({dir, "(folder)", "holds no material files (*.json)"});
-    if (!problems.empty()) throw ValidationError(std::move(problems));
+    if (paths.empty()) {
+        std::vector<Problem> problems = library.skipped;
+        problems.push_back({dir, "(folder)", "holds no material files (*.json)"});
+        throw ValidationError(std::move(problems));
+    }
     return library;
+}
+
+namespace {
+
+std::mutex warning_mutex;
+std::function<void(const std::string&)> warning_handler;
+std::set<std::string> warnings_given;
+
+}  // namespace
+
+void set_material_library_warning_handler(std::function<void(const std::string&)> handler) {
+    const std::lock_guard lock(warning_mutex);
+    warning_handler = std::move(handler);
+}
+
+void report_material_library_warnings(const MaterialLibrary& library) {
+    const std::lock_guard lock(warning_mutex);
+    if (!warning_handler) return;
+    for (const auto& w : library.warnings())
+        if (warnings_given.insert(w).second) warning_handler(w);
 }
 
 void apply_library_material(const LibraryMaterial& m, double temperature_amplitude_c,

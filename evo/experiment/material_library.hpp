@@ -4,6 +4,7 @@
 // problem as "file:field: message"). An experiment's material slot names an entry with
 // "library": "<id>" (the file's name without .json) and takes the values it does not give itself.
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,19 +46,45 @@ struct LibraryMaterial {
 inline constexpr std::array<const char*, 4> kLibraryCategories = {"silicone", "thermoplastic",
                                                                   "tissue", "hydrogel"};
 
+//! A library file that did not read as a material. Only an experiment naming its id fails (the
+//! error names the file); the rest of the library stays usable (issue 41 R10).
+struct DamagedLibraryFile {
+    std::string id;                 //!< file name without .json
+    std::string file;               //!< its path
+    std::vector<Problem> problems;  //!< every problem, as `bhm validate` reports them
+};
+
 struct MaterialLibrary {
     std::string dir;
     std::vector<LibraryMaterial> materials;  //!< sorted by id
+    std::vector<DamagedLibraryFile> damaged;  //!< sorted by id
+    //! Entries of the folder that were not read, and never opened (a FIFO would block an open): a
+    //! folder, a named pipe, a socket or device, a symbolic link to nothing. Field "(file)", the
+    //! message says what it is.
+    std::vector<Problem> skipped;
     const LibraryMaterial* find(const std::string& id) const;
+    const DamagedLibraryFile* find_damaged(const std::string& id) const;
     std::vector<std::string> ids() const;
+    //! One line per skipped entry and per damaged file (its first problem), for wherever the
+    //! library is listed or used: `bhm materials`, an experiment filled from it, the studio.
+    std::vector<std::string> warnings() const;
 };
 
 //! The library folder: $BHM_MATERIALS_DIR when set, else <exe>/../share/bhm/materials when it
 //! exists, else the source tree's assets/materials. May not exist.
 std::string default_material_library_dir();
 
-//! Reads every *.json of dir; throws ValidationError listing every problem of every file.
+//! Reads every regular *.json of dir. A file that does not read goes to `damaged`, an entry that
+//! is not a regular file to `skipped`; throws ValidationError only when dir is not a listable
+//! folder or holds no material files at all.
 MaterialLibrary load_material_library(const std::string& dir);
+
+//! Receives each line of MaterialLibrary::warnings() once per process when an experiment's slot is
+//! filled from the library (parse_experiment). The command line prints them on stderr; none is
+//! set by default (the studio shows the library's warnings itself). Thread-safe.
+void set_material_library_warning_handler(std::function<void(const std::string&)> handler);
+//! Gives the handler each of library.warnings() not given before.
+void report_material_library_warnings(const MaterialLibrary& library);
 //! One file's entry (id = file name without .json); throws ValidationError.
 LibraryMaterial load_library_material(const std::string& path);
 LibraryMaterial parse_library_material(const nlohmann::json& json, const std::string& file_label,

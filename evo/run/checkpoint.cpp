@@ -448,7 +448,7 @@ RunState run_state_from_json(const json& j, const std::string& label) {
     } catch (const FieldError& e) {
         throw std::runtime_error(label + ": " + e.what());
     } catch (const json::exception& e) {
-        throw std::runtime_error(label + ": " + e.what());
+        throw std::runtime_error(label + ": " + without_json_tags(e.what()));
     }
 }
 
@@ -468,9 +468,10 @@ json parse_checkpoint_text(const std::string& text, std::vector<std::string>& no
         try {
             j = json::parse(text);
         } catch (const json::parse_error& e) {
+            // Its own words without nlohmann's tags: this reaches the resume warning (issue 41 R9).
             throw std::runtime_error(std::string("not a checkpoint: no checksum header and not "
                                                  "valid JSON (") +
-                                     e.what() + ")");
+                                     without_json_tags(e.what()) + ")");
         }
         if (!j.is_object() || j.value("format_version", 0) != 1)
             throw std::runtime_error("damaged: the checksum header is missing");
@@ -561,7 +562,7 @@ LoadedCheckpoint load_checkpoint(const std::string& dir) {
                 out.warnings.push_back(path + ": " + n);
             return out;
         } catch (const std::exception& e) {
-            std::string message = e.what();
+            std::string message = without_json_tags(e.what());  // a resume warning's words
             if (message.rfind(path, 0) != 0) message = path + ": " + message;
             problems.push_back(message);
         }

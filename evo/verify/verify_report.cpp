@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_fields.hpp"
 
 namespace bhm::evo {
 
@@ -194,16 +196,20 @@ nlohmann::json poses_json(const engine::VoxelPoses& p) {
     return {{"position_m", p.position_m}, {"orientation", p.orientation}, {"size_m", p.size_m}};
 }
 
+// where: "FILE: loads[k].fem", so each problem reads "FILE: field: what is wrong".
 engine::VoxelPoses poses_from_json(const nlohmann::json& j, std::size_t voxels,
                                    const std::string& where) {
+    if (!j.is_object()) throw std::runtime_error(where + ": expected an object");
     engine::VoxelPoses p;
     const std::pair<const char*, std::size_t> fields[] = {
         {"position_m", 3}, {"orientation", 4}, {"size_m", 3}};
     for (const auto& [name, per] : fields) {
-        if (!j.contains(name) || !j.at(name).is_array() || j.at(name).size() != per * voxels)
+        const auto it = j.find(name);
+        if (it == j.end() || !it->is_array() || it->size() != per * voxels ||
+            !std::all_of(it->begin(), it->end(), [](const auto& x) { return x.is_number(); }))
             throw std::runtime_error(where + "." + name + ": expected " +
                                      std::to_string(per * voxels) + " numbers");
-        auto values = j.at(name).get<std::vector<float>>();
+        auto values = it->template get<std::vector<float>>();
         (std::string(name) == "position_m"    ? p.position_m
          : std::string(name) == "orientation" ? p.orientation
                                               : p.size_m) = std::move(values);
@@ -223,19 +229,28 @@ nlohmann::json verification_shapes_json(const BodyVerification& v) {
 }
 
 VerificationShapes verification_shapes_from_json(const nlohmann::json& j, const std::string& file) {
+    // Every field checked before it is read (json_fields.hpp): a damaged file is "FILE: field:
+    // what is wrong" in the studio's FEM tab, never nlohmann's "[json.exception...]" (issue 41 R9).
     VerificationShapes out;
     try {
-        out.voxel_cells = j.at("voxel_cells").get<std::vector<int>>();
-        const auto& loads = j.at("loads");
-        for (std::size_t k = 0; k < loads.size(); ++k) {
-            const std::string where = file + ": loads[" + std::to_string(k) + "]";
-            out.loads.push_back(loads[k].at("load").get<std::string>());
-            out.fem.push_back(
-                poses_from_json(loads[k].at("fem"), out.voxel_cells.size(), where + ".fem"));
-            out.engine.push_back(
-                poses_from_json(loads[k].at("engine"), out.voxel_cells.size(), where + ".engine"));
+        const Fields f(j, "");
+        const auto& cells = f.array("voxel_cells");
+        for (const auto& c : cells) {
+            if (!c.is_number_integer() || c.get<std::int64_t>() < 0 ||
+                c.get<std::int64_t>() > std::numeric_limits<int>::max())
+                f.fail("voxel_cells", "expected an array of cell indices");
+            out.voxel_cells.push_back(c.get<int>());
         }
-    } catch (const nlohmann::json::exception& e) {
+        const auto& loads = f.array("loads");
+        for (std::size_t k = 0; k < loads.size(); ++k) {
+            const Fields load(loads[k], item("loads", k));
+            const std::string where = file + ": " + item("loads", k);
+            out.loads.push_back(load.string("load"));
+            out.fem.push_back(poses_from_json(load.at("fem"), cells.size(), where + ".fem"));
+            out.engine.push_back(
+                poses_from_json(load.at("engine"), cells.size(), where + ".engine"));
+        }
+    } catch (const FieldError& e) {
         throw std::runtime_error(file + ": " + e.what());
     }
     return out;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "app/cli/render_scene.hpp"
@@ -276,6 +277,31 @@ TEST_CASE("replay scenes: poses at the time, ghost beside, trail, displacement i
     const auto range = app::replay_scalar_range(replay, app::ScalarColoring::Displacement);
     CHECK(range.max ==
           doctest::Approx(std::sqrt(0.2 * 0.2 + 0.4 * 0.4)).epsilon(1e-3));  // free end at 1 s
+
+    // A huge finite value (3.4e38, a float's largest) in one voxel of one frame: the scales stay
+    // finite, the displacement's clamped (it was +inf, the strain's "-inf to inf"; issue 41).
+    engine::Replay huge = replay;
+    huge.frames.back().position_m[0] = std::numeric_limits<float>::max();
+    huge.frames.back().size_m[0] = std::numeric_limits<float>::max();
+    for (const auto coloring : {app::ScalarColoring::Displacement, app::ScalarColoring::Strain}) {
+        const auto r = app::replay_scalar_range(huge, coloring);
+        INFO(r.min << " to " << r.max);
+        CHECK(std::isfinite(r.min));
+        CHECK(std::isfinite(r.max));
+        CHECK(std::isfinite(r.max - r.min));
+    }
+    // The displacement, 3.4e40 voxel lengths in double, is clamped; the strain, beyond a float,
+    // is left out of the scale (that voxel takes its end colour).
+    CHECK(app::replay_scalar_range(huge, app::ScalarColoring::Displacement).max ==
+          static_cast<float>(render::kMaxScaleMagnitude));
+    CHECK(app::replay_scalar_range(huge, app::ScalarColoring::Strain).max < 1.0f);
+    render::Scene at_end = app::replay_scene(f.experiment, huge, 1.0, options);
+    for (const auto coloring : {app::ScalarColoring::Displacement, app::ScalarColoring::Strain}) {
+        app::apply_scalar_coloring(at_end, coloring, &huge.frames.front());
+        const auto& r = at_end.options.scalar_range;
+        INFO(r.min << " to " << r.max);
+        CHECK(std::isfinite(r.max - r.min));
+    }
 
     engine::Replay wrong = replay;
     wrong.nx = 3;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numbers>
 
 #include "app/gui/actions/studio_actions.hpp"
@@ -100,6 +101,36 @@ TEST_CASE("studio analysis: bend angle, tip and centre of mass of a rotated rod"
     CHECK(act.values[2] == 0.0f);
     const auto settling = voxel_scalars(ColorBy::Actuation, e, r, 0, s, {});
     CHECK(settling.values[1] == 0.0f);
+}
+
+TEST_CASE("studio analysis: a replay holding a huge finite value gets a finite colour bar") {
+    // Issue 41: 3.4e38 (a float's largest) in a voxel's position and size made the colour ranges
+    // +inf and "-inf to inf": they were found in float.
+    const int n = 5;
+    const double L = 0.01, settle = 0.1;
+    auto e = testing::tiny_experiment({n, 1, 1});
+    auto r = rod_replay(n, L, settle);
+    r.frames = {rod_frame(n, L, 0.0, 0.0), rod_frame(n, L, settle, 0.0),
+                rod_frame(n, L, 0.2, 0.3, 1.1f)};
+    r.frames[2].position_m[3] = std::numeric_limits<float>::max();
+    r.frames[2].size_m[3] = std::numeric_limits<float>::max();
+    const std::vector<glm::vec3> com(r.frames.size(), glm::vec3(0.0f));
+    const auto s = body_time_series(e, r, com);
+    CHECK(std::isfinite(s.max_displacement_vox));
+    CHECK(std::isfinite(s.max_abs_strain));
+    for (const ColorBy by : {ColorBy::Displacement, ColorBy::Strain}) {
+        const auto field = voxel_scalars(by, e, r, 2, s, {});
+        INFO(field.range.min << " to " << field.range.max);
+        CHECK(std::isfinite(field.range.min));
+        CHECK(std::isfinite(field.range.max));
+        CHECK(std::isfinite(field.range.max - field.range.min));
+        CHECK(field.range.max > 1.0f);
+        for (const float v : field.values) {
+            const float t = field.range.normalize(v);
+            CHECK(t >= 0.0f);
+            CHECK(t <= 1.0f);
+        }
+    }
 }
 
 TEST_CASE("studio analysis: champion history, side by side, scatter, time plots, overlaid runs") {

@@ -621,6 +621,57 @@ TEST_CASE("studio verify: a damaged kept report is one readable line, not the JS
     }
 }
 
+TEST_CASE(
+    "studio verify: a kept report or shapes file of the wrong shape names the file and the field") {
+    // Issue 41 R9: a mistyped field of shapes.json reached the FEM tab as nlohmann's own text
+    // ("[json.exception.type_error.302] type must be array, but is string"), and one of
+    // report.json as "type must be number, but is string" without saying which field.
+    const auto dir = testing::fresh_dir("verify-wrong-shape");
+    const fs::path kept = fs::path(BHM_SOURCE_DIR) / "tests" / "data" / "verify" / "individual-7";
+    const json report = json::parse(std::ifstream(kept / "report.json"));
+    const json shapes = json::parse(std::ifstream(kept / "shapes.json"));
+    struct Damage {
+        const char* file;
+        const char* pointer;  // the field damaged (RFC 6901)
+        json value;           // its new value; null: the field removed
+        const char* field;    // how the message names it
+    };
+    const std::vector<Damage> damages = {
+        {"shapes.json", "/voxel_cells", "many", "voxel_cells"},
+        {"shapes.json", "/loads/0/load", 5, "loads[0].load"},
+        {"shapes.json", "/loads", json::object(), "loads"},
+        {"report.json", "/fem/cpu_s", "fast", "fem.cpu_s"},
+        {"report.json", "/loads/1/temperature_c", nullptr, "loads[1].temperature_c"},
+        {"report.json", "/loads/2/fem/tip_displacement_m/1", "up",
+         "loads[2].fem.tip_displacement_m"},
+    };
+    int id = 0;
+    for (const auto& d : damages) {
+        const fs::path folder = dir / ("individual-" + std::to_string(++id));
+        fs::create_directories(folder);
+        json damaged_report = report, damaged_shapes = shapes;
+        json& target = std::string(d.file) == "report.json" ? damaged_report : damaged_shapes;
+        const json::json_pointer at(d.pointer);
+        if (d.value.is_null())
+            target[at.parent_pointer()].erase(at.back());
+        else
+            target[at] = d.value;
+        std::ofstream(folder / "report.json") << damaged_report.dump();
+        std::ofstream(folder / "shapes.json") << damaged_shapes.dump();
+        std::string message;
+        try {
+            read_verification(folder.string(), id);
+        } catch (const std::runtime_error& e) {
+            message = e.what();
+        }
+        INFO(d.file << " " << d.pointer << ": " << message);
+        CHECK(message.rfind((folder / d.file).string() + ": " + d.field + ": ", 0) == 0);
+        CHECK(message.find("[json.exception") == std::string::npos);
+        CHECK(message.find("type must be") == std::string::npos);
+        CHECK(message.find('\n') == std::string::npos);
+    }
+}
+
 namespace {
 
 // The message read_verification gives for a folder whose `fifo` is a named pipe, read on a thread:

@@ -1,6 +1,7 @@
 // The bhm executable's validate command and usage errors, run as a user would run them.
 #include <doctest/doctest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cstdio>
@@ -83,6 +84,61 @@ TEST_CASE("bhm materials lists the library with values and sources") {
     CHECK(r.status == 1);
     CHECK(r.output.find((dir / "bad.json").string() + ":youngs_modulus_pa.source: is required") !=
           std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE(
+    "bhm materials and bhm validate name what the library skipped; one damaged file fails "
+    "only the experiments naming it") {
+    // Issue 41 R10: a FIFO, a folder and a dangling link were skipped without a word, and one
+    // damaged file refused every experiment filled from the library.
+    const auto dir = bhm::test::scratch_dir("materials-skipped");
+    const auto library = dir / "library";
+    std::filesystem::create_directories(library / "drafts");
+    std::ofstream(library / "good.json") << R"({"format_version": 1, "name": "good rubber",
+        "category": "silicone", "engine": "e", "youngs_modulus_pa": {"value": 1e5, "source": "s"},
+        "poisson_ratio": {"value": 0.3, "source": "s"}, "density_kg_m3": {"value": 1000,
+        "source": "s"}})";
+    std::ofstream(library / "bad.json") << R"({"format_version": 1, "name": "x"})";
+    REQUIRE(::mkfifo((library / "pipe.json").c_str(), 0644) == 0);
+    std::filesystem::create_symlink(library / "nowhere.json", library / "gone.json");
+    auto r = run("materials --dir " + library.string());  // a FIFO opened would hang here
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(r.output.find("good  good rubber  (silicone)") != std::string::npos);
+    CHECK(r.output.find((library / "pipe.json").string() + ":(file): skipped: a named pipe") !=
+          std::string::npos);
+    CHECK(r.output.find((library / "drafts").string() + ":(file): skipped: a folder") !=
+          std::string::npos);
+    CHECK(r.output.find((library / "gone.json").string() +
+                        ":(file): skipped: a symbolic link to a missing file") !=
+          std::string::npos);
+    CHECK(r.output.find((library / "bad.json").string() + ":category: is required") !=
+          std::string::npos);
+
+    ::setenv("BHM_MATERIALS_DIR", library.string().c_str(), 1);
+    const auto uses_good = (dir / "uses-good.json").string();
+    std::ofstream(uses_good) << R"({"materials": [{"library": "good"},
+        {"name": "muscle", "poisson_ratio": 0.3, "cte_per_c": 0.01}]})";
+    r = run("validate " + uses_good);
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("1 file(s) valid") != std::string::npos);
+    CHECK(r.output.find("bhm: warning: " + (library / "bad.json").string() + ":") !=
+          std::string::npos);
+    CHECK(r.output.find("bhm: warning: " + (library / "pipe.json").string() + ":(file): skipped") !=
+          std::string::npos);
+    const auto uses_bad = (dir / "uses-bad.json").string();
+    std::ofstream(uses_bad) << R"({"materials": [{"library": "good"}, {"library": "bad",
+        "poisson_ratio": 0.3, "density_kg_m3": 1000, "cte_per_c": 0.01}]})";
+    r = run("validate " + uses_bad);
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(r.output.find(uses_bad +
+                        ":materials[1].library: 'bad' cannot be used: its library file "
+                        "is damaged (" +
+                        (library / "bad.json").string() + ":") != std::string::npos);
+    ::unsetenv("BHM_MATERIALS_DIR");
     std::filesystem::remove_all(dir);
 }
 

@@ -5,8 +5,12 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
+#include <sys/stat.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/material_library.hpp"
@@ -36,12 +40,9 @@ std::vector<std::string> problems_of(const std::string& text) {
     ScratchDir dir("bhm-material-library");
     dir.write("broken.json", text);
     std::vector<std::string> lines;
-    try {
-        load_material_library(dir.path.string());
-    } catch (const ValidationError& e) {
-        for (const auto& p : e.problems)
+    for (const auto& d : load_material_library(dir.path.string()).damaged)
+        for (const auto& p : d.problems)
             lines.push_back(p.to_string());
-    }
     return lines;
 }
 
@@ -124,6 +125,107 @@ TEST_CASE("a broken library file is one line naming the file and the field") {
     lines = problems_of("{ not json");
     REQUIRE(lines.size() == 1);
     CHECK(lines[0].find(file + "(json):") != std::string::npos);
+}
+
+TEST_CASE("a library's folders, FIFOs and dangling links are named and skipped, never opened") {
+    // Issue 41 R10: they were skipped without a word. A FIFO is never opened (an open would wait
+    // for a writer): only its status is read.
+    ScratchDir dir("bhm-library-skipped");
+    dir.write("good.json", kValidEntry);
+    dir.write("notes.txt", "not a material: ignored");
+    REQUIRE(::mkfifo((dir.path / "pipe.json").c_str(), 0644) == 0);
+    fs::create_directories(dir.path / "drafts.json");
+    fs::create_symlink(dir.path / "nowhere.json", dir.path / "gone.json");
+    const MaterialLibrary library = load_material_library(dir.path.string());
+    CHECK(library.ids() == std::vector<std::string>{"good"});
+    CHECK(library.damaged.empty());
+    const std::vector<std::string> warnings = library.warnings();
+    REQUIRE(warnings.size() == 3);
+    const std::string at = dir.path.string() + "/";
+    CHECK(warnings[0] == at + "drafts.json:(file): skipped: a folder (the library reads only the "
+                              "files directly in it)");
+    CHECK(warnings[1] == at + "gone.json:(file): skipped: a symbolic link to a missing file");
+    CHECK(warnings[2] == at + "pipe.json:(file): skipped: a named pipe (FIFO), not a file");
+    // A folder of nothing but such entries is refused, each named.
+    fs::remove(dir.path / "good.json");
+    try {
+        load_material_library(dir.path.string());
+        FAIL("a library without material files loaded");
+    } catch (const ValidationError& e) {
+        REQUIRE(e.problems.size() == 4);
+        CHECK(e.problems[2].to_string() == warnings[2]);
+        CHECK(e.problems[3].message == "holds no material files (*.json)");
+    }
+}
+
+namespace {
+
+// Sets an environment variable for one scope (the library folder experiments read).
+struct ScopedEnv {
+    std::string name;
+    std::optional<std::string> old;
+    ScopedEnv(std::string n, const std::string& value) : name(std::move(n)) {
+        if (const char* v = std::getenv(name.c_str())) old = v;
+        ::setenv(name.c_str(), value.c_str(), 1);
+    }
+    ~ScopedEnv() {
+        if (old)
+            ::setenv(name.c_str(), old->c_str(), 1);
+        else
+            ::unsetenv(name.c_str());
+    }
+};
+
+}  // namespace
+
+TEST_CASE("a damaged library file fails only the experiments naming it; others load, warned") {
+    // Issue 41 R10: one damaged file made the whole library fail to load, so every experiment
+    // filled from it was refused, whichever materials it used.
+    ScratchDir dir("bhm-library-damaged");
+    dir.write("good.json", kValidEntry);
+    const std::string bad = dir.write("bad.json", R"({"format_version": 1, "name": "x"})");
+    REQUIRE(::mkfifo((dir.path / "pipe.json").c_str(), 0644) == 0);
+    const ScopedEnv env("BHM_MATERIALS_DIR", dir.path.string());
+    std::vector<std::string> warned;
+    set_material_library_warning_handler([&](const std::string& w) { warned.push_back(w); });
+    struct Unset {
+        ~Unset() { set_material_library_warning_handler(nullptr); }
+    } unset;  // `warned` ends with this test, however it ends
+
+    const std::string active = R"({"name": "a", "poisson_ratio": 0.3, "cte_per_c": 0.01})";
+    const Experiment e = parse_text(R"({"materials": [
+        {"library": "good", "poisson_ratio": 0.3, "density_kg_m3": 1000}, )" +
+                                    active + "]}");
+    CHECK(e.materials[0].physics.youngs_modulus_pa == 1e5);
+    REQUIRE(warned.size() == 2);  // the FIFO, then the damaged file
+    CHECK(warned[0].find((dir.path / "pipe.json").string() + ":(file): skipped") == 0);
+    CHECK(warned[1].find(bad + ":") == 0);
+    CHECK(warned[1].find("material 'bad' cannot be used") != std::string::npos);
+    parse_text(R"({"materials": [{"library": "good", "poisson_ratio": 0.3,
+                  "density_kg_m3": 1000}, )" +
+               active + "]}");
+    CHECK(warned.size() == 2);  // said once per process
+
+    try {
+        parse_text(R"({"materials": [{"library": "good", "poisson_ratio": 0.3,
+                      "density_kg_m3": 1000}, {"library": "bad"}, {"library": "pipe"}, )" +
+                   active + "]}");
+        FAIL("an experiment naming a damaged library file loaded");
+    } catch (const ValidationError& error) {
+        INFO(error.what());
+        std::vector<std::string> lines;
+        for (const auto& p : error.problems)
+            lines.push_back(p.to_string());
+        CHECK(has_line_starting(lines,
+                                "e.json:materials[1].library: 'bad' cannot be used: its "
+                                "library file is damaged (" +
+                                    bad + ":"));
+        CHECK(has_line_starting(lines,
+                                "e.json:materials[2].library: 'pipe' is not in the "
+                                "material library"));
+        CHECK(has_line_starting(lines, "pipe.json was skipped: a named pipe (FIFO)"));
+        CHECK_FALSE(has_line_starting(lines, "materials[0]"));
+    }
 }
 
 TEST_CASE("an experiment slot takes a library material's values and keeps its own") {

@@ -118,6 +118,29 @@ TEST_CASE("a format 1 checkpoint (no checksum) is still read, with a warning tha
     fs::remove_all(dir);
 }
 
+TEST_CASE(
+    "a checkpoint damaged in its first bytes is one line naming it, without the JSON "
+    "library's codes") {
+    // Issue 41 R9: with no checksum header the file is read as a format 1 checkpoint, and its
+    // parse error reached the resume warning as "[json.exception.parse_error.101] ...".
+    const auto e = test::tiny_experiment();
+    const fs::path dir = bhm::test::scratch_dir("rel-first-bytes", false);
+    EvolutionRun(e, run_options(2, 2, dir.string())).run();
+    for (const std::string& bad : {std::string(), std::string("{"), std::string("x1 damaged")}) {
+        spit(dir / kCheckpointFile, bad);
+        auto resumed = EvolutionRun::resume(run_options(3, 2, dir.string()));
+        REQUIRE(resumed->resume_warnings().size() == 1);
+        const std::string warning = resumed->resume_warnings()[0];
+        INFO("'" << bad << "': " << warning);
+        CHECK(warning.rfind((dir / kCheckpointFile).string() + ": ", 0) == 0);
+        CHECK(warning.find(kPreviousCheckpointFile) != std::string::npos);
+        CHECK(warning.find("json.exception") == std::string::npos);
+        CHECK(warning.find('\n') == std::string::npos);
+        CHECK(resumed->state().generation == 0);
+    }
+    fs::remove_all(dir);
+}
+
 TEST_CASE("a run directory has one writer: a second is refused with the owner's name") {
     const auto e = test::tiny_experiment();
     const fs::path dir = bhm::test::scratch_dir("rel-lock", false);

@@ -94,3 +94,42 @@ TEST_CASE("colour maps and ranges take any float, finite or not, and give colour
     CHECK(ScalarRange{-1.0f, 1.0f}.normalize(-inf) == 0.0f);
     CHECK(ScalarRange{-1.0f, 1.0f}.normalize(nan) == 0.5f);
 }
+
+TEST_CASE("a field's colour scale is found in double over finite values and stays finite") {
+    // Issue 41: a replay holding 3.4e38 (finite, a float's largest) gave a "-inf to inf" scale:
+    // the largest magnitude, found in float, overflowed, and so did the span.
+    const double inf = std::numeric_limits<double>::infinity();
+    const double big = std::numeric_limits<float>::max();  // 3.4e38
+    ScalarExtent extent;
+    for (const double v : {0.5, -2.0, std::numeric_limits<double>::quiet_NaN(), inf, -inf})
+        extent.add(v);
+    CHECK(extent.largest() == 2.0);  // the non-finite values left out
+    CHECK(extent.range(true, 0.1).min == -2.0f);
+    CHECK(extent.range(true, 0.1).max == 2.0f);
+    CHECK(extent.range(false, 1.0).min == 0.0f);
+    extent.add(big);
+    extent.add(big * 1e3);  // a displacement of 3.4e38 m in voxel lengths of 1 mm: finite in double
+    for (const bool symmetric : {false, true}) {
+        const ScalarRange range = extent.range(symmetric, 1.0);
+        INFO("symmetric " << symmetric << ": " << range.min << " to " << range.max);
+        CHECK(std::isfinite(range.min));
+        CHECK(std::isfinite(range.max));
+        CHECK(std::isfinite(range.max - range.min));           // the span, in float
+        CHECK(std::isfinite(0.5f * (range.min + range.max)));  // the legend's middle
+        CHECK(range.max == static_cast<float>(kMaxScaleMagnitude));
+        CHECK(range.normalize(static_cast<float>(big)) == 1.0f);
+        CHECK(range.normalize(range.max * 0.5f) ==
+              doctest::Approx(symmetric ? 0.75 : 0.5).epsilon(1e-6));
+    }
+    // Nothing finite above zero: the fallback.
+    ScalarExtent none;
+    none.add(inf);
+    none.add(0.0);
+    CHECK(none.range(true, 0.1).max == 0.1f);
+    CHECK(none.range(false, 1.0).max == 1.0f);
+    // A range whose span overflows a float still normalises (in double), not 0.5 everywhere.
+    const ScalarRange widest{-static_cast<float>(big), static_cast<float>(big)};
+    CHECK(widest.normalize(0.0f) == 0.5f);
+    CHECK(widest.normalize(static_cast<float>(big)) == 1.0f);
+    CHECK(widest.normalize(-static_cast<float>(big) * 0.5f) == doctest::Approx(0.25));
+}

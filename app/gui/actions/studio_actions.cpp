@@ -41,10 +41,22 @@ bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& 
     return true;
 }
 
+std::string material_library_warning(const evo::MaterialLibrary& library) {
+    const auto warnings = library.warnings();
+    if (warnings.empty()) return "";
+    std::string text = "material library: " + warnings.front();
+    if (warnings.size() > 1) text += " (and " + std::to_string(warnings.size() - 1) + " more)";
+    return text;
+}
+
 const evo::MaterialLibrary* studio_material_library(Studio& studio) {
     if (!studio.material_library && studio.material_library_error.empty()) {
         try {
             studio.material_library = evo::load_material_library(studio.material_library_dir);
+            // A skipped entry or a damaged file is said where the library is first used (issue
+            // 41 R10); the picker lists every one.
+            if (auto warning = material_library_warning(*studio.material_library); !warning.empty())
+                set_status(studio, warning);
         } catch (const evo::ValidationError& e) {
             studio.material_library_error =
                 e.problems.empty() ? std::string(e.what()) : e.problems[0].to_string();
@@ -84,7 +96,16 @@ bool open_experiment(Studio& studio, const std::string& path) {
         studio.view.camera_needs_framing = true;
         studio.edit_problems.clear();
         set_view_mode(studio, ViewMode::Workspace);
-        set_status(studio, "opened " + path);
+        std::string status = "opened " + path;
+        // Filled from a library with a damaged file or a skipped entry: it loaded, and says so.
+        const bool uses_library =
+            std::any_of(experiment.materials.begin(), experiment.materials.end(),
+                        [](const auto& m) { return !m.library.empty(); });
+        if (const evo::MaterialLibrary* library =
+                uses_library ? studio_material_library(studio) : nullptr)
+            if (auto warning = material_library_warning(*library); !warning.empty())
+                status += "; " + warning;
+        set_status(studio, status);
         return true;
     } catch (const evo::ValidationError& e) {
         studio.edit_problems = e.problems;

@@ -36,6 +36,8 @@ bool undo(Studio& studio);
 //! The material library, read from studio.material_library_dir on first use; nullptr (and
 //! studio.material_library_error) when it does not load.
 const evo::MaterialLibrary* studio_material_library(Studio& studio);
+//! "material library: FILE:(file): skipped: ... (and N more)", or "" when every entry read.
+std::string material_library_warning(const evo::MaterialLibrary& library);
 //! Fills material slot (0-based) from library material `id` (evo::apply_library_material, at the
 //! experiment's temperature amplitude) as one undoable edit; values the library has no source for
 //! keep the slot's. False when the id is unknown or the edit is refused.

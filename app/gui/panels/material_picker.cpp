@@ -104,6 +104,9 @@ void material_library_picker(Studio& s, std::size_t slot) {
         if (!library) {
             ImGui::TextDisabled("the library did not load: %s", s.material_library_error.c_str());
         } else {
+            // What the library did not read, above its list (issue 41 R10).
+            for (const auto& w : library->warnings())
+                ImGui::TextColored(ImColor(IM_COL32(190, 60, 30, 255)), "%s", w.c_str());
             char buffer[128];
             std::snprintf(buffer, sizeof buffer, "%s", s.material_filter.c_str());
             ImGui::SetNextItemWidth(ImGui::GetFontSize() * 24.0f);

@@ -72,6 +72,9 @@ BodyTimeSeries body_time_series(const evo::Experiment& e, const engine::Replay& 
     const glm::vec3 tip0 = centroid(f0, tip);
     const glm::vec3 dir0 = tip0 - centroid(f0, base);
     const auto& first = r.frames.front();
+    // The colour ranges in double, finite values only, clamped: a replay holding 3.4e38 made them
+    // infinite in float, a "-inf to inf" colour bar (issue 41).
+    render::ScalarExtent displacement, strain;
     for (std::size_t k = 0; k < r.frames.size(); ++k) {
         const auto& f = r.frames[k];
         out.t_s.push_back(f.time_s);
@@ -89,14 +92,15 @@ BodyTimeSeries body_time_series(const evo::Experiment& e, const engine::Replay& 
         }
         out.bend_deg.push_back(angle);
         for (std::size_t v = 0; v < n; ++v) {
-            out.max_displacement_vox =
-                std::max(out.max_displacement_vox,
-                         static_cast<float>(glm::length(position(f, v) - position(first, v)) / L));
-            const float volume = f.size_m[3 * v] * f.size_m[3 * v + 1] * f.size_m[3 * v + 2];
-            out.max_abs_strain = std::max(out.max_abs_strain,
-                                          std::abs(volume / static_cast<float>(L * L * L) - 1.0f));
+            displacement.add(
+                glm::length(glm::dvec3(position(f, v)) - glm::dvec3(position(first, v))) / L);
+            const double volume =
+                static_cast<double>(f.size_m[3 * v]) * f.size_m[3 * v + 1] * f.size_m[3 * v + 2];
+            strain.add(volume / (L * L * L) - 1.0);
         }
     }
+    out.max_displacement_vox = displacement.range(false, 0.0).max;
+    out.max_abs_strain = strain.range(false, 0.0).max;
     return out;
 }
 

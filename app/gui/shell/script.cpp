@@ -609,7 +609,8 @@ void run_script(HeadlessStudio& session, const json& steps,
             const std::string kind = step.is_object() && !step.empty() ? step.begin().key() : "?";
             throw ScriptError("step " + std::to_string(i + 1) + " (" + kind + "): " + e.what());
         } catch (const json::exception& e) {
-            throw ScriptError("step " + std::to_string(i + 1) + ": malformed: " + e.what());
+            throw ScriptError("step " + std::to_string(i + 1) +
+                              ": malformed: " + evo::without_json_tags(e.what()));
         }
         if (after_step) after_step(static_cast<int>(i), step);
     }
