@@ -32,10 +32,8 @@ struct Stored {
 
 // The anchor scenes (tests/support/engine_fingerprint.hpp anchor_scenes()).
 constexpr Stored kAnchorScenes[] = {
-    {"cantilever_20x8x7", 0x12af722de13b80bcull},
-    {"active_block_8x8x7", 0xcf3f89570ca0c656ull},
-    {"bands_20x8x7", 0x138c582498fdc3f5ull},
-    {"layered_20x8x7", 0xad61a35050dd26e7ull},
+    {"cantilever_20x8x7", 0x12af722de13b80bcull},   {"active_block_8x8x7", 0xcf3f89570ca0c656ull},
+    {"bands_20x8x7", 0x138c582498fdc3f5ull},        {"layered_20x8x7", 0xad61a35050dd26e7ull},
     {"checkerboard_20x8x7", 0xa3220a14795894c9ull},
 };
 
@@ -75,18 +73,21 @@ void check_fingerprints(const std::string& table, const std::vector<Stored>& sto
         const std::uint64_t now = measured.at(scene);
         changed |= now != s.fingerprint;
         CHECK_MESSAGE(now == s.fingerprint, "engine fingerprint of " << scene << " changed: stored "
-                                                << hex(s.fingerprint) << ", now " << hex(now));
+                                                                     << hex(s.fingerprint)
+                                                                     << ", now " << hex(now));
         now_table += "    {\"" + scene + "\", " + hex(now) + "},\n";
     }
     now_table += "};\n";
     if (changed)
-        MESSAGE("The step no longer gives bit-identical results. If the physics changed on "
-                "purpose, replace "
-                << table << " in tests/engine/test_engine_fingerprints.cpp with the table below "
-                "(`build/bin/test_engine -tc='engine fingerprints*' -s` prints both tables; "
-                "`build/bin/bench_engine --fingerprint --steps-scale 0.05` prints the same hashes) "
-                "and say why in the commit message; otherwise find what changed them.\n"
-                << now_table);
+        MESSAGE(
+            "The step no longer gives bit-identical results. If the physics changed on "
+            "purpose, replace "
+            << table
+            << " in tests/engine/test_engine_fingerprints.cpp with the table below "
+               "(`build/bin/test_engine -tc='engine fingerprints*' -s` prints both tables; "
+               "`build/bin/bench_engine --fingerprint --steps-scale 0.05` prints the same hashes) "
+               "and say why in the commit message; otherwise find what changed them.\n"
+            << now_table);
     else if (doctest::getContextOptions()->success)
         std::printf("%s", now_table.c_str());
 }
@@ -111,13 +112,13 @@ TEST_CASE("engine fingerprints: corpus bodies end bit for bit as stored") {
         const std::string file = key.substr(0, key.find(':'));
         const std::string body = key.substr(key.find(':') + 1);
         if (!corpora.contains(file))
-            corpora.emplace(file, test::load_corpus(BHM_SOURCE_DIR "/tests/bench/corpus/" + file +
-                                                        ".json",
-                                                    BHM_SOURCE_DIR "/assets/experiments"));
+            corpora.emplace(
+                file, test::load_corpus(BHM_SOURCE_DIR "/tests/bench/corpus/" + file + ".json",
+                                        BHM_SOURCE_DIR "/assets/experiments"));
         for (const test::CorpusBody& b : corpora.at(file).bodies)
             if (b.name == body)
-                measured[key] = fingerprint_after(
-                    b.spec, test::corpus_body_steps(b.voxels, kStepsScale), key);
+                measured[key] =
+                    fingerprint_after(b.spec, test::corpus_body_steps(b.voxels, kStepsScale), key);
         REQUIRE_MESSAGE(measured.contains(key), "no body " << body << " in corpus " << file);
     }
     check_fingerprints("kCorpusBodies", {std::begin(kCorpusBodies), std::end(kCorpusBodies)},

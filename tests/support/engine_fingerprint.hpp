@@ -163,12 +163,12 @@ inline Corpus load_corpus(const std::string& path, const std::string& assets) {
                evo::load_experiment(assets + "/" + preset + ".json"),
                {}};
     for (const auto& entry : corpus.at("bodies")) {
-        const auto body = evo::apply_frame_and_overrides(out.experiment,
-                                                         evo::parse_body(entry.at("body"), path));
+        const auto body =
+            evo::apply_frame_and_overrides(out.experiment, evo::parse_body(entry.at("body"), path));
         CorpusBody b{preset + "/" + entry.at("name").get<std::string>(),
                      evo::make_body_spec(out.experiment, body, out.experiment.evolution.seed)};
-        b.voxels = static_cast<int>(
-            std::count_if(b.spec.material.begin(), b.spec.material.end(), [](auto m) { return m != 0; }));
+        b.voxels = static_cast<int>(std::count_if(b.spec.material.begin(), b.spec.material.end(),
+                                                  [](auto m) { return m != 0; }));
         out.bodies.push_back(std::move(b));
     }
     return out;
