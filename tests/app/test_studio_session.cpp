@@ -74,6 +74,10 @@ TEST_CASE("studio session: face clicks, undo / redo shortcuts, voxel painting, r
     // A step that cannot be done names the step.
     CHECK_THROWS_WITH_AS(run_script(session, json::parse(R"([{"frames": 1}, {"click": "Nope"}])")),
                          "step 2 (click): no widget named 'Nope' on screen", ScriptError);
+    // ... by its kind, not by its first key in alphabetical order.
+    CHECK_THROWS_WITH_AS(
+        run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 0}])")),
+        doctest::Contains("step 1 (wait_run): timed out after"), ScriptError);
 
     run_script(session, json::parse(R"([{"view": "iso"}, {"frames": 2}])"));
     testing::check_studio_golden("painter", session.capture(), session.font());
