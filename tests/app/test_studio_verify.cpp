@@ -116,6 +116,21 @@ struct PathOverride {
     ~PathOverride() { ::setenv("PATH", saved.c_str(), 1); }
 };
 
+// Polls the worker until its progress is in `phase` (true) or it has ended (false), for at most
+// bhm::test::wait_limit_s().
+bool seen_in_phase(const FemVerifier& verifier, evo::VerifyPhase phase) {
+    bool seen = false;
+    bhm::test::wait_until(
+        [&] {
+            if (!verifier.running()) return true;
+            const auto st = verifier.state();
+            seen = st && st->progress.phase == phase;
+            return seen;
+        },
+        [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); });
+    return seen;
+}
+
 }  // namespace
 
 TEST_CASE("studio verify: the worker publishes its phases and lands the report in the run dir") {
@@ -239,15 +254,7 @@ TEST_CASE("studio verify: Cancel during the mesh error's second solve leaves no 
     FemVerifier verifier;
     // The 20x2x2 bilayer: its second mesh (C3D8I, 4 per edge, 5120 elements) solves for seconds.
     REQUIRE(verifier.start(bilayer_request({20, 2, 2}, dir)));
-    bool second = false;
-    bhm::test::wait_until(
-        [&] {
-            if (!verifier.running()) return true;
-            const auto st = verifier.state();
-            second = st && st->progress.phase == evo::VerifyPhase::SecondMesh;
-            return second;
-        },
-        [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); });
+    const bool second = seen_in_phase(verifier, evo::VerifyPhase::SecondMesh);
     REQUIRE_MESSAGE(second, "the mesh error's solve was never seen running");
     const auto cancelled_at = Clock::now();
     verifier.cancel();
@@ -371,15 +378,7 @@ TEST_CASE("studio verify: Cancel during our engine's run stops within a slice, w
     request.options.engine.max_time_s = 30.0;
     FemVerifier verifier;
     REQUIRE(verifier.start(request));
-    bool in_engine = false;
-    bhm::test::wait_until(
-        [&] {
-            if (!verifier.running()) return true;
-            const auto st = verifier.state();
-            in_engine = st && st->progress.phase == evo::VerifyPhase::Engine;
-            return in_engine;
-        },
-        [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); });
+    const bool in_engine = seen_in_phase(verifier, evo::VerifyPhase::Engine);
     REQUIRE_MESSAGE(in_engine, "our engine's phase was never seen");
     std::this_thread::sleep_for(std::chrono::milliseconds(100));  // well inside its slices
     REQUIRE(verifier.running());
