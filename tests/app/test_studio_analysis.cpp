@@ -141,9 +141,9 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "first").string();
     HeadlessStudio session(studio, 1280, 800);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_run": "finished", "timeout_s": 240},
-                                        {"click": "tab Champions"}, {"frames": 40}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                 {"wait_run": "finished"},
+                                 {"click": "tab Champions"}, {"frames": 40}])"));
     // Every champion file is listed; a click replays that champion with the fitness it had.
     std::size_t files = 0;
     for (const auto& f : fs::directory_iterator(dir / "first" / "champions"))
@@ -151,9 +151,9 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     const auto& entries = studio.champion_history.entries();
     REQUIRE(entries.size() == files);
     const auto first = entries.front();
-    run_script(session,
-               json::array({{{"click", "champion gen " + std::to_string(first.generation)}},
-                            {{"wait_simulation", true}, {"timeout_s", 120}}}));
+    testing::run_script_patiently(
+        session, json::array({{{"click", "champion gen " + std::to_string(first.generation)}},
+                              {{"wait_simulation", true}}}));
     REQUIRE(studio.bodies.shown);
     CHECK(studio.bodies.shown->id == first.id);
     CHECK(studio.bodies.shown->fitness == doctest::Approx(first.fitness).epsilon(1e-9));
@@ -161,9 +161,8 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     const auto last = entries.back();
     run_script(session, json::array({{{"click", "beside gen " + std::to_string(last.generation)}},
                                      {{"frames", 2}}}));
-    for (int k = 0; k < 6000 && !studio.bodies.compared; ++k)  // simulated on its own worker
-        session.frame();
-    REQUIRE(studio.bodies.compared);
+    // Simulated on its own worker.
+    REQUIRE(testing::frames_until(session, [&] { return studio.bodies.compared != nullptr; }));
     CHECK(studio.bodies.compared->id == last.id);
     session.frame();
     CHECK(studio.status.find("beside it") == 0);  // no stale "simulating ..." line
@@ -258,8 +257,8 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     e2.evolution.seed = 11;
     studio.document.reset(e2, "");
     studio.run_dir_field = (dir / "second").string();
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_run": "finished", "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_run": "finished"}])"));
     REQUIRE(add_compared_run(studio, (dir / "first").string()));
     CHECK_FALSE(add_compared_run(studio, (dir / "nowhere").string()));
     REQUIRE(studio.compared_runs.size() == 1);
@@ -277,8 +276,8 @@ TEST_CASE("studio analysis: exploit flags on the champion and in the population 
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1280, 800);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_run": "finished", "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_run": "finished"}])"));
     // The live run's members carry the flags evolution computed for them.
     const auto live = studio.evolution.snapshot();
     REQUIRE_FALSE(live->population.empty());
@@ -304,8 +303,8 @@ TEST_CASE("studio analysis: exploit flags on the champion and in the population 
     REQUIRE(studio.widgets.count(cell));
     CHECK(studio.widgets.at(cell).frame >= studio.frame - 1);
     // Replayed, the champion's flags are the overlay's.
-    run_script(session, json::parse(R"([{"select": "champion"},
-                                        {"wait_simulation": true, "timeout_s": 120}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"select": "champion"},
+                                                           {"wait_simulation": true}])"));
     const auto* shown = shown_exploits(studio);
     REQUIRE(shown);
     CHECK(shown->escaped);

@@ -35,6 +35,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Frames as update_studio runs them (no drawing) until done() holds, for at most
+// bhm::test::wait_limit_s(); whether it held.
+template <class Done>
+bool update_until(Studio& s, Done done) {
+    bhm::test::wait_until(done, [&] {
+        update_studio(s);
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    });
+    update_studio(s);
+    return done();
+}
+
 // The truth of every case: E x 1.25 and amplitude x 0.85 of calibration_experiment().
 constexpr double kTrueE = 5e6 * 1.25, kTrueAmplitude = 14.47 * 0.85;
 
@@ -59,18 +71,18 @@ struct Fixture {
     }
 };
 
-// Polls the session's snapshots (as the UI does once a frame) until it is no longer running.
-std::vector<std::shared_ptr<const CalibrationSnapshot>> follow(const CalibrationSession& session,
-                                                               double timeout_s) {
+// Polls the session's snapshots (as the UI does once a frame) until it is no longer running, for
+// at most bhm::test::wait_limit_s().
+std::vector<std::shared_ptr<const CalibrationSnapshot>> follow(const CalibrationSession& session) {
     std::vector<std::shared_ptr<const CalibrationSnapshot>> seen;
-    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
-    while (Clock::now() < end) {
-        const bool running = session.running();
-        auto snap = session.snapshot();
-        if (snap && (seen.empty() || seen.back() != snap)) seen.push_back(snap);
-        if (!running) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    bhm::test::wait_until(
+        [&] {
+            const bool running = session.running();  // before the snapshot: then the last is final
+            auto snap = session.snapshot();
+            if (snap && (seen.empty() || seen.back() != snap)) seen.push_back(snap);
+            return !running;
+        },
+        [] { std::this_thread::sleep_for(std::chrono::milliseconds(1)); });
     return seen;
 }
 
@@ -84,7 +96,7 @@ TEST_CASE("calibration session: progress while it runs, then the fitted values")
     session.start(f.job(100));
     CHECK(session.running());
     CHECK_THROWS_AS(session.start(f.job(100)), std::runtime_error);  // one job at a time
-    const auto seen = follow(session, 120.0);
+    const auto seen = follow(session);
     REQUIRE_FALSE(session.running());
     const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
     REQUIRE(seen.size() >= 3);
@@ -120,16 +132,16 @@ TEST_CASE("calibration session: Cancel stops the fit within a second and leaves 
     CalibrationSession session;
     session.start(f.job(5000));
     // Wait until the optimiser is past the scan (the scan of 2 parameters is 16 simulations).
-    const auto end = Clock::now() + std::chrono::seconds(120);
-    while (Clock::now() < end) {
-        const auto snap = session.snapshot();
-        if (snap && snap->simulations >= 20) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    bhm::test::wait_until(
+        [&] {
+            const auto snap = session.snapshot();
+            return snap && snap->simulations >= 20;
+        },
+        [] { std::this_thread::sleep_for(std::chrono::milliseconds(1)); });
     REQUIRE(session.snapshot()->simulations >= 20);
     const auto cancelled_at = Clock::now();
     session.cancel();
-    const auto seen = follow(session, 30.0);
+    const auto seen = follow(session);
     const double stop_s = std::chrono::duration<double>(Clock::now() - cancelled_at).count();
     REQUIRE_FALSE(session.running());
     const auto& last = *seen.back();
@@ -141,7 +153,7 @@ TEST_CASE("calibration session: Cancel stops the fit within a second and leaves 
     CHECK(stop_s < 1.0);
     // And the session takes the next job.
     session.start(f.job(30));
-    CHECK(follow(session, 120.0).back()->phase == CalibrationPhase::Finished);
+    CHECK(follow(session).back()->phase == CalibrationPhase::Finished);
 }
 
 TEST_CASE("the measured point over the replay: the simulated start plus the measured motion") {
@@ -186,19 +198,10 @@ TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable
 
     Studio s;
     s.document.reset(f.experiment, "");
-    auto frames_until = [&](auto done, double timeout_s) {
-        const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
-        while (!done() && Clock::now() < end) {
-            update_studio(s);
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-        update_studio(s);
-        return done();
-    };
     CHECK_FALSE(load_track(s, track_path));  // no body shown yet
     CHECK(s.status_is_error);
     REQUIRE(show_body_file(s, body_path));
-    REQUIRE(frames_until([&] { return s.bodies.shown != nullptr; }, 60.0));
+    REQUIRE(update_until(s, [&] { return s.bodies.shown != nullptr; }));
 
     // A bad track: one line naming the file and the row; nothing loaded.
     CHECK_FALSE(load_track(s, (dir / "bad.csv").string()));
@@ -206,7 +209,7 @@ TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable
     CHECK_FALSE(s.calibration.track);
 
     REQUIRE(load_track(s, track_path));
-    REQUIRE(frames_until([&] { return !calibration_running(s); }, 60.0));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     REQUIRE(s.calibration.snapshot);
     REQUIRE(s.calibration.snapshot->preview);
     CHECK(s.status.rfind("track simulated", 0) == 0);
@@ -219,7 +222,7 @@ TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable
     s.calibration.max_simulations = 100;
     s.calibration.threads = 2;
     REQUIRE(start_calibration(s));
-    REQUIRE(frames_until([&] { return !calibration_running(s); }, 120.0));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     const auto snap = s.calibration.snapshot;
     REQUIRE(snap->phase == CalibrationPhase::Finished);
     CHECK(s.status.rfind("calibration done", 0) == 0);
@@ -259,7 +262,7 @@ TEST_CASE("studio session: the Calibrate tab's buttons, the track plots and the 
         {"drag": "splitter run", "by": [0, -150]}, {"click": "tab Calibrate"}, {"frames": 2}])"));
     s.calibration.body_field = body_path;
     s.calibration.track_field = track_path;
-    run_script(session, nlohmann::json::parse(R"([{"click": "Show body"},
+    testing::run_script_patiently(session, nlohmann::json::parse(R"([{"click": "Show body"},
         {"wait_simulation": true}, {"click": "Load track"}, {"wait_calibration": true},
         {"replay": {"time_s": 0.2, "playing": false}}, {"frames": 2}])"));
     REQUIRE(s.calibration.track);
@@ -298,16 +301,18 @@ TEST_CASE("studio session: the Calibrate tab's buttons, the track plots and the 
                             R"([{"calibrate": "E,amplitude,global_damping,bond_damping,density",
                                  "max_simulations": 5000}, {"frames": 1}])"));
     REQUIRE(calibration_running(s));
-    run_script(session, nlohmann::json::parse(R"([{"click": "Cancel calibration", "fast": true},
-        {"wait_calibration": true, "timeout_s": 30}, {"frames": 1}])"));
+    testing::run_script_patiently(
+        session, nlohmann::json::parse(R"([{"click": "Cancel calibration", "fast": true},
+        {"wait_calibration": true}, {"frames": 1}])"));
     CHECK(s.calibration.snapshot->phase == CalibrationPhase::Cancelled);
     CHECK(s.status.rfind("calibration cancelled", 0) == 0);
     s.calibration.max_simulations = 40;
     s.calibration.threads = 2;
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
     s.calibration.fit_on[0] = s.calibration.fit_on[3] = true;  // E, amplitude
-    run_script(session, nlohmann::json::parse(R"([{"click": "Calibrate"},
-        {"wait_calibration": true}, {"frames": 2}, {"screenshot": ")" + (dir / "calibrate-tab.png").string() + R"("},
+    const std::string shot = (dir / "calibrate-tab.png").string();
+    testing::run_script_patiently(session, nlohmann::json::parse(R"([{"click": "Calibrate"},
+        {"wait_calibration": true}, {"frames": 2}, {"screenshot": ")" + shot + R"("},
         {"click": "Apply to experiment"}, {"frames": 1}])"));
     CHECK(s.document.undo_label().rfind("calibrated against tip.csv", 0) == 0);
     CHECK(s.document.experiment().materials[1].physics.youngs_modulus_pa ==
@@ -327,25 +332,16 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
     evo::Experiment e = f.experiment;
     e.evolution.generations = 1000;  // stopped below, once the change is in
     s.document.reset(e, "");
-    auto frames_until = [&](auto done, double timeout_s) {
-        const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
-        while (!done() && Clock::now() < end) {
-            update_studio(s);
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-        update_studio(s);
-        return done();
-    };
     REQUIRE(show_body_file(s, body_path));
-    REQUIRE(frames_until([&] { return s.bodies.shown != nullptr; }, 60.0));
+    REQUIRE(update_until(s, [&] { return s.bodies.shown != nullptr; }));
     REQUIRE(load_track(s, track_path));
-    REQUIRE(frames_until([&] { return !calibration_running(s); }, 60.0));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
     s.calibration.fit_on[0] = true;  // E
     s.calibration.max_simulations = 16;
     s.calibration.threads = 2;
     REQUIRE(start_calibration(s));
-    REQUIRE(frames_until([&] { return !calibration_running(s); }, 120.0));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     const auto snap = s.calibration.snapshot;
     REQUIRE(snap->phase == CalibrationPhase::Finished);
     const double fitted_e = snap->result->fitted[0].value;
@@ -356,12 +352,10 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
 
     s.run_dir_field = (dir / "run").string();
     REQUIRE(start_run(s));
-    REQUIRE(frames_until(
-        [&] {
-            const auto r = s.evolution.snapshot();
-            return r && r->loaded && !r->history.empty();
-        },
-        240.0));
+    REQUIRE(update_until(s, [&] {
+        const auto r = s.evolution.snapshot();
+        return r && r->loaded && !r->history.empty();
+    }));
     REQUIRE(pause_run(s));
     REQUIRE(apply_calibration_to_run(s));
     CHECK(s.status.rfind("live run, from generation ", 0) == 0);
@@ -371,15 +365,13 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
     CHECK(s.document.experiment().materials[0].physics.youngs_modulus_pa == fitted_e);
     CHECK(s.document.undo_label().find("(live run)") != std::string::npos);
     REQUIRE(resume_run(s));
-    REQUIRE(frames_until(
-        [&] {
-            const auto r = s.evolution.snapshot();
-            return r && !r->rule_changes.empty() &&
-                   static_cast<int>(r->history.size()) > r->rule_changes[0].generation + 1;
-        },
-        240.0));
+    REQUIRE(update_until(s, [&] {
+        const auto r = s.evolution.snapshot();
+        return r && !r->rule_changes.empty() &&
+               static_cast<int>(r->history.size()) > r->rule_changes[0].generation + 1;
+    }));
     REQUIRE(stop_run(s));
-    REQUIRE(frames_until([&] { return !run_is_live(s.evolution.phase()); }, 120.0));
+    REQUIRE(update_until(s, [&] { return !run_is_live(s.evolution.phase()); }));
 
     const auto run = s.evolution.snapshot();
     const evo::RunInfo info = evo::read_run_info(run->run_dir);
@@ -398,18 +390,6 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
 
 namespace {
 
-// Frames as update_studio runs them (no drawing) until done() holds or the timeout passes.
-template <class Done>
-bool update_until(Studio& s, Done done, double timeout_s) {
-    const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
-    while (!done() && Clock::now() < end) {
-        update_studio(s);
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    update_studio(s);
-    return done();
-}
-
 // The fixture's body shown, its track loaded onto it and E and amplitude fitted with `budget`
 // simulations; returns the finished snapshot.
 std::shared_ptr<const CalibrationSnapshot> calibrate_fixture(Studio& s, const Fixture& f,
@@ -424,17 +404,16 @@ std::shared_ptr<const CalibrationSnapshot> calibrate_fixture(Studio& s, const Fi
     request.experiment = f.experiment;
     request.framed_body = f.body;
     s.bodies.simulator.request(request);
-    REQUIRE(update_until(
-        s, [&] { return s.bodies.shown != nullptr; }, 60.0));
+    REQUIRE(update_until(s, [&] { return s.bodies.shown != nullptr; }));
     REQUIRE(load_track(s, track_path));
-    REQUIRE(update_until(s, [&] { return !calibration_running(s); }, 60.0));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
     s.calibration.fit_on[0] = true;  // E
     s.calibration.fit_on[3] = true;  // amplitude
     s.calibration.max_simulations = budget;
     s.calibration.threads = 2;
     REQUIRE(start_calibration(s));
-    REQUIRE(update_until(s, [&] { return !calibration_running(s); }, 120.0));
+    REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     REQUIRE(s.calibration.snapshot->phase == CalibrationPhase::Finished);
     return s.calibration.snapshot;
 }
@@ -474,16 +453,15 @@ TEST_CASE("studio: after Apply the calibrated body is simulated again, alone in 
     other.experiment = f.experiment;
     other.framed_body = f.body;
     s.bodies.compare_simulator.request(other);
-    REQUIRE(update_until(
-        s, [&] { return s.bodies.compared != nullptr; }, 60.0));
+    REQUIRE(update_until(s, [&] { return s.bodies.compared != nullptr; }));
     const auto before = s.bodies.shown;
     REQUIRE(apply_calibration(s));
     CHECK(s.bodies.compared == nullptr);
     const double amplitude = s.document.experiment().actuation.temperature_amplitude_c;
     CHECK(amplitude == relative(snap->result->fitted[1].value, 1e-12));
-    REQUIRE(update_until(
-        s, [&] { return s.bodies.shown && s.bodies.shown != before && !s.bodies.simulator.busy(); },
-        60.0));
+    REQUIRE(update_until(s, [&] {
+        return s.bodies.shown && s.bodies.shown != before && !s.bodies.simulator.busy();
+    }));
     CHECK(s.bodies.shown->framed_body == f.body);
     CHECK(s.bodies.shown->experiment.actuation.temperature_amplitude_c == amplitude);
     CHECK_MESSAGE(s.bodies.shown->label.find("calibrated") != std::string::npos,
@@ -512,7 +490,8 @@ TEST_CASE("studio session: the Calibrate tab browses for its files; exports go t
     CHECK(s.file_dialog.purpose == FileDialogPurpose::ShowBody);
     CHECK(s.widgets.count("dialog entry bilayer.body.json"));
     CHECK_FALSE(s.widgets.count("dialog entry tip.csv"));
-    run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry bilayer.body.json"},
+    testing::run_script_patiently(
+        session, nlohmann::json::parse(R"([{"click": "dialog entry bilayer.body.json"},
         {"wait_simulation": true}, {"frames": 1}, {"click": "Track..."}, {"frames": 1}])"));
     REQUIRE(s.bodies.shown);
     CHECK(s.bodies.shown->label == "body bilayer.body.json");
@@ -520,7 +499,8 @@ TEST_CASE("studio session: the Calibrate tab browses for its files; exports go t
     REQUIRE(s.file_dialog.open);
     CHECK(s.file_dialog.purpose == FileDialogPurpose::LoadTrack);
     CHECK(s.widgets.count("dialog entry tip.csv"));
-    run_script(session, nlohmann::json::parse(R"([{"click": "dialog entry tip.csv"},
+    testing::run_script_patiently(session,
+                                  nlohmann::json::parse(R"([{"click": "dialog entry tip.csv"},
         {"wait_calibration": true}, {"frames": 1}])"));
     CHECK(s.calibration.track_path == (dir / "tip.csv").string());
     REQUIRE(s.calibration.track);
@@ -547,12 +527,7 @@ TEST_CASE("studio: Load track obeys bhm calibrate's budget up front and says a s
     Studio s;
     s.document.reset(f.experiment, "");
     REQUIRE(show_body_file(s, body_path));
-    const auto end = Clock::now() + std::chrono::seconds(120);
-    while (!s.bodies.shown && Clock::now() < end) {
-        update_studio(s);
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    REQUIRE(s.bodies.shown);
+    REQUIRE(update_until(s, [&] { return s.bodies.shown != nullptr; }));
 
     CHECK_FALSE(load_track(s, (dir / "far.csv").string()));
     INFO(s.status);
@@ -568,11 +543,7 @@ TEST_CASE("studio: Load track obeys bhm calibrate's budget up front and says a s
     CHECK(s.calibration.track_warning.find("short.csv: t_s: the track ends at 0.01 s") !=
           std::string::npos);
     CHECK(s.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
-    while (calibration_running(s) && Clock::now() < end) {
-        update_studio(s);
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    update_studio(s);
+    CHECK(update_until(s, [&] { return !calibration_running(s); }));
     CHECK(s.status.rfind("track simulated", 0) == 0);
     CHECK(s.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
 }

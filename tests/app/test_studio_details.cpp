@@ -33,12 +33,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-template <class Done>
-void frames_until_done(HeadlessStudio& session, Done done) {
-    for (int i = 0; i < 2000 && !done(); ++i) session.frame();
-    REQUIRE(done());
-}
-
 bool drawn_now(const Studio& s, const std::string& widget) {
     const auto it = s.widgets.find(widget);
     return it != s.widgets.end() && it->second.frame == s.frame;
@@ -159,10 +153,10 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 800);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_run": "finished", "timeout_s": 240},
-                                        {"wait_simulation": true, "timeout_s": 120},
-                                        {"click": "tab Population"}, {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                 {"wait_run": "finished"},
+                                 {"wait_simulation": true},
+                                 {"click": "tab Population"}, {"frames": 2}])"));
     const auto run = studio.evolution.snapshot();
     REQUIRE(!run->population.empty());
     for (const auto& m : run->population) CHECK(m.novelty >= 0.0);
@@ -186,9 +180,9 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     CHECK_MESSAGE((simulating || showing), studio.status);
 
     // The CLI's geometry exports from the Export tab: a mesh at rest and deformed, a series.
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"replay": {"time_s": 0.3, "playing": false}},
-                                        {"click": "tab Export"}, {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                 {"replay": {"time_s": 0.3, "playing": false}},
+                                 {"click": "tab Export"}, {"frames": 2}])"));
     studio.exports.mesh_path = (dir / "rest.stl").string();
     studio.exports.vtk_folder = (dir / "paraview").string();
     run_script(session, json::parse(R"([{"click": "Save mesh"}, {"frames": 1}])"));
@@ -316,9 +310,9 @@ TEST_CASE("studio details: a click on the replayed body reads that voxel at the 
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
     testing::request_tiny_body(studio, e, 3, "test body");
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"replay": {"time_s": 0.35, "playing": false}},
-                                        {"frames": 3}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                 {"replay": {"time_s": 0.35, "playing": false}},
+                                 {"frames": 3}])"));
     REQUIRE(studio.bodies.shown);
     REQUIRE(studio.view.mode == ViewMode::Simulation);
     const auto& replay = studio.bodies.shown->replay;
@@ -414,8 +408,8 @@ TEST_CASE("studio details: exported frames carry a caption: experiment, body, fi
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
     testing::request_tiny_body(studio, e, 3, "champion #3, generation 2");
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                                           {"frames": 2}])"));
     REQUIRE(studio.bodies.shown);
     const auto lines = export_caption_lines(*studio.bodies.shown, 0.25);
     REQUIRE(lines.size() == 4);
@@ -436,7 +430,7 @@ TEST_CASE("studio details: exported frames carry a caption: experiment, body, fi
         studio.exports.caption = with == 1;
         const auto folder = dir / (with ? "with" : "without");
         REQUIRE(start_frame_export(studio, folder.string(), 320, 200, 5.0));
-        frames_until_done(session, [&] { return !studio.exports.frame_job.active; });
+        REQUIRE(testing::frames_until(session, [&] { return !studio.exports.frame_job.active; }));
         mean[with] = corner_mean(render::read_png((folder / "frame_00000.png").string()));
     }
     CHECK(mean[1] < 0.7 * mean[0]);

@@ -1,18 +1,24 @@
 #pragma once
 // Shared by the studio tests: tiny experiments (a generation in about a second), fresh output
-// folders, and golden-image checks of studio screenshots.
+// folders, scripts whose waits allow for a loaded machine, and golden-image checks of studio
+// screenshots.
 #include <doctest/doctest.h>
 
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "app/gui/shell/script.hpp"
 #include "app/gui/studio.hpp"
 #include "evo/experiment/experiment.hpp"
 #include "render/image.hpp"
 #include "support/scratch.hpp"
+#include "support/wait_limit.hpp"
 
 namespace bhm::app::gui::testing {
 
@@ -59,6 +65,24 @@ inline evo::Experiment tiny_experiment(std::array<int, 3> size = {3, 2, 2}) {
     e.evolution.seed = 5;
     e.evolution.threads = 1;
     return e;
+}
+
+//! run_script with every step's timeout_s set to bhm::test::wait_limit_s() (the steps that wait
+//! read it, the others ignore it): a test's script waits on its conditions however loaded the
+//! machine, and a passing run is no slower (tests/support/wait_limit.hpp, issue 41).
+inline void run_script_patiently(
+    HeadlessStudio& session, nlohmann::json steps,
+    const std::function<void(int, const nlohmann::json&)>& after_step = {}) {
+    for (auto& step : steps)
+        if (step.is_object() && !step.empty()) step["timeout_s"] = bhm::test::wait_limit_s();
+    run_script(session, steps, after_step);
+}
+
+//! Draws frames until done() holds, for at most bhm::test::wait_limit_s(); whether it held
+//! (REQUIRE it at the call, so a failure points there).
+template <class Done>
+bool frames_until(HeadlessStudio& session, Done done) {
+    return bhm::test::wait_until(done, [&] { session.frame(); });
 }
 
 inline constexpr double kMaxMeanDiff = 1.5 / 255.0;

@@ -121,10 +121,10 @@ TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experi
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240},
-                                        {"click": "Pause"},
-                                        {"wait_run": "paused", "timeout_s": 60}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_generations": 1},
+                                                           {"click": "Pause"},
+                                                           {"wait_run": "paused"}])"));
     // Another experiment, with another measure, opened while the run is paused.
     auto other = testing::tiny_experiment();
     other.fitness.measure = evo::FitnessMeasure::ComFinal3d;
@@ -136,8 +136,8 @@ TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experi
     CHECK_FALSE(rules_differ_from_run(studio));
     CHECK_FALSE(apply_rules_to_run(studio));
     const int paused_at = studio.evolution.snapshot()->generation;
-    run_script(session, json::array({{{"click", "Resume"}},
-                                     {{"wait_generations", paused_at + 1}, {"timeout_s", 240}}}));
+    testing::run_script_patiently(
+        session, json::array({{{"click", "Resume"}}, {{"wait_generations", paused_at + 1}}}));
     auto run = studio.evolution.snapshot();
     CHECK(run->experiment.fitness.measure == evo::FitnessMeasure::BendAngleDeg);
     CHECK(run->rule_changes.empty());
@@ -152,10 +152,10 @@ TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experi
     CHECK(run_is_live(studio.evolution.phase()));
     CHECK(studio.evolution.phase() != RunPhase::Paused);
     const int before_quit = studio.evolution.snapshot()->generation;
-    run_script(session, json::parse(R"([{"key": "ctrl+q"},
-                                        {"click": "Finish generation, then quit"},
-                                        {"wait_run": "paused", "timeout_s": 120},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"key": "ctrl+q"},
+                                 {"click": "Finish generation, then quit"},
+                                 {"wait_run": "paused"},
+                                 {"frames": 2}])"));
     CHECK(studio.quit_requested);
     CHECK(studio.evolution.snapshot()->generation >= before_quit + 1);
 }
@@ -188,8 +188,8 @@ TEST_CASE(
                   quit_run_question(studio));
     CHECK(quit_run_question(studio).find("is kept") == std::string::npos);
     answer_quit_run(studio, QuitRunAnswer::Cancel);
-    run_script(session, json::parse(R"([{"click": "Stop"},
-                                        {"wait_run": "stopped", "timeout_s": 60}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Stop"},
+                                                           {"wait_run": "stopped"}])"));
     const auto run = studio.evolution.snapshot();
     CHECK(run->generation == 0);
     CHECK(run->message.find("no checkpoint") != std::string::npos);
@@ -208,14 +208,19 @@ TEST_CASE(
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_generations": 1}])"));
     // Pause inside generation 1, once some of its simulations are done. Until then the Run
     // panel's figures move inside the generation: elapsed grows, the progress bar is shown.
     const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
                                     studio.evolution.phase());
-    for (int k = 0; k < 20000 && studio.evolution.progress().simulations_done < 1; ++k)
-        session.frame();
+    // Until the count has moved on from `first`: by the time the wait for generation 1 ends,
+    // some of its simulations may be done already (more of them the more loaded the machine).
+    REQUIRE(testing::frames_until(session, [&] {
+        return live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
+                            studio.evolution.phase())
+                   .simulations > first.simulations;
+    }));
     session.frame();
     const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
                                     studio.evolution.phase());
@@ -236,8 +241,8 @@ TEST_CASE(
     CHECK(still.simulations_done == frozen.simulations_done);  // nothing moved while paused
     CHECK(still.generation_s == doctest::Approx(frozen.generation_s).epsilon(0.05));
     CHECK(studio.evolution.snapshot()->generation == 1);
-    run_script(session, json::parse(R"([{"click": "Resume"},
-                                        {"wait_run": "finished", "timeout_s": 300}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Resume"},
+                                                           {"wait_run": "finished"}])"));
     const auto run = studio.evolution.snapshot();
 
     evo::RunOptions options;  // the twin: in memory, never paused
@@ -253,7 +258,7 @@ TEST_CASE(
     // The folder resumed: its history, rules and experiment are shown before anything runs.
     studio.document.reset(testing::tiny_experiment({4, 4, 2}), "");
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
-    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 60}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     REQUIRE(studio.run);
     CHECK(studio.run->loaded);
     CHECK(studio.run->history.size() == 3);
@@ -301,8 +306,8 @@ TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, pre
     e.evolution.generations = 1;
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1280, 800);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_run": "finished", "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_run": "finished"}])"));
     const auto run_dir = studio.evolution.snapshot()->run_dir;
     CHECK(fs::path(run_dir).is_absolute());
     CHECK(run_dir.rfind((dir / "data" / "bhm-studio" / "runs").string(), 0) == 0);
@@ -359,8 +364,8 @@ TEST_CASE("studio integrity: simulation mode draws no tinted faces and hatches f
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
     testing::request_tiny_body(studio, e, 1, "body");
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"mode": "simulation"}, {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                 {"mode": "simulation"}, {"frames": 2}])"));
     const auto list = build_view_draw_list(studio);
     CHECK(list.translucent_triangles.empty());  // nothing tints the body or z-fights with it
     // The fixed x- face: green lines a tenth of a voxel outside the workspace (x < 0).

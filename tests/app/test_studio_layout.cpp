@@ -28,16 +28,6 @@ bool drawn_now(const Studio& s, const std::string& widget) {
     return it != s.widgets.end() && it->second.frame == s.frame;
 }
 
-template <class Done>
-void frames_until(HeadlessStudio& session, double timeout_s, Done done) {
-    const auto start = std::chrono::steady_clock::now();
-    while (!done()) {
-        session.frame();
-        REQUIRE(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
-                timeout_s);
-    }
-}
-
 }  // namespace
 
 TEST_CASE("studio layout: fitted tiles fill the area and leave the 3D view its share") {
@@ -178,13 +168,14 @@ TEST_CASE("studio layout: the Run panel does not move when the run finishes") {
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"click": "Start"}])"));
-    frames_until(session, 240.0, [&] { return drawn_now(studio, "generation progress"); });
+    REQUIRE(
+        testing::frames_until(session, [&] { return drawn_now(studio, "generation progress"); }));
     session.frame();
     REQUIRE(drawn_now(studio, "run folder"));
     const WidgetRect running = studio.widgets.at("run folder");
     const WidgetRect fields_running = studio.widgets.at("run dir");
-    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"},
+                                                           {"frames": 2}])"));
     REQUIRE(drawn_now(studio, "run folder"));
     CHECK(studio.widgets.at("run folder").min.y == running.min.y);
     CHECK(studio.widgets.at("run dir").min.y == fields_running.min.y);
@@ -196,8 +187,8 @@ TEST_CASE("studio layout: the view names the body being simulated, not the one s
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
     testing::request_tiny_body(studio, e, 1, "champion #1, generation 0");
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                                           {"frames": 2}])"));
     REQUIRE(studio.bodies.shown);
     REQUIRE(studio.view.mode == ViewMode::Simulation);
     CHECK_FALSE(drawn_now(studio, "simulating note"));
@@ -221,7 +212,7 @@ TEST_CASE("studio layout: the view names the body being simulated, not the one s
     CHECK(studio.bodies.shown->label ==
           "champion #1, generation 0");  // still playing, named as old
     studio.bodies.simulator.cancel();
-    frames_until(session, 60.0, [&] { return !studio.bodies.simulator.busy(); });
+    REQUIRE(testing::frames_until(session, [&] { return !studio.bodies.simulator.busy(); }));
     session.frame();
     CHECK_FALSE(drawn_now(studio, "simulating note"));
 }

@@ -137,12 +137,13 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 1400);  // tall: the editor's Evolution section opened
-    run_script(session, json::parse(R"([{"click": "header Evolution"}, {"frames": 2},
-                                        {"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240},
-                                        {"click": "Pause"},
-                                        {"wait_run": "paused", "timeout_s": 120},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session,
+                                  json::parse(R"([{"click": "header Evolution"}, {"frames": 2},
+                                                  {"click": "Start"},
+                                                  {"wait_generations": 1},
+                                                  {"click": "Pause"},
+                                                  {"wait_run": "paused"},
+                                                  {"frames": 2}])"));
     CHECK_FALSE(drawn_now(studio, "Apply checks to run"));  // nothing edited yet
     run_script(session, json::parse(R"([{"set": "evolution.verify.every_generations", "value": 1},
                                         {"set": "evolution.verify.top_k", "value": 1},
@@ -183,15 +184,16 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
     CHECK(studio.evolution.snapshot()->experiment.evolution.verify.policy ==
           evo::VerifyPolicy::Flag);  // not before the next generation
     // The frozen generation finishes under the old settings; the next one is under the new.
-    run_script(session, json::array({{{"click", "Resume"}},
-                                     {{"wait_generations", at + 2}, {"timeout_s", 240}},
-                                     {{"frames", 2}}}));
+    testing::run_script_patiently(
+        session,
+        json::array({{{"click", "Resume"}}, {{"wait_generations", at + 2}}, {{"frames", 2}}}));
     const auto run = studio.evolution.snapshot();
     CHECK(run->experiment.evolution.verify.policy == evo::VerifyPolicy::Reject);
     REQUIRE_FALSE(run->rule_changes.empty());
     CHECK(run->rule_changes.back().description == "CalculiX checks off");
     CHECK_FALSE(drawn_now(studio, "loop checks pending"));
-    run_script(session, json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
+    testing::run_script_patiently(session,
+                                  json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
     // run.json keeps the change with its "verify" block: a resumed run goes on under it.
     const evo::RunInfo info = evo::read_run_info((dir / "run").string());
     REQUIRE_FALSE(info.rule_changes.empty());
@@ -210,18 +212,18 @@ TEST_CASE("studio loop checks with CalculiX: checks turned on mid-run mark the c
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1280, 900);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240},
-                                        {"click": "Pause"},
-                                        {"wait_run": "paused", "timeout_s": 120},
-                                        {"set": "evolution.verify.every_generations", "value": 1},
-                                        {"set": "evolution.verify.top_k", "value": 1},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                 {"wait_generations": 1},
+                                 {"click": "Pause"},
+                                 {"wait_run": "paused"},
+                                 {"set": "evolution.verify.every_generations", "value": 1},
+                                 {"set": "evolution.verify.top_k", "value": 1},
+                                 {"frames": 2}])"));
     CHECK_FALSE(drawn_now(studio, "loop checks"));  // a run without checks has no line
     // Resume sends the edited checks, as it sends edited fitness rules.
-    run_script(session, json::parse(R"([{"click": "Resume"},
-                                        {"wait_run": "finished", "timeout_s": 300},
-                                        {"click": "tab Population"}, {"frames": 3}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Resume"},
+                                 {"wait_run": "finished"},
+                                 {"click": "tab Population"}, {"frames": 3}])"));
     const auto run = studio.evolution.snapshot();
     REQUIRE(run);
     INFO("status: " << studio.status << "; message: " << run->message);
@@ -255,17 +257,17 @@ TEST_CASE("studio loop checks with CalculiX: checks turned on mid-run mark the c
     // The 3D view: a checked member shown with its badge over it; an unchecked one without.
     run_script(session, json::parse(R"([{"click": "tab Population"}, {"frames": 2}])"));
     REQUIRE(select_individual(studio, checked_id));
-    run_script(session, json::parse(R"([{"mode": "simulation"},
-                                        {"wait_simulation": true, "timeout_s": 120},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"mode": "simulation"},
+                                                           {"wait_simulation": true},
+                                                           {"frames": 2}])"));
     REQUIRE(studio.bodies.shown);
     CHECK(studio.bodies.shown->id == checked_id);
     CHECK(drawn_now(studio, "view check badge"));
     for (const auto& m : run->population) {
         if (loop_check_of(*run, m.id)) continue;
         REQUIRE(select_individual(studio, m.id));
-        run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                            {"frames": 2}])"));
+        testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                                               {"frames": 2}])"));
         CHECK(studio.bodies.shown->id == m.id);
         CHECK_FALSE(drawn_now(studio, "view check badge"));
         break;

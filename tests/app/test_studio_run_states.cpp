@@ -3,7 +3,6 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -50,7 +49,8 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
     studio.document.reset(testing::tiny_experiment(), "");
     HeadlessStudio session(studio, 1024, 700);
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
-    run_script(session, json::parse(R"([{"wait_run": "failed", "timeout_s": 60}, {"frames": 2}])"));
+    testing::run_script_patiently(session,
+                                  json::parse(R"([{"wait_run": "failed"}, {"frames": 2}])"));
     // The Run panel says why, in the CLI's words (it said "loading the checkpoint" for ever).
     CHECK(drawn_now(studio, "run failure"));
     const auto run = studio.evolution.snapshot();
@@ -67,7 +67,7 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
                                         {"frames": 2}])"));
     INFO("status: " << studio.status);
     REQUIRE(run_is_live(studio.evolution.phase()));
-    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     unsetenv("XDG_DATA_HOME");
     const auto fresh = studio.evolution.snapshot();
     REQUIRE(fresh);
@@ -88,17 +88,6 @@ double live_elapsed(const Studio& s) {
     return live_figures(*run, progress, s.evolution.phase()).elapsed_s;
 }
 
-template <class Done>
-void frames_until(HeadlessStudio& session, double timeout_s, Done done) {
-    const auto start = std::chrono::steady_clock::now();
-    while (!done()) {
-        session.frame();
-        REQUIRE_MESSAGE(std::chrono::steady_clock::now() - start <
-                            std::chrono::duration<double>(timeout_s),
-                        "timed out");
-    }
-}
-
 }  // namespace
 
 TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, the clock never runs back") {
@@ -109,21 +98,21 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_generations": 1}])"));
     // Paused inside a generation with simulations done: its time so far is on the clock.
-    frames_until(session, 120.0, [&] {
+    REQUIRE(testing::frames_until(session, [&] {
         const auto p = studio.evolution.progress();
         return p.running && p.simulations_done >= 1;
-    });
-    run_script(session, json::parse(R"([{"click": "Pause"},
-                                        {"wait_run": "paused", "timeout_s": 120},
-                                        {"set": "fitness.constraints.min_fill_fraction",
-                                         "value": 0.05},
-                                        {"frames": 2}])"));
+    }));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Pause"},
+                                 {"wait_run": "paused"},
+                                 {"set": "fitness.constraints.min_fill_fraction",
+                                  "value": 0.05},
+                                 {"frames": 2}])"));
     // Paused, with no replay playing and no body simulating: no redraw at full rate.
     studio.clock.playing = false;
-    frames_until(session, 120.0, [&] { return !studio.bodies.simulator.busy(); });
+    REQUIRE(testing::frames_until(session, [&] { return !studio.bodies.simulator.busy(); }));
     CHECK_FALSE(needs_animation(studio));
     // The note names what was edited (it named the measure, whatever the edit).
     CHECK(drawn_now(studio, "edited rules"));
@@ -142,18 +131,19 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     double worst_step = 0.0;
     // The clock only moves forward: it went back by the abandoned attempt's time, and at the
     // end of a generation by the time its files took (its clock ran on while they were written).
-    frames_until(session, 240.0, [&] {
+    REQUIRE(testing::frames_until(session, [&] {
         const double now = live_elapsed(studio);
         worst_step = std::min(worst_step, now - last);
         last = now;
         CHECK_FALSE(drawn_now(studio, "edited rules"));
         return studio.evolution.snapshot()->generation > resumed_at + 1;
-    });
+    }));
     CHECK_MESSAGE(worst_step >= -1e-9, "the elapsed time went back by " << -worst_step << " s");
     const auto run = studio.evolution.snapshot();
     CHECK(run->experiment.fitness.constraints.min_fill_fraction == 0.05);
     CHECK(run->elapsed_s >= before);
-    run_script(session, json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
+    testing::run_script_patiently(session,
+                                  json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
 }
 
 TEST_CASE("studio run states: after Stop and a resume of the folder the clock goes on, never back") {
@@ -165,12 +155,12 @@ TEST_CASE("studio run states: after Stop and a resume of the folder the clock go
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240}])"));
-    frames_until(session, 240.0, [&] {
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_generations": 1}])"));
+    REQUIRE(testing::frames_until(session, [&] {
         const auto p = studio.evolution.progress();
         return p.running && p.simulations_done >= 2;
-    });
+    }));
     double last = live_elapsed(studio);
     double worst_step = 0.0;
     auto watch = [&] {
@@ -179,10 +169,10 @@ TEST_CASE("studio run states: after Stop and a resume of the folder the clock go
         last = now;
     };
     run_script(session, json::parse(R"([{"click": "Stop"}])"));
-    frames_until(session, 120.0, [&] {
+    REQUIRE(testing::frames_until(session, [&] {
         watch();
         return studio.evolution.phase() == RunPhase::Stopped;
-    });
+    }));
     for (int i = 0; i < 3; ++i) {
         session.frame();
         watch();
@@ -192,14 +182,15 @@ TEST_CASE("studio run states: after Stop and a resume of the folder the clock go
     const auto state = evo::load_checkpoint((dir / "run").string());
     CHECK(state.state.elapsed_s == doctest::Approx(at_stop).epsilon(1e-9));
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
-    frames_until(session, 240.0, [&] {
+    REQUIRE(testing::frames_until(session, [&] {
         const auto run = studio.evolution.snapshot();
         if (run && run->loaded) watch();
         return run && run->loaded && studio.evolution.progress().simulations_done >= 1;
-    });
+    }));
     CHECK(last >= at_stop);
     CHECK_MESSAGE(worst_step >= -1e-9, "the elapsed time went back by " << -worst_step << " s");
-    run_script(session, json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
+    testing::run_script_patiently(session,
+                                  json::parse(R"([{"click": "Stop"}, {"wait_run": "stopped"}])"));
 }
 
 TEST_CASE("studio run states: a new run never plays the last run's champion under its name") {
@@ -211,9 +202,9 @@ TEST_CASE("studio run states: a new run never plays the last run's champion unde
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "first").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_run": "finished", "timeout_s": 240},
-                                        {"wait_simulation": true, "timeout_s": 120}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_run": "finished"},
+                                                           {"wait_simulation": true}])"));
     REQUIRE(studio.bodies.shown);
     CHECK(studio.bodies.shown->experiment.name == "first");
     e.name = "second";
@@ -221,8 +212,8 @@ TEST_CASE("studio run states: a new run never plays the last run's champion unde
     studio.run_dir_field = (dir / "second").string();
     run_script(session, json::parse(R"([{"click": "Start"}])"));
     CHECK_FALSE(studio.bodies.shown);  // not the first run's body under the second run's panel
-    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240},
-                                        {"wait_simulation": true, "timeout_s": 120}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"},
+                                                           {"wait_simulation": true}])"));
     REQUIRE(studio.bodies.shown);
     CHECK(studio.bodies.shown->experiment.name == "second");
 }
@@ -238,9 +229,9 @@ TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no emp
         HeadlessStudio session(studio, 1024, 700);
         run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}])"));
         REQUIRE(fs::exists(dir / "stopped" / "run.json"));
-        run_script(session, json::parse(R"([{"click": "Stop"},
-                                            {"wait_run": "stopped", "timeout_s": 60},
-                                            {"frames": 2}])"));
+        testing::run_script_patiently(session, json::parse(R"([{"click": "Stop"},
+                                                               {"wait_run": "stopped"},
+                                                               {"frames": 2}])"));
         CHECK_FALSE(fs::exists(dir / "stopped"));
         CHECK(studio.evolution.snapshot()->message.find("no checkpoint") != std::string::npos);
         // A run that had completed a generation keeps everything (tested in the session tests);
@@ -258,8 +249,9 @@ TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no emp
         studio.document.reset(e, "");
         studio.run_dir_field = (dir / "kept").string();
         HeadlessStudio session(studio, 1024, 700);
-        run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}, {"click": "Stop"},
-                                            {"wait_run": "stopped", "timeout_s": 60}])"));
+        testing::run_script_patiently(
+            session, json::parse(R"([{"click": "Start"}, {"frames": 2}, {"click": "Stop"},
+                                     {"wait_run": "stopped"}])"));
     }
     CHECK(fs::exists(dir / "kept" / "notes.txt"));
 }
@@ -274,10 +266,10 @@ TEST_CASE("studio run states: after Stop, Resume goes on from the run's folder, 
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([{"click": "Start"},
-                                        {"wait_generations": 1, "timeout_s": 240},
-                                        {"click": "Stop"},
-                                        {"wait_run": "stopped", "timeout_s": 120}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                                           {"wait_generations": 1},
+                                                           {"click": "Stop"},
+                                                           {"wait_run": "stopped"}])"));
     const int stopped_at = studio.evolution.snapshot()->generation;
     REQUIRE(stopped_at >= 1);
     REQUIRE(stopped_at < 6);  // the budget leaves something to resume
@@ -285,7 +277,7 @@ TEST_CASE("studio run states: after Stop, Resume goes on from the run's folder, 
     CHECK(studio.open_run_field == (dir / "run").lexically_normal().string());
     run_script(session, json::parse(R"([{"click": "Resume"}, {"frames": 2}])"));
     CHECK_MESSAGE(run_is_live(studio.evolution.phase()), studio.status);
-    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     const auto run = studio.evolution.snapshot();
     CHECK(run->generation == 6);
     CHECK(run->history.size() == 6);

@@ -74,6 +74,10 @@ TEST_CASE("studio session: face clicks, undo / redo shortcuts, voxel painting, r
     // A step that cannot be done names the step.
     CHECK_THROWS_WITH_AS(run_script(session, json::parse(R"([{"frames": 1}, {"click": "Nope"}])")),
                          "step 2 (click): no widget named 'Nope' on screen", ScriptError);
+    // ... by its kind, not by its first key in alphabetical order.
+    CHECK_THROWS_WITH_AS(
+        run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 0}])")),
+        doctest::Contains("step 1 (wait_run): timed out after"), ScriptError);
 
     run_script(session, json::parse(R"([{"view": "iso"}, {"frames": 2}])"));
     testing::check_studio_golden("painter", session.capture(), session.font());
@@ -107,12 +111,12 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
     studio.document.reset(testing::tiny_experiment(), "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([
+    testing::run_script_patiently(session, json::parse(R"([
         {"click": "Start"},
-        {"wait_generations": 2, "timeout_s": 240},
-        {"wait_run": "finished", "timeout_s": 60},
+        {"wait_generations": 2},
+        {"wait_run": "finished"},
         {"select": "champion"},
-        {"wait_simulation": true, "timeout_s": 120},
+        {"wait_simulation": true},
         {"replay": {"time_s": 0.3, "playing": false}}])"));
     const auto run = studio.evolution.snapshot();
     REQUIRE(run);
@@ -185,11 +189,11 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     studio.document.reset(e, "");
     studio.run_dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
-    run_script(session, json::parse(R"([
+    testing::run_script_patiently(session, json::parse(R"([
         {"click": "Start"},
-        {"wait_generations": 1, "timeout_s": 240},
+        {"wait_generations": 1},
         {"click": "Pause"},
-        {"wait_run": "paused", "timeout_s": 120},
+        {"wait_run": "paused"},
         {"set": "fitness.measure", "value": "com_final_3d"},
         {"click": "Resume"}])"));
     // Generations are fast here: the pause may land a generation or two later than asked, so
@@ -197,9 +201,9 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     const int paused_at = studio.evolution.snapshot()->generation;
     CHECK(studio.status == "evolution resumed");
     CHECK(paused_at < 6);  // leaves room to stop before the budget of 8
-    run_script(session, json::array({{{"wait_generations", paused_at + 1}, {"timeout_s", 240}},
-                                     {{"click", "Stop"}},
-                                     {{"wait_run", "stopped"}, {"timeout_s", 120}}}));
+    testing::run_script_patiently(session, json::array({{{"wait_generations", paused_at + 1}},
+                                                        {{"click", "Stop"}},
+                                                        {{"wait_run", "stopped"}}}));
     auto run = studio.evolution.snapshot();
     REQUIRE(run);
     CHECK(run->experiment.fitness.measure == evo::FitnessMeasure::ComFinal3d);
@@ -231,7 +235,7 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     // Resume the folder from its checkpoint: it finishes the budget of 8 generations, keeping
     // the history and the rule change.
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
-    run_script(session, json::parse(R"([{"wait_run": "finished", "timeout_s": 240}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     session.frame();
     CHECK_MESSAGE(studio.status == "finished: generation budget reached", studio.status);
     run = studio.evolution.snapshot();
@@ -249,9 +253,9 @@ TEST_CASE("studio session: a simulated body replays at t = 5 s with the settle p
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1024, 700);
     testing::request_tiny_body(studio, e, 3, "test body");
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"replay": {"time_s": 5.0, "playing": false}},
-                                        {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                 {"replay": {"time_s": 5.0, "playing": false}},
+                                 {"frames": 2}])"));
     REQUIRE(studio.bodies.shown);
     CHECK(studio.clock.time_s == 5.0);
     CHECK(studio.clock.duration_s == doctest::Approx(5.2).epsilon(0.01));
@@ -278,11 +282,11 @@ TEST_CASE("studio session: the experiment editor picks NEAT, Start runs it and s
         {"click": "algorithm neat"}, {"frames": 2}])"));
     CHECK(studio.document.experiment().evolution.algorithm == evo::Algorithm::Neat);
     CHECK(studio.document.undo_label() == "set evolution.algorithm");
-    run_script(session, json::parse(R"([
+    testing::run_script_patiently(session, json::parse(R"([
         {"set": "evolution.neat.target_species", "value": 2},
         {"click": "Start"},
-        {"wait_generations": 2, "timeout_s": 240},
-        {"wait_run": "finished", "timeout_s": 60},
+        {"wait_generations": 2},
+        {"wait_run": "finished"},
         {"frames": 2}])"));
     const auto run = studio.evolution.snapshot();
     REQUIRE(run);

@@ -116,6 +116,21 @@ struct PathOverride {
     ~PathOverride() { ::setenv("PATH", saved.c_str(), 1); }
 };
 
+// Polls the worker until its progress is in `phase` (true) or it has ended (false), for at most
+// bhm::test::wait_limit_s().
+bool seen_in_phase(const FemVerifier& verifier, evo::VerifyPhase phase) {
+    bool seen = false;
+    bhm::test::wait_until(
+        [&] {
+            if (!verifier.running()) return true;
+            const auto st = verifier.state();
+            seen = st && st->progress.phase == phase;
+            return seen;
+        },
+        [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); });
+    return seen;
+}
+
 }  // namespace
 
 TEST_CASE("studio verify: the worker publishes its phases and lands the report in the run dir") {
@@ -124,12 +139,14 @@ TEST_CASE("studio verify: the worker publishes its phases and lands the report i
     FemVerifier verifier;
     REQUIRE(verifier.start(bilayer_request({20, 2, 2}, dir)));
     std::vector<std::string> steps;  // each distinct step in the order it was seen
-    const auto start = Clock::now();
-    while (verifier.running() && Clock::now() - start < std::chrono::seconds(180)) {
-        const auto st = verifier.state();
-        if (st && (steps.empty() || steps.back() != st->step)) steps.push_back(st->step);
-        std::this_thread::sleep_for(std::chrono::microseconds(500));
-    }
+    bhm::test::wait_until(
+        [&] {
+            if (!verifier.running()) return true;
+            const auto st = verifier.state();
+            if (st && (steps.empty() || steps.back() != st->step)) steps.push_back(st->step);
+            return false;
+        },
+        [] { std::this_thread::sleep_for(std::chrono::microseconds(500)); });
     REQUIRE_FALSE(verifier.running());
     const auto st = verifier.state();
     REQUIRE(st);
@@ -202,13 +219,14 @@ TEST_CASE("studio verify: Cancel kills ccx and leaves no report, no partial fold
     // Large enough that CalculiX takes seconds: the cancel lands while it solves.
     REQUIRE(verifier.start(bilayer_request({20, 6, 6}, dir)));
     std::vector<std::pair<int, std::string>> solving;
-    const auto start = Clock::now();
-    while (verifier.running() && solving.empty() &&
-           Clock::now() - start < std::chrono::seconds(60)) {
-        const auto st = verifier.state();
-        if (st && st->step.rfind("CalculiX solving", 0) == 0) solving = ccx_children();
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    bhm::test::wait_until(
+        [&] {
+            if (!verifier.running()) return true;
+            const auto st = verifier.state();
+            if (st && st->step.rfind("CalculiX solving", 0) == 0) solving = ccx_children();
+            return !solving.empty();
+        },
+        [] { std::this_thread::sleep_for(std::chrono::milliseconds(5)); });
     REQUIRE_MESSAGE(!solving.empty(), "ccx was never seen running");
     const auto cancelled_at = Clock::now();
     verifier.cancel();
@@ -236,13 +254,7 @@ TEST_CASE("studio verify: Cancel during the mesh error's second solve leaves no 
     FemVerifier verifier;
     // The 20x2x2 bilayer: its second mesh (C3D8I, 4 per edge, 5120 elements) solves for seconds.
     REQUIRE(verifier.start(bilayer_request({20, 2, 2}, dir)));
-    bool second = false;
-    const auto start = Clock::now();
-    while (verifier.running() && !second && Clock::now() - start < std::chrono::seconds(120)) {
-        const auto st = verifier.state();
-        second = st && st->progress.phase == evo::VerifyPhase::SecondMesh;
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    const bool second = seen_in_phase(verifier, evo::VerifyPhase::SecondMesh);
     REQUIRE_MESSAGE(second, "the mesh error's solve was never seen running");
     const auto cancelled_at = Clock::now();
     verifier.cancel();
@@ -285,10 +297,10 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
         studio.document.reset(testing::tiny_experiment({4, 2, 2}), "");
         studio.run_dir_field = run_dir.string();
         HeadlessStudio session(studio, 1024, 800);
-        run_script(session, json::parse(R"([{"click": "Start"},
-                                            {"wait_run": "finished", "timeout_s": 240},
-                                            {"wait_simulation": true, "timeout_s": 120},
-                                            {"click": "tab FEM"}, {"frames": 2}])"));
+        testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                     {"wait_run": "finished"},
+                                     {"wait_simulation": true},
+                                     {"click": "tab FEM"}, {"frames": 2}])"));
         REQUIRE(studio.bodies.shown);
         const auto id = studio.bodies.shown->id;
         CHECK_FALSE(studio.verify.result);  // nothing kept yet
@@ -305,9 +317,9 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
             const auto it = studio.widgets.find("fem error");
             CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
         }
-        run_script(session, json::parse(R"([{"click": "Verify in FEM"},
-                                            {"wait_verify": true, "timeout_s": 120},
-                                            {"frames": 2}])"));
+        testing::run_script_patiently(session, json::parse(R"([{"click": "Verify in FEM"},
+                                                               {"wait_verify": true},
+                                                               {"frames": 2}])"));
         REQUIRE_MESSAGE(studio.verify.result, studio.status);
         CHECK(studio.verify.result->id == id);
         verdict = studio.verify.result->verdict;
@@ -344,8 +356,8 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
     Studio again;
     HeadlessStudio session(again, 1024, 800);
     REQUIRE(open_run_directory(again, run_dir.string()));
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120},
-                                        {"click": "tab FEM"}, {"frames": 2}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
+                                                           {"click": "tab FEM"}, {"frames": 2}])"));
     REQUIRE(again.verify.result);
     CHECK(again.verify.result->verdict == verdict);
     CHECK_FALSE(again.verify.result->fem_shape.empty());
@@ -366,13 +378,7 @@ TEST_CASE("studio verify: Cancel during our engine's run stops within a slice, w
     request.options.engine.max_time_s = 30.0;
     FemVerifier verifier;
     REQUIRE(verifier.start(request));
-    bool in_engine = false;
-    const auto start = Clock::now();
-    while (verifier.running() && !in_engine && Clock::now() - start < std::chrono::seconds(120)) {
-        const auto st = verifier.state();
-        in_engine = st && st->progress.phase == evo::VerifyPhase::Engine;
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    const bool in_engine = seen_in_phase(verifier, evo::VerifyPhase::Engine);
     REQUIRE_MESSAGE(in_engine, "our engine's phase was never seen");
     std::this_thread::sleep_for(std::chrono::milliseconds(100));  // well inside its slices
     REQUIRE(verifier.running());
@@ -434,9 +440,9 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
         studio.document.reset(testing::tiny_experiment({4, 2, 2}), "");
         studio.run_dir_field = run_dir.string();
         HeadlessStudio session(studio, 1024, 800);
-        run_script(session, json::parse(R"([{"click": "Start"},
-                                            {"wait_run": "finished", "timeout_s": 240},
-                                            {"click": "tab Population"}, {"frames": 2}])"));
+        testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                     {"wait_run": "finished"},
+                                     {"click": "tab Population"}, {"frames": 2}])"));
         REQUIRE(studio.run);
         // A member other than the champion (nor an earlier one): its row, not the champion's,
         // is what is verified, and a reopened run finds its body only in the checkpoint.
@@ -450,11 +456,11 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
             }
         REQUIRE(id >= 0);
         const std::string button = "verify #" + std::to_string(id);
-        run_script(session, json::array({{{"click", button}},
-                                         {{"wait_verify", true}, {"timeout_s", 120}},
-                                         {{"wait_simulation", true}, {"timeout_s", 120}},
-                                         {{"click", "tab FEM"}},
-                                         {{"frames", 2}}}));
+        testing::run_script_patiently(session, json::array({{{"click", button}},
+                                                            {{"wait_verify", true}},
+                                                            {{"wait_simulation", true}},
+                                                            {{"click", "tab FEM"}},
+                                                            {{"frames", 2}}}));
         REQUIRE(studio.verify.state);
         INFO("error: " << studio.verify.state->error);
         CHECK(studio.verify.state->phase == FemVerifyPhase::Finished);
@@ -483,9 +489,8 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
     run_script(session, json::array({{{"click", "tab FEM"}}, {{"frames", 2}}}));
     CHECK(std::find(again.verify.kept_reports.begin(), again.verify.kept_reports.end(), id) !=
           again.verify.kept_reports.end());
-    run_script(session, json::array({{{"click", kept}},
-                                     {{"wait_simulation", true}, {"timeout_s", 120}},
-                                     {{"frames", 2}}}));
+    testing::run_script_patiently(
+        session, json::array({{{"click", kept}}, {{"wait_simulation", true}}, {{"frames", 2}}}));
     CHECK_MESSAGE(again.status.find("(checkpoint)") != std::string::npos, again.status);
     REQUIRE(again.bodies.shown);
     CHECK(again.bodies.shown->id == id);
@@ -572,17 +577,14 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
     testing::request_tiny_body(studio, e, 1,
                                "champion #1 of generation 12 of a run whose name is long enough "
                                "to run past the left pane of the split view");
-    run_script(session, json::parse(R"([{"wait_simulation": true, "timeout_s": 120}])"));
+    testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true}])"));
     SimulationRequest other;
     other.id = 2;
     other.label = "champion #2 of generation 3, compared with the body on the left";
     other.experiment = e;
     other.framed_body = studio.bodies.shown->framed_body;
     studio.bodies.compare_simulator.request(other);
-    const auto end = Clock::now() + std::chrono::seconds(120);
-    while (!studio.bodies.compared && Clock::now() < end)
-        session.frame();
-    REQUIRE(studio.bodies.compared);
+    REQUIRE(testing::frames_until(session, [&] { return studio.bodies.compared != nullptr; }));
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
     REQUIRE(studio.view.split);
     for (const char* name : {"view overlay", "compared overlay"}) {

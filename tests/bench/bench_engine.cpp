@@ -29,12 +29,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -45,92 +43,20 @@
 #include "engine/model.hpp"
 #include "engine/world.hpp"
 #include "evo/evaluate/fitness.hpp"
-#include "evo/experiment/experiment_io.hpp"
-#include "evo/experiment/body_spec_of.hpp"
+#include "tests/support/engine_fingerprint.hpp"
 
 namespace {
 
 using bhm::engine::BodySpec;
 using bhm::engine::Material;
+using bhm::test::EngineScene;
+using bhm::test::state_fingerprint;
 using Clock = std::chrono::steady_clock;
 
 double thread_cpu_s() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// Paper Table 1: E = 5 MPa, density 1000, Poisson 0.35, friction 1 / 0.5; CTE 0 passive,
-// 0.01 active.
-Material passive_material() {
-    return Material{5e6, 1000.0, 0.35, 0.0, 1.0, 0.5};
-}
-Material active_material() {
-    return Material{5e6, 1000.0, 0.35, 0.01, 1.0, 0.5};
-}
-
-// A filled nx x ny x nz block, its x = 0 layer held, material per cell from material_at(x).
-template <class MaterialAt>
-BodySpec block_fixed_at_x_min(int nx, int ny, int nz, MaterialAt material_at) {
-    BodySpec spec;
-    spec.nx = nx;
-    spec.ny = ny;
-    spec.nz = nz;
-    spec.materials = {passive_material(), active_material()};
-    spec.material.resize(static_cast<std::size_t>(spec.cell_count()));
-    spec.fixed.resize(static_cast<std::size_t>(spec.cell_count()));
-    for (int z = 0; z < nz; ++z)
-        for (int y = 0; y < ny; ++y)
-            for (int x = 0; x < nx; ++x) {
-                const auto c = static_cast<std::size_t>(spec.cell_index(x, y, z));
-                spec.material[c] = static_cast<std::uint8_t>(material_at(x));
-                spec.fixed[c] = x == 0 ? 1 : 0;
-            }
-    // Actuate from the first step: the benchmark times the actuated steps of an evaluation.
-    spec.actuation.start_s = 0.0;
-    return spec;
-}
-
-struct Scene {
-    std::string name;
-    BodySpec spec;
-    std::int64_t steps;  //!< fixed per scene: ~3 s of wall time at 1.5e7 voxel-steps/s
-};
-
-std::vector<Scene> scenes() {
-    std::vector<Scene> list;
-    // 20x8x7 passive cantilever under gravity, no floor.
-    BodySpec cantilever = block_fixed_at_x_min(20, 8, 7, [](int) { return 1; });
-    cantilever.environment.floor = false;
-    list.push_back({"cantilever_20x8x7", cantilever, 40000});
-    // The paper's design space filled with muscle: 8x8x7 all active, 2 Hz, on the floor.
-    list.push_back(
-        {"active_block_8x8x7", block_fixed_at_x_min(8, 8, 7, [](int) { return 2; }), 100000});
-    // 20x8x7 with 4-voxel bands along x: active, passive, active, ...
-    list.push_back({"bands_20x8x7",
-                    block_fixed_at_x_min(20, 8, 7, [](int x) { return (x / 4) % 2 == 0 ? 2 : 1; }),
-                    40000});
-    // Two stiffnesses (issue 24): the cantilever with layers z = 1 and 5 of a 10x stiffer
-    // passive material, every vertical link between them mixed.
-    BodySpec layered = cantilever;
-    Material stiff = passive_material();
-    stiff.youngs_modulus_pa *= 10.0;
-    layered.materials.push_back(stiff);
-    for (int z = 0; z < layered.nz; ++z)
-        for (int y = 0; y < layered.ny; ++y)
-            for (int x = 0; x < layered.nx; ++x)
-                if (z == 1 || z == 5) layered.material[layered.cell_index(x, y, z)] = 3;
-    list.push_back({"layered_20x8x7", layered, 40000});
-    // The worst case of the springs across edges (issue 24): the cantilever as a 10x
-    // checkerboard, every stiff voxel joined to its stiff edge neighbours (one spring per voxel
-    // and a half).
-    BodySpec checkerboard = layered;
-    for (int z = 0; z < checkerboard.nz; ++z)
-        for (int y = 0; y < checkerboard.ny; ++y)
-            for (int x = 0; x < checkerboard.nx; ++x)
-                checkerboard.material[checkerboard.cell_index(x, y, z)] = (x + y + z) % 2 ? 3 : 1;
-    list.push_back({"checkerboard_20x8x7", checkerboard, 40000});
-    return list;
 }
 
 struct Result {
@@ -156,25 +82,6 @@ void step_world(bhm::engine::World& world, std::int64_t steps, const std::string
     if (world.diverged())
         throw std::runtime_error(scene + ": the simulation diverged (" + world.divergence_reason() +
                                  "); its timing would be meaningless");
-}
-
-// FNV-1a over every voxel's final position and orientation: equal fingerprints before and after
-// an engine change show it kept the results bit for bit (--fingerprint).
-std::uint64_t state_fingerprint(const bhm::engine::World& world) {
-    std::uint64_t hash = 1469598103934665603ull;
-    auto mix = [&](double value) {
-        unsigned char bytes[sizeof value];
-        std::memcpy(bytes, &value, sizeof value);
-        for (unsigned char b : bytes)
-            hash = (hash ^ b) * 1099511628211ull;
-    };
-    for (int v = 0; v < world.model().voxel_count(); ++v) {
-        for (double x : world.voxel_position_m(v))
-            mix(x);
-        for (double q : world.voxel_orientation(v))
-            mix(q);
-    }
-    return hash;
 }
 
 // The spec as timed: with --poisson-off, every material's nu is 0 (the coupling off).
@@ -205,7 +112,7 @@ Result run_single(const std::string& name, const BodySpec& spec, std::int64_t st
 }
 
 // Two Worlds of one shared Model, each stepped by its own thread, started together.
-Result run_two_threads(const Scene& scene, std::int64_t steps) {
+Result run_two_threads(const EngineScene& scene, std::int64_t steps) {
     const auto model = bhm::engine::Model::build(scene.spec);
     bhm::engine::World worlds[2] = {bhm::engine::World(model), bhm::engine::World(model)};
     std::barrier start_line(3);
@@ -240,43 +147,22 @@ struct CorpusResult {
     double full_evaluations_s = 0.0;  //!< CPU time of one 1 s + 10 s evaluation of every body
 };
 
-CorpusResult run_corpus(const std::string& path, const std::string& assets, double voxel_steps,
+CorpusResult run_corpus(const std::string& path, const std::string& assets, double steps_scale,
                         int min_voxels, int max_voxels, bool per_body, bool fingerprint,
                         bool poisson_off) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(path + ": cannot open the corpus file");
-    nlohmann::json corpus;
-    try {
-        corpus = nlohmann::json::parse(in);
-    } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
-    }
-    const std::string preset = corpus.at("experiment").get<std::string>();
-    const bhm::evo::Experiment experiment =
-        bhm::evo::load_experiment(assets + "/" + preset + ".json");
-    const double evaluation_s = bhm::evo::evaluation_seconds(experiment);
-    // Named after the file: a preset can have several corpora (random bodies, champions).
-    CorpusResult out{std::filesystem::path(path).stem().string(), {}, 0.0};
-    for (const auto& entry : corpus.at("bodies")) {
-        const std::string name = preset + "/" + entry.at("name").get<std::string>();
-        // Framed as evolution simulates it (a no-op for workspace-sized framed bodies), phases
-        // from the run's seed as evaluate_body draws them.
-        const auto body = bhm::evo::apply_frame_and_overrides(
-            experiment, bhm::evo::parse_body(entry.at("body"), path));
-        const BodySpec spec = as_timed(
-            bhm::evo::make_body_spec(experiment, body, experiment.evolution.seed), poisson_off);
-        int voxels = 0;
-        for (auto m : spec.material)
-            voxels += m != 0;
-        if (voxels < min_voxels || voxels > max_voxels) continue;
-        const auto steps =
-            std::max<std::int64_t>(200, static_cast<std::int64_t>(voxel_steps / voxels));
-        Result r = run_single(name, spec, steps, fingerprint);
+    const bhm::test::Corpus corpus = bhm::test::load_corpus(path, assets);
+    const double evaluation_s = bhm::evo::evaluation_seconds(corpus.experiment);
+    CorpusResult out{corpus.name, {}, 0.0};
+    for (const bhm::test::CorpusBody& body : corpus.bodies) {
+        if (body.voxels < min_voxels || body.voxels > max_voxels) continue;
+        const BodySpec spec = as_timed(body.spec, poisson_off);
+        Result r = run_single(body.name, spec, bhm::test::corpus_body_steps(body.voxels, steps_scale),
+                              fingerprint);
         const double dt = bhm::engine::Model::build(spec)->dt_s();
         const double full_steps = std::ceil(evaluation_s / dt);
         out.full_evaluations_s += r.build_s + full_steps * r.cpu_s / static_cast<double>(r.steps);
         if (per_body)
-            std::cerr << name << ": " << r.voxels << " voxels, " << r.links << " links, "
+            std::cerr << body.name << ": " << r.voxels << " voxels, " << r.links << " links, "
                       << r.edge_springs << " edge springs, " << r.voxel_steps_per_s() << " voxel-steps/s\n";
         out.bodies.push_back(r);
     }
@@ -435,16 +321,15 @@ int main(int argc, char** argv) {
     try {
         if (scenes_wanted) {
             double single_cantilever_wall_rate = 0.0;
-            auto list = scenes();
-            std::erase_if(list, [&](const Scene& scene) {
+            auto list = bhm::test::anchor_scenes();
+            std::erase_if(list, [&](const EngineScene& scene) {
                 return scene.name.find(scene_filter) == std::string::npos;
             });
             if (list.empty()) usage_error("--scene '" + scene_filter + "' names no scene");
-            for (Scene& scene : list)
+            for (EngineScene& scene : list)
                 scene.spec = as_timed(scene.spec, poisson_off);
-            for (const Scene& scene : list) {
-                const auto steps = std::max<std::int64_t>(
-                    1, static_cast<std::int64_t>(static_cast<double>(scene.steps) * steps_scale));
+            for (const EngineScene& scene : list) {
+                const auto steps = bhm::test::scene_steps(scene, steps_scale);
                 const Result r = run_single(scene.name, scene.spec, steps, fingerprint);
                 if (scene.name == list.front().name)
                     single_cantilever_wall_rate =
@@ -454,12 +339,10 @@ int main(int argc, char** argv) {
                           << r.cpu_s << " CPU s = " << r.voxel_steps_per_s() << " voxel-steps/s\n";
             }
             // Two threads on the cantilever (the first scene), unless --scene left it out.
-            const Scene& cantilever = list.front();
+            const EngineScene& cantilever = list.front();
             if (cantilever.name == "cantilever_20x8x7") {
-                const auto steps = std::max<std::int64_t>(
-                    1, static_cast<std::int64_t>(static_cast<double>(cantilever.steps) *
-                                                 steps_scale));
-                const Result two = run_two_threads(cantilever, steps);
+                const Result two =
+                    run_two_threads(cantilever, bhm::test::scene_steps(cantilever, steps_scale));
                 csv << csv_row(two, machine, commit) << "\n";
                 std::cerr << two.scene << ": aggregate " << two.voxel_steps_per_s()
                           << " voxel-steps/s = "
@@ -475,7 +358,7 @@ int main(int argc, char** argv) {
             if (files.empty()) throw std::runtime_error(corpus_dir + ": no corpus file (*.json)");
             std::sort(files.begin(), files.end());
             for (const auto& file : files) {
-                const CorpusResult c = run_corpus(file, assets, 2e6 * steps_scale, min_voxels,
+                const CorpusResult c = run_corpus(file, assets, steps_scale, min_voxels,
                                                   max_voxels, per_body, fingerprint, poisson_off);
                 if (c.bodies.empty()) continue;  // no body of this corpus in the voxel range
                 csv << csv_row(c, machine, commit) << "\n";

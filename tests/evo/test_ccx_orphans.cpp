@@ -18,10 +18,10 @@
 
 #include "evo/verify/ccx_run.hpp"
 #include "support/scratch.hpp"
+#include "support/wait_limit.hpp"
 
 using namespace bhm;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
@@ -118,22 +118,16 @@ TEST_CASE("verify: ccx dies with the process that started it, and its folder is 
         }
         ::_exit(0);
     }
-    // Generous waits (a loaded machine), each on its condition.
+    // Generous waits (a loaded machine), each on its condition (tests/support/wait_limit.hpp).
+    const auto a_moment = [] { std::this_thread::sleep_for(std::chrono::milliseconds(20)); };
     long ccx = -1;
-    for (const auto end = Clock::now() + std::chrono::seconds(60); Clock::now() < end;) {
-        std::ifstream in(pid_file);
-        if (in >> ccx) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    bhm::test::wait_until([&] { return static_cast<bool>(std::ifstream(pid_file) >> ccx); },
+                          a_moment);
     ::kill(solver, SIGKILL);  // kill -9, as a user would
     ::waitpid(solver, nullptr, 0);
     REQUIRE_MESSAGE(ccx > 0, "the stand-in ccx never started");
 
-    bool gone = false;
-    for (const auto end = Clock::now() + std::chrono::seconds(20); !gone && Clock::now() < end;) {
-        gone = !alive(ccx);
-        if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    const bool gone = bhm::test::wait_until([&] { return !alive(ccx); }, a_moment);
     if (!gone) ::kill(static_cast<pid_t>(ccx), SIGKILL);  // the test leaves no orphan either
     CHECK_MESSAGE(gone, "ccx (pid " << ccx << ") outlived the process that started it");
 

@@ -606,7 +606,14 @@ void run_script(HeadlessStudio& session, const json& steps,
         try {
             run_step(session, step);
         } catch (const ScriptError& e) {
-            const std::string kind = step.is_object() && !step.empty() ? step.begin().key() : "?";
+            // The kind run_step ran, not the object's first key: keys come in alphabetical
+            // order, so {"wait_run": ..., "timeout_s": 60} would read as "timeout_s".
+            std::string kind = step.is_object() && !step.empty() ? step.begin().key() : "?";
+            for (const ScriptStep& k : script_steps())
+                if (step.is_object() && step.contains(k.name)) {
+                    kind = k.name;
+                    break;
+                }
             throw ScriptError("step " + std::to_string(i + 1) + " (" + kind + "): " + e.what());
         } catch (const json::exception& e) {
             throw ScriptError("step " + std::to_string(i + 1) +
