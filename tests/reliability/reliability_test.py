@@ -64,6 +64,7 @@ class Bhm:
         self.path, self.shim, self.work = path, shim, work
         self.python_module = python_module  # build/python, where the bhm module is (optional)
         self.python = sys.executable
+        self.fuzz_cases = 0  # 0: each fuzz case's own count
         self.env = dict(os.environ)
         self.env.setdefault("GALLIUM_DRIVER", "llvmpipe")
         self.env.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
@@ -666,6 +667,7 @@ def prepare_seeds(bhm):
 
 
 def fuzz(bhm, rng, cases, plan, label):
+    cases = bhm.fuzz_cases or cases  # --cases: a longer campaign than ctest's
     seeds = prepare_seeds(bhm)
     jobs = []
     for i in range(cases):
@@ -766,6 +768,8 @@ def main():
     parser.add_argument("--shim", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("--seed", type=int, default=11)
+    parser.add_argument("--cases", type=int, default=0,
+                        help="fuzz cases to run (default: the case's own count, as ctest runs it)")
     parser.add_argument("--python-module", help="folder of the bhm Python module (fuzzed too)")
     parser.add_argument("--python", default=sys.executable,
                         help="the interpreter the module was built for (default: this one)")
@@ -775,6 +779,7 @@ def main():
     bhm = Bhm(os.path.abspath(a.bhm), os.path.abspath(a.shim), os.path.abspath(a.work),
               os.path.abspath(a.python_module) if a.python_module else None)
     bhm.python = a.python
+    bhm.fuzz_cases = a.cases
     CASES[a.case](bhm, random.Random(a.seed))
     if failures:
         print("%d failure(s)" % len(failures), file=sys.stderr)
