@@ -6,7 +6,6 @@
 
 #include "app/cli/commands.hpp"
 #include "bhm_version.hpp"
-#include "evo/experiment/material_library.hpp"
 
 namespace {
 
@@ -43,10 +42,6 @@ void print_usage(std::ostream& out) {
 
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
-    // A damaged material library file or a skipped entry, said once when an experiment is filled
-    // from the library: the experiment still loads unless it names that file (issue 41 R10).
-    bhm::evo::set_material_library_warning_handler(
-        [](const std::string& line) { std::cerr << "bhm: warning: " << line << "\n"; });
     if (args.empty()) return bhm::app::cmd_studio({});
     const std::string first = args.front();
     if (first == "--version" || first == "-V") {

@@ -178,6 +178,7 @@ int calibrate(ArgParser& args) {
     evo::Body body;
     try {
         auto loaded = evo::load_experiment_and_body(experiment_path, body_path);
+        say_library_warnings(loaded.experiment);
         experiment = std::move(loaded.experiment);
         body = std::move(*loaded.body);
     } catch (const evo::ValidationError& e) {

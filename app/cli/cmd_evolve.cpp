@@ -201,6 +201,7 @@ int evolve(ArgParser& args) {
     evo::Experiment experiment;
     try {
         experiment = evo::load_experiment(experiment_path);
+        say_library_warnings(experiment);
     } catch (const evo::ValidationError& e) {
         return report_problems(e.problems);
     }

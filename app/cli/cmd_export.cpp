@@ -126,6 +126,7 @@ int export_body(ArgParser& parser) {
     } else {
         if (!parser.has("--body")) throw UsageError("an experiment file needs --body BODY.json");
         experiment = evo::load_experiment(source);
+        say_library_warnings(experiment);
         body = evo::load_body(parser.get("--body"));
         auto problems = evo::validate_body_against(body, experiment, parser.get("--body"));
         if (!problems.empty()) throw evo::ValidationError(problems);

@@ -139,6 +139,7 @@ int render_command(ArgParser& args) {
     bool body_ok = false;
     try {
         auto loaded = evo::load_experiment_and_body(experiment_path, args.get("--body", ""));
+        say_library_warnings(loaded.experiment);
         experiment = std::move(loaded.experiment);
         body_ok = loaded.body.has_value();
         if (body_ok) body = std::move(*loaded.body);

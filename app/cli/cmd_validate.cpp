@@ -26,6 +26,7 @@ int validate_body(ArgParser& parser) {
                 evo::load_body(path);
             } else {
                 auto e = evo::load_experiment(path);
+                say_library_warnings(e);
                 if (!experiment) experiment = e;
                 auto more = evo::envelope_warnings(e, nullptr, path);
                 warnings.insert(warnings.end(), more.begin(), more.end());

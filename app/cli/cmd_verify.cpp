@@ -11,6 +11,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/problem_report.hpp"
 #include "engine/io/staged_folder.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -80,6 +81,7 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     if (body_path.empty()) throw UsageError("an experiment needs --body BODY (or give a RUN_DIR)");
     const auto loaded = evo::load_experiment_and_body(experiment_path, body_path);
     const evo::Experiment& e = loaded.experiment;
+    say_library_warnings(e);
     const auto framed = evo::apply_frame_and_overrides(e, *loaded.body);
     const auto spec = evo::make_body_spec(e, framed);
     const auto options = options_of(parser);

@@ -14,6 +14,13 @@ inline void print_problems(const std::vector<evo::Problem>& problems) {
         std::cerr << p.to_string() << "\n";
 }
 
+//! The material library's warnings for an experiment just loaded (a file skipped or damaged that
+//! the experiment does not name), one "bhm: warning: " line each on stderr.
+inline void say_library_warnings(const evo::Experiment& experiment) {
+    for (const auto& line : evo::library_warnings_for(experiment))
+        std::cerr << "bhm: warning: " << line << "\n";
+}
+
 //! print_problems, then the exit status of a refused input: 1.
 inline int report_problems(const std::vector<evo::Problem>& problems) {
     print_problems(problems);

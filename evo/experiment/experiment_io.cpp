@@ -147,7 +147,6 @@ class LibraryFill {
             tried_ = true;
             try {
                 library_ = load_material_library(default_material_library_dir());
-                report_material_library_warnings(*library_);  // a damaged file, a FIFO skipped
             } catch (const ValidationError& e) {
                 error_ = e.problems.empty() ? std::string(e.what()) : e.problems[0].to_string();
             }
@@ -481,6 +480,18 @@ ExperimentAndBody load_experiment_and_body(const std::string& experiment_path,
     }
     if (!problems.empty()) throw ValidationError(std::move(problems));
     return out;
+}
+
+std::vector<std::string> library_warnings_for(const Experiment& experiment) {
+    const bool uses_library =
+        std::any_of(experiment.materials.begin(), experiment.materials.end(),
+                    [](const MaterialEntry& m) { return !m.library.empty(); });
+    if (!uses_library) return {};
+    try {
+        return load_material_library(default_material_library_dir()).warnings();
+    } catch (const ValidationError&) {
+        return {};  // the experiment's own load said why, had it needed a value from it
+    }
 }
 
 }  // namespace bhm::evo

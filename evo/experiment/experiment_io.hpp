@@ -28,6 +28,10 @@ struct ValidationError : std::runtime_error {
 //! Parses and validates an experiment; throws ValidationError listing every problem.
 Experiment load_experiment(const std::string& path);
 Experiment parse_experiment(const nlohmann::json& json, const std::string& file_label);
+//! The material library's warnings (entries skipped, files damaged: MaterialLibrary::warnings())
+//! when `experiment` takes a material from it, else none: what a front end says beside an
+//! experiment it loaded, which still loads unless it names a damaged file (issue 41 R10).
+std::vector<std::string> library_warnings_for(const Experiment& experiment);
 //! Validates without throwing; the list is empty when the experiment is valid.
 std::vector<Problem> validate_experiment(const Experiment& experiment,
                                          const std::string& file_label);

@@ -8,8 +8,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <mutex>
-#include <set>
 
 #include "engine/io/text_file.hpp"
 #include "engine/limits.hpp"
@@ -285,26 +283,6 @@ MaterialLibrary load_material_library(const std::string& dir) {
         throw ValidationError(std::move(problems));
     }
     return library;
-}
-
-namespace {
-
-std::mutex warning_mutex;
-std::function<void(const std::string&)> warning_handler;
-std::set<std::string> warnings_given;
-
-}  // namespace
-
-void set_material_library_warning_handler(std::function<void(const std::string&)> handler) {
-    const std::lock_guard lock(warning_mutex);
-    warning_handler = std::move(handler);
-}
-
-void report_material_library_warnings(const MaterialLibrary& library) {
-    const std::lock_guard lock(warning_mutex);
-    if (!warning_handler) return;
-    for (const auto& w : library.warnings())
-        if (warnings_given.insert(w).second) warning_handler(w);
 }
 
 void apply_library_material(const LibraryMaterial& m, double temperature_amplitude_c,

@@ -4,7 +4,6 @@
 // problem as "file:field: message"). An experiment's material slot names an entry with
 // "library": "<id>" (the file's name without .json) and takes the values it does not give itself.
 #include <array>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,12 +78,6 @@ std::string default_material_library_dir();
 //! folder or holds no material files at all.
 MaterialLibrary load_material_library(const std::string& dir);
 
-//! Receives each line of MaterialLibrary::warnings() once per process when an experiment's slot is
-//! filled from the library (parse_experiment). The command line prints them on stderr; none is
-//! set by default (the studio shows the library's warnings itself). Thread-safe.
-void set_material_library_warning_handler(std::function<void(const std::string&)> handler);
-//! Gives the handler each of library.warnings() not given before.
-void report_material_library_warnings(const MaterialLibrary& library);
 //! One file's entry (id = file name without .json); throws ValidationError.
 LibraryMaterial load_library_material(const std::string& path);
 LibraryMaterial parse_library_material(const nlohmann::json& json, const std::string& file_label,
