@@ -19,6 +19,7 @@
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/crc32.hpp"
 #include "evo/run/loop_check_json.hpp"
+#include "evo/run/rule_change_json.hpp"
 
 namespace bhm::evo {
 
@@ -213,36 +214,6 @@ NeatState neat_state_from_json(const json& j, double weight_range, std::size_t p
     return n;
 }
 
-//! The fitness block alone, parsed through the lead's experiment reader.
-Fitness fitness_from_json(const json& fitness_json, const Experiment& base,
-                          const std::string& where) {
-    json e = experiment_to_json(base);
-    e["fitness"] = fitness_json;
-    try {
-        return parse_experiment(e, where).fitness;
-    } catch (const std::exception& ex) {
-        throw FieldError(where + ": " + ex.what());
-    }
-}
-
-//! The checkpoint's rule changes (its fitness and physics blocks are read against `rules`, the
-//! checkpoint's own experiment).
-std::vector<RuleChange> rule_changes_from_json(const json& changes, const Experiment& rules) {
-    std::vector<RuleChange> out;
-    for (std::size_t i = 0; i < changes.size(); ++i) {
-        const Fields c(changes[i], item("rule_changes", i));
-        RuleChange change{static_cast<int>(c.integer("generation")),
-                          fitness_from_json(c.at("fitness"), rules, c.join("fitness")),
-                          std::nullopt, std::nullopt};
-        if (changes[i].contains("physics"))
-            change.physics = physics_from_json(c.at("physics"), rules, c.join("physics"));
-        if (changes[i].contains("verify"))
-            change.verify = loop_verify_settings_from_json(c.at("verify"), c.join("verify"));
-        out.push_back(std::move(change));
-    }
-    return out;
-}
-
 }  // namespace
 
 json individual_to_json(const Individual& ind) {
@@ -264,15 +235,6 @@ json run_state_to_json(const RunState& s) {
     json history = json::array();
     for (const auto& h : s.history)
         history.push_back(history_row_to_json(h));
-    json changes = json::array();
-    for (const auto& c : s.rule_changes) {
-        Experiment e = s.experiment;
-        e.fitness = c.fitness;
-        json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
-        if (c.physics) change["physics"] = physics_to_json(*c.physics, s.experiment);
-        if (c.verify) change["verify"] = loop_verify_settings_to_json(*c.verify);
-        changes.push_back(std::move(change));
-    }
     json cache = json::array();
     for (const auto hash : s.cache.insertion_order()) {
         const FitnessReport* r = s.cache.find(hash);
@@ -306,7 +268,7 @@ json run_state_to_json(const RunState& s) {
               {"population", population},
               {"pareto_rank", s.pareto_rank},
               {"history", history},
-              {"rule_changes", changes},
+              {"rule_changes", rule_changes_to_json(s.rule_changes, s.experiment)},
               {"cache_capacity", s.cache.capacity()},
               {"cache", cache}};
     if (s.experiment.evolution.algorithm == Algorithm::Neat) j["neat"] = neat_state_to_json(s.neat);
@@ -380,7 +342,7 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         if (static_cast<int>(s.history.size()) != s.generation + 1)
             f.fail("history", "expected one row per completed generation");
 
-        s.rule_changes = rule_changes_from_json(f.array("rule_changes"), s.experiment);
+        s.rule_changes = rule_changes_from_json(f.at("rule_changes"), s.experiment, "rule_changes");
 
         if (s.experiment.evolution.algorithm == Algorithm::Neat && s.generation >= 0)
             s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
@@ -535,7 +497,8 @@ std::optional<CheckpointRules> read_checkpoint_rules(const std::string& dir) {
             CheckpointRules out;
             out.path = path;
             out.experiment = parse_experiment(f.at("experiment"), path + ":experiment");
-            out.rule_changes = rule_changes_from_json(f.array("rule_changes"), out.experiment);
+            out.rule_changes =
+                rule_changes_from_json(f.at("rule_changes"), out.experiment, "rule_changes");
             return out;
         } catch (const std::exception&) {
             continue;  // damaged: the previous one, else none (resuming says why)
