@@ -9,7 +9,10 @@
 // parses as JSON (a flipped digit) is caught:
 //   {"checksum":"crc32:XXXXXXXX","payload":{...,"format_version":2,...}}\n
 // with the CRC over the exact bytes of the payload. Format 1 (the bare payload) is still read,
-// with a warning that it is not verified.
+// with a warning that it is not verified. Format 3 added NEAT's state (its other additions are
+// optional fields); format 4 writes each fitness cache entry as {"hash", "report"}, the report in
+// its one form (fitness_json.hpp), where formats 1 to 3 wrote positional arrays, still read: the
+// file's format_version says which form its cache holds.
 //
 // Phenotypes are not stored: they are developed again from the genomes on load, and each one must
 // match its recorded hash (a check that the decoder and the experiment are unchanged).
@@ -29,6 +32,12 @@ inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
 //! Where a damaged checkpoint.json goes when a resume fell back to checkpoint.prev.json: rotating
 //! it into the backup slot would replace the one good checkpoint with the damaged one.
 inline constexpr const char* kDamagedCheckpointFile = "checkpoint.damaged.json";
+
+//! The format this build writes, and the oldest it reads.
+inline constexpr int kCheckpointFormatVersion = 4;
+inline constexpr int kOldestCheckpointFormatVersion = 1;
+//! From this format on, cache entries are objects {hash, report}; before, positional arrays.
+inline constexpr int kNamedCacheEntriesSince = 4;
 
 nlohmann::json individual_to_json(const Individual& individual);
 nlohmann::json run_state_to_json(const RunState& state);

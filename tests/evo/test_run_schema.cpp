@@ -21,9 +21,9 @@
 
 using namespace bhm::evo;
 namespace fs = std::filesystem;
-using nlohmann::json;
 using bhm::evo::test::csv_without_wall;
 using bhm::evo::test::run_options;
+using nlohmann::json;
 
 namespace {
 
@@ -101,4 +101,171 @@ TEST_CASE("a rule change has one form: run.json and the checkpoint write and rea
         CHECK(what.find("measure") != std::string::npos);
     }
     fs::remove_all(dir);
+}
+
+namespace {
+
+//! A report's JSON without its wall-clock time (the one field that depends on the machine).
+json without_sim_wall(const FitnessReport& report) {
+    json j = report_to_json(report);
+    j.erase("sim_wall_s");
+    return j;
+}
+
+//! Every cache entry's report, oldest first.
+std::vector<const FitnessReport*> cache_reports(const RunState& state) {
+    std::vector<const FitnessReport*> out;
+    for (const auto hash : state.cache.insertion_order())
+        out.push_back(state.cache.find(hash));
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("the fitness cache's entries are named objects and read back exactly as simulated") {
+    const Experiment e = test::tiny_experiment();
+    const fs::path dir = bhm::test::scratch_dir("schema-cache", false);
+    EvolutionRun run(e, run_options(2, 2, dir.string()));
+    run.run();
+    const json payload = payload_of(dir / kCheckpointFile);
+    CHECK(payload.at("format_version") == kCheckpointFormatVersion);
+    REQUIRE(payload.at("cache").size() == run.state().cache.size());
+    REQUIRE(run.state().cache.size() > 0);
+    for (const auto& entry : payload.at("cache")) {
+        REQUIRE(entry.is_object());
+        CHECK(entry.at("hash").is_string());
+        CHECK(entry.at("report").at("measures").is_object());  // measures by name too
+    }
+
+    // The round trip keeps every field of every report, sim_wall_s and fitness included (the
+    // positional form dropped the first and scored the second again on load).
+    const RunState back = run_state_from_json(payload, "x");
+    CHECK(back.cache.insertion_order() == run.state().cache.insertion_order());
+    CHECK(back.cache.capacity() == run.state().cache.capacity());
+    const auto before = cache_reports(run.state()), after = cache_reports(back);
+    int timed = 0;
+    for (std::size_t i = 0; i < before.size(); ++i) {
+        CHECK(report_to_json(*after[i]) == report_to_json(*before[i]));
+        timed += before[i]->sim_wall_s > 0.0 ? 1 : 0;
+    }
+    CHECK(timed > 0);  // so the check above covers sim_wall_s
+    CHECK(run_state_to_json(back) == payload);
+
+    // The same cache in the positional form of formats 1 to 3 reads as the same results.
+    json old = payload;
+    test::as_positional_cache(old, 3);
+    REQUIRE(old.at("cache")[0].is_array());
+    const RunState positional = run_state_from_json(old, "x");
+    CHECK(positional.cache.insertion_order() == run.state().cache.insertion_order());
+    const auto read = cache_reports(positional);
+    for (std::size_t i = 0; i < before.size(); ++i) {
+        CHECK(without_sim_wall(*read[i]) == without_sim_wall(*before[i]));
+        CHECK(read[i]->sim_wall_s == 0.0);
+    }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a malformed cache entry is one line naming the file and the field") {
+    const Experiment e = test::tiny_experiment();
+    const fs::path dir = bhm::test::scratch_dir("schema-cache-bad", false);
+    EvolutionRun(e, run_options(1, 1, dir.string())).run();
+    const json good = payload_of(dir / kCheckpointFile);
+    REQUIRE(good.at("cache").size() >= 2);
+    fs::remove(dir / kPreviousCheckpointFile);  // so that no backup is taken instead
+    const std::string file = (dir / kCheckpointFile).string();
+
+    auto problem = [&](const json& payload) -> std::string {
+        spit(dir / kCheckpointFile,
+             checkpoint_text(payload));  // a valid checksum: the field is read
+        try {
+            load_checkpoint(dir.string());
+        } catch (const std::runtime_error& error) {
+            return error.what();
+        }
+        return "(loaded)";
+    };
+    auto check_names = [&](const std::string& what, const std::string& field) {
+        CAPTURE(what);
+        CHECK(what.find(file + ": " + field) != std::string::npos);
+        CHECK(what.find('\n') == std::string::npos);
+    };
+
+    json bad = good;
+    bad["cache"][1]["report"]["measures"]["com_max_3d"] = "far";
+    check_names(problem(bad), "cache[1].report.measures.com_max_3d: expected a number");
+    bad = good;
+    bad["cache"][0].erase("hash");
+    check_names(problem(bad), "cache[0].hash: missing");
+    bad = good;
+    bad["cache"][1]["report"].erase("steps");
+    check_names(problem(bad), "cache[1].report.steps: missing");
+
+    // A form that does not match the file's version is named as such.
+    bad = good;
+    test::as_positional_cache(bad, kCheckpointFormatVersion);
+    check_names(problem(bad), "cache[0]: a positional entry in a format 4 checkpoint");
+    bad = good;
+    test::as_positional_cache(bad, 3);
+    bad["cache"][1] = good["cache"][1];
+    check_names(problem(bad), "cache[1]: expected [hash, diverged");
+    // A positional entry names its element.
+    bad = good;
+    test::as_positional_cache(bad, 3);
+    bad["cache"][1][4] = json::array({1.0, 2.0});
+    check_names(problem(bad),
+                "cache[1][4] (measures): expected an array of one number per measure");
+    bad = good;
+    test::as_positional_cache(bad, 3);
+    bad["cache"][0][2] = 1.5;
+    check_names(problem(bad), "cache[0][2] (steps): expected an integer");
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a run directory written before issue 41 (format 3) resumes as its uninterrupted twin") {
+    // tests/data/run-format3: stopped after generation 2 of 5 by the code before named cache
+    // entries (its README says how it was made).
+    const fs::path fixture = fs::path(BHM_SOURCE_DIR) / "tests/data/run-format3";
+    const fs::path dir = bhm::test::scratch_dir("schema-format3", false),
+                   whole = bhm::test::scratch_dir("schema-format3-whole", false);
+    fs::copy(fixture, dir, fs::copy_options::recursive);
+    const json old = payload_of(dir / kCheckpointFile);
+    REQUIRE(old.at("format_version") == 3);
+    REQUIRE(old.at("cache").size() > 0);
+    REQUIRE(old.at("cache")[0].is_array());
+    REQUIRE(old.at("cache")[0].size() == 9);
+
+    const RunInfo info = read_run_info(dir.string());
+    CHECK(info.warnings.empty());
+    REQUIRE(info.rule_changes.size() == 2);
+    REQUIRE(info.rule_changes[1].physics);
+    const Experiment e = info.started;
+
+    auto resumed = EvolutionRun::resume(run_options(5, 2, dir.string()));
+    CHECK(resumed->resume_warnings().empty());
+    CHECK(resumed->state().generation == 2);
+    CHECK(resumed->state().cache.size() == old.at("cache").size());
+    CHECK(resumed->state().rule_changes == info.rule_changes);
+    CHECK(resumed->run() == StopReason::GenerationBudget);
+
+    EvolutionRun twin(e, run_options(5, 2, whole.string()));
+    REQUIRE(run_with_changes(twin, info.rule_changes[0].fitness, *info.rule_changes[1].physics) ==
+            StopReason::GenerationBudget);
+    const std::string csv = csv_without_wall(bhm::test::read_file(dir / kFitnessCsvFile));
+    CHECK(csv == csv_without_wall(bhm::test::read_file(whole / kFitnessCsvFile)));
+    // And what the old code's own uninterrupted run wrote.
+    CHECK(csv == csv_without_wall(bhm::test::read_file(fixture / "expected-fitness.csv")));
+    CHECK(resumed->state().rng == twin.state().rng);
+    CHECK(resumed->state().champion->individual.genome == twin.state().champion->individual.genome);
+    CHECK(resumed->state().cache.insertion_order() == twin.state().cache.insertion_order());
+    const auto mine = cache_reports(resumed->state()), theirs = cache_reports(twin.state());
+    for (std::size_t i = 0; i < mine.size(); ++i)
+        CHECK(without_sim_wall(*mine[i]) == without_sim_wall(*theirs[i]));
+    resumed.reset();
+
+    // Its next checkpoint is in the new form.
+    const json now = payload_of(dir / kCheckpointFile);
+    CHECK(now.at("format_version") == kCheckpointFormatVersion);
+    CHECK(now.at("cache")[0].is_object());
+    fs::remove_all(dir);
+    fs::remove_all(whole);
 }
