@@ -12,7 +12,8 @@
 // with a warning that it is not verified. Format 3 added NEAT's state (its other additions are
 // optional fields); format 4 writes each fitness cache entry as {"hash", "report"}, the report in
 // its one form (fitness_json.hpp), where formats 1 to 3 wrote positional arrays, still read: the
-// file's format_version says which form its cache holds.
+// file's format_version says which form its cache holds. Every field, with the version that
+// added it: checkpoint_schema.hpp.
 //
 // Phenotypes are not stored: they are developed again from the genomes on load, and each one must
 // match its recorded hash (a check that the decoder and the experiment are unchanged).
@@ -23,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "evo/evaluate/fitness_json.hpp"
+#include "evo/run/checkpoint_schema.hpp"
 #include "evo/run/run_state.hpp"
 
 namespace bhm::evo {
@@ -32,12 +34,6 @@ inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
 //! Where a damaged checkpoint.json goes when a resume fell back to checkpoint.prev.json: rotating
 //! it into the backup slot would replace the one good checkpoint with the damaged one.
 inline constexpr const char* kDamagedCheckpointFile = "checkpoint.damaged.json";
-
-//! The format this build writes, and the oldest it reads.
-inline constexpr int kCheckpointFormatVersion = 4;
-inline constexpr int kOldestCheckpointFormatVersion = 1;
-//! From this format on, cache entries are objects {hash, report}; before, positional arrays.
-inline constexpr int kNamedCacheEntriesSince = 4;
 
 nlohmann::json individual_to_json(const Individual& individual);
 nlohmann::json run_state_to_json(const RunState& state);

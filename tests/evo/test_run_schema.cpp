@@ -6,11 +6,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/run/checkpoint.hpp"
+#include "evo/run/checkpoint_schema.hpp"
 #include "evo/run/evolution_run.hpp"
 #include "evo/run/physics_rules.hpp"
 #include "evo/run/rule_change_json.hpp"
@@ -268,4 +270,95 @@ TEST_CASE("a run directory written before issue 41 (format 3) resumes as its uni
     CHECK(now.at("cache")[0].is_object());
     fs::remove_all(dir);
     fs::remove_all(whole);
+}
+
+namespace {
+
+//! Walks a checkpoint payload against the schema table: every field it holds must be a row of
+//! the right type. `seen` gets each row's path met.
+void walk_schema(const json& j, const std::string& path, std::set<std::string>& seen) {
+    for (const auto& [key, value] : j.items()) {
+        const std::string at = path.empty() ? key : path + "." + key;
+        CAPTURE(at);
+        const CheckpointField* row = find_checkpoint_field(at);
+        REQUIRE_MESSAGE(row, "a field the writer writes is not in checkpoint_schema.cpp");
+        seen.insert(at);
+        const std::string type = row->type;
+        CHECK(row->since <= kCheckpointFormatVersion);
+        if (type == "objects") {
+            REQUIRE(value.is_array());
+            for (const auto& element : value) {
+                REQUIRE(element.is_object());
+                walk_schema(element, at + "[]", seen);
+            }
+        } else if (type == "object" || type == "object or null") {
+            CHECK((value.is_object() || (type == "object or null" && value.is_null())));
+            if (value.is_object()) walk_schema(value, at, seen);
+        } else if (type == "string" || type == "hex") {
+            CHECK(value.is_string());
+        } else if (type == "integer") {
+            CHECK(value.is_number_integer());
+        } else if (type == "number") {
+            CHECK(value.is_number());
+        } else if (type == "boolean") {
+            CHECK(value.is_boolean());
+        } else if (type == "array") {
+            CHECK(value.is_array());
+        }  // else a part with a schema of its own (experiment, genome, report, ...)
+    }
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the checkpoint's field table covers what the writer writes, and the docs are the table") {
+    std::set<std::string> seen;
+    auto walk_run = [&](Experiment e, bool with_changes) {
+        const fs::path dir = bhm::test::scratch_dir("schema-table", false);
+        {
+            EvolutionRun run(e, run_options(3, 2, dir.string()));
+            Fitness changed = e.fitness;
+            changed.measure = FitnessMeasure::ComFinal3d;
+            if (with_changes)
+                REQUIRE(run_with_changes(run, changed, stiffer(e)) == StopReason::GenerationBudget);
+            else
+                REQUIRE(run.run() == StopReason::GenerationBudget);
+        }
+        walk_schema(payload_of(dir / kCheckpointFile), "", seen);
+        fs::remove_all(dir);
+    };
+    walk_run(test::tiny_experiment(), true);
+    Experiment neat = test::tiny_experiment();
+    neat.evolution.algorithm = Algorithm::Neat;
+    neat.evolution.population = 10;
+    walk_run(neat, false);
+    Experiment novelty = test::tiny_experiment();
+    novelty.evolution.algorithm = Algorithm::Novelty;
+    walk_run(novelty, false);
+    // Each row said to be in every checkpoint is; so are NEAT's and novelty search's.
+    for (const auto& row : checkpoint_fields()) {
+        CAPTURE(row.path);
+        const std::string when = row.when;
+        if (when.empty() || when == "NEAT runs" || when == "novelty search runs" ||
+            when == "a change that set the physics" || when == "champion not null")
+            CHECK(seen.count(row.path) == 1);
+    }
+
+    // docs/evolution.md holds the table as checkpoint_schema_markdown() writes it.
+    const std::string doc =
+        bhm::test::read_file(std::string(BHM_SOURCE_DIR) + "/docs/evolution.md");
+    const std::string begin = "<!-- checkpoint fields: begin -->\n",
+                      end = "<!-- checkpoint fields: end -->";
+    const auto from = doc.find(begin), to = doc.find(end);
+    REQUIRE(from != std::string::npos);
+    REQUIRE(to != std::string::npos);
+    const std::string table = doc.substr(from + begin.size(), to - from - begin.size());
+    if (table != checkpoint_schema_markdown()) {
+        const std::string fresh = std::string(BHM_BINARY_DIR) + "/checkpoint-fields.md";
+        spit(fresh, checkpoint_schema_markdown());
+        FAIL(
+            "docs/evolution.md's checkpoint table differs from evo/run/checkpoint_schema.cpp: "
+            "put "
+            << fresh << " between its markers");
+    }
 }
