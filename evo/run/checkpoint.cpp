@@ -19,6 +19,7 @@
 #include "evo/genome/phenotype.hpp"
 #include "evo/run/crc32.hpp"
 #include "evo/run/loop_check_json.hpp"
+#include "evo/run/rule_change_json.hpp"
 
 namespace bhm::evo {
 
@@ -28,11 +29,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "bhm-evolution-checkpoint";
-// 3: NEAT runs add "neat" (innovation counters, species) and genes with history; history rows
-// carry "species". 2: the payload is wrapped with its CRC-32 (checkpoint.hpp). 1: the bare
-// payload, still read. 2 and 3 read the same way: every addition of 3 is optional.
-constexpr int kFormatVersion = 3;
-constexpr int kOldestReadableVersion = 1;
+constexpr int kFormatVersion = kCheckpointFormatVersion;
+constexpr int kOldestReadableVersion = kOldestCheckpointFormatVersion;
 constexpr std::string_view kChecksumPrefix = "{\"checksum\":\"crc32:";
 constexpr std::string_view kPayloadPrefix = "\",\"payload\":";
 constexpr std::string_view kClosing = "}\n";
@@ -213,34 +211,71 @@ NeatState neat_state_from_json(const json& j, double weight_range, std::size_t p
     return n;
 }
 
-//! The fitness block alone, parsed through the lead's experiment reader.
-Fitness fitness_from_json(const json& fitness_json, const Experiment& base,
-                          const std::string& where) {
-    json e = experiment_to_json(base);
-    e["fitness"] = fitness_json;
-    try {
-        return parse_experiment(e, where).fitness;
-    } catch (const std::exception& ex) {
-        throw FieldError(where + ": " + ex.what());
-    }
+//! A cache entry (format 4 on): {"hash": phenotype hash, "report": the FitnessReport in its one
+//! form, fitness_json.hpp}, the report exactly as simulated.
+json cache_entry_to_json(std::uint64_t hash, const FitnessReport& report) {
+    return {{"hash", hex(hash)}, {"report", report_to_json(report)}};
 }
 
-//! The checkpoint's rule changes (its fitness and physics blocks are read against `rules`, the
-//! checkpoint's own experiment).
-std::vector<RuleChange> rule_changes_from_json(const json& changes, const Experiment& rules) {
-    std::vector<RuleChange> out;
-    for (std::size_t i = 0; i < changes.size(); ++i) {
-        const Fields c(changes[i], item("rule_changes", i));
-        RuleChange change{static_cast<int>(c.integer("generation")),
-                          fitness_from_json(c.at("fitness"), rules, c.join("fitness")),
-                          std::nullopt, std::nullopt};
-        if (changes[i].contains("physics"))
-            change.physics = physics_from_json(c.at("physics"), rules, c.join("physics"));
-        if (changes[i].contains("verify"))
-            change.verify = loop_verify_settings_from_json(c.at("verify"), c.join("verify"));
-        out.push_back(std::move(change));
+std::pair<std::uint64_t, FitnessReport> cache_entry_from_json(const json& j,
+                                                              const std::string& where) {
+    if (j.is_array())
+        throw FieldError(where + ": a positional entry in a format " +
+                         std::to_string(kNamedCacheEntriesSince) +
+                         " checkpoint (expected {hash, report})");
+    const Fields f(j, where);
+    return {f.hex64("hash"), report_from_json(f.at("report"), f.join("report"))};
+}
+
+//! Formats 1 to 3: [hash, diverged, steps, simulated_s, measures, divergence_reason, exploits,
+//! behaviour, {ended_early, periodic_residual}]. The 7th element (exploit flags) came with
+//! exploit detection, the 8th (the behaviour descriptor) with behaviour descriptors, the 9th with
+//! evaluations that end when the motion repeats: older checkpoints have 6 to 8. The form held
+//! neither the fitness (scored here under `rules`) nor sim_wall_s (0).
+std::pair<std::uint64_t, FitnessReport> positional_cache_entry_from_json(const json& e,
+                                                                         const std::string& where,
+                                                                         const Fitness& rules) {
+    if (!e.is_array() || e.size() < 6 || e.size() > 9)
+        throw FieldError(where +
+                         ": expected [hash, diverged, steps, simulated_s, measures, reason, "
+                         "exploits, behaviour, early end] (formats 1 to 3)");
+    auto element = [&](std::size_t k, const char* name) {
+        return item(where, k) + " (" + name + ")";
+    };
+    auto need = [&](bool ok, std::size_t k, const char* name, const char* expected) {
+        if (!ok) throw FieldError(element(k, name) + ": expected " + expected);
+    };
+    need(e[0].is_string(), 0, "hash", "a hex string");
+    need(e[1].is_boolean(), 1, "diverged", "true or false");
+    need(e[2].is_number_integer(), 2, "steps", "an integer");
+    need(e[3].is_number(), 3, "simulated_s", "a number");
+    need(e[4].is_array() && e[4].size() == static_cast<std::size_t>(kMeasureCount), 4, "measures",
+         "an array of one number per measure");
+    need(e[5].is_string(), 5, "divergence_reason", "a string");
+    FitnessReport r;
+    r.diverged = e[1].get<bool>();
+    r.steps = e[2].get<std::int64_t>();
+    r.simulated_s = e[3].get<double>();
+    for (std::size_t k = 0; k < r.measures.size(); ++k) {
+        need(e[4][k].is_number(), 4, "measures", "numbers");
+        r.measures[k] = e[4][k].get<double>();
     }
-    return out;
+    r.divergence_reason = e[5].get<std::string>();
+    if (e.size() >= 7) {
+        try {
+            r.exploits = exploits_from_json(e[6]);
+        } catch (const std::invalid_argument& ex) {
+            throw FieldError(item(where, 6) + "." + ex.what());
+        }
+    }
+    if (e.size() >= 8) r.behaviour = behaviour_from_json(e[7], element(7, "behaviour"));
+    if (e.size() == 9) {
+        const Fields early(e[8], item(where, 8));
+        r.ended_early = early.boolean("ended_early");
+        r.periodic_residual = early.number("periodic_residual");
+    }
+    r.fitness = fitness_under(r, rules);
+    return {Fields::parse_hex(e[0].get<std::string>(), element(0, "hash")), r};
 }
 
 }  // namespace
@@ -264,32 +299,9 @@ json run_state_to_json(const RunState& s) {
     json history = json::array();
     for (const auto& h : s.history)
         history.push_back(history_row_to_json(h));
-    json changes = json::array();
-    for (const auto& c : s.rule_changes) {
-        Experiment e = s.experiment;
-        e.fitness = c.fitness;
-        json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
-        if (c.physics) change["physics"] = physics_to_json(*c.physics, s.experiment);
-        if (c.verify) change["verify"] = loop_verify_settings_to_json(*c.verify);
-        changes.push_back(std::move(change));
-    }
     json cache = json::array();
-    for (const auto hash : s.cache.insertion_order()) {
-        const FitnessReport* r = s.cache.find(hash);
-        json measures = json::array();
-        for (double m : r->measures)
-            measures.push_back(m);
-        cache.push_back(
-            {hex(hash),
-             r->diverged,
-             r->steps,
-             r->simulated_s,
-             measures,
-             r->divergence_reason,
-             exploits_to_json(r->exploits),
-             r->behaviour,
-             {{"ended_early", r->ended_early}, {"periodic_residual", r->periodic_residual}}});
-    }
+    for (const auto hash : s.cache.insertion_order())
+        cache.push_back(cache_entry_to_json(hash, *s.cache.find(hash)));
     json rng = json::array();
     for (auto word : s.rng)
         rng.push_back(hex(word));
@@ -306,7 +318,7 @@ json run_state_to_json(const RunState& s) {
               {"population", population},
               {"pareto_rank", s.pareto_rank},
               {"history", history},
-              {"rule_changes", changes},
+              {"rule_changes", rule_changes_to_json(s.rule_changes, s.experiment)},
               {"cache_capacity", s.cache.capacity()},
               {"cache", cache}};
     if (s.experiment.evolution.algorithm == Algorithm::Neat) j["neat"] = neat_state_to_json(s.neat);
@@ -380,7 +392,7 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         if (static_cast<int>(s.history.size()) != s.generation + 1)
             f.fail("history", "expected one row per completed generation");
 
-        s.rule_changes = rule_changes_from_json(f.array("rule_changes"), s.experiment);
+        s.rule_changes = rule_changes_from_json(f.at("rule_changes"), s.experiment, "rule_changes");
 
         if (s.experiment.evolution.algorithm == Algorithm::Neat && s.generation >= 0)
             s.neat = neat_state_from_json(f.at("neat"), range, s.population.size());
@@ -406,43 +418,11 @@ RunState run_state_from_json(const json& j, const std::string& label) {
         s.cache = FitnessCache(static_cast<std::size_t>(capacity));
         const auto& cache = f.array("cache");
         for (std::size_t i = 0; i < cache.size(); ++i) {
-            const auto& e = cache[i];
-            const std::string where = item("cache", i);
-            // A 7th entry (exploit flags) since exploit detection, an 8th (the behaviour
-            // descriptor) since novelty search, a 9th (where an early end stopped) since
-            // evaluations end when the motion repeats; older checkpoints have 6 to 8.
-            if (!e.is_array() || e.size() < 6 || e.size() > 9 || !e[0].is_string() ||
-                !e[1].is_boolean() || !e[2].is_number_integer() || !e[3].is_number() ||
-                !e[4].is_array() || e[4].size() != static_cast<std::size_t>(kMeasureCount) ||
-                !e[5].is_string())
-                throw FieldError(
-                    where +
-                    ": expected [hash, diverged, steps, simulated_s, measures, reason, exploits, "
-                    "behaviour, early end]");
-            FitnessReport r;
-            r.diverged = e[1].get<bool>();
-            r.steps = e[2].get<std::int64_t>();
-            r.simulated_s = e[3].get<double>();
-            for (std::size_t k = 0; k < r.measures.size(); ++k) {
-                if (!e[4][k].is_number()) throw FieldError(where + ": measures must be numbers");
-                r.measures[k] = e[4][k].get<double>();
-            }
-            r.divergence_reason = e[5].get<std::string>();
-            if (e.size() >= 7) {
-                try {
-                    r.exploits = exploits_from_json(e[6]);
-                } catch (const std::invalid_argument& ex) {
-                    throw FieldError(where + "." + ex.what());
-                }
-            }
-            if (e.size() >= 8) r.behaviour = behaviour_from_json(e[7], where + "[7]");
-            if (e.size() == 9) {
-                const Fields early(e[8], where + "[8]");
-                r.ended_early = early.boolean("ended_early");
-                r.periodic_residual = early.number("periodic_residual");
-            }
-            r.fitness = fitness_under(r, s.experiment.fitness);
-            s.cache.insert(Fields::parse_hex(e[0].get<std::string>(), where), r);
+            auto [hash, report] = version >= kNamedCacheEntriesSince
+                                      ? cache_entry_from_json(cache[i], item("cache", i))
+                                      : positional_cache_entry_from_json(cache[i], item("cache", i),
+                                                                         s.experiment.fitness);
+            s.cache.insert(hash, report);
         }
         return s;
     } catch (const FieldError& e) {
@@ -536,7 +516,8 @@ std::optional<CheckpointRules> read_checkpoint_rules(const std::string& dir) {
             CheckpointRules out;
             out.path = path;
             out.experiment = parse_experiment(f.at("experiment"), path + ":experiment");
-            out.rule_changes = rule_changes_from_json(f.array("rule_changes"), out.experiment);
+            out.rule_changes =
+                rule_changes_from_json(f.at("rule_changes"), out.experiment, "rule_changes");
             return out;
         } catch (const std::exception&) {
             continue;  // damaged: the previous one, else none (resuming says why)

@@ -9,7 +9,11 @@
 // parses as JSON (a flipped digit) is caught:
 //   {"checksum":"crc32:XXXXXXXX","payload":{...,"format_version":2,...}}\n
 // with the CRC over the exact bytes of the payload. Format 1 (the bare payload) is still read,
-// with a warning that it is not verified.
+// with a warning that it is not verified. Format 3 added NEAT's state (its other additions are
+// optional fields); format 4 writes each fitness cache entry as {"hash", "report"}, the report in
+// its one form (fitness_json.hpp), where formats 1 to 3 wrote positional arrays, still read: the
+// file's format_version says which form its cache holds. Every field, with the version that
+// added it: checkpoint_schema.hpp.
 //
 // Phenotypes are not stored: they are developed again from the genomes on load, and each one must
 // match its recorded hash (a check that the decoder and the experiment are unchanged).
@@ -20,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "evo/evaluate/fitness_json.hpp"
+#include "evo/run/checkpoint_schema.hpp"
 #include "evo/run/run_state.hpp"
 
 namespace bhm::evo {

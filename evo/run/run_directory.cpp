@@ -9,9 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/text_file.hpp"
+#include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/run/checkpoint.hpp"
-#include "evo/run/loop_check_json.hpp"
+#include "evo/run/rule_change_json.hpp"
 
 namespace bhm::evo {
 
@@ -38,14 +39,6 @@ json read_json_object(const std::string& path) {
     if (j.is_discarded() || !j.is_object())
         throw std::runtime_error(path + ": not valid JSON (the file is damaged)");
     return j;
-}
-
-//! The experiment with its fitness section replaced by `fitness` (a rule change's JSON).
-Experiment with_fitness(const Experiment& experiment, const json& fitness,
-                        const std::string& label) {
-    json j = experiment_to_json(experiment);
-    j["fitness"] = fitness;
-    return parse_experiment(j, label);
 }
 
 }  // namespace
@@ -89,26 +82,10 @@ RunInfo read_run_info(const std::string& run_dir) {
     if (!run.contains("experiment")) throw std::runtime_error(path + ":experiment: missing");
     RunInfo info;
     info.started = parse_experiment(run["experiment"], path + ":experiment");
-    const auto changes = run.find("rule_changes");
-    if (changes == run.end()) {
-        reconcile_with_checkpoint(run_dir, path, info);
-        return info;
-    }
-    if (!changes->is_array()) throw std::runtime_error(path + ":rule_changes: expected an array");
-    for (std::size_t i = 0; i < changes->size(); ++i) {
-        const json& c = (*changes)[i];
-        const std::string where = path + ":rule_changes[" + std::to_string(i) + "]";
-        if (!c.is_object() || !c.contains("fitness") || !c.contains("generation") ||
-            !c["generation"].is_number_integer())
-            throw std::runtime_error(where + ": expected {generation, fitness}");
-        RuleChange change{c["generation"].get<int>(),
-                          with_fitness(info.started, c["fitness"], where).fitness, std::nullopt,
-                          std::nullopt};
-        if (c.contains("physics"))
-            change.physics = physics_from_json(c["physics"], info.started, where + ".physics");
-        if (c.contains("verify"))  // FieldError names the file and the field
-            change.verify = loop_verify_settings_from_json(c["verify"], where + ".verify");
-        info.rule_changes.push_back(std::move(change));
+    // Absent in run.json files written before rule changes were recorded.
+    if (const auto changes = run.find("rule_changes"); changes != run.end()) {
+        // Its FieldError (a std::runtime_error) names the file and the field.
+        info.rule_changes = rule_changes_from_json(*changes, info.started, path + ":rule_changes");
     }
     reconcile_with_checkpoint(run_dir, path, info);
     return info;
@@ -135,11 +112,12 @@ ChampionFile read_champion_at(const std::string& path, const std::string& run_di
         out.voxels = c.value("voxels", 0);
         out.active_voxels = c.value("active_voxels", 0);
         out.generation_found = c.value("generation_found", 0);
-        if (c.contains("report") && c["report"].is_object() && c["report"].contains("exploits"))
-            out.exploits = exploits_from_json(c["report"]["exploits"]);
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": a field has the wrong type (" + e.what() + ")");
     }
+    // The report through its one reader (fitness_json.hpp): its FieldError names file and field.
+    if (c.contains("report"))
+        out.exploits = report_from_json(c["report"], path + ":report").exploits;
     return out;
 }
 

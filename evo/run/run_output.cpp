@@ -13,7 +13,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
-#include "evo/run/loop_check_json.hpp"
+#include "evo/run/rule_change_json.hpp"
 #include "evo/run/run_directory.hpp"
 
 namespace bhm::evo {
@@ -88,19 +88,10 @@ json champion_to_json(const Experiment& experiment, const ChampionRecord& c) {
 }
 
 json run_info_json(const Experiment& original, const RunState& state) {
-    json changes = json::array();
-    for (const auto& c : state.rule_changes) {
-        Experiment e = original;
-        e.fitness = c.fitness;
-        json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
-        if (c.physics) change["physics"] = physics_to_json(*c.physics, original);
-        if (c.verify) change["verify"] = loop_verify_settings_to_json(*c.verify);
-        changes.push_back(std::move(change));
-    }
     return {{"bhm_version", BHM_VERSION_STRING},
             {"seed", state.seed},
             {"experiment", experiment_to_json(original)},
-            {"rule_changes", changes}};
+            {"rule_changes", rule_changes_to_json(state.rule_changes, original)}};
 }
 
 RunOutput::RunOutput(std::string dir) : dir_(std::move(dir)) {

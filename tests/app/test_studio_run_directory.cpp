@@ -6,6 +6,9 @@
 #include <fstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
+#include "app/gui/session/champion_history.hpp"
 #include "app/gui/session/run_directory_watch.hpp"
 #include "evo/run/run_output.hpp"
 #include "test_studio_fixtures.hpp"
@@ -132,4 +135,33 @@ TEST_CASE("studio run directory: a folder that is not a run, or a damaged file, 
     REQUIRE(watch.snapshot()->history.size() == 1);
     CHECK(watch.snapshot()->history[0].best_fitness == 0.25);
     CHECK(watch.snapshot()->message.find("row 3 has 4 cells") != std::string::npos);
+}
+
+TEST_CASE("studio champion history: each report read through its one reader, a bad field named") {
+    const auto dir = testing::fresh_dir("champion-history");
+    const auto e = testing::tiny_experiment();
+    evo::RunOutput out(dir.string());
+    auto c = champion(e, 17, 4.5);
+    c.individual.report.exploits.checked = true;
+    c.individual.report.exploits.tentacle = true;
+    out.write_champion(e, c);
+    ChampionHistory history;
+    REQUIRE(history.refresh(dir.string()));
+    REQUIRE(history.entries().size() == 1);
+    CHECK(history.entries()[0].exploits.tentacle);
+    CHECK(history.error().empty());
+
+    // A report whose field is damaged: the file and the field are named (issue 41: the studio
+    // read report.exploits by hand, beside run_directory.cpp's own reading of the same file).
+    const fs::path file = dir / "champions" / "gen-00002.json";
+    auto j = nlohmann::json::parse(bhm::test::read_file(dir / "champion.json"));
+    j["generation_found"] = 2;
+    j["report"]["steps"] = "many";
+    fs::remove(dir / "champions" / "gen-00001.json");  // the only file: its error stays shown
+    std::ofstream(file) << j.dump(2);
+    ChampionHistory again;
+    again.refresh(dir.string());
+    CHECK(again.error().find(file.string() + ":report.steps: expected an integer") !=
+          std::string::npos);
+    fs::remove_all(dir);
 }

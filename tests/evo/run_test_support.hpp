@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "evo/evaluate/evaluator.hpp"
+#include "evo/experiment/experiment.hpp"
 #include "evo/run/evolution_run.hpp"
 #include "support/scratch.hpp"
 
@@ -66,6 +69,30 @@ inline std::unique_ptr<EvolutionRun> stopped_then_resumed(const Experiment& expe
         if (first.run() != StopReason::StopRequested) return nullptr;
     }
     return EvolutionRun::resume(run_options(generations, threads, dir));
+}
+
+//! A checkpoint payload as a build before format 4 wrote it: `version` (1 to 3) and each cache
+//! entry {hash, report} as the positional array [hash, diverged, steps, simulated_s, measures,
+//! divergence_reason, exploits, behaviour, {ended_early, periodic_residual}] (no fitness, no
+//! sim_wall_s).
+inline void as_positional_cache(nlohmann::json& payload, int version) {
+    payload["format_version"] = version;
+    for (auto& entry : payload["cache"]) {
+        const nlohmann::json& r = entry.at("report");
+        nlohmann::json measures = nlohmann::json::array();
+        for (const char* name : kFitnessNames)
+            measures.push_back(r.at("measures").at(name));
+        entry = nlohmann::json::array({entry.at("hash"),
+                                       r.at("diverged"),
+                                       r.at("steps"),
+                                       r.at("simulated_s"),
+                                       measures,
+                                       r.at("divergence_reason"),
+                                       r.at("exploits"),
+                                       r.at("behaviour"),
+                                       {{"ended_early", r.at("ended_early")},
+                                        {"periodic_residual", r.at("periodic_residual")}}});
+    }
 }
 
 }  // namespace bhm::evo::test

@@ -147,13 +147,13 @@ TEST_CASE("a format 2 checkpoint of an AFPO run (before evolution.algorithm) sti
         });
         first.run();
     }
-    // Rewrite both checkpoints as a build before this field wrote them: format 2, no algorithm,
-    // no species in the history rows.
+    // Rewrite both checkpoints as a build before this field wrote them: format 2 (a positional
+    // cache), no algorithm, no species in the history rows.
     for (const char* name : {kCheckpointFile, kPreviousCheckpointFile}) {
         const fs::path path = old / name;
         std::vector<std::string> notes;
         auto payload = parse_checkpoint_text(bhm::test::read_file(path), notes);
-        payload["format_version"] = 2;
+        test::as_positional_cache(payload, 2);
         payload["experiment"]["evolution"].erase("algorithm");
         for (auto& row : payload["history"])
             row.erase("species");

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/text_file.hpp"
+#include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_reader.hpp"
 
@@ -64,8 +65,9 @@ bool ChampionHistory::refresh(const std::string& run_dir) {
             e.measure = measure_named(j.value("measure", std::string()));
             e.voxels = j.value("voxels", 0);
             e.active_voxels = j.value("active_voxels", 0);
-            if (j.contains("report") && j.at("report").contains("exploits"))
-                e.exploits = evo::exploits_from_json(j.at("report").at("exploits"));
+            // The report through its one reader (fitness_json.hpp), as run_directory.hpp reads it.
+            if (j.contains("report"))
+                e.exploits = evo::report_from_json(j.at("report"), key + ":report").exploits;
             e.path = key;
             std::erase_if(entries_, [&](const ChampionEntry& old) { return old.path == key; });
             entries_.push_back(e);
