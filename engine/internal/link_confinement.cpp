@@ -3,10 +3,33 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "engine/internal/poisson.hpp"
 
 namespace bhm::engine {
+
+namespace {
+
+// Calls visit(neighbour cell) for each of v's four lateral neighbours across `axis` that lies
+// inside the lattice (filled or not): the walk both counts below share.
+template <typename Visit>
+void visit_lateral_cells(const Model::Data& d, int v, int axis, Visit visit) {
+    const BodySpec& spec = d.spec;
+    const int c = d.voxel_cell[v];
+    const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
+    const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
+    const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
+    for (int lateral = 0; lateral < 3; ++lateral) {
+        if (lateral == axis) continue;
+        for (int s = -1; s <= 1; s += 2)
+            if (xyz[lateral] + s >= 0 && xyz[lateral] + s < limit[lateral])
+                visit(c + s * stride[lateral]);
+    }
+}
+
+}  // namespace
 
 int confining_neighbours(const Model::Data& d, int v, int axis, int side) {
     const BodySpec& spec = d.spec;
@@ -17,15 +40,10 @@ int confining_neighbours(const Model::Data& d, int v, int axis, int side) {
     const int along = xyz[axis] + side;
     const bool in_lattice = along >= 0 && along < limit[axis];
     int count = 0;
-    for (int lateral = 0; lateral < 3; ++lateral) {
-        if (lateral == axis) continue;
-        for (int s = -1; s <= 1; s += 2) {
-            if (xyz[lateral] + s < 0 || xyz[lateral] + s >= limit[lateral]) continue;
-            const int neighbour = c + s * stride[lateral];
-            if (spec.material[neighbour] == 0) continue;
-            if (!in_lattice || spec.material[neighbour + side * stride[axis]] == 0) ++count;
-        }
-    }
+    visit_lateral_cells(d, v, axis, [&](int neighbour) {
+        if (spec.material[neighbour] == 0) return;
+        if (!in_lattice || spec.material[neighbour + side * stride[axis]] == 0) ++count;
+    });
     return count;
 }
 
@@ -52,19 +70,10 @@ ConfinedLinkFactors confined_link_factors(const Model::Data& d, int v, int b, in
 }
 
 int same_material_lateral_neighbours(const Model::Data& d, int v, int axis) {
-    const BodySpec& spec = d.spec;
-    const int c = d.voxel_cell[v];
-    const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
-    const std::array<int, 3> limit{spec.nx, spec.ny, spec.nz};
-    const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
+    const std::vector<std::uint8_t>& material = d.spec.material;
+    const std::uint8_t own = material[d.voxel_cell[v]];
     int count = 0;
-    for (int lateral = 0; lateral < 3; ++lateral) {
-        if (lateral == axis) continue;
-        for (int s = -1; s <= 1; s += 2)
-            if (xyz[lateral] + s >= 0 && xyz[lateral] + s < limit[lateral] &&
-                spec.material[c + s * stride[lateral]] == spec.material[c])
-                ++count;
-    }
+    visit_lateral_cells(d, v, axis, [&](int neighbour) { count += material[neighbour] == own; });
     return count;
 }
 
