@@ -1,6 +1,10 @@
 #include "evo/verify/fem_model.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace bhm::evo {
 
@@ -58,14 +62,81 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                spec.fixed[static_cast<std::size_t>(spec.cell_index(x, y, z))] != 0;
     };
 
-    std::vector<int> ids(static_cast<std::size_t>(m.grid[0]) * m.grid[1] * m.grid[2], 0);
-    auto node = [&](int i, int j, int k) {
-        int& id = ids[static_cast<std::size_t>(i + m.grid[0] * (j + m.grid[1] * k))];
-        if (id == 0) {
-            m.node_grid.push_back({i, j, k});
-            id = static_cast<int>(m.node_grid.size());
+    // A node is a grid point of one group of face-joined voxels around it: voxels that meet only
+    // along an edge or at a corner (no face path between them among the voxels around the point)
+    // each get a node of their own there. Our engine does not bond such voxels (its links join
+    // face neighbours; an edge spring needs both voxels between them), and the continuum's
+    // limit does not either (a line or point contact's compliance grows without bound as the
+    // mesh is refined), so a shared node would weld them at a stiffness set by the mesh
+    // (docs/verify.md, "Edge and corner contacts").
+    const auto grid_index = [&](int i, int j, int k) {
+        return static_cast<std::int64_t>(i) +
+               static_cast<std::int64_t>(m.grid[0]) *
+                   (j + static_cast<std::int64_t>(m.grid[1]) * k);
+    };
+    // The lowest cell index of the face-joined group of material voxels around grid point g
+    // that holds voxel `cell` (which contains g).
+    const auto group_of = [&](const std::array<int, 3>& g, const std::array<int, 3>& cell) {
+        std::array<std::array<int, 3>, 8> around{};
+        int count = 0;
+        std::array<int, 3> lo{}, hi{};
+        for (int a = 0; a < 3; ++a) {
+            const bool on_plane = g[a] % ppv == 0;
+            lo[a] = on_plane ? g[a] / ppv - 1 : g[a] / ppv;
+            hi[a] = g[a] / ppv;
+            if (!on_plane) lo[a] = hi[a];
         }
-        return id;
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x)
+                    if (cell_at(x, y, z) != 0) around[static_cast<std::size_t>(count++)] = {x, y, z};
+        if (count <= 1) return spec.cell_index(cell[0], cell[1], cell[2]);
+        // Grow the group from `cell` across shared faces (neighbours differ by one on one axis).
+        std::array<bool, 8> in{};
+        for (int i = 0; i < count; ++i)
+            in[static_cast<std::size_t>(i)] = around[static_cast<std::size_t>(i)] == cell;
+        for (bool grew = true; grew;) {
+            grew = false;
+            for (int i = 0; i < count; ++i) {
+                if (in[static_cast<std::size_t>(i)]) continue;
+                for (int j = 0; j < count && !in[static_cast<std::size_t>(i)]; ++j) {
+                    if (!in[static_cast<std::size_t>(j)]) continue;
+                    const auto& p = around[static_cast<std::size_t>(i)];
+                    const auto& q = around[static_cast<std::size_t>(j)];
+                    const int apart =
+                        std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]);
+                    if (apart == 1) in[static_cast<std::size_t>(i)] = grew = true;
+                }
+            }
+        }
+        int lowest = spec.cell_index(cell[0], cell[1], cell[2]);
+        for (int i = 0; i < count; ++i)
+            if (in[static_cast<std::size_t>(i)]) {
+                const auto& p = around[static_cast<std::size_t>(i)];
+                lowest = std::min(lowest, spec.cell_index(p[0], p[1], p[2]));
+            }
+        return lowest;
+    };
+    std::unordered_map<std::int64_t, int> ids;  // (grid point, group) -> node id
+    std::vector<int> node_group;                // node id - 1 -> its group (group_of)
+    const std::int64_t groups = static_cast<std::int64_t>(n[0]) * n[1] * n[2];
+    const auto key_of = [&](const std::array<int, 3>& cell, int i, int j, int k) {
+        return grid_index(i, j, k) * groups + group_of({i, j, k}, cell);
+    };
+    // The node of voxel `cell` at grid point (i, j, k), made on first use.
+    const auto node_of = [&](const std::array<int, 3>& cell, int i, int j, int k) {
+        const auto [it, added] = ids.try_emplace(key_of(cell, i, j, k), 0);
+        if (added) {
+            m.node_grid.push_back({i, j, k});
+            node_group.push_back(group_of({i, j, k}, cell));
+            it->second = static_cast<int>(m.node_grid.size());
+        }
+        return it->second;
+    };
+    // The node of voxel `cell` at (i, j, k) if one was made, else 0.
+    const auto existing = [&](const std::array<int, 3>& cell, int i, int j, int k) {
+        const auto it = ids.find(key_of(cell, i, j, k));
+        return it == ids.end() ? 0 : it->second;
     };
 
     const int corners = quadratic(options.element) ? 20 : 8;
@@ -74,6 +145,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
             for (int x = 0; x < n[0]; ++x) {
                 const int material = cell_at(x, y, z);
                 if (material == 0) continue;
+                const std::array<int, 3> cell{x, y, z};
                 m.voxel_cells.push_back(spec.cell_index(x, y, z));
                 for (int c = 0; c < s; ++c)
                     for (int b = 0; b < s; ++b)
@@ -83,7 +155,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                             std::vector<int> element(static_cast<std::size_t>(corners));
                             for (int e = 0; e < corners; ++e)
                                 element[static_cast<std::size_t>(e)] =
-                                    node(low[0] + kOffsets[e][0] * step / 2,
+                                    node_of(cell, low[0] + kOffsets[e][0] * step / 2,
                                          low[1] + kOffsets[e][1] * step / 2,
                                          low[2] + kOffsets[e][2] * step / 2);
                             m.elements.push_back(std::move(element));
@@ -93,7 +165,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 // shape functions at its centre (20-node serendipity: -1/4 corners, 1/4 edges).
                 std::vector<std::pair<int, double>> centre;
                 if (s % 2 == 0) {
-                    centre.push_back({node(x * ppv + ppv / 2, y * ppv + ppv / 2, z * ppv + ppv / 2),
+                    centre.push_back({node_of(cell, x * ppv + ppv / 2, y * ppv + ppv / 2, z * ppv + ppv / 2),
                                       1.0});
                 } else {
                     const int mid = (s - 1) / 2;
@@ -108,7 +180,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 std::array<int, 8> box{};
                 for (int c = 0; c < 8; ++c)
                     box[static_cast<std::size_t>(c)] =
-                        node((x + (c & 1)) * ppv, (y + ((c >> 1) & 1)) * ppv,
+                        node_of(cell, (x + (c & 1)) * ppv, (y + ((c >> 1) & 1)) * ppv,
                              (z + ((c >> 2) & 1)) * ppv);
                 m.voxel_corners.push_back(box);
             }
@@ -135,7 +207,8 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                                       2 * c[a] * ppv < 2 * g[a] + ppv;
                     }
                     if (held(x, y, z)) {
-                        on_held = on_held || contains;
+                        // only a held voxel of the node's own group holds it
+                        on_held = on_held || (contains && group_of(g, c) == node_group[id - 1]);
                     } else if (within_half) {
                         near_free = true;
                     }
@@ -149,9 +222,6 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
         std::vector<char> fixed(m.node_grid.size() + 1, 0);
         for (int id : m.fixed_nodes)
             fixed[static_cast<std::size_t>(id)] = 1;
-        auto existing = [&](int i, int j, int k) {
-            return ids[static_cast<std::size_t>(i + m.grid[0] * (j + m.grid[1] * k))];
-        };
         const int h = ppv / 2;
         // The voxel's fixed nodes lie on one line (or are one point): they cannot hold its
         // rotation by themselves.
@@ -160,7 +230,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
             for (int k = z * ppv; k <= (z + 1) * ppv; ++k)
                 for (int j = y * ppv; j <= (y + 1) * ppv; ++j)
                     for (int i = x * ppv; i <= (x + 1) * ppv; ++i) {
-                        const int id = existing(i, j, k);
+                        const int id = existing({x, y, z}, i, j, k);
                         if (id != 0 && fixed[static_cast<std::size_t>(id)])
                             points.push_back({i, j, k});
                     }
@@ -186,8 +256,8 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                         std::array<int, 3> lo = centre, hi = centre;
                         lo[static_cast<std::size_t>(axis)] -= h;
                         hi[static_cast<std::size_t>(axis)] += h;
-                        const int minus = existing(lo[0], lo[1], lo[2]);
-                        const int plus = existing(hi[0], hi[1], hi[2]);
+                        const int minus = existing({x, y, z}, lo[0], lo[1], lo[2]);
+                        const int plus = existing({x, y, z}, hi[0], hi[1], hi[2]);
                         if (minus == 0 || plus == 0 || fixed[static_cast<std::size_t>(minus)] ||
                             fixed[static_cast<std::size_t>(plus)])
                             continue;  // held already by two fixed points on this axis

@@ -1,7 +1,8 @@
 #pragma once
 // A body's continuum model for CalculiX: every voxel split into s x s x s hexahedra (C3D20R, the
 // 20-node quadratic brick with reduced integration, or C3D8I, the 8-node brick with incompatible
-// modes) on one structured grid, so neighbouring voxels share their nodes; each element carries
+// modes) on one structured grid, so face-joined voxels share their nodes (voxels touching only
+// along an edge or at a corner do not: our engine does not bond them); each element carries
 // its voxel's material. Held voxels are clamped where the engine holds them, at their centre: a
 // node of a held voxel is fixed when it is at least half a voxel (L-infinity) from every free
 // voxel, which for a fixed face layer is the plane through the layer's centres, and a held voxel
