@@ -71,7 +71,7 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
     const double g = spec.environment.gravity_m_s2;
     for (const FemLoad& load : loads) {
         out << "** load " << load.name << "\n*STEP" << (nlgeom ? ", NLGEOM, INC=200" : "")
-            << "\n*STATIC\n" << (nlgeom ? "0.25, 1., 1e-5, 0.5\n" : "");
+            << "\n*STATIC\n" << (nlgeom ? "1., 1., 1e-5, 1.\n" : "");
         if (g != 0.0) {
             std::snprintf(line, sizeof line, "*DLOAD\nEALL, GRAV, %.10g, 0., 0., %d.\n",
                           std::fabs(g), g < 0.0 ? -1 : 1);
