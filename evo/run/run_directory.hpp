@@ -20,8 +20,10 @@ inline constexpr const char* kFitnessCsvFile = "fitness.csv";
 inline constexpr const char* kChampionFile = "champion.json";
 
 //! run.json: the experiment as the run was started and every change of rules since (fitness,
-//! and physics where a change set it).
+//! and physics where a change set it). Its fields: run_file_schema.hpp.
 struct RunInfo {
+    std::string bhm_version;  //!< the bhm that started the run
+    std::uint64_t seed = 0;
     Experiment started;
     std::vector<RuleChange> rule_changes;  //!< in order
     //! The rules in force as the run's checkpoint records them (checksummed), where it has one.
