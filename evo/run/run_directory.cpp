@@ -113,6 +113,18 @@ ChampionFile read_champion_at(const std::string& path, const std::string& run_di
 
 }  // namespace
 
+ChampionSummary read_champion_summary(const std::string& path) {
+    RunFileContext context;
+    context.path = path;
+    ChampionRecord champion;
+    read_file(champion_file_fields(), champion, context);
+    ChampionSummary out;
+    static_cast<MemberSummary&>(out) = summary_of(champion.individual);
+    out.generation_found = champion.generation_found;
+    out.measure = context.measure;
+    return out;
+}
+
 ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment) {
     return read_champion_at(path_in(run_dir, kChampionFile), run_dir, experiment);
 }

@@ -53,6 +53,16 @@ struct ChampionFile : MemberSummary {
 //! experiment would name materials it does not define). Throws std::runtime_error naming the file.
 ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment);
 
+//! A champion file's summary without its body and genome (which need the experiment): the
+//! member's summary, the generation that found it and the measure its fitness is of. The studio's
+//! list of a run's champions reads each file through here. Throws std::runtime_error "PATH:field:
+//! message" on a field missing or wrong.
+struct ChampionSummary : MemberSummary {
+    int generation_found = 0;
+    FitnessMeasure measure = FitnessMeasure::ComFinal3d;
+};
+ChampionSummary read_champion_summary(const std::string& path);
+
 inline constexpr const char* kChampionsDir = "champions";
 //! Every champion a run has had (champions/gen-NNNNN.json, oldest first), each read and checked
 //! as read_champion_file; champion.json alone where the folder is empty or missing.

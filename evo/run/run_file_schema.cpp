@@ -1,5 +1,6 @@
 #include "evo/run/run_file_schema.hpp"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <stdexcept>
@@ -63,6 +64,12 @@ void write_experiment_name(const ChampionRecord&, const char* key, json& out,
 void write_measure(const ChampionRecord&, const char* key, json& out, const Context& context) {
     out[key] = kFitnessNames[static_cast<std::size_t>(context.experiment->fitness.measure)];
 }
+void read_measure(const Fields& f, const ChampionField& field, ChampionRecord&, Context& context) {
+    const std::string name = f.string(field.key);
+    const auto known = std::find(kFitnessNames.begin(), kFitnessNames.end(), name);
+    if (known == kFitnessNames.end()) f.fail(field.key, "unknown measure '" + name + "'");
+    context.measure = static_cast<FitnessMeasure>(known - kFitnessNames.begin());
+}
 
 //! The row of a plain member M of a part of the champion's individual (its report or phenotype).
 template <auto Part, auto M>
@@ -117,6 +124,10 @@ void write_phenotype(const ChampionRecord& c, const char* key, json& out, const 
 //! a damaged run.json) would export materials and cells that experiment does not define.
 void read_phenotype(const Fields& f, const ChampionField& field, ChampionRecord& c,
                     Context& context) {
+    if (!context.experiment) {  // a summary
+        f.at(field.key);        // every champion file holds one
+        return;
+    }
     const std::string label = context.path + " (phenotype)";
     Body body = parse_body(f.at(field.key), label);
     const auto problems = validate_body_against(body, *context.experiment, label);
@@ -131,6 +142,7 @@ void write_genome(const ChampionRecord& c, const char* key, json& out, const Con
     out[key] = genome_to_json(c.individual.genome);
 }
 void read_genome(const Fields& f, const ChampionField& field, ChampionRecord& c, Context& context) {
+    if (!context.experiment) return;  // a summary
     try {
         c.individual.genome =
             genome_from_json(f.at(field.key), context.experiment->evolution.cppn.weight_range);
@@ -146,8 +158,8 @@ constexpr std::array kChampionFields = {
                   write_phenotype, read_phenotype},
     ChampionField{"experiment", "string", 1, "", "the experiment's name (not read back)",
                   write_experiment_name, nullptr},
-    ChampionField{"measure", "string", 1, "", "its fitness measure (not read back)", write_measure,
-                  nullptr},
+    ChampionField{"measure", "string", 1, "", "the fitness measure its fitness is of",
+                  write_measure, read_measure},
     member_field<&ChampionRecord::generation_found, Context>("generation_found", 1, "",
                                                              "the generation that found it"),
     individual_field<&Individual::id>("id", "its id"),
