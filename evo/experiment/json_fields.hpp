@@ -28,6 +28,7 @@ class Fields {
         if (key.empty()) return path_.empty() ? "(root)" : path_;
         return path_.empty() ? key : path_ + "." + key;
     }
+    bool has(const std::string& key) const { return j_.contains(key); }
     const nlohmann::json& at(const std::string& key) const {
         const auto it = j_.find(key);
         if (it == j_.end()) fail(key, "missing");
@@ -42,6 +43,13 @@ class Fields {
         const auto& v = at(key);
         if (!v.is_number_integer()) fail(key, "expected an integer");
         return v.get<std::int64_t>();
+    }
+    //! A non-negative integer up to 2^64 - 1 (a seed written as a number).
+    std::uint64_t unsigned64(const std::string& key) const {
+        const auto& v = at(key);
+        if (!v.is_number_integer() || (!v.is_number_unsigned() && v.get<std::int64_t>() < 0))
+            fail(key, "expected a non-negative integer");
+        return v.get<std::uint64_t>();
     }
     bool boolean(const std::string& key) const {
         const auto& v = at(key);

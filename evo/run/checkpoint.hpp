@@ -12,8 +12,9 @@
 // with a warning that it is not verified. Format 3 added NEAT's state (its other additions are
 // optional fields); format 4 writes each fitness cache entry as {"hash", "report"}, the report in
 // its one form (fitness_json.hpp), where formats 1 to 3 wrote positional arrays, still read: the
-// file's format_version says which form its cache holds. Every field, with the version that
-// added it: checkpoint_schema.hpp.
+// file's format_version says which form its cache holds (cache_entry_json.hpp). Every field,
+// with the version that added it and how it is written and read: checkpoint_schema.hpp, whose
+// table both the writer and the reader walk.
 //
 // Phenotypes are not stored: they are developed again from the genomes on load, and each one must
 // match its recorded hash (a check that the decoder and the experiment are unchanged).
@@ -35,10 +36,11 @@ inline constexpr const char* kPreviousCheckpointFile = "checkpoint.prev.json";
 //! it into the backup slot would replace the one good checkpoint with the damaged one.
 inline constexpr const char* kDamagedCheckpointFile = "checkpoint.damaged.json";
 
-nlohmann::json individual_to_json(const Individual& individual);
+//! The payload, written by walking the checkpoint's field table (checkpoint_schema.hpp).
 nlohmann::json run_state_to_json(const RunState& state);
 
-//! Throws std::runtime_error "LABEL: field.path: message" on anything missing or inconsistent.
+//! The payload read by walking the same table. Throws std::runtime_error "LABEL: field.path:
+//! message" on anything missing or inconsistent.
 RunState run_state_from_json(const nlohmann::json& json, const std::string& label);
 
 //! The file's text for a payload (format 2, above).

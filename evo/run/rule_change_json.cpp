@@ -1,5 +1,6 @@
 #include "evo/run/rule_change_json.hpp"
 
+#include <array>
 #include <stdexcept>
 
 #include "evo/experiment/experiment_io.hpp"
@@ -13,6 +14,9 @@ using nlohmann::json;
 
 namespace {
 
+using Context = RuleChangeContext;
+using Field = JsonField<RuleChange, Context>;
+
 //! A reader's error as a FieldError naming `where` once (the experiment's and the physics'
 //! readers already start their messages with the label they are given).
 [[noreturn]] void fail_at(const std::string& where, const std::exception& e) {
@@ -20,61 +24,85 @@ namespace {
     throw FieldError(message.rfind(where, 0) == 0 ? message : where + ": " + message);
 }
 
-//! The fitness section alone, read through the experiment reader against `base`.
-Fitness fitness_from_json(const json& fitness, const Experiment& base, const std::string& where) {
-    json e = experiment_to_json(base);
-    e["fitness"] = fitness;
+//! The fitness section as the experiment file writes it, beside the rest of `base`.
+void write_fitness(const RuleChange& c, const char* key, json& out, const Context& context) {
+    Experiment e = context.base;
+    e.fitness = c.fitness;
+    out[key] = experiment_to_json(e)["fitness"];
+}
+//! The fitness section alone, read through the experiment reader against the base.
+void read_fitness(const Fields& f, const Field& field, RuleChange& c, Context& context) {
+    json e = experiment_to_json(context.base);
+    e["fitness"] = f.at(field.key);
+    const std::string where = f.join(field.key);
     try {
-        return parse_experiment(e, where).fitness;
+        c.fitness = parse_experiment(e, where).fitness;
     } catch (const std::exception& ex) {
         fail_at(where, ex);
     }
 }
 
+void write_physics(const RuleChange& c, const char* key, json& out, const Context& context) {
+    if (c.physics) out[key] = physics_to_json(*c.physics, context.base);
+}
+void read_physics(const Fields& f, const Field& field, RuleChange& c, Context& context) {
+    if (field.skipped(f, context)) return;
+    const std::string where = f.join(field.key);
+    try {
+        c.physics = physics_from_json(f.at(field.key), context.base, where);
+    } catch (const FieldError&) {
+        throw;
+    } catch (const std::exception& e) {
+        fail_at(where, e);
+    }
+}
+
+void write_verify(const RuleChange& c, const char* key, json& out, const Context&) {
+    if (c.verify) out[key] = loop_verify_settings_to_json(*c.verify);
+}
+void read_verify(const Fields& f, const Field& field, RuleChange& c, Context& context) {
+    if (field.skipped(f, context)) return;
+    c.verify = loop_verify_settings_from_json(f.at(field.key), f.join(field.key));
+}
+
+constexpr std::array kRuleChange = {
+    member_field<&RuleChange::generation, Context>("generation", 1, "",
+                                                   "the first generation under it"),
+    Field{"fitness", "fitness", 1, "",
+          "the fitness section in force from then, as the experiment file writes it", write_fitness,
+          read_fitness},
+    Field{"physics", "physics", 3, "a change that set the physics",
+          "materials, actuation and damping (evo/run/physics_rules.hpp)", write_physics,
+          read_physics},
+    Field{"verify", "verify settings", 3, "a change that set the continuum checks", "their policy",
+          write_verify, read_verify},
+};
+
 }  // namespace
 
+std::span<const JsonField<RuleChange, RuleChangeContext>> rule_change_fields() {
+    return kRuleChange;
+}
+
 json rule_change_to_json(const RuleChange& c, const Experiment& base) {
-    Experiment e = base;
-    e.fitness = c.fitness;
-    json change = {{"generation", c.generation}, {"fitness", experiment_to_json(e)["fitness"]}};
-    if (c.physics) change["physics"] = physics_to_json(*c.physics, base);
-    if (c.verify) change["verify"] = loop_verify_settings_to_json(*c.verify);
-    return change;
+    return write_fields(kRuleChange, c, Context{base});
 }
 
 RuleChange rule_change_from_json(const json& j, const Experiment& base, const std::string& where) {
-    const Fields f(j, where);
-    RuleChange change{static_cast<int>(f.integer("generation")),
-                      fitness_from_json(f.at("fitness"), base, f.join("fitness")), std::nullopt,
-                      std::nullopt};
-    if (j.contains("physics")) {
-        try {
-            change.physics = physics_from_json(j.at("physics"), base, f.join("physics"));
-        } catch (const FieldError&) {
-            throw;
-        } catch (const std::exception& e) {
-            fail_at(f.join("physics"), e);
-        }
-    }
-    if (j.contains("verify"))
-        change.verify = loop_verify_settings_from_json(j.at("verify"), f.join("verify"));
+    Context context{base};
+    RuleChange change;
+    read_fields(kRuleChange, Fields(j, where), change, context);
     return change;
 }
 
 json rule_changes_to_json(const std::vector<RuleChange>& changes, const Experiment& base) {
-    json out = json::array();
-    for (const auto& c : changes)
-        out.push_back(rule_change_to_json(c, base));
-    return out;
+    return write_objects<rule_change_fields>(changes, Context{base});
 }
 
 std::vector<RuleChange> rule_changes_from_json(const json& j, const Experiment& base,
                                                const std::string& where) {
-    if (!j.is_array()) throw FieldError(where + ": expected an array");
-    std::vector<RuleChange> out;
-    for (std::size_t i = 0; i < j.size(); ++i)
-        out.push_back(rule_change_from_json(j[i], base, item(where, i)));
-    return out;
+    Context context{base};
+    return read_objects<rule_change_fields, RuleChange>(j, where, context);
 }
 
 }  // namespace bhm::evo

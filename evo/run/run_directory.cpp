@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/text_file.hpp"
-#include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/experiment/json_fields.hpp"
 #include "evo/run/checkpoint.hpp"
-#include "evo/run/rule_change_json.hpp"
+#include "evo/run/run_file_schema.hpp"
 
 namespace bhm::evo {
 
@@ -39,6 +39,18 @@ json read_json_object(const std::string& path) {
     if (j.is_discarded() || !j.is_object())
         throw std::runtime_error(path + ": not valid JSON (the file is damaged)");
     return j;
+}
+
+//! The file at context.path read by walking its field table: "PATH:field: message" on the first
+//! field missing or wrong (the experiment and body readers name the file themselves).
+template <class Rows, class Host>
+void read_file(const Rows& fields, Host& host, RunFileContext& context) {
+    const json j = read_json_object(context.path);
+    try {
+        read_fields(fields, Fields(j, ""), host, context);
+    } catch (const FieldError& e) {
+        throw std::runtime_error(context.path + ":" + e.what());
+    }
 }
 
 }  // namespace
@@ -77,17 +89,11 @@ void reconcile_with_checkpoint(const std::string& run_dir, const std::string& pa
 }  // namespace
 
 RunInfo read_run_info(const std::string& run_dir) {
-    const std::string path = path_in(run_dir, kRunInfoFile);
-    const json run = read_json_object(path);
-    if (!run.contains("experiment")) throw std::runtime_error(path + ":experiment: missing");
+    RunFileContext context;
+    context.path = path_in(run_dir, kRunInfoFile);
     RunInfo info;
-    info.started = parse_experiment(run["experiment"], path + ":experiment");
-    // Absent in run.json files written before rule changes were recorded.
-    if (const auto changes = run.find("rule_changes"); changes != run.end()) {
-        // Its FieldError (a std::runtime_error) names the file and the field.
-        info.rule_changes = rule_changes_from_json(*changes, info.started, path + ":rule_changes");
-    }
-    reconcile_with_checkpoint(run_dir, path, info);
+    read_file(run_info_fields(), info, context);
+    reconcile_with_checkpoint(run_dir, context.path, info);
     return info;
 }
 
@@ -95,33 +101,29 @@ namespace {
 
 ChampionFile read_champion_at(const std::string& path, const std::string& run_dir,
                               const Experiment& experiment) {
-    const json c = read_json_object(path);
-    if (!c.contains("phenotype")) throw std::runtime_error(path + ":phenotype: missing");
+    RunFileContext context{path, &experiment, run_dir};
+    ChampionRecord champion;
+    read_file(champion_file_fields(), champion, context);
     ChampionFile out;
-    out.body = parse_body(c["phenotype"], path + " (phenotype)");
-    // A champion from another experiment (files mixed up, a damaged run.json) would export
-    // materials and cells that experiment does not define: refuse it, naming both files.
-    const auto problems = validate_body_against(out.body, experiment, path + " (phenotype)");
-    if (!problems.empty())
-        throw std::runtime_error(problems.front().to_string() + " (the champion does not fit " +
-                                 path_in(run_dir, kRunInfoFile) + "'s experiment)");
-    try {
-        out.id = c.value("id", std::int64_t{0});
-        out.fitness = c.value("fitness", 0.0);
-        out.age = c.value("age", 0);
-        out.voxels = c.value("voxels", 0);
-        out.active_voxels = c.value("active_voxels", 0);
-        out.generation_found = c.value("generation_found", 0);
-    } catch (const std::exception& e) {
-        throw std::runtime_error(path + ": a field has the wrong type (" + e.what() + ")");
-    }
-    // The report through its one reader (fitness_json.hpp): its FieldError names file and field.
-    if (c.contains("report"))
-        out.exploits = report_from_json(c["report"], path + ":report").exploits;
+    static_cast<MemberSummary&>(out) = summary_of(champion.individual);
+    out.generation_found = champion.generation_found;
+    out.body = std::move(champion.individual.phenotype.body);
     return out;
 }
 
 }  // namespace
+
+ChampionSummary read_champion_summary(const std::string& path) {
+    RunFileContext context;
+    context.path = path;
+    ChampionRecord champion;
+    read_file(champion_file_fields(), champion, context);
+    ChampionSummary out;
+    static_cast<MemberSummary&>(out) = summary_of(champion.individual);
+    out.generation_found = champion.generation_found;
+    out.measure = context.measure;
+    return out;
+}
 
 ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment) {
     return read_champion_at(path_in(run_dir, kChampionFile), run_dir, experiment);

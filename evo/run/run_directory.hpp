@@ -20,8 +20,10 @@ inline constexpr const char* kFitnessCsvFile = "fitness.csv";
 inline constexpr const char* kChampionFile = "champion.json";
 
 //! run.json: the experiment as the run was started and every change of rules since (fitness,
-//! and physics where a change set it).
+//! and physics where a change set it). Its fields: run_file_schema.hpp.
 struct RunInfo {
+    std::string bhm_version;  //!< the bhm that started the run
+    std::uint64_t seed = 0;
     Experiment started;
     std::vector<RuleChange> rule_changes;  //!< in order
     //! The rules in force as the run's checkpoint records them (checksummed), where it has one.
@@ -50,6 +52,16 @@ struct ChampionFile : MemberSummary {
 //! Reads champion.json and checks its body against the experiment (a champion of another
 //! experiment would name materials it does not define). Throws std::runtime_error naming the file.
 ChampionFile read_champion_file(const std::string& run_dir, const Experiment& experiment);
+
+//! A champion file's summary without its body and genome (which need the experiment): the
+//! member's summary, the generation that found it and the measure its fitness is of. The studio's
+//! list of a run's champions reads each file through here. Throws std::runtime_error "PATH:field:
+//! message" on a field missing or wrong.
+struct ChampionSummary : MemberSummary {
+    int generation_found = 0;
+    FitnessMeasure measure = FitnessMeasure::ComFinal3d;
+};
+ChampionSummary read_champion_summary(const std::string& path);
 
 inline constexpr const char* kChampionsDir = "champions";
 //! Every champion a run has had (champions/gen-NNNNN.json, oldest first), each read and checked

@@ -13,8 +13,8 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
-#include "evo/run/rule_change_json.hpp"
 #include "evo/run/run_directory.hpp"
+#include "evo/run/run_file_schema.hpp"
 
 namespace bhm::evo {
 
@@ -72,26 +72,16 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
 }
 
 json champion_to_json(const Experiment& experiment, const ChampionRecord& c) {
-    const Individual& ind = c.individual;
-    return {{"experiment", experiment.name},
-            {"measure", kFitnessNames[static_cast<std::size_t>(experiment.fitness.measure)]},
-            {"generation_found", c.generation_found},
-            {"id", ind.id},
-            {"parent_id", ind.parent_id},
-            {"age", ind.age},
-            {"fitness", ind.report.fitness},
-            {"report", report_to_json(ind.report)},
-            {"voxels", ind.phenotype.voxels},
-            {"active_voxels", ind.phenotype.active_voxels},
-            {"phenotype", body_to_json(ind.phenotype.body)},
-            {"genome", genome_to_json(ind.genome)}};
+    return write_fields(champion_file_fields(), c, RunFileContext{"", &experiment, ""});
 }
 
 json run_info_json(const Experiment& original, const RunState& state) {
-    return {{"bhm_version", BHM_VERSION_STRING},
-            {"seed", state.seed},
-            {"experiment", experiment_to_json(original)},
-            {"rule_changes", rule_changes_to_json(state.rule_changes, original)}};
+    RunInfo info;
+    info.bhm_version = BHM_VERSION_STRING;
+    info.seed = state.seed;
+    info.started = original;
+    info.rule_changes = state.rule_changes;
+    return write_fields(run_info_fields(), info, RunFileContext{});
 }
 
 RunOutput::RunOutput(std::string dir) : dir_(std::move(dir)) {

@@ -17,6 +17,8 @@
 #include "evo/run/physics_rules.hpp"
 #include "evo/run/rule_change_json.hpp"
 #include "evo/run/run_directory.hpp"
+#include "evo/run/run_file_schema.hpp"
+#include "evo/run/run_output.hpp"
 #include "evo_test_support.hpp"
 #include "run_test_support.hpp"
 #include "support/scratch.hpp"
@@ -360,5 +362,163 @@ TEST_CASE(
             "docs/evolution.md's checkpoint table differs from evo/run/checkpoint_schema.cpp: "
             "put "
             << fresh << " between its markers");
+    }
+}
+
+namespace {
+
+//! A run of 3 generations in `name`: the fitness and physics changes for AFPO (so rule_changes
+//! has every kind of row), none for NEAT and novelty search. Returns its folder.
+fs::path run_of(const std::string& name, const Experiment& e, bool with_changes) {
+    const fs::path dir = bhm::test::scratch_dir("schema-" + name, false);
+    EvolutionRun run(e, run_options(3, 2, dir.string()));
+    Fitness changed = e.fitness;
+    changed.measure = FitnessMeasure::ComFinal3d;
+    if (with_changes)
+        REQUIRE(run_with_changes(run, changed, stiffer(e)) == StopReason::GenerationBudget);
+    else
+        REQUIRE(run.run() == StopReason::GenerationBudget);
+    return dir;
+}
+
+//! The three kinds of run every schema test walks: AFPO with rule changes, NEAT, novelty search.
+std::vector<fs::path> three_runs() {
+    Experiment neat = test::tiny_experiment();
+    neat.evolution.algorithm = Algorithm::Neat;
+    neat.evolution.population = 10;
+    Experiment novelty = test::tiny_experiment();
+    novelty.evolution.algorithm = Algorithm::Novelty;
+    return {run_of("afpo", test::tiny_experiment(), true), run_of("neat", neat, false),
+            run_of("novelty", novelty, false)};
+}
+
+//! A schema path ("history[].novelty.best_novelty") made concrete with element 0 of each array
+//! ("history[0].novelty.best_novelty"), and the JSON it names erased from `payload`. False when
+//! the payload does not hold it (an empty array, an absent optional part, a null champion).
+bool erase_first(json& payload, const std::string& path, std::string& concrete) {
+    json* at = &payload;
+    concrete.clear();
+    std::size_t from = 0;
+    while (true) {
+        const std::size_t dot = path.find('.', from);
+        std::string key =
+            path.substr(from, dot == std::string::npos ? std::string::npos : dot - from);
+        const bool each = key.size() > 2 && key.ends_with("[]");
+        if (each) key.resize(key.size() - 2);
+        if (!at->is_object() || !at->contains(key)) return false;
+        concrete += (concrete.empty() ? "" : ".") + key;
+        if (dot == std::string::npos && !each) {
+            at->erase(key);
+            return true;
+        }
+        at = &(*at)[key];
+        if (each) {
+            if (!at->is_array() || at->empty()) return false;
+            at = &(*at)[0];
+            concrete += "[0]";
+        }
+        from = dot + 1;
+    }
+}
+
+}  // namespace
+
+TEST_CASE("a checkpoint round-trips through its field table: written, read, written, same bytes") {
+    for (const auto& dir : three_runs()) {
+        CAPTURE(dir);
+        const std::string text = bhm::test::read_file(dir / kCheckpointFile);
+        const RunState state = run_state_from_json(payload_of(dir / kCheckpointFile), "x");
+        CHECK(checkpoint_text(run_state_to_json(state)) == text);
+        // run.json likewise, through its own table.
+        const RunInfo info = read_run_info(dir.string());
+        CHECK(write_fields(run_info_fields(), info, RunFileContext{}) ==
+              json::parse(bhm::test::read_file(dir / kRunInfoFile)));
+        fs::remove_all(dir);
+    }
+}
+
+TEST_CASE("a field missing from a checkpoint is named in a one-line error, for every row") {
+    std::set<std::string> named;
+    for (const auto& dir : three_runs()) {
+        const json good = payload_of(dir / kCheckpointFile);
+        for (const auto& row : checkpoint_fields()) {
+            json bad = good;
+            std::string concrete;
+            if (row.path == "bhm_version" || !erase_first(bad, row.path, concrete)) continue;
+            CAPTURE(concrete);
+            try {
+                run_state_from_json(bad, "cp.json");
+                // Only a field the table says is not always written may be absent.
+                CHECK(!row.when.empty());
+                CHECK(row.when != "champion not null");
+            } catch (const std::runtime_error& error) {
+                const std::string what = error.what();
+                CHECK(what.find("cp.json: " + concrete + ": missing") == 0);
+                CHECK(what.find('\n') == std::string::npos);
+                named.insert(row.path);
+            }
+        }
+        fs::remove_all(dir);
+    }
+    // Every row each checkpoint of its kind holds was named when missing (bhm_version is not
+    // read back).
+    for (const auto& row : checkpoint_fields()) {
+        const std::string when = row.when;
+        if ((when.empty() || when == "NEAT runs" || when == "novelty search runs" ||
+             when == "champion not null") &&
+            row.path != "bhm_version" && row.path != "history[].novelty")
+            CHECK_MESSAGE(named.count(row.path) == 1, row.path);
+    }
+}
+
+TEST_CASE(
+    "run.json and champion.json: their readers name a missing field, and the docs are "
+    "their tables") {
+    const Experiment e = test::tiny_experiment();
+    const fs::path dir = run_of("run-files", e, false);
+    const json run_json = json::parse(bhm::test::read_file(dir / kRunInfoFile));
+    const json champion = json::parse(bhm::test::read_file(dir / kChampionFile));
+    const auto from_checkpoint = load_checkpoint(dir.string()).state.champion;
+    CHECK(champion == champion_to_json(e, *from_checkpoint));
+    // The summary the studio lists reads the same rows, without the experiment.
+    const ChampionSummary summary = read_champion_summary((dir / kChampionFile).string());
+    CHECK(summary.generation_found == from_checkpoint->generation_found);
+    CHECK(summary.id == from_checkpoint->individual.id);
+    CHECK(summary.measure == e.fitness.measure);
+    CHECK(summary.voxels == from_checkpoint->individual.phenotype.voxels);
+    for (const char* key : {"seed", "experiment"}) {
+        json bad = run_json;
+        bad.erase(key);
+        spit(dir / kRunInfoFile, bad.dump(2));
+        const std::string expected = (dir / kRunInfoFile).string() + ":" + key + ": missing";
+        CHECK_THROWS_WITH(read_run_info(dir.string()), doctest::Contains(expected.c_str()));
+    }
+    spit(dir / kRunInfoFile, run_json.dump(2));
+    for (const char* key : {"phenotype", "generation_found", "report", "voxels", "genome"}) {
+        json bad = champion;
+        bad.erase(key);
+        spit(dir / kChampionFile, bad.dump(2));
+        const std::string expected = (dir / kChampionFile).string() + ":" + key + ": missing";
+        CHECK_THROWS_WITH(read_champion_file(dir.string(), e), doctest::Contains(expected.c_str()));
+    }
+    fs::remove_all(dir);
+
+    const std::string doc =
+        bhm::test::read_file(std::string(BHM_SOURCE_DIR) + "/docs/evolution.md");
+    for (const std::string file : {kRunInfoFile, kChampionFile}) {
+        CAPTURE(file);
+        const std::string begin = "<!-- " + file + " fields: begin -->\n",
+                          end = "<!-- " + file + " fields: end -->";
+        const auto from = doc.find(begin), to = doc.find(end);
+        REQUIRE(from != std::string::npos);
+        REQUIRE(to != std::string::npos);
+        if (doc.substr(from + begin.size(), to - from - begin.size()) !=
+            run_file_schema_markdown(file)) {
+            const std::string fresh = std::string(BHM_BINARY_DIR) + "/" + file + "-fields.md";
+            spit(fresh, run_file_schema_markdown(file));
+            FAIL("docs/evolution.md's "
+                 << file << " table differs from evo/run/run_file_schema.cpp: put " << fresh
+                 << " between its markers");
+        }
     }
 }

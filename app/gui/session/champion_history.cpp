@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/text_file.hpp"
-#include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_reader.hpp"
+#include "evo/run/run_directory.hpp"
 
 namespace bhm::app::gui {
 
@@ -26,12 +26,6 @@ json read_json(const std::string& path) {
         throw std::runtime_error(path + ": not valid JSON (" + evo::without_json_tags(e.what()) +
                                  ")");
     }
-}
-
-evo::FitnessMeasure measure_named(const std::string& name) {
-    for (std::size_t k = 0; k < evo::kFitnessNames.size(); ++k)
-        if (name == evo::kFitnessNames[k]) return static_cast<evo::FitnessMeasure>(k);
-    return evo::FitnessMeasure::ComFinal3d;
 }
 
 }  // namespace
@@ -57,17 +51,17 @@ bool ChampionHistory::refresh(const std::string& run_dir) {
         const auto key = p.string();
         if (auto s = seen_.find(key); s != seen_.end() && s->second == mtime) continue;
         try {
-            const json j = read_json(key);
+            // Through the run directory's reader of champion files (evo/run/run_directory.hpp),
+            // which walks the file's field table: its errors name the file and the field.
+            const evo::ChampionSummary c = evo::read_champion_summary(key);
             ChampionEntry e;
-            e.generation = j.at("generation_found").get<int>();
-            e.id = j.at("id").get<std::int64_t>();
-            e.fitness = j.at("fitness").get<double>();
-            e.measure = measure_named(j.value("measure", std::string()));
-            e.voxels = j.value("voxels", 0);
-            e.active_voxels = j.value("active_voxels", 0);
-            // The report through its one reader (fitness_json.hpp), as run_directory.hpp reads it.
-            if (j.contains("report"))
-                e.exploits = evo::report_from_json(j.at("report"), key + ":report").exploits;
+            e.generation = c.generation_found;
+            e.id = c.id;
+            e.fitness = c.fitness;
+            e.measure = c.measure;
+            e.voxels = c.voxels;
+            e.active_voxels = c.active_voxels;
+            e.exploits = c.exploits;
             e.path = key;
             std::erase_if(entries_, [&](const ChampionEntry& old) { return old.path == key; });
             entries_.push_back(e);
