@@ -34,12 +34,7 @@ constexpr long long kFewestRanked = 5;
 // What bhm verify writes into its --out folder (evo/verify/verify_report.cpp, and rank-NN/ of a
 // run's top K): the folder is replaced whole (engine/io/staged_folder.hpp), so only these.
 bool verify_output(const std::string& name) {
-    const auto ends = [&](const std::string& suffix) {
-        return name.size() >= suffix.size() &&
-               name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-    };
-    return name == "report.json" || name == "shapes.json" ||
-           (name.rfind("fem-", 0) == 0 && ends(".vtk")) || name.rfind("rank-", 0) == 0;
+    return evo::is_verification_file(name) || name.rfind("rank-", 0) == 0;
 }
 
 // Runs write, naming the --out folder's file instead of its staging copy in an error.

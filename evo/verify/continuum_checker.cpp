@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "engine/io/staged_folder.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/verify_report.hpp"
@@ -55,7 +56,16 @@ std::optional<LoopCheck> CalculixChecker::check(const Experiment& rules,
     if (!out_dir.empty()) {
         const auto dir = std::filesystem::path(out_dir) / "verify" /
                          ("individual-" + std::to_string(body.id));
-        write_verification(v, options, dir.string());
+        // Staged and swapped in whole (issue 41 R5): a kill part way leaves the studio the old
+        // complete check or the new one, never new meshes beside an old report. The folder is
+        // refused when it holds anything a verification does not write.
+        engine::StagedFolder staged(dir.string(), is_verification_file);
+        try {
+            write_verification(v, options, staged.staging());
+        } catch (const std::exception& e) {
+            throw std::runtime_error(staged.as_final(e.what()));
+        }
+        staged.commit();
     }
     return loop_check_of(v);
 }

@@ -285,4 +285,11 @@ nlohmann::json write_verification(const BodyVerification& v, const VerifyOptions
     return j;
 }
 
+bool is_verification_file(const std::string& name) {
+    const std::string vtk = ".vtk";
+    const bool fem_mesh = name.rfind("fem-", 0) == 0 && name.size() > 4 + vtk.size() &&
+                          name.compare(name.size() - vtk.size(), vtk.size(), vtk) == 0;
+    return name == "report.json" || name == "shapes.json" || fem_mesh;
+}
+
 }  // namespace bhm::evo

@@ -36,6 +36,10 @@ VerificationShapes verification_shapes_from_json(const nlohmann::json& j, const 
 nlohmann::json write_verification(const BodyVerification& v, const VerifyOptions& options,
                                   const std::string& dir);
 
+//! Whether `name` is a file write_verification writes (report.json, shapes.json, fem-*.vtk): the
+//! entries a folder replaced whole by a new verification may hold (engine/io/staged_folder.hpp).
+bool is_verification_file(const std::string& name);
+
 //! Spearman's rank correlation (ties share their mean rank); NaN for fewer than 2 values or a
 //! constant list.
 double spearman(const std::vector<double>& a, const std::vector<double>& b);

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -344,4 +345,44 @@ TEST_CASE("loop checks with CalculiX: the files where the studio finds them, and
     CHECK(resumed->state().loop_checks == checks);  // every double equal
     CHECK(without_wall(resumed->state().history) == without_wall(run.state().history));
     CHECK(resumed->state().rng == run.state().rng);
+}
+
+TEST_CASE("loop checks with CalculiX: a check's folder is replaced whole, and one holding a "
+          "file of someone else's is refused naming it") {
+    if (bhm::test::skip_without_ccx()) return;
+    const auto e = verified_experiment(VerifyPolicy::Flag);
+    // All passive: rest is the only load, so a fresh check writes fem-rest.vtk and no
+    // fem-plus-A.vtk.
+    LoopCheckRequest pick;
+    pick.id = 7;
+    pick.body.size = e.workspace_size;
+    pick.body.cells.assign(static_cast<std::size_t>(pick.body.cell_count()), 1);
+    const auto dir = test::fresh_dir("loop-verify", "replace");
+    const fs::path folder = dir / "verify" / "individual-7";
+    fs::create_directories(folder);
+    // An earlier, interrupted check's leftovers: a mesh of a load this check does not solve.
+    std::ofstream(folder / "fem-plus-A.vtk") << "left by a killed check\n";
+    CalculixChecker checker;
+    const std::atomic<bool> cancel{false};
+    const auto check = checker.check(e, pick, dir.string(), cancel);
+    REQUIRE(check);
+    CAPTURE(check->verdict);
+    CHECK(check->compared());
+    CHECK(fs::is_regular_file(folder / "report.json"));
+    CHECK(fs::is_regular_file(folder / "fem-rest.vtk"));
+    CHECK_FALSE(fs::exists(folder / "fem-plus-A.vtk"));  // written file by file, it stayed
+    for (const auto& entry : fs::directory_iterator(dir / "verify"))  // no staging folder left
+        CHECK(entry.path().filename() == "individual-7");
+
+    std::ofstream(folder / "notes.txt") << "mine\n";
+    try {
+        checker.check(e, pick, dir.string(), cancel);
+        FAIL("a folder holding notes.txt was replaced");
+    } catch (const std::runtime_error& error) {
+        const std::string message = error.what();
+        CAPTURE(message);
+        CHECK(message.find("individual-7") != std::string::npos);
+        CHECK(message.find("notes.txt") != std::string::npos);
+    }
+    CHECK(fs::is_regular_file(folder / "notes.txt"));
 }
