@@ -203,8 +203,28 @@ StagedFiles::~StagedFiles() {
 }
 
 std::string StagedFiles::stage(const std::string& path) {
-    files_.emplace_back(path, path + ".staged");
+    sweep_stale_staged_files(path);
+    files_.emplace_back(path, path + ".staged-" + std::to_string(::getpid()));
     return files_.back().second;
+}
+
+int sweep_stale_staged_files(const std::string& path) {
+    const fs::path target = path;
+    const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    const std::string prefix = target.filename().string() + ".staged-";
+    std::error_code ec;
+    fs::directory_iterator it(parent, ec);
+    if (ec) return 0;  // nothing to sweep; the write itself will name the problem
+    int removed = 0;
+    for (const auto& entry : it) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::string pid = name.substr(prefix.size());
+        if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        if (process_gone(std::stol(pid)) && ::unlink(entry.path().c_str()) == 0) ++removed;
+    }
+    return removed;
 }
 
 void StagedFiles::commit() {

@@ -56,7 +56,7 @@ class StagedFolder {
 
 //! The same promise for a command's outputs that are single files in different folders (bhm
 //! export's --vxa, --body-out, --mesh ...): each is written whole under a staged name beside it
-//! (PATH.staged), and only when every one is written are they renamed into place. Destroyed
+//! (PATH.staged-PID), and only when every one is written are they renamed into place. Destroyed
 //! without commit(), the staged files are removed and no output is touched (issue 41 R6).
 class StagedFiles {
   public:
@@ -65,7 +65,8 @@ class StagedFiles {
     StagedFiles(const StagedFiles&) = delete;
     StagedFiles& operator=(const StagedFiles&) = delete;
 
-    //! The name to write path's new contents to (PATH.staged), remembered for commit().
+    //! The name to write path's new contents to (PATH.staged-PID), remembered for commit();
+    //! first removes the staged copies of path that killed writers left (below).
     std::string stage(const std::string& path);
     //! Renames every staged file over its path, in the order staged. Throws std::runtime_error
     //! naming the file that could not be replaced (those before it are already in place).
@@ -82,5 +83,9 @@ class StagedFiles {
 //! the number removed. A ".old-" folder is put back as NAME when NAME is missing (a kill between
 //! the two renames of the fallback) instead of being removed.
 int sweep_stale_staging(const std::string& parent, const std::string& name);
+
+//! Removes "PATH.staged-PID" files beside path whose process is gone (a writer killed between
+//! staging and commit); the number removed.
+int sweep_stale_staged_files(const std::string& path);
 
 }  // namespace bhm::engine

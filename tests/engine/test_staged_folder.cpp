@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/staged_folder.hpp"
 #include "support/scratch.hpp"
@@ -111,5 +113,27 @@ TEST_CASE("a killed writer's staging folder is swept; an old folder moved aside 
     CHECK(entries(dir) == std::vector<std::string>{".other.staging-999999999-AbC123", own_staging,
                                                    "out"});
     CHECK(bhm::test::read_file(dir / "out" / "report.json") == "old");
+    fs::remove_all(dir);
+}
+
+TEST_CASE("a killed writer's staged copy of a file is swept by the next writer of that file") {
+    const fs::path dir = bhm::test::scratch_dir("staged-files-sweep");
+    fs::create_directories(dir);
+    const std::string own = "out.vxa.staged-" + std::to_string(::getpid());
+    // 999999999 is above any pid_max: a process that is gone.
+    write_file_atomically((dir / "out.vxa.staged-999999999").string(), "killed");
+    write_file_atomically((dir / "out.vxa.staged-1").string(), "a live writer's (init's)");
+    write_file_atomically((dir / "other.vxa.staged-999999999").string(), "another file's");
+    {
+        StagedFiles files;
+        const std::string staged = files.stage((dir / "out.vxa").string());
+        CHECK(fs::path(staged).filename() == own);
+        write_file_atomically(staged, "new");
+        files.commit();
+    }
+    CHECK(entries(dir) == std::vector<std::string>{"other.vxa.staged-999999999", "out.vxa",
+                                                   "out.vxa.staged-1"});
+    CHECK(bhm::test::read_file(dir / "out.vxa") == "new");
+    CHECK(sweep_stale_staged_files((dir / "other.vxa").string()) == 1);
     fs::remove_all(dir);
 }
