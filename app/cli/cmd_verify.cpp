@@ -65,6 +65,9 @@ evo::VerifyOptions options_of(const ArgParser& parser) {
     o.geometry = parser.has("--nlgeom")   ? evo::FemGeometry::Nonlinear
                  : parser.has("--linear") ? evo::FemGeometry::Linear
                                           : evo::FemGeometry::Automatic;
+    if (parser.has("--coarse-nonlinearity") && parser.has("--linear"))
+        throw UsageError("--coarse-nonlinearity and --linear exclude each other");
+    o.nonlinear_from_coarse_mesh = parser.has("--coarse-nonlinearity");
     o.tolerance = parser.get_double("--tolerance", 10.0) / 100.0;
     if (!(o.tolerance > 0.0)) throw UsageError("--tolerance: must be a percentage above 0");
     o.max_voxels = static_cast<int>(parser.get_int("--max-voxels", 4000));
@@ -267,6 +270,9 @@ int cmd_verify(const Args& args) {
                 "geometrically nonlinear steps, always (default: when our engine turns a voxel "
                 "or bends more than 10 deg)");
     parser.flag("--linear", "linear steps, always (however far the body turns)");
+    parser.flag("--coarse-nonlinearity",
+                "nonlinear steps solved on 1 element per voxel edge, their nonlinear part added "
+                "to the mesh's linear answer: quicker, what the evolution loop's checks do");
     parser.flag("--no-mesh-error",
                 "skip the second mesh (twice the subdivision, up to 4) that estimates the FEM's "
                 "own error beside the verdict");

@@ -1,8 +1,10 @@
 #pragma once
 // The CalculiX checker of the evolution loop (evolution.verify; evo/run/loop_check.hpp): one body
 // verified as `bhm verify` does (verify_body: the FEM and our engine's quasi-static answer at
-// rest, +A and -A, judged on the experiment's measure), its files kept where the studio finds
-// them, RUN_DIR/verify/individual-<id>/ (report.json, shapes.json, the FEM's meshes).
+// rest, +A and -A, judged on the experiment's measure), except that nonlinear steps take their
+// nonlinear part from a coarse mesh (coarse_nonlinearity.hpp: several times quicker, as bhm
+// verify --coarse-nonlinearity), its files kept where the studio finds them,
+// RUN_DIR/verify/individual-<id>/ (report.json, shapes.json, the FEM's meshes).
 #include <memory>
 
 #include "evo/run/loop_check.hpp"

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "evo/verify/ccx_deck.hpp"
+#include "evo/verify/coarse_nonlinearity.hpp"
 #include "evo/verify/fem_shape.hpp"
 
 namespace bhm::evo {
@@ -323,8 +324,52 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         out.fem_wall_s += fem.wall_s;
         return fem;
     };
+    // The nonlinear part from a coarse mesh needs this mesh's linear answer first.
+    const bool from_coarse =
+        options.nonlinear_from_coarse_mesh && out.mesh.mesh.subdivision > 1;
     out.nlgeom = options.geometry == FemGeometry::Nonlinear;
-    CcxResult fem = solve(out.nlgeom);
+    CcxResult fem = solve(out.nlgeom && !from_coarse);
+    // The nonlinear answer: solved on this mesh, or its linear one plus the coarse mesh's
+    // nonlinear part.
+    auto solve_nonlinear = [&]() {
+        const double turned = std::max(out.engine_rotation_deg, out.engine_bend_deg);
+        if (from_coarse && turned >= options.coarse_nonlinearity_below_deg) {
+            char why[160];
+            std::snprintf(why, sizeof why,
+                          "; solved in full on this mesh, as our engine turns by %.1f deg, over "
+                          "the %g deg up to which a coarse mesh's nonlinear part is used",
+                          turned, options.coarse_nonlinearity_below_deg);
+            out.geometry_reason += why;
+        }
+        if (!from_coarse || turned >= options.coarse_nonlinearity_below_deg) {
+            fem = solve(true);
+            return;
+        }
+        const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
+        const CcxResult linear = run_fem(coarse, spec, loads, false, options);
+        out.fem_cpu_s += linear.cpu_s;
+        out.fem_wall_s += linear.wall_s;
+        CcxResult nonlinear;
+        try {
+            nonlinear = run_fem(coarse, spec, loads, true, options);
+        } catch (const std::runtime_error& e) {
+            // One element per voxel edge can fail where the mesh converges (a 1x1 neck under
+            // large rotations, measured: "too many cutbacks"): solve in full instead.
+            out.geometry_reason += "; solved in full on this mesh, as the coarse mesh's nonlinear "
+                                   "solve failed (" + std::string(e.what()) + ")";
+            fem = solve(true);
+            return;
+        }
+        out.fem_cpu_s += nonlinear.cpu_s;
+        out.fem_wall_s += nonlinear.wall_s;
+        for (std::size_t k = 0; k < fem.blocks.size(); ++k)
+            fem.blocks[k] = with_coarse_nonlinearity(out.fem_model, fem.blocks[k], coarse,
+                                                     linear.blocks[k], nonlinear.blocks[k]);
+        out.nlgeom_from_coarse_mesh = true;
+        out.geometry_reason += "; its nonlinear part from " +
+                               fem_element_name(out.mesh.mesh.element) +
+                               ", 1 per voxel edge, added to this mesh's linear answer";
+    };
 
     const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
     out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
@@ -358,6 +403,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     const double limit = options.nlgeom_above_deg;
     if (options.geometry == FemGeometry::Nonlinear) {
         out.geometry_reason = "nonlinear (--nlgeom)";
+        if (from_coarse) solve_nonlinear();
     } else if (options.geometry == FemGeometry::Linear) {
         out.geometry_reason = "linear (--linear)";
     } else if (out.engine_rotation_deg > limit || out.engine_bend_deg > limit) {
@@ -369,7 +415,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                       (by_voxel ? turned_at : bent_at).c_str(), limit);
         out.geometry_reason = reason;
         out.nlgeom = true;
-        fem = solve(true);
+        solve_nonlinear();
     } else {
         std::snprintf(reason, sizeof reason,
                       "linear: our engine turns no voxel more than %.1f deg and bends at most "

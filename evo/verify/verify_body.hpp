@@ -32,6 +32,13 @@ struct VerifyOptions {
     //! Automatic: nonlinear when our engine turns a voxel, or bends the root-to-tip line, by more
     //! than this at some load (docs/verify.md, "Linear or nonlinear").
     double nlgeom_above_deg = 10.0;
+    //! Nonlinear steps solved on a mesh of one element per voxel and their nonlinear part added
+    //! to this mesh's linear answer (coarse_nonlinearity.hpp): what the evolution loop's checks
+    //! do, several times quicker; bhm verify solves in full.
+    bool nonlinear_from_coarse_mesh = false;
+    //! ... while our engine turns no voxel and bends no more than this; beyond, the correction
+    //! drifts (docs/verify.md, "Linear or nonlinear") and the steps are solved in full.
+    double coarse_nonlinearity_below_deg = 30.0;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     MeasureFloors floors;       //!< under these a measure is reported, never judged
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)
@@ -93,6 +100,8 @@ struct BodyVerification {
     int fem_nodes = 0, fem_elements = 0;
     FemMeshChoice mesh;           //!< the mesh solved, and why (automatic or the caller's)
     bool nlgeom = false;          //!< the FEM's steps were geometrically nonlinear
+    //! ... their nonlinear part from the coarse mesh (VerifyOptions::nonlinear_from_coarse_mesh)
+    bool nlgeom_from_coarse_mesh = false;
     std::string geometry_reason;  //!< why: "--linear", or our engine's largest rotation
     double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
     double engine_bend_deg = 0.0;      //!< ... and largest bend angle

@@ -115,6 +115,7 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                                     : options.geometry == FemGeometry::Linear  ? "linear"
                                                                                : "nonlinear"},
                 {"geometry_reason", v.geometry_reason},
+                {"nlgeom_from_coarse_mesh", v.nlgeom_from_coarse_mesh},
                 {"nlgeom_above_deg", options.nlgeom_above_deg},
                 {"nodes", v.fem_nodes},
                 {"elements", v.fem_elements},
