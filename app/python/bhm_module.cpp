@@ -115,16 +115,28 @@ std::string path_arg(const py::handle& arg, const char* name, bool dict_allowed)
     throw py::value_error(text);
 }
 
+// What the material library skipped or found damaged (issue 41 R10), as Python warnings
+// (UserWarning), where the command line prints "bhm: warning: ..." on stderr; a warnings filter
+// set to "error" makes them exceptions.
+void warn_about_library(const evo::Experiment& experiment) {
+    for (const auto& line : evo::library_warnings_for(experiment))
+        if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 // An experiment given as a path (str or os.PathLike) or as a dict in the file format.
 evo::Experiment experiment_arg(const py::handle& arg) {
+    evo::Experiment experiment;
     try {
         if (py::isinstance<py::dict>(arg))
-            return evo::parse_experiment(from_python(arg, "<experiment dict>"),
-                                         "<experiment dict>");
-        return evo::load_experiment(path_arg(arg, "experiment", true));
+            experiment = evo::parse_experiment(from_python(arg, "<experiment dict>"),
+                                               "<experiment dict>");
+        else
+            experiment = evo::load_experiment(path_arg(arg, "experiment", true));
     } catch (const evo::ValidationError& e) {
         raise_problems(e.problems);
     }
+    warn_about_library(experiment);
+    return experiment;
 }
 
 evo::Body body_arg(const py::handle& arg, const evo::Experiment& experiment) {
@@ -174,7 +186,7 @@ std::vector<std::string> validate(const py::handle& path_arg, const py::handle& 
                 problems = evo::validate_body_against(body, experiment, path);
             }
         } else {
-            evo::load_experiment(path);
+            warn_about_library(evo::load_experiment(path));
         }
     } catch (const evo::ValidationError& e) {
         problems = e.problems;

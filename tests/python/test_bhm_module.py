@@ -16,6 +16,7 @@ import tempfile
 import threading
 import time
 import unittest
+import warnings
 
 import numpy as np
 
@@ -158,6 +159,44 @@ class Validate(Fixture):
             json.dump({"size": [9, 1, 1], "layers": ["1" * 9]}, f)
         self.assertTrue(bhm.validate(big, self.experiment_path))
         self.assertTrue(bhm.validate(os.path.join(self.dir, "missing.json")))
+
+    def test_library_warnings_are_python_warnings_as_the_command_line_prints_them(self):
+        # Issue 41 R10: a damaged library file is named; the module said nothing.
+        library = os.path.join(self.dir, "library")
+        os.makedirs(library, exist_ok=True)
+        with open(os.path.join(library, "good.json"), "w") as f:
+            json.dump({"format_version": 1, "name": "good rubber", "category": "silicone",
+                       "engine": "e", "youngs_modulus_pa": {"value": 1e5, "source": "s"},
+                       "poisson_ratio": {"value": 0.3, "source": "s"},
+                       "density_kg_m3": {"value": 1000, "source": "s"}}, f)
+        with open(os.path.join(library, "bad.json"), "w") as f:
+            json.dump({"format_version": 1, "name": "x"}, f)
+        uses_good = small_experiment()
+        uses_good["materials"][0] = {"library": "good"}
+        path = os.path.join(self.dir, "uses-good.json")
+        with open(path, "w") as f:
+            json.dump(uses_good, f)
+        old = os.environ.get("BHM_MATERIALS_DIR")
+        os.environ["BHM_MATERIALS_DIR"] = library
+        try:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                self.assertEqual(bhm.validate(path), [])
+                bhm.simulate(uses_good, BODY, seconds=0.01)
+            env = dict(os.environ)
+            done = subprocess.run([BHM, "validate", path], capture_output=True, text=True,
+                                  env=env)
+        finally:
+            if old is None:
+                del os.environ["BHM_MATERIALS_DIR"]
+            else:
+                os.environ["BHM_MATERIALS_DIR"] = old
+        printed = [line[len("bhm: warning: "):] for line in done.stderr.splitlines()
+                   if line.startswith("bhm: warning: ")]
+        self.assertTrue(printed, done.stderr)
+        said = [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+        self.assertEqual(said, printed * 2)  # validate, then simulate
+        self.assertTrue(any("bad.json" in line for line in said))
 
 
 class Runs(Fixture):
