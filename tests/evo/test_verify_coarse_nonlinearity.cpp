@@ -12,36 +12,11 @@
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/verify_body.hpp"
 #include "support/ccx_skip.hpp"
+#include "verify_test_bodies.hpp"
 
 using namespace bhm;
 
 namespace {
-
-// A bar of nx x 2 x nz voxels (E 5 MPa), its z = 0 layer active (cte 0.01 /degC), held at x = 0.
-engine::BodySpec bilayer(double amplitude_c, int nx, int nz) {
-    engine::BodySpec s;
-    s.nx = nx;
-    s.ny = 2;
-    s.nz = nz;
-    s.voxel_size_m = 0.01;
-    engine::Material passive;
-    passive.youngs_modulus_pa = 5e6;
-    engine::Material active = passive;
-    active.cte_per_c = 0.01;
-    s.materials = {passive, active};
-    s.material.assign(static_cast<std::size_t>(s.cell_count()), 1);
-    s.fixed.assign(static_cast<std::size_t>(s.cell_count()), 0);
-    for (int z = 0; z < s.nz; ++z)
-        for (int y = 0; y < s.ny; ++y)
-            for (int x = 0; x < s.nx; ++x) {
-                const auto c = static_cast<std::size_t>(s.cell_index(x, y, z));
-                if (z == 0) s.material[c] = 2;
-                if (x == 0) s.fixed[c] = 1;
-            }
-    s.damping.global_ratio = 0.01;
-    s.actuation.temperature_amplitude_c = amplitude_c;
-    return s;
-}
 
 // An affine field of position: what both shape-function families reproduce exactly.
 std::array<double, 3> affine(const std::array<double, 3>& p) {
@@ -50,9 +25,10 @@ std::array<double, 3> affine(const std::array<double, 3>& p) {
 
 }  // namespace
 
-TEST_CASE("coarse nonlinearity: an affine nonlinear part reaches every fine node exactly, held "
-          "nodes stay at rest") {
-    const auto spec = bilayer(1.0, 4, 2);
+TEST_CASE(
+    "coarse nonlinearity: an affine nonlinear part reaches every fine node exactly, held "
+    "nodes stay at rest") {
+    const auto spec = bhm::test::verify_bilayer(1.0, 4, 2);
     for (const auto element : {evo::FemElement::C3D20R, evo::FemElement::C3D8I}) {
         CAPTURE(evo::fem_element_name(element));
         const auto fine = evo::build_fem_model(spec, {element, 2});
@@ -66,8 +42,8 @@ TEST_CASE("coarse nonlinearity: an affine nonlinear part reaches every fine node
             const auto part = affine(coarse.node_position_m(id));
             coarse_nonlinear[id] = {0.5 + part[0], -0.25 + part[1], 0.125 + part[2]};
         }
-        const auto out =
-            evo::with_coarse_nonlinearity(fine, fine_linear, coarse, coarse_linear, coarse_nonlinear);
+        const auto out = evo::with_coarse_nonlinearity(fine, fine_linear, coarse, coarse_linear,
+                                                       coarse_nonlinear);
         REQUIRE(static_cast<int>(out.size()) == fine.node_count());
         std::vector<char> fixed(static_cast<std::size_t>(fine.node_count()) + 1, 0);
         for (int id : fine.fixed_nodes)
@@ -82,15 +58,16 @@ TEST_CASE("coarse nonlinearity: an affine nonlinear part reaches every fine node
             }
         }
         // Two meshes of different bodies are refused.
-        const auto other = evo::build_fem_model(bilayer(1.0, 5, 2), {element, 1});
+        const auto other = evo::build_fem_model(bhm::test::verify_bilayer(1.0, 5, 2), {element, 1});
         CHECK_THROWS_AS(evo::with_coarse_nonlinearity(fine, fine_linear, other, coarse_linear,
                                                       coarse_nonlinear),
                         std::invalid_argument);
     }
 }
 
-TEST_CASE("coarse nonlinearity: a curling bilayer's answer matches the fine nonlinear solve, and "
-          "past 30 degrees the fine mesh is solved in full") {
+TEST_CASE(
+    "coarse nonlinearity: a curling bilayer's answer matches the fine nonlinear solve, and "
+    "past 30 degrees the fine mesh is solved in full") {
     if (bhm::test::skip_without_ccx()) return;
     evo::VerifyOptions full;
     full.mesh = evo::FemMeshOptions{evo::FemElement::C3D20R, 2};
@@ -99,11 +76,11 @@ TEST_CASE("coarse nonlinearity: a curling bilayer's answer matches the fine nonl
     coarse.nonlinear_from_coarse_mesh = true;
 
     // A = 5 degC: our engine turns a voxel by about 21 degrees.
-    const auto spec = bilayer(5.0, 10, 2);
+    const auto spec = bhm::test::verify_bilayer(5.0, 10, 2);
     const auto f = evo::verify_body(spec, evo::FitnessMeasure::ComFinal3d, full);
     const auto c = evo::verify_body(spec, evo::FitnessMeasure::ComFinal3d, coarse);
-    MESSAGE("full: " << f.verdict() << " (ccx " << f.fem_cpu_s << " s CPU); coarse: "
-                     << c.verdict() << " (ccx " << c.fem_cpu_s << " s CPU); " << c.geometry_reason);
+    MESSAGE("full: " << f.verdict() << " (ccx " << f.fem_cpu_s << " s CPU); coarse: " << c.verdict()
+                     << " (ccx " << c.fem_cpu_s << " s CPU); " << c.geometry_reason);
     CHECK_FALSE(f.nlgeom_from_coarse_mesh);
     CHECK(c.nlgeom_from_coarse_mesh);
     CHECK(c.geometry_reason.find("1 per voxel edge") != std::string::npos);
@@ -120,8 +97,8 @@ TEST_CASE("coarse nonlinearity: a curling bilayer's answer matches the fine nonl
     CHECK(c.agrees == f.agrees);
 
     // A = 14.47 degC, the paper's strain: 61 degrees, solved in full whatever the option.
-    const auto big = evo::verify_body(bilayer(14.47, 10, 2), evo::FitnessMeasure::ComFinal3d,
-                                      coarse);
+    const auto big = evo::verify_body(bhm::test::verify_bilayer(14.47, 10, 2),
+                                      evo::FitnessMeasure::ComFinal3d, coarse);
     CHECK_FALSE(big.nlgeom_from_coarse_mesh);
     CHECK(big.geometry_reason.find("solved in full") != std::string::npos);
 }

@@ -12,6 +12,7 @@
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/mesh_error.hpp"
 #include "evo/verify/verify_body.hpp"
+#include "verify_test_bodies.hpp"
 
 using namespace bhm;
 
@@ -19,37 +20,11 @@ namespace {
 
 using bhm::test::skip_without_ccx;
 
-// A 10x2x2 bilayer (E 5 MPa): its z = 0 layer active (cte 0.01 /degC), held at its x = 0 layer,
-// actuated by +-amplitude_c.
-engine::BodySpec bilayer(double amplitude_c) {
-    engine::BodySpec s;
-    s.nx = 10;
-    s.ny = 2;
-    s.nz = 2;
-    s.voxel_size_m = 0.01;
-    engine::Material passive;
-    passive.youngs_modulus_pa = 5e6;
-    engine::Material active = passive;
-    active.cte_per_c = 0.01;
-    s.materials = {passive, active};
-    s.material.assign(static_cast<std::size_t>(s.cell_count()), 1);
-    s.fixed.assign(static_cast<std::size_t>(s.cell_count()), 0);
-    for (int z = 0; z < s.nz; ++z)
-        for (int y = 0; y < s.ny; ++y)
-            for (int x = 0; x < s.nx; ++x) {
-                if (z == 0) s.material[static_cast<std::size_t>(s.cell_index(x, y, z))] = 2;
-                if (x == 0) s.fixed[static_cast<std::size_t>(s.cell_index(x, y, z))] = 1;
-            }
-    s.damping.global_ratio = 0.01;
-    s.actuation.temperature_amplitude_c = amplitude_c;
-    return s;
-}
-
 }  // namespace
 
 TEST_CASE("verify geometry: the paper's 14.5 % actuation strain is solved nonlinear and agrees") {
     if (skip_without_ccx()) return;
-    const auto s = bilayer(14.47);
+    const auto s = bhm::test::verify_bilayer(14.47);
     const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, {});
     MESSAGE("automatic: " << v.verdict() << "; beside it: " << v.beside() << "; FEM steps "
                           << v.geometry_reason << "; ccx " << v.fem_cpu_s << " s CPU");
@@ -75,7 +50,7 @@ TEST_CASE("verify geometry: the paper's 14.5 % actuation strain is solved nonlin
 
 TEST_CASE("verify geometry: a small actuation keeps the linear solve, and says why") {
     if (skip_without_ccx()) return;
-    const auto v = evo::verify_body(bilayer(0.5), evo::FitnessMeasure::ComMaxYz, {});
+    const auto v = evo::verify_body(bhm::test::verify_bilayer(0.5), evo::FitnessMeasure::ComMaxYz, {});
     MESSAGE(v.verdict() << "; FEM steps " << v.geometry_reason);
     CHECK_FALSE(v.nlgeom);
     CHECK(v.geometry_reason.rfind("linear: our engine turns no voxel more than", 0) == 0);
@@ -85,7 +60,7 @@ TEST_CASE("verify geometry: a small actuation keeps the linear solve, and says w
 
 TEST_CASE("verify geometry: the FEM's own mesh error from a second mesh, beside the verdict") {
     if (skip_without_ccx()) return;
-    const auto s = bilayer(0.5);
+    const auto s = bhm::test::verify_bilayer(0.5);
     const evo::VerifyOptions options;  // C3D8I, 2 per voxel edge
     const auto v = evo::verify_body(s, evo::FitnessMeasure::ComMaxYz, options);
     // Only the FEM is solved again: our engine's answer is reused. Its cancel flag raised, a
