@@ -128,8 +128,8 @@ evo::Experiment experiment_arg(const py::handle& arg) {
     evo::Experiment experiment;
     try {
         if (py::isinstance<py::dict>(arg))
-            experiment = evo::parse_experiment(from_python(arg, "<experiment dict>"),
-                                               "<experiment dict>");
+            experiment =
+                evo::parse_experiment(from_python(arg, "<experiment dict>"), "<experiment dict>");
         else
             experiment = evo::load_experiment(path_arg(arg, "experiment", true));
     } catch (const evo::ValidationError& e) {

@@ -220,7 +220,8 @@ int sweep_stale_staged_files(const std::string& path) {
         const std::string name = entry.path().filename().string();
         if (name.rfind(prefix, 0) != 0) continue;
         const std::string pid = name.substr(prefix.size());
-        if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+        if (pid.empty() || pid.size() > 9 ||
+            pid.find_first_not_of("0123456789") != std::string::npos)
             continue;
         if (process_gone(std::stol(pid)) && ::unlink(entry.path().c_str()) == 0) ++removed;
     }

@@ -69,8 +69,8 @@ NodalDisplacements with_coarse_nonlinearity(const FemModel& fine,
     for (std::size_t v = 0; v < voxels; ++v) {
         // The coarse element of voxel v: each node's natural coordinates and nonlinear part.
         const std::vector<int>& element = coarse.elements[v];
-        const auto& coarse_low = coarse.node_grid[static_cast<std::size_t>(
-            coarse.voxel_corners[v][0] - 1)];
+        const auto& coarse_low =
+            coarse.node_grid[static_cast<std::size_t>(coarse.voxel_corners[v][0] - 1)];
         std::vector<std::array<int, 3>> natural;
         std::vector<Vec> part;
         for (int id : element) {
@@ -83,7 +83,8 @@ NodalDisplacements with_coarse_nonlinearity(const FemModel& fine,
             const Vec& lin = at(coarse_linear, id);
             part.push_back({nl[0] - lin[0], nl[1] - lin[1], nl[2] - lin[2]});
         }
-        const auto& fine_low = fine.node_grid[static_cast<std::size_t>(fine.voxel_corners[v][0] - 1)];
+        const auto& fine_low =
+            fine.node_grid[static_cast<std::size_t>(fine.voxel_corners[v][0] - 1)];
         for (std::size_t e = v * per_voxel; e < (v + 1) * per_voxel; ++e)
             for (int id : fine.elements[e]) {
                 if (done[static_cast<std::size_t>(id)]) continue;

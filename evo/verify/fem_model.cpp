@@ -70,9 +70,8 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
     // mesh is refined), so a shared node would weld them at a stiffness set by the mesh
     // (docs/verify.md, "Edge and corner contacts").
     const auto grid_index = [&](int i, int j, int k) {
-        return static_cast<std::int64_t>(i) +
-               static_cast<std::int64_t>(m.grid[0]) *
-                   (j + static_cast<std::int64_t>(m.grid[1]) * k);
+        return static_cast<std::int64_t>(i) + static_cast<std::int64_t>(m.grid[0]) *
+                                                  (j + static_cast<std::int64_t>(m.grid[1]) * k);
     };
     // The lowest cell index of the face-joined group of material voxels around grid point g
     // that holds voxel `cell` (which contains g).
@@ -89,7 +88,8 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
         for (int z = lo[2]; z <= hi[2]; ++z)
             for (int y = lo[1]; y <= hi[1]; ++y)
                 for (int x = lo[0]; x <= hi[0]; ++x)
-                    if (cell_at(x, y, z) != 0) around[static_cast<std::size_t>(count++)] = {x, y, z};
+                    if (cell_at(x, y, z) != 0)
+                        around[static_cast<std::size_t>(count++)] = {x, y, z};
         if (count <= 1) return spec.cell_index(cell[0], cell[1], cell[2]);
         // Grow the group from `cell` across shared faces (neighbours differ by one on one axis).
         std::array<bool, 8> in{};
@@ -156,8 +156,8 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                             for (int e = 0; e < corners; ++e)
                                 element[static_cast<std::size_t>(e)] =
                                     node_of(cell, low[0] + kOffsets[e][0] * step / 2,
-                                         low[1] + kOffsets[e][1] * step / 2,
-                                         low[2] + kOffsets[e][2] * step / 2);
+                                            low[1] + kOffsets[e][1] * step / 2,
+                                            low[2] + kOffsets[e][2] * step / 2);
                             m.elements.push_back(std::move(element));
                             m.element_material.push_back(material);
                         }
@@ -165,8 +165,9 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 // shape functions at its centre (20-node serendipity: -1/4 corners, 1/4 edges).
                 std::vector<std::pair<int, double>> centre;
                 if (s % 2 == 0) {
-                    centre.push_back({node_of(cell, x * ppv + ppv / 2, y * ppv + ppv / 2, z * ppv + ppv / 2),
-                                      1.0});
+                    centre.push_back(
+                        {node_of(cell, x * ppv + ppv / 2, y * ppv + ppv / 2, z * ppv + ppv / 2),
+                         1.0});
                 } else {
                     const int mid = (s - 1) / 2;
                     const auto& e = m.elements[m.elements.size() - static_cast<std::size_t>(
@@ -181,7 +182,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 for (int c = 0; c < 8; ++c)
                     box[static_cast<std::size_t>(c)] =
                         node_of(cell, (x + (c & 1)) * ppv, (y + ((c >> 1) & 1)) * ppv,
-                             (z + ((c >> 2) & 1)) * ppv);
+                                (z + ((c >> 2) & 1)) * ppv);
                 m.voxel_corners.push_back(box);
             }
 

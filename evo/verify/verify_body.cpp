@@ -325,8 +325,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         return fem;
     };
     // The nonlinear part from a coarse mesh needs this mesh's linear answer first.
-    const bool from_coarse =
-        options.nonlinear_from_coarse_mesh && out.mesh.mesh.subdivision > 1;
+    const bool from_coarse = options.nonlinear_from_coarse_mesh && out.mesh.mesh.subdivision > 1;
     out.nlgeom = options.geometry == FemGeometry::Nonlinear;
     CcxResult fem = solve(out.nlgeom && !from_coarse);
     // The nonlinear answer: solved on this mesh, or its linear one plus the coarse mesh's
@@ -355,8 +354,10 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         } catch (const std::runtime_error& e) {
             // One element per voxel edge can fail where the mesh converges (a 1x1 neck under
             // large rotations, measured: "too many cutbacks"): solve in full instead.
-            out.geometry_reason += "; solved in full on this mesh, as the coarse mesh's nonlinear "
-                                   "solve failed (" + std::string(e.what()) + ")";
+            out.geometry_reason +=
+                "; solved in full on this mesh, as the coarse mesh's nonlinear "
+                "solve failed (" +
+                std::string(e.what()) + ")";
             fem = solve(true);
             return;
         }

@@ -131,8 +131,8 @@ TEST_CASE("a killed writer's staged copy of a file is swept by the next writer o
         write_file_atomically(staged, "new");
         files.commit();
     }
-    CHECK(entries(dir) == std::vector<std::string>{"other.vxa.staged-999999999", "out.vxa",
-                                                   "out.vxa.staged-1"});
+    CHECK(entries(dir) ==
+          std::vector<std::string>{"other.vxa.staged-999999999", "out.vxa", "out.vxa.staged-1"});
     CHECK(bhm::test::read_file(dir / "out.vxa") == "new");
     CHECK(sweep_stale_staged_files((dir / "other.vxa").string()) == 1);
     fs::remove_all(dir);

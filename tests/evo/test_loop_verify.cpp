@@ -347,8 +347,9 @@ TEST_CASE("loop checks with CalculiX: the files where the studio finds them, and
     CHECK(resumed->state().rng == run.state().rng);
 }
 
-TEST_CASE("loop checks with CalculiX: a check's folder is replaced whole, and one holding a "
-          "file of someone else's is refused naming it") {
+TEST_CASE(
+    "loop checks with CalculiX: a check's folder is replaced whole, and one holding a "
+    "file of someone else's is refused naming it") {
     if (bhm::test::skip_without_ccx()) return;
     const auto e = verified_experiment(VerifyPolicy::Flag);
     // All passive: rest is the only load, so a fresh check writes fem-rest.vtk and no

@@ -8,7 +8,6 @@
 
 #include "support/ccx_skip.hpp"
 
-
 #include <cmath>
 
 #include "evo/verify/fem_model.hpp"
