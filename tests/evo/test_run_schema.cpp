@@ -310,22 +310,27 @@ void walk_schema(const json& j, const std::string& path, std::set<std::string>& 
     }
 }
 
+//! A run of 3 generations in `name`: the fitness and physics changes for AFPO (so rule_changes
+//! has every kind of row), none for NEAT and novelty search. Returns its folder.
+fs::path run_of(const std::string& name, const Experiment& e, bool with_changes) {
+    const fs::path dir = bhm::test::scratch_dir("schema-" + name, false);
+    EvolutionRun run(e, run_options(3, 2, dir.string()));
+    Fitness changed = e.fitness;
+    changed.measure = FitnessMeasure::ComFinal3d;
+    if (with_changes)
+        REQUIRE(run_with_changes(run, changed, stiffer(e)) == StopReason::GenerationBudget);
+    else
+        REQUIRE(run.run() == StopReason::GenerationBudget);
+    return dir;
+}
+
 }  // namespace
 
 TEST_CASE(
     "the checkpoint's field table covers what the writer writes, and the docs are the table") {
     std::set<std::string> seen;
     auto walk_run = [&](Experiment e, bool with_changes) {
-        const fs::path dir = bhm::test::scratch_dir("schema-table", false);
-        {
-            EvolutionRun run(e, run_options(3, 2, dir.string()));
-            Fitness changed = e.fitness;
-            changed.measure = FitnessMeasure::ComFinal3d;
-            if (with_changes)
-                REQUIRE(run_with_changes(run, changed, stiffer(e)) == StopReason::GenerationBudget);
-            else
-                REQUIRE(run.run() == StopReason::GenerationBudget);
-        }
+        const fs::path dir = run_of("table", e, with_changes);
         walk_schema(payload_of(dir / kCheckpointFile), "", seen);
         fs::remove_all(dir);
     };
@@ -367,19 +372,6 @@ TEST_CASE(
 
 namespace {
 
-//! A run of 3 generations in `name`: the fitness and physics changes for AFPO (so rule_changes
-//! has every kind of row), none for NEAT and novelty search. Returns its folder.
-fs::path run_of(const std::string& name, const Experiment& e, bool with_changes) {
-    const fs::path dir = bhm::test::scratch_dir("schema-" + name, false);
-    EvolutionRun run(e, run_options(3, 2, dir.string()));
-    Fitness changed = e.fitness;
-    changed.measure = FitnessMeasure::ComFinal3d;
-    if (with_changes)
-        REQUIRE(run_with_changes(run, changed, stiffer(e)) == StopReason::GenerationBudget);
-    else
-        REQUIRE(run.run() == StopReason::GenerationBudget);
-    return dir;
-}
 
 //! The three kinds of run every schema test walks: AFPO with rule changes, NEAT, novelty search.
 std::vector<fs::path> three_runs() {
