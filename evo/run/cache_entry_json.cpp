@@ -5,6 +5,7 @@
 
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/evaluate/fitness_json.hpp"
+#include "evo/run/report_field.hpp"
 
 namespace bhm::evo {
 
@@ -14,20 +15,12 @@ namespace {
 
 using Context = CheckpointContext;
 
-void write_report(const CacheEntry& e, const char* key, json& out, const Context&) {
-    out[key] = report_to_json(e.report);
-}
-void read_report(const Fields& f, const CheckpointFieldOf<CacheEntry>& field, CacheEntry& e,
-                 Context&) {
-    e.report = report_from_json(f.at(field.key), f.join(field.key));
-}
-
 constexpr std::array kCacheEntry = {
     hex_field<&CacheEntry::hash, Context>("hash", kNamedCacheEntriesSince, "",
                                           "the phenotype's hash"),
-    CheckpointFieldOf<CacheEntry>{"report", "report", kNamedCacheEntriesSince, "",
-                                  "its FitnessReport (evo/evaluate/fitness_json.hpp), as simulated",
-                                  write_report, read_report},
+    report_field<&CacheEntry::report, Context>(
+        "report", kNamedCacheEntriesSince, "",
+        "its FitnessReport (evo/evaluate/fitness_json.hpp), as simulated"),
 };
 
 //! Format 4 on: an object read through the table.

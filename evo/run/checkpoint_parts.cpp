@@ -7,6 +7,7 @@
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/genome/genome.hpp"
 #include "evo/run/loop_check_json.hpp"
+#include "evo/run/report_field.hpp"
 
 namespace bhm::evo {
 
@@ -46,14 +47,6 @@ void read_phenotype_hash(const Fields& f, const CheckpointFieldOf<Individual>& f
                "the genome develops into a different body (decoder or experiment changed?)");
 }
 
-void write_report(const Individual& ind, const char* key, json& out, const Context&) {
-    out[key] = report_to_json(ind.report);
-}
-void read_report(const Fields& f, const CheckpointFieldOf<Individual>& field, Individual& ind,
-                 Context&) {
-    ind.report = report_from_json(f.at(field.key), f.join(field.key));
-}
-
 constexpr std::array kIndividual = {
     member_field<&Individual::id, Context>("id", 1, "", "the member's id"),
     member_field<&Individual::parent_id, Context>("parent_id", 1, "", "its parent's id (-1: none)"),
@@ -69,9 +62,8 @@ constexpr std::array kIndividual = {
     CheckpointFieldOf<Individual>{"phenotype_hash", "hex", 1, "",
                                   "the hash of the body its genome develops into, checked on load",
                                   write_phenotype_hash, read_phenotype_hash},
-    CheckpointFieldOf<Individual>{"report", "report", 1, "",
-                                  "its FitnessReport (evo/evaluate/fitness_json.hpp)", write_report,
-                                  read_report},
+    report_field<&Individual::report, Context>("report", 1, "",
+                                               "its FitnessReport (evo/evaluate/fitness_json.hpp)"),
 };
 
 // --- a history row -----------------------------------------------------------------------------
