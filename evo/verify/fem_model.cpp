@@ -40,9 +40,11 @@ std::array<double, 3> FemModel::node_position_m(int id) const {
 }
 
 FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& options) {
-    if (options.subdivision < 1 || options.subdivision > 4)
+    // Up to 6: the continuum suite's third mesh (tests/engine/test_engine_continuum.cpp); bhm
+    // verify's own meshes stop at 4 (cmd_verify.cpp, the node cap).
+    if (options.subdivision < 1 || options.subdivision > 6)
         throw std::invalid_argument("subdivision " + std::to_string(options.subdivision) +
-                                    " is not in [1, 4]");
+                                    " is not in [1, 6]");
     FemModel m;
     m.options = options;
     m.voxel_size_m = spec.voxel_size_m;
