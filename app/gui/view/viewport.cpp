@@ -96,9 +96,10 @@ void append_offset(render::DrawList& into, const render::DrawList& from, glm::ve
 }  // namespace
 
 const evo::Body* painter_context_body(const Studio& s) {
-    if (!s.painter.show_champion || !s.run || !s.run->has_champion || !s.run->champion.body)
+    if (!s.painter.show_champion || !s.run.snapshot || !s.run.snapshot->has_champion ||
+        !s.run.snapshot->champion.body)
         return nullptr;
-    return s.run->champion.body.get();
+    return s.run.snapshot->champion.body.get();
 }
 
 render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterState& painter,
