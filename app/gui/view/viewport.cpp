@@ -107,6 +107,7 @@ render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterStat
     render::Scene scene = workspace_scene(e, painter, context_body);
     scene.options.show_edges = show_edges;
     render::DrawList list = render::build_draw_list(scene);
+    lift_face_tints(list, e.workspace_size, e.voxel_size_m);
     // The renderer's fixed-face tint is faint over a light background; the painter's job is to
     // show which faces hold the body, so fixed faces get a second green layer here.
     for (int f = 0; f < 6; ++f)
