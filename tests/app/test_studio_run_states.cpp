@@ -3,8 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/shell/headless_studio.hpp"
@@ -78,6 +80,38 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
     CHECK(fresh->run_dir != (dir / "run").string());
     CHECK(fs::exists(fs::path(fresh->run_dir) / evo::kCheckpointFile));
     CHECK(studio.document.experiment().name == "damaged");
+}
+
+TEST_CASE("studio run states: a second resume that fails within one frame says so, not 'resumed'") {
+    // Issue 39, a low (a stale status line): the line told of a run's end only when the run's
+    // phase differed from the last one it had heard of. A resume that failed as the one before
+    // it had, before a frame saw it running (one slow frame: 5-20 fps while evolving), left
+    // "resumed ..." on the line, in black, over a run panel saying it failed.
+    const auto dir = fs::absolute(testing::fresh_dir("states-failed-twice"));
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 1;
+    write_run(dir / "run", e);
+    for (const char* name : {evo::kCheckpointFile, evo::kPreviousCheckpointFile})
+        std::ofstream(dir / "run" / name) << "{ damaged";
+
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1024, 700);
+    for (int attempt = 1; attempt <= 2; ++attempt) {
+        CAPTURE(attempt);
+        REQUIRE(resume_run_directory(studio, (dir / "run").string()));
+        // The run fails before the next frame begins.
+        REQUIRE(bhm::test::wait_until(
+            [&] {
+                const auto run = studio.run.evolution.snapshot();
+                return run && run->phase == RunPhase::Failed;
+            },
+            [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); }));
+        session.frame();
+        CHECK(studio.ui.status_is_error);
+        CHECK_MESSAGE(studio.ui.status.find("no usable checkpoint") != std::string::npos,
+                      studio.ui.status);
+    }
 }
 
 namespace {

@@ -249,6 +249,19 @@ void forget_shown_bodies(Studio& studio) {
     studio.run.selected_id = -1;
 }
 
+namespace {
+
+// A run was launched (it has published its first, running, snapshot): the action's own word on
+// the status line, and whatever way the run ends is news, even the way the last one ended. The
+// line heard only of a change of phase, so a second resume that failed as the first had, before
+// a frame saw it running (one slow frame), left "resumed ..." standing (issue 39, a low).
+void report_run_launched(Studio& studio, const std::string& message) {
+    set_status(studio, message);
+    studio.ui.status_run_phase = RunPhase::Running;
+}
+
+}  // namespace
+
 bool start_run(Studio& studio) {
     if (run_is_live(studio.run.evolution.phase())) {
         set_status(studio, "a run is already going: stop it first", true);
@@ -271,7 +284,7 @@ bool start_run(Studio& studio) {
         studio.run.adopt_experiment = false;
         studio.bodies.follow_champion = true;
         studio.bodies.requested_champion = -1;
-        set_status(studio, "evolution started: " + dir);
+        report_run_launched(studio, "evolution started: " + dir);
         return true;
     } catch (const std::exception& e) {
         set_status(studio, e.what(), true);
@@ -347,7 +360,7 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
         studio.run.adopt_experiment = true;
         studio.bodies.follow_champion = true;
         studio.bodies.requested_champion = -1;
-        set_status(studio, "resumed " + run_dir);
+        report_run_launched(studio, "resumed " + run_dir);
         return true;
     } catch (const std::exception& e) {
         set_status(studio, e.what(), true);
