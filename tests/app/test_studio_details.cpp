@@ -93,6 +93,29 @@ TEST_CASE("studio details: quick keys in a prefilled path field all act, in thei
     CHECK(studio.run.dir_field == "mine/rus");
 }
 
+TEST_CASE("studio details: Ctrl+A and a path typed in one slow frame replace a prefilled path") {
+    // Issue 39, M2, as a window delivers it: Ctrl goes down as a key of its own, A comes with
+    // the Ctrl bit, both are up again and the new path is typed, all before the next frame (5-20
+    // fps while evolving). The path was spliced into the proposed one.
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    studio.run.dir_field = "/data/proposed/run-1";
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "run dir"}])"));
+    auto& keys = session.input().keys;
+    keys.key(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS, 0);
+    keys.key(GLFW_KEY_A, GLFW_PRESS, GLFW_MOD_CONTROL);
+    keys.key(GLFW_KEY_A, GLFW_RELEASE, GLFW_MOD_CONTROL);
+    keys.key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE, GLFW_MOD_CONTROL);
+    for (const char c : std::string("/mine/run"))
+        keys.character(static_cast<unsigned int>(c));
+    for (int i = 0; i < 8 && keys.pending(); ++i)
+        session.frame();
+    session.frame();
+    CHECK_FALSE(keys.pending());
+    CHECK(studio.run.dir_field == "/mine/run");
+}
+
 TEST_CASE("studio details: a second dialog does not show an older error") {
     const auto dir = testing::fresh_dir("details-dialog");
     Studio studio;
