@@ -8,6 +8,7 @@
 #include "app/gui/session/body_simulator.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/view/scene.hpp"
+#include "app/gui/view/viewport.hpp"
 #include "render/image.hpp"
 #include "test_studio_fixtures.hpp"
 
@@ -147,4 +148,20 @@ TEST_CASE("studio scene: the face tints over the voxels on a face hold still as 
         }
     }
     MESSAGE("largest fraction of pixels changed by a turn: " << worst);
+}
+
+TEST_CASE("studio scene: the bottom face's tint lies over the floor, not under it") {
+    // The floor is at z = 0, pushed back in depth only a little: a tint moved below the
+    // workspace's bottom face, as the other faces' tints are moved outside, was half hidden by it.
+    auto e = testing::tiny_experiment({4, 3, 3});
+    e.boundary.faces[static_cast<int>(evo::Face::ZMin)] = evo::BoundaryKind::Fixed;
+    PainterState painter;
+    const auto list = workspace_draw_list(e, painter, nullptr, true);
+    const float voxel = static_cast<float>(e.voxel_size_m);
+    int bottom = 0;
+    for (const auto& v : list.translucent_triangles) {
+        CHECK(v.position.z >= 0.0f);
+        bottom += v.position.z > 0.0f && v.position.z < 0.1f * voxel;
+    }
+    CHECK(bottom == 12);  // the renderer's tint and the painter's green layer, just above z = 0
 }

@@ -21,6 +21,13 @@ constexpr glm::vec4 kFixedFaceHatch{0.10f, 0.58f, 0.22f, 1.0f};
 //! How far outside the workspace a face's tint lies, in voxels (lift_face_tints).
 constexpr float kFaceTintLift = 0.05f;
 
+//! Where a face's tint lies along its axis: just outside the workspace, except the bottom face,
+//! which lies just above it (the floor is at z = 0 and would hide a tint under it).
+float face_tint_level(int axis, bool high, const glm::vec3& workspace_hi, float voxel) {
+    if (axis == 2 && !high) return kFaceTintLift * voxel;
+    return high ? workspace_hi[axis] + kFaceTintLift * voxel : -kFaceTintLift * voxel;
+}
+
 std::array<render::FaceMarking, 6> face_markings(const evo::Boundary& boundary) {
     std::array<render::FaceMarking, 6> faces{};
     for (int f = 0; f < 6; ++f)
@@ -338,10 +345,10 @@ void add_face_highlight(render::DrawList& list, const std::array<int, 3>& worksp
         corner[k][u] = us[k];
         corner[k][v] = vs[k];
     }
-    // The tint just outside the face (lift_face_tints), its outline on the workspace's edges.
+    // The tint beside the face (lift_face_tints), its outline on the workspace's edges.
     for (int k : {0, 1, 2, 0, 2, 3}) {
         glm::vec3 p = corner[k];
-        p[axis] += (high ? 1.0f : -1.0f) * kFaceTintLift * s;
+        p[axis] = face_tint_level(axis, high, hi, s);
         list.translucent_triangles.push_back({p, color});
     }
     for (int k = 0; k < 4; ++k) {
@@ -366,7 +373,7 @@ void lift_face_tints(render::DrawList& list, const std::array<int, 3>& workspace
                     on_face = std::fabs(triangles[k].position[axis] - level) <= tolerance;
                 if (!on_face) continue;
                 for (std::size_t k = i; k < i + 6; ++k)
-                    triangles[k].position[axis] = level + (high ? 1.0f : -1.0f) * kFaceTintLift * s;
+                    triangles[k].position[axis] = face_tint_level(axis, high, hi, s);
             }
         }
     }

@@ -59,7 +59,8 @@ void add_face_highlight(render::DrawList& list, const std::array<int, 3>& worksp
 void add_posed_voxel_highlight(render::DrawList& list, const engine::VoxelPoses& poses, int voxel,
                                glm::vec4 color);
 //! Workspace mode: the renderer's face tints (translucent quads lying in a face of the
-//! workspace) moved a twentieth of a voxel outside it, as add_face_highlight's are. In the face
+//! workspace) moved a twentieth of a voxel outside it, as add_face_highlight's are (the bottom
+//! face's a twentieth of a voxel above it, over the floor at z = 0). In the face
 //! the tint shared a plane with the voxels on that face (the frame, overrides, the champion) and
 //! fought them in the depth buffer: a speckle that changed with each turn of the camera (the
 //! faces flickered, issue 39). Their outlines stay on the workspace's edges.
