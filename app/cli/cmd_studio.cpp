@@ -60,7 +60,7 @@ int studio_main(ArgParser& p) {
                             ? gui::open_run_directory(studio, target)
                             : gui::open_experiment(studio, target);
         if (!ok) {
-            std::cerr << "bhm studio: " << studio.status << "\n";
+            std::cerr << "bhm studio: " << studio.ui.status << "\n";
             return 1;
         }
     }

@@ -1,8 +1,10 @@
 #pragma once
 // The studio's whole state, one struct (Dear ImGui's examples, Box2D's samples): the document
-// being edited, the painter, the 3D view, the replay clock, the worker-backed evolution session
-// and body simulator, and the persisted settings. Panels are free functions over it (panels.hpp);
-// actions that the mouse, the keyboard and scripts share live in studio_actions.hpp.
+// being edited and the persisted settings, then one labelled section per job, each touched by
+// its own actions and panels: the painter, the 3D view, the replay clock, the exports, the run
+// shown (RunView), the library of materials, presets and files, the calibration, the bodies
+// shown, Verify in FEM, and the window around them (UiState). Panels are free functions over it
+// (panels.hpp); actions that the mouse, the keyboard and scripts share live in actions/.
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -225,60 +227,54 @@ struct VerifyState {
     bool ghost = true;             //!< draw the FEM's shape over our static one
 };
 
-struct Studio {
-    ExperimentDocument document;
-    //! The copy the Experiment panel's fields edit while a field is active; committed through
-    //! apply_edit when the field is left, re-read from the document whenever it changes.
-    evo::Experiment draft;
-    std::size_t draft_revision = static_cast<std::size_t>(-1);
-    std::string path_field;  //!< File > Open / Save As text field
-    StudioSettings settings;
-    std::string settings_path;  //!< empty: settings are not persisted (headless tests)
-
-    PainterState painter;
-    ViewState view;
-    ReplayClock clock;
-    ExportState exports;
-
+//! The run the Run panel, the population table and the fitness plots show (studio_actions.cpp's
+//! run actions, take_run_snapshot in update_studio; panel_run, panel_population, panel_analysis):
+//! the live evolution session or a run directory opened for viewing, the fields that name the
+//! next run and the one to open, the row selected, and other runs compared with it.
+struct RunView {
     EvolutionSession evolution;
-    RunDirectoryWatch run_directory;               //!< a run directory opened for viewing
-    std::shared_ptr<const EvolutionSnapshot> run;  //!< the one shown: live session or directory
-    //! The live session's generation in progress, read just before `run` was taken: in that
-    //! order a generation completed in between is in the snapshot, never missing from both.
-    LiveProgress run_progress;
-    bool showing_run_directory = false;
+    RunDirectoryWatch directory;                        //!< a run directory opened for viewing
+    std::shared_ptr<const EvolutionSnapshot> snapshot;  //!< the one shown: session or directory
+    //! The live session's generation in progress, read just before `snapshot` was taken: in
+    //! that order a generation completed in between is in the snapshot, never missing from both.
+    LiveProgress progress;
+    bool showing_directory = false;
     std::chrono::steady_clock::time_point last_directory_check{};
-    std::string run_dir_field;   //!< where the next run is written
-    std::string open_run_field;  //!< run directory to open
+    std::string dir_field;   //!< where the next run is written
+    std::string open_field;  //!< run directory to open
     //! identity() of the document the live run belongs to (0: the editor shows none of its
     //! experiments): only that document's rule edits may reach the run, and only explicitly.
-    std::uint64_t run_document = 0;
+    std::uint64_t document_id = 0;
     //! A resumed run's experiment goes into the editor once its checkpoint is loaded.
-    bool adopt_run_experiment = false;
-    std::vector<ComparedRun> compared_runs;
-    std::string compare_field;  //!< run directory to add to the comparison
+    bool adopt_experiment = false;
+    std::vector<ComparedRun> compared;  //!< other runs' curves on the fitness plots
+    std::string compare_field;          //!< run directory to add to the comparison
+    ChampionHistory champion_history;   //!< the shown run's champions/ folder
+    std::int64_t selected_id = -1;      //!< population row selected
+    FitnessPlot fitness_plot;           //!< hover state of the plot
+    int fitness_plot_overlays = 0;      //!< other runs' curves drawn in the last frame
+};
 
-    //! The material library (docs/materials-format.md) for the Experiment panel's picker: read
-    //! once, on first use (studio_library_material); the one-line reason when it did not load.
-    std::optional<evo::MaterialLibrary> material_library;
-    std::string material_library_error;
-    std::string material_library_dir = evo::default_material_library_dir();
+//! What the studio offers from disk to pick from: the material library (the Experiment panel's
+//! picker, studio_material_library), the shipped presets and the Files tab's browser.
+struct LibraryState {
+    //! The material library (docs/materials-format.md): read once, on first use; the one-line
+    //! reason when it did not load.
+    std::optional<evo::MaterialLibrary> materials;
+    std::string materials_error;
+    std::string materials_dir = evo::default_material_library_dir();
     std::string material_filter;  //!< the picker's search text
-    //! Shipped presets (the Files tab's gallery): Save never overwrites them.
+    //! Shipped presets (the Files tab's gallery, the welcome): Save never overwrites them.
     std::string presets_dir = default_presets_dir();
     std::string browser_dir;  //!< folder the file browser shows (absolute; empty: the current)
     std::map<std::string, FileListing> file_listings;  //!< the Files tab's folders, re-read 2/s
-    PendingAction pending;
+};
 
-    CalibrationState calibration;
-
-    ShownBodies bodies;
-    ChampionHistory champion_history;  //!< the shown run's champions/ folder
-    int fitness_plot_overlays = 0;     //!< other runs' curves drawn in the last frame
-    VerifyState verify;
-    std::int64_t selected_id = -1;  //!< population row selected
-
-    std::string status;  //!< one-line message in the status bar
+//! The window around the panels (the shell, panel_frame, the welcome and the dialogs): the
+//! status line, keys and frame timing, the widgets drawn and the tiles they were drawn in, and
+//! the questions and dialogs open.
+struct UiState {
+    std::string status;  //!< one-line message in the status bar (set_status)
     bool status_is_error = false;
     std::vector<evo::Problem> edit_problems;  //!< why the last edit was refused
     //! The live run's phase when the status line last heard of it: an end of the run (finished,
@@ -291,8 +287,7 @@ struct Studio {
     bool screenshot_requested = false;  //!< F12: written by the app at the end of the frame
     bool show_demo_metrics = false;
     bool quit_requested = false;  //!< confirmed: the runner closes the window after this frame
-
-    FitnessPlot fitness_plot;  //!< hover state of the plot
+    PendingAction pending;        //!< a question asked before an action that loses something
 
     int frame = 0;
     double frame_dt_s = 1.0 / 60.0;
@@ -312,6 +307,32 @@ struct Studio {
     std::vector<PresetCard> welcome_cards;
     //! Open... / Save As... / Open run... / Compare... (file_dialog.hpp).
     FileDialog file_dialog;
+};
+
+//! The sections are declared in this order so that their workers' threads stop as before: the
+//! bodies' and Verify in FEM's first, the calibration's, then the run's (members are destroyed
+//! in reverse order).
+struct Studio {
+    ExperimentDocument document;
+    //! The copy the Experiment panel's fields edit while a field is active; committed through
+    //! apply_edit when the field is left, re-read from the document whenever it changes.
+    evo::Experiment draft;
+    std::size_t draft_revision = static_cast<std::size_t>(-1);
+    std::string path_field;  //!< File > Open / Save As text field
+    StudioSettings settings;
+    std::string settings_path;  //!< empty: settings are not persisted (headless tests)
+
+    PainterState painter;
+    ViewState view;
+    ReplayClock clock;
+    ExportState exports;
+
+    RunView run;
+    LibraryState library;
+    CalibrationState calibration;
+    ShownBodies bodies;
+    VerifyState verify;
+    UiState ui;
 };
 
 }  // namespace bhm::app::gui

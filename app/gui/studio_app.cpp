@@ -75,7 +75,8 @@ void splitter(Studio& s, const char* name, ImVec2 pos, ImVec2 size, Splitter whi
     if (ImGui::IsItemActive()) {
         const ImVec2 d = ImGui::GetIO().MouseDelta;
         const float delta = vertical ? d.x : d.y;
-        if (delta != 0.0f) drag_splitter(s.settings.layout, s.tiles, which, delta, width, height);
+        if (delta != 0.0f)
+            drag_splitter(s.settings.layout, s.ui.tiles, which, delta, width, height);
     }
     ImGui::End();
     ImGui::PopStyleVar(3);
@@ -114,7 +115,7 @@ void draw_design_tabs(Studio& s, ViewRenderer& renderer) {
 // Records the current window's rectangle under `name`.
 void record_widget_window(Studio& s, const std::string& name) {
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-    s.widgets[name] = WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+    s.ui.widgets[name] = WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.ui.frame};
 }
 
 }  // namespace
@@ -175,21 +176,21 @@ StudioApp::StudioApp(Studio& studio) : studio_(studio) {
 
 void StudioApp::build_frame(double wall_dt_s) {
     Studio& s = studio_;
-    s.frame_dt_s = wall_dt_s;
-    ++s.frame;
+    s.ui.frame_dt_s = wall_dt_s;
+    ++s.ui.frame;
     const auto update_start = std::chrono::steady_clock::now();
     update_studio(s);  // takes the workers' snapshots: must never wait for them
     const double update_ms =
         1000.0 *
         std::chrono::duration<double>(std::chrono::steady_clock::now() - update_start).count();
-    s.max_update_ms = std::max(s.max_update_ms, update_ms);
+    s.ui.max_update_ms = std::max(s.ui.max_update_ms, update_ms);
     update_pending_action(s);
     take_file_dialog_keys(s);  // an open dialog takes the keys first
     dispatch_key_bindings(s);
     layout_and_panels();
     draw_confirm_dialogs(s);
-    if (s.screenshot_requested) {
-        s.screenshot_requested = false;
+    if (s.ui.screenshot_requested) {
+        s.ui.screenshot_requested = false;
         // Numbered: a second F12 keeps the first screenshot.
         export_screenshot(s, renderer_, next_screenshot_path(s), s.exports.screenshot_width,
                           s.exports.screenshot_height);
@@ -207,13 +208,13 @@ void StudioApp::layout_and_panels() {
     const float height = std::max(100.0f, display.y - top - status_h);
     // The settings hold what the user chose; a small window only squeezes this frame's tiles.
     const TileLayout t = fit_layout(s.settings.layout, width, height);
-    s.tiles = t;
+    s.ui.tiles = t;
     const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoResize;
 
     // Left column: the design problem (in a narrow window a strip that opens it over the view,
     // drawn after the view so it lies on top).
     if (!t.left_collapsed) {
-        s.design_open = false;
+        s.ui.design_open = false;
         begin_tile("Design", {0, top}, {t.left, height}, fixed);
         draw_design_tabs(s, renderer_);
         ImGui::End();
@@ -222,18 +223,19 @@ void StudioApp::layout_and_panels() {
         begin_tile("Design strip", {0, top}, {t.left, height},
                    fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar);
         ImGui::PopStyleVar();
-        const bool clicked = ImGui::Button(s.design_open ? "<###design" : ">###design",
+        const bool clicked = ImGui::Button(s.ui.design_open ? "<###design" : ">###design",
                                            ImVec2(-1.0f, ImGui::GetFrameHeight() * 2.0f));
         record_widget(s, "design strip");
         if (clicked) {
-            s.design_open = !s.design_open;
-            design_just_opened_ = s.design_open;
+            s.ui.design_open = !s.ui.design_open;
+            design_just_opened_ = s.ui.design_open;
         }
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip(s.design_open ? "fold the Experiment, Constraints, Files and Export "
-                                              "panels"
-                                            : "Experiment, Constraints, Files, Export (the window "
-                                              "is narrow: they open over the 3D view)");
+            ImGui::SetTooltip(s.ui.design_open
+                                  ? "fold the Experiment, Constraints, Files and Export "
+                                    "panels"
+                                  : "Experiment, Constraints, Files, Export (the window "
+                                    "is narrow: they open over the 3D view)");
         ImGui::End();
     }
 
@@ -263,7 +265,7 @@ void StudioApp::layout_and_panels() {
     draw_analysis_panel(s);
     ImGui::End();
 
-    if (t.left_collapsed && s.design_open) {
+    if (t.left_collapsed && s.ui.design_open) {
         const float w = std::min(std::max(kMinSide, s.settings.layout.left_px),
                                  std::max(kMinSide, width * 0.75f - t.left));
         ImGui::SetNextWindowPos({t.left, top}, ImGuiCond_Always);

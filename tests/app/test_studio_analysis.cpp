@@ -139,7 +139,7 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     e.evolution.generations = 3;
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "first").string();
+    studio.run.dir_field = (dir / "first").string();
     HeadlessStudio session(studio, 1280, 800);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                  {"wait_run": "finished"},
@@ -148,7 +148,7 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     std::size_t files = 0;
     for (const auto& f : fs::directory_iterator(dir / "first" / "champions"))
         files += f.path().extension() == ".json";
-    const auto& entries = studio.champion_history.entries();
+    const auto& entries = studio.run.champion_history.entries();
     REQUIRE(entries.size() == files);
     const auto first = entries.front();
     testing::run_script_patiently(
@@ -165,15 +165,15 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
     REQUIRE(testing::frames_until(session, [&] { return studio.bodies.compared != nullptr; }));
     CHECK(studio.bodies.compared->id == last.id);
     session.frame();
-    CHECK(studio.status.find("beside it") == 0);  // no stale "simulating ..." line
+    CHECK(studio.ui.status.find("beside it") == 0);  // no stale "simulating ..." line
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
     // Split (the default): the compared body in a pane of its own, right of the first, as wide.
     REQUIRE(split_view_active(studio));
     const auto left_pane = build_view_draw_list(studio).voxel_instance_count();
     {
-        const auto& left = studio.widgets.at("3d view");
-        const auto& right = studio.widgets.at("3d view compared");
-        CHECK(right.frame == studio.frame);
+        const auto& left = studio.ui.widgets.at("3d view");
+        const auto& right = studio.ui.widgets.at("3d view compared");
+        CHECK(right.frame == studio.ui.frame);
         CHECK(right.min.x >= left.max.x);
         CHECK(std::abs((right.max.x - right.min.x) - (left.max.x - left.min.x)) < 2.0f);
         CHECK(compared_view_draw_list(studio).voxel_instance_count() > 0);
@@ -248,24 +248,24 @@ TEST_CASE("studio analysis: champion history, side by side, scatter, time plots,
 
     // The AFPO scatter shows the population.
     run_script(session, json::parse(R"([{"click": "tab Age vs fitness"}, {"frames": 2}])"));
-    const auto it = studio.widgets.find("scatter plot");
-    REQUIRE(it != studio.widgets.end());
-    CHECK(it->second.frame >= studio.frame - 1);
+    const auto it = studio.ui.widgets.find("scatter plot");
+    REQUIRE(it != studio.ui.widgets.end());
+    CHECK(it->second.frame >= studio.ui.frame - 1);
 
     // Another run overlaid on the fitness plot of the same measure.
     auto e2 = e;
     e2.evolution.seed = 11;
     studio.document.reset(e2, "");
-    studio.run_dir_field = (dir / "second").string();
+    studio.run.dir_field = (dir / "second").string();
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_run": "finished"}])"));
     REQUIRE(add_compared_run(studio, (dir / "first").string()));
     CHECK_FALSE(add_compared_run(studio, (dir / "nowhere").string()));
-    REQUIRE(studio.compared_runs.size() == 1);
-    REQUIRE(studio.compared_runs[0].snapshot);
-    CHECK(studio.compared_runs[0].snapshot->history.size() == 3);
+    REQUIRE(studio.run.compared.size() == 1);
+    REQUIRE(studio.run.compared[0].snapshot);
+    CHECK(studio.run.compared[0].snapshot->history.size() == 3);
     session.frame();
-    CHECK(studio.fitness_plot_overlays == 1);
+    CHECK(studio.run.fitness_plot_overlays == 1);
 }
 
 TEST_CASE("studio analysis: exploit flags on the champion and in the population table") {
@@ -274,12 +274,12 @@ TEST_CASE("studio analysis: exploit flags on the champion and in the population 
     e.evolution.generations = 1;
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1280, 800);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_run": "finished"}])"));
     // The live run's members carry the flags evolution computed for them.
-    const auto live = studio.evolution.snapshot();
+    const auto live = studio.run.evolution.snapshot();
     REQUIRE_FALSE(live->population.empty());
     for (const auto& m : live->population)
         CHECK(m.exploits.checked);
@@ -295,13 +295,13 @@ TEST_CASE("studio analysis: exploit flags on the champion and in the population 
     std::ofstream(champion_path) << champion.dump(2);
     REQUIRE(open_run_directory(studio, (dir / "run").string()));
     run_script(session, json::parse(R"([{"frames": 3}])"));
-    REQUIRE(studio.run->has_champion);
-    CHECK(studio.run->champion.exploits == flagged);
+    REQUIRE(studio.run.snapshot->has_champion);
+    CHECK(studio.run.snapshot->champion.exploits == flagged);
     CHECK(exploit_summary(flagged) == "escaped (25 % of the voxels unanchored)");
     CHECK(exploit_letters(flagged) == "E");
-    const std::string cell = "flags #" + std::to_string(studio.run->champion.id);
-    REQUIRE(studio.widgets.count(cell));
-    CHECK(studio.widgets.at(cell).frame >= studio.frame - 1);
+    const std::string cell = "flags #" + std::to_string(studio.run.snapshot->champion.id);
+    REQUIRE(studio.ui.widgets.count(cell));
+    CHECK(studio.ui.widgets.at(cell).frame >= studio.ui.frame - 1);
     // Replayed, the champion's flags are the overlay's.
     testing::run_script_patiently(session, json::parse(R"([{"select": "champion"},
                                                            {"wait_simulation": true}])"));

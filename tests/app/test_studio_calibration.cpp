@@ -199,20 +199,20 @@ TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable
     Studio s;
     s.document.reset(f.experiment, "");
     CHECK_FALSE(load_track(s, track_path));  // no body shown yet
-    CHECK(s.status_is_error);
+    CHECK(s.ui.status_is_error);
     REQUIRE(show_body_file(s, body_path));
     REQUIRE(update_until(s, [&] { return s.bodies.shown != nullptr; }));
 
     // A bad track: one line naming the file and the row; nothing loaded.
     CHECK_FALSE(load_track(s, (dir / "bad.csv").string()));
-    CHECK(s.status.find("bad.csv: row 3") != std::string::npos);
+    CHECK(s.ui.status.find("bad.csv: row 3") != std::string::npos);
     CHECK_FALSE(s.calibration.track);
 
     REQUIRE(load_track(s, track_path));
     REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     REQUIRE(s.calibration.snapshot);
     REQUIRE(s.calibration.snapshot->preview);
-    CHECK(s.status.rfind("track simulated", 0) == 0);
+    CHECK(s.ui.status.rfind("track simulated", 0) == 0);
     CHECK_FALSE(apply_calibration(s));  // nothing fitted yet
 
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
@@ -225,7 +225,7 @@ TEST_CASE("studio: a track onto the body shown, calibrate, Apply as one undoable
     REQUIRE(update_until(s, [&] { return !calibration_running(s); }));
     const auto snap = s.calibration.snapshot;
     REQUIRE(snap->phase == CalibrationPhase::Finished);
-    CHECK(s.status.rfind("calibration done", 0) == 0);
+    CHECK(s.ui.status.rfind("calibration done", 0) == 0);
 
     const double e_before = s.document.experiment().materials[0].physics.youngs_modulus_pa;
     const double a_before = s.document.experiment().actuation.temperature_amplitude_c;
@@ -266,9 +266,9 @@ TEST_CASE("studio session: the Calibrate tab's buttons, the track plots and the 
         {"wait_simulation": true}, {"click": "Load track"}, {"wait_calibration": true},
         {"replay": {"time_s": 0.2, "playing": false}}, {"frames": 2}])"));
     REQUIRE(s.calibration.track);
-    CHECK(s.widgets.count("track plot tip.x"));
-    CHECK(s.widgets.count("track plot tip.z"));
-    CHECK_FALSE(s.widgets.count("track plot tip.y"));  // the track has no y
+    CHECK(s.ui.widgets.count("track plot tip.x"));
+    CHECK(s.ui.widgets.count("track plot tip.z"));
+    CHECK_FALSE(s.ui.widgets.count("track plot tip.y"));  // the track has no y
     // The measured point and the simulated one, drawn over the body at the replay time.
     // (The scene's own markers, the star and the trail's end, come first.)
     const auto list = build_view_draw_list(s);
@@ -305,7 +305,7 @@ TEST_CASE("studio session: the Calibrate tab's buttons, the track plots and the 
         session, nlohmann::json::parse(R"([{"click": "Cancel calibration", "fast": true},
         {"wait_calibration": true}, {"frames": 1}])"));
     CHECK(s.calibration.snapshot->phase == CalibrationPhase::Cancelled);
-    CHECK(s.status.rfind("calibration cancelled", 0) == 0);
+    CHECK(s.ui.status.rfind("calibration cancelled", 0) == 0);
     s.calibration.max_simulations = 40;
     s.calibration.threads = 2;
     s.calibration.fit_on.assign(s.calibration.fit_names.size(), false);
@@ -348,32 +348,32 @@ TEST_CASE("studio: Apply to the live run records a physics rule change in the ru
     REQUIRE(fitted_e != e.materials[0].physics.youngs_modulus_pa);
 
     CHECK_FALSE(apply_calibration_to_run(s));  // no run yet
-    CHECK(s.status.find("no live run") != std::string::npos);
+    CHECK(s.ui.status.find("no live run") != std::string::npos);
 
-    s.run_dir_field = (dir / "run").string();
+    s.run.dir_field = (dir / "run").string();
     REQUIRE(start_run(s));
     REQUIRE(update_until(s, [&] {
-        const auto r = s.evolution.snapshot();
+        const auto r = s.run.evolution.snapshot();
         return r && r->loaded && !r->history.empty();
     }));
     REQUIRE(pause_run(s));
     REQUIRE(apply_calibration_to_run(s));
-    CHECK(s.status.rfind("live run, from generation ", 0) == 0);
-    CHECK(s.status.find("physics: E[passive] 5e+06 -> ") != std::string::npos);
+    CHECK(s.ui.status.rfind("live run, from generation ", 0) == 0);
+    CHECK(s.ui.status.find("physics: E[passive] 5e+06 -> ") != std::string::npos);
     CHECK(s.calibration.applied_run_job == snap->job);
     // The editor shows the run's document: it takes the values too, as one undoable edit.
     CHECK(s.document.experiment().materials[0].physics.youngs_modulus_pa == fitted_e);
     CHECK(s.document.undo_label().find("(live run)") != std::string::npos);
     REQUIRE(resume_run(s));
     REQUIRE(update_until(s, [&] {
-        const auto r = s.evolution.snapshot();
+        const auto r = s.run.evolution.snapshot();
         return r && !r->rule_changes.empty() &&
                static_cast<int>(r->history.size()) > r->rule_changes[0].generation + 1;
     }));
     REQUIRE(stop_run(s));
-    REQUIRE(update_until(s, [&] { return !run_is_live(s.evolution.phase()); }));
+    REQUIRE(update_until(s, [&] { return !run_is_live(s.run.evolution.phase()); }));
 
-    const auto run = s.evolution.snapshot();
+    const auto run = s.run.evolution.snapshot();
     const evo::RunInfo info = evo::read_run_info(run->run_dir);
     REQUIRE(info.rule_changes.size() == 1);
     REQUIRE(info.rule_changes[0].physics);
@@ -428,9 +428,9 @@ TEST_CASE("studio: a calibration the budget cut short says so and Apply labels i
     Studio s;
     // 12: the scan and one short pass of BOBYQA.
     const auto snap = calibrate_fixture(s, f, testing::fresh_dir("calibration-budget"), 12);
-    CHECK_MESSAGE(s.status.rfind("calibration stopped at its simulation budget, not converged",
-                                 0) == 0,
-                  s.status);
+    CHECK_MESSAGE(
+        s.ui.status.rfind("calibration stopped at its simulation budget, not converged", 0) == 0,
+        s.ui.status);
     const auto& warnings = snap->result->warnings;
     CHECK(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
         return w.rfind("not converged", 0) == 0;
@@ -481,24 +481,24 @@ TEST_CASE("studio session: the Calibrate tab browses for its files; exports go t
                                evo::measured_track_to_csv(*f.track, "test track"));
     Studio s;
     s.document.reset(f.experiment, "");
-    s.browser_dir = dir.string();
+    s.library.browser_dir = dir.string();
     HeadlessStudio session(s, 1280, 800);
     run_script(session, nlohmann::json::parse(R"([{"drag": "splitter plot", "by": [0, -300]},
         {"drag": "splitter run", "by": [0, -150]}, {"click": "tab Calibrate"}, {"frames": 2},
         {"click": "Body..."}, {"frames": 1}])"));
-    REQUIRE(s.file_dialog.open);
-    CHECK(s.file_dialog.purpose == FileDialogPurpose::ShowBody);
-    CHECK(s.widgets.count("dialog entry bilayer.body.json"));
-    CHECK_FALSE(s.widgets.count("dialog entry tip.csv"));
+    REQUIRE(s.ui.file_dialog.open);
+    CHECK(s.ui.file_dialog.purpose == FileDialogPurpose::ShowBody);
+    CHECK(s.ui.widgets.count("dialog entry bilayer.body.json"));
+    CHECK_FALSE(s.ui.widgets.count("dialog entry tip.csv"));
     testing::run_script_patiently(
         session, nlohmann::json::parse(R"([{"click": "dialog entry bilayer.body.json"},
         {"wait_simulation": true}, {"frames": 1}, {"click": "Track..."}, {"frames": 1}])"));
     REQUIRE(s.bodies.shown);
     CHECK(s.bodies.shown->label == "body bilayer.body.json");
     CHECK(s.calibration.body_field == (dir / "bilayer.body.json").string());
-    REQUIRE(s.file_dialog.open);
-    CHECK(s.file_dialog.purpose == FileDialogPurpose::LoadTrack);
-    CHECK(s.widgets.count("dialog entry tip.csv"));
+    REQUIRE(s.ui.file_dialog.open);
+    CHECK(s.ui.file_dialog.purpose == FileDialogPurpose::LoadTrack);
+    CHECK(s.ui.widgets.count("dialog entry tip.csv"));
     testing::run_script_patiently(session,
                                   nlohmann::json::parse(R"([{"click": "dialog entry tip.csv"},
         {"wait_calibration": true}, {"frames": 1}])"));
@@ -530,20 +530,20 @@ TEST_CASE("studio: Load track obeys bhm calibrate's budget up front and says a s
     REQUIRE(update_until(s, [&] { return s.bodies.shown != nullptr; }));
 
     CHECK_FALSE(load_track(s, (dir / "far.csv").string()));
-    INFO(s.status);
-    CHECK(s.status_is_error);
-    CHECK(s.status.find("far.csv: time_offset_s: cannot simulate 1000000.2 s: needs ") !=
+    INFO(s.ui.status);
+    CHECK(s.ui.status_is_error);
+    CHECK(s.ui.status.find("far.csv: time_offset_s: cannot simulate 1000000.2 s: needs ") !=
           std::string::npos);
-    CHECK(s.status.find('\n') == std::string::npos);
+    CHECK(s.ui.status.find('\n') == std::string::npos);
     CHECK_FALSE(s.calibration.track);
     CHECK_FALSE(calibration_running(s));
 
     REQUIRE(load_track(s, (dir / "short.csv").string()));
-    CHECK_FALSE(s.status_is_error);
+    CHECK_FALSE(s.ui.status_is_error);
     CHECK(s.calibration.track_warning.find("short.csv: t_s: the track ends at 0.01 s") !=
           std::string::npos);
-    CHECK(s.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
+    CHECK(s.ui.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
     CHECK(update_until(s, [&] { return !calibration_running(s); }));
-    CHECK(s.status.rfind("track simulated", 0) == 0);
-    CHECK(s.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
+    CHECK(s.ui.status.rfind("track simulated", 0) == 0);
+    CHECK(s.ui.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
 }

@@ -34,8 +34,8 @@ namespace fs = std::filesystem;
 namespace {
 
 bool drawn_now(const Studio& s, const std::string& widget) {
-    const auto it = s.widgets.find(widget);
-    return it != s.widgets.end() && it->second.frame == s.frame;
+    const auto it = s.ui.widgets.find(widget);
+    return it != s.ui.widgets.end() && it->second.frame == s.ui.frame;
 }
 
 }  // namespace
@@ -70,15 +70,15 @@ TEST_CASE("studio details: quick keys in a prefilled path field all act, in thei
     // proposed one.
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
-    studio.run_dir_field = "/data/proposed/run-1";
+    studio.run.dir_field = "/data/proposed/run-1";
     HeadlessStudio session(studio, 1024, 700);
     run_script(session, json::parse(R"([{"click": "run dir"},
         {"key": "end", "fast": true}, {"key": "backspace", "fast": true},
         {"key": "backspace", "fast": true}, {"frames": 1}])"));
-    CHECK(studio.run_dir_field == "/data/proposed/run");
+    CHECK(studio.run.dir_field == "/data/proposed/run");
     run_script(session, json::parse(R"([{"key": "ctrl+a", "fast": true}, {"type": "/mine/run"},
                                         {"frames": 1}])"));
-    CHECK(studio.run_dir_field == "/mine/run");
+    CHECK(studio.run.dir_field == "/mine/run");
     // All in one event batch (one slow frame): End, two Backspaces, then "s"; each key is taken
     // by a frame of its own, the character after them.
     auto& keys = session.input().keys;
@@ -90,7 +90,30 @@ TEST_CASE("studio details: quick keys in a prefilled path field all act, in thei
     for (int i = 0; i < 8 && keys.pending(); ++i) session.frame();
     session.frame();
     CHECK_FALSE(keys.pending());
-    CHECK(studio.run_dir_field == "mine/rus");
+    CHECK(studio.run.dir_field == "mine/rus");
+}
+
+TEST_CASE("studio details: Ctrl+A and a path typed in one slow frame replace a prefilled path") {
+    // Issue 39, M2, as a window delivers it: Ctrl goes down as a key of its own, A comes with
+    // the Ctrl bit, both are up again and the new path is typed, all before the next frame (5-20
+    // fps while evolving). The path was spliced into the proposed one.
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    studio.run.dir_field = "/data/proposed/run-1";
+    HeadlessStudio session(studio, 1024, 700);
+    run_script(session, json::parse(R"([{"click": "run dir"}])"));
+    auto& keys = session.input().keys;
+    keys.key(GLFW_KEY_LEFT_CONTROL, GLFW_PRESS, 0);
+    keys.key(GLFW_KEY_A, GLFW_PRESS, GLFW_MOD_CONTROL);
+    keys.key(GLFW_KEY_A, GLFW_RELEASE, GLFW_MOD_CONTROL);
+    keys.key(GLFW_KEY_LEFT_CONTROL, GLFW_RELEASE, GLFW_MOD_CONTROL);
+    for (const char c : std::string("/mine/run"))
+        keys.character(static_cast<unsigned int>(c));
+    for (int i = 0; i < 8 && keys.pending(); ++i)
+        session.frame();
+    session.frame();
+    CHECK_FALSE(keys.pending());
+    CHECK(studio.run.dir_field == "/mine/run");
 }
 
 TEST_CASE("studio details: a second dialog does not show an older error") {
@@ -99,7 +122,7 @@ TEST_CASE("studio details: a second dialog does not show an older error") {
     studio.document.reset(testing::tiny_experiment(), "");
     HeadlessStudio session(studio, 800, 500);
     CHECK_FALSE(open_experiment(studio, (dir / "missing.json").string()));  // an error...
-    REQUIRE(studio.status_is_error);
+    REQUIRE(studio.ui.status_is_error);
     run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.2}])"));
     set_status(studio, "an earlier failure", true);
     request_new_experiment(studio);  // ...then an unrelated question
@@ -110,7 +133,7 @@ TEST_CASE("studio details: a second dialog does not show an older error") {
     studio.path_field.clear();
     run_script(session, json::parse(R"([{"click": "Save changes"}, {"frames": 2}])"));
     CHECK(drawn_now(studio, "dialog error"));
-    CHECK(studio.pending.error.find("file name") != std::string::npos);
+    CHECK(studio.ui.pending.error.find("file name") != std::string::npos);
     run_script(session, json::parse(R"([{"click": "Cancel"}, {"frames": 2}])"));
     request_new_experiment(studio);  // asked again: clean
     run_script(session, json::parse(R"([{"frames": 3}])"));
@@ -131,7 +154,7 @@ TEST_CASE("studio details: the exploit flags can be rejected from the Experiment
         {"reject tentacle", "fitness.constraints.reject_tentacle"}};
     for (const auto& [name, path] : controls) {
         INFO(name);
-        REQUIRE(studio.widgets.count(name));
+        REQUIRE(studio.ui.widgets.count(name));
         run_script(session, json::array({{{"click", name}}, {{"frames", 1}}}));
         CHECK(studio.document.undo_label() == std::string("set ") + path);
     }
@@ -151,20 +174,20 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     e.evolution.novelty.archive_capacity = 12;
     e.evolution.generations = 2;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 800);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                  {"wait_run": "finished"},
                                  {"wait_simulation": true},
                                  {"click": "tab Population"}, {"frames": 2}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     REQUIRE(!run->population.empty());
     for (const auto& m : run->population) CHECK(m.novelty >= 0.0);
     const std::string first = "novelty #" + std::to_string(run->population.front().id);
     CHECK(drawn_now(studio, first));
 
     run_script(session, json::parse(R"([{"click": "tab Champions"}, {"frames": 2}])"));
-    const auto& entries = studio.champion_history.entries();
+    const auto& entries = studio.run.champion_history.entries();
     REQUIRE(!entries.empty());
     const auto& oldest = entries.front();
     const std::string cell = "champion fitness gen " + std::to_string(oldest.generation);
@@ -174,10 +197,10 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     // The click starts its simulation; a tiny body's can finish within the frame, so the status
     // says it is simulating that champion or already shows it.
     const std::string generation = "of generation " + std::to_string(oldest.generation);
-    const bool simulating = studio.status.find("simulating the champion " + generation) == 0;
-    const bool showing = studio.status.find("showing champion #") == 0 &&
-                         studio.status.find(generation) != std::string::npos;
-    CHECK_MESSAGE((simulating || showing), studio.status);
+    const bool simulating = studio.ui.status.find("simulating the champion " + generation) == 0;
+    const bool showing = studio.ui.status.find("showing champion #") == 0 &&
+                         studio.ui.status.find(generation) != std::string::npos;
+    CHECK_MESSAGE((simulating || showing), studio.ui.status);
 
     // The CLI's geometry exports from the Export tab: a mesh at rest and deformed, a series.
     testing::run_script_patiently(session, json::parse(R"([{"wait_simulation": true},
@@ -186,7 +209,7 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     studio.exports.mesh_path = (dir / "rest.stl").string();
     studio.exports.vtk_folder = (dir / "paraview").string();
     run_script(session, json::parse(R"([{"click": "Save mesh"}, {"frames": 1}])"));
-    REQUIRE_MESSAGE(fs::exists(dir / "rest.stl"), studio.status);
+    REQUIRE_MESSAGE(fs::exists(dir / "rest.stl"), studio.ui.status);
     const auto stl_size = fs::file_size(dir / "rest.stl");
     CHECK(stl_size > 84);
     CHECK((stl_size - 84) % 50 == 0);  // binary STL: header, count, 50 bytes a triangle
@@ -194,11 +217,11 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     run_script(session, json::parse(R"([{"click": "mesh deformed"}, {"click": "Save mesh"},
                                         {"frames": 1}])"));
     CHECK(studio.exports.mesh_deformed);
-    CHECK_MESSAGE(studio.status.find("at t = 0.3 s") != std::string::npos, studio.status);
+    CHECK_MESSAGE(studio.ui.status.find("at t = 0.3 s") != std::string::npos, studio.ui.status);
     CHECK(fs::exists(dir / "deformed.obj"));
     CHECK(fs::exists(dir / "deformed.mtl"));
     run_script(session, json::parse(R"([{"click": "Write ParaView series"}, {"frames": 1}])"));
-    CHECK_MESSAGE(fs::exists(dir / "paraview" / "series.pvd"), studio.status);
+    CHECK_MESSAGE(fs::exists(dir / "paraview" / "series.pvd"), studio.ui.status);
     CHECK(fs::exists(dir / "paraview" / "com_path.vtp"));
     if (!app::find_on_path("ffmpeg")) {
         MESSAGE("no ffmpeg on PATH: the video export is not tried");
@@ -210,8 +233,8 @@ TEST_CASE("studio details: novelty column, Champions rows replay from any cell, 
     studio.exports.frames_fps = 10.0;
     run_script(session, json::parse(R"([{"click": "Write video"}, {"frames": 8}])"));
     CHECK_FALSE(studio.exports.frame_job.active);
-    CHECK_MESSAGE(fs::exists(dir / "replay.gif"), studio.status);
-    CHECK_MESSAGE(studio.status.find("video written (5 frames)") == 0, studio.status);
+    CHECK_MESSAGE(fs::exists(dir / "replay.gif"), studio.ui.status);
+    CHECK_MESSAGE(studio.ui.status.find("video written (5 frames)") == 0, studio.ui.status);
 }
 
 TEST_CASE("studio details: idle, the window draws only after a change or once a second") {
@@ -239,7 +262,7 @@ TEST_CASE("studio details: the splitters show a grip at rest") {
     for (const char* name : {"splitter left", "splitter right", "splitter replay", "splitter run",
                              "splitter plot"}) {
         INFO(name);
-        const WidgetRect r = studio.widgets.at(name);
+        const WidgetRect r = studio.ui.widgets.at(name);
         const int x = static_cast<int>(std::lround((r.min.x + r.max.x) * 0.5f));
         const int y = static_cast<int>(std::lround((r.min.y + r.max.y) * 0.5f));
         // The middle dot is darker than the window's background beside the strip.
@@ -257,12 +280,12 @@ TEST_CASE("studio details: an experiment field's tooltip is the field table's") 
     run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2}])"));
     auto hover = [&](const std::string& widget) {
         REQUIRE(drawn_now(studio, widget));
-        const auto& r = studio.widgets.at(widget);
-        studio.shown_tooltip.clear();
+        const auto& r = studio.ui.widgets.at(widget);
+        studio.ui.shown_tooltip.clear();
         session.input().mouse = {(r.min.x + r.max.x) / 2, (r.min.y + r.max.y) / 2};
         session.frame();
         session.frame();
-        return studio.shown_tooltip;
+        return studio.ui.shown_tooltip;
     };
     auto toggle = [&](const char* header) {
         run_script(session, json::array({{{"click", header}}, {{"frames", 2}}}));

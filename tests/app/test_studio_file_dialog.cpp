@@ -144,26 +144,26 @@ TEST_CASE("studio file dialog: a typed path is still taken") {
 TEST_CASE("studio file dialog: Open... and Save As... from the panel, with the keyboard only") {
     const auto dir = make_tree("dialog-ui");
     Studio studio;
-    studio.browser_dir = dir.string();
+    studio.library.browser_dir = dir.string();
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 1},
                                         {"click": "Open..."}, {"frames": 1}])"));
-    REQUIRE(studio.file_dialog.open);
-    CHECK(studio.widgets.at("file dialog").frame == studio.frame);
-    CHECK(studio.widgets.count("dialog entry x.json"));
-    CHECK_FALSE(studio.widgets.count("dialog entry notes.txt"));
+    REQUIRE(studio.ui.file_dialog.open);
+    CHECK(studio.ui.widgets.at("file dialog").frame == studio.ui.frame);
+    CHECK(studio.ui.widgets.count("dialog entry x.json"));
+    CHECK_FALSE(studio.ui.widgets.count("dialog entry notes.txt"));
     // Shortcuts do not act behind the dialog: Ctrl+N here would ask about a new experiment.
     run_script(session, json::parse(R"([{"key": "ctrl+n"}, {"key": "down"}, {"key": "down"},
                                         {"key": "down"}, {"key": "enter"}, {"frames": 2}])"));
-    CHECK_FALSE(studio.file_dialog.open);
+    CHECK_FALSE(studio.ui.file_dialog.open);
     CHECK(studio.document.experiment().name == "x");
     CHECK(studio.document.path() == (dir / "x.json").string());
 
     // Save As...: the dialog proposes the file's name; a new one typed, Enter saves there.
     run_script(session, json::parse(R"([{"click": "Save As..."}, {"frames": 1}])"));
-    REQUIRE(studio.file_dialog.open);
-    CHECK(studio.file_dialog.name == "x.json");
-    studio.file_dialog.name = "copy";
+    REQUIRE(studio.ui.file_dialog.open);
+    CHECK(studio.ui.file_dialog.name == "x.json");
+    studio.ui.file_dialog.name = "copy";
     run_script(session, json::parse(R"([{"key": "enter"}, {"frames": 1}])"));
     CHECK(fs::exists(dir / "copy.json"));
     CHECK(studio.document.path() == (dir / "copy.json").string());
@@ -171,43 +171,43 @@ TEST_CASE("studio file dialog: Open... and Save As... from the panel, with the k
 
     // Escape closes it without a choice.
     run_script(session, json::parse(R"([{"click": "Open..."}, {"key": "escape"}, {"frames": 1}])"));
-    CHECK_FALSE(studio.file_dialog.open);
+    CHECK_FALSE(studio.ui.file_dialog.open);
     CHECK(studio.document.path() == (dir / "copy.json").string());
 
     // Open run... and Compare... fill the Run panel's fields through the same dialog.
     show_file_dialog(studio, FileDialogPurpose::CompareRun);
-    file_dialog_go(studio.file_dialog, dir.string());
+    file_dialog_go(studio.ui.file_dialog, dir.string());
     run_script(session, json::parse(R"([{"key": "down"}, {"key": "down"}, {"key": "enter"},
                                         {"frames": 1}])"));
-    CHECK_FALSE(studio.file_dialog.open);
-    CHECK(studio.compare_field == (dir / "run1").string());
+    CHECK_FALSE(studio.ui.file_dialog.open);
+    CHECK(studio.run.compare_field == (dir / "run1").string());
 }
 
 TEST_CASE("studio file dialog: a held Down moves on with the key repeat, shortcuts act once") {
     const auto dir = make_tree("dialog-hold");
     Studio studio;
-    studio.browser_dir = dir.string();
+    studio.library.browser_dir = dir.string();
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 1},
                                         {"click": "Open..."}, {"frames": 1}])"));
-    REQUIRE(studio.file_dialog.open);
-    file_dialog_go(studio.file_dialog, dir.string());
-    const auto listed = names(studio.file_dialog);
+    REQUIRE(studio.ui.file_dialog.open);
+    file_dialog_go(studio.ui.file_dialog, dir.string());
+    const auto listed = names(studio.ui.file_dialog);
     const auto x = std::find(listed.begin(), listed.end(), "x.json");
     REQUIRE(x != listed.end());
     const int target = static_cast<int>(x - listed.begin());
-    const int start = studio.file_dialog.selected;
+    const int start = studio.ui.file_dialog.selected;
     REQUIRE(target - start >= 3);  // a/, b/, run1/ come first
     // Down held for n of the system's repeats after its press: n + 1 rows down.
     json hold = json::array({{{"key", "down"}, {"hold", target - start - 1}}});
     run_script(session, hold);
-    CHECK(studio.file_dialog.selected == target);
+    CHECK(studio.ui.file_dialog.selected == target);
     hold = json::array({{{"key", "up"}, {"hold", 1}}});
     run_script(session, hold);
-    CHECK(studio.file_dialog.selected == target - 2);
+    CHECK(studio.ui.file_dialog.selected == target - 2);
     run_script(session, json::parse(R"([{"key": "down"}, {"key": "down"}, {"key": "enter"},
                                         {"frames": 1}])"));
-    CHECK_FALSE(studio.file_dialog.open);
+    CHECK_FALSE(studio.ui.file_dialog.open);
     CHECK(studio.document.experiment().name == "x");
 
     // Behind no dialog a held shortcut acts once per press: Ctrl+Z held undoes one edit.

@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 namespace {
 
 bool on_screen(const Studio& s, const std::string& widget) {
-    const auto it = s.widgets.find(widget);
-    return it != s.widgets.end() && it->second.frame >= s.frame - 1;
+    const auto it = s.ui.widgets.find(widget);
+    return it != s.ui.widgets.end() && it->second.frame >= s.ui.frame - 1;
 }
 
 std::string read_text(const fs::path& path) {
@@ -102,7 +102,7 @@ TEST_CASE("studio integrity: New, Open, recent files and Ctrl+Q ask before unsav
     // Ctrl+Q asks; the window's close button goes the same way (request_quit).
     run_script(session, json::parse(R"([{"set": "simulation.evaluate_s", "value": 0.3},
                                         {"key": "ctrl+q"}, {"frames": 2}])"));
-    CHECK_FALSE(studio.quit_requested);
+    CHECK_FALSE(studio.ui.quit_requested);
     CHECK(asking_unsaved(studio));
     run_script(session, json::parse(R"([{"click": "Cancel"}])"));
     // The window's close button (what the GLFW runner calls): the window stays open and asks.
@@ -110,7 +110,7 @@ TEST_CASE("studio integrity: New, Open, recent files and Ctrl+Q ask before unsav
     run_script(session, json::parse(R"([{"frames": 2}])"));
     CHECK(asking_unsaved(studio));
     run_script(session, json::parse(R"([{"click": "Discard changes"}])"));
-    CHECK(studio.quit_requested);
+    CHECK(studio.ui.quit_requested);
 }
 
 TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experiment") {
@@ -119,7 +119,7 @@ TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experi
     e.evolution.generations = 40;
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_generations": 1},
@@ -135,10 +135,10 @@ TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experi
     CHECK_FALSE(editing_run_document(studio));
     CHECK_FALSE(rules_differ_from_run(studio));
     CHECK_FALSE(apply_rules_to_run(studio));
-    const int paused_at = studio.evolution.snapshot()->generation;
+    const int paused_at = studio.run.evolution.snapshot()->generation;
     testing::run_script_patiently(
         session, json::array({{{"click", "Resume"}}, {{"wait_generations", paused_at + 1}}}));
-    auto run = studio.evolution.snapshot();
+    auto run = studio.run.evolution.snapshot();
     CHECK(run->experiment.fitness.measure == evo::FitnessMeasure::BendAngleDeg);
     CHECK(run->rule_changes.empty());
     CHECK(read_text(dir / "run" / "run.json").find("com_final_3d") == std::string::npos);
@@ -147,17 +147,17 @@ TEST_CASE("studio integrity: quitting mid-run asks, the live run owns its experi
     // the generation in progress is saved, then quits.
     run_script(session, json::parse(R"([{"key": "ctrl+q"}, {"frames": 2}])"));
     CHECK(asking_quit_run(studio));
-    CHECK_FALSE(studio.quit_requested);
+    CHECK_FALSE(studio.ui.quit_requested);
     run_script(session, json::parse(R"([{"click": "Cancel"}])"));
-    CHECK(run_is_live(studio.evolution.phase()));
-    CHECK(studio.evolution.phase() != RunPhase::Paused);
-    const int before_quit = studio.evolution.snapshot()->generation;
+    CHECK(run_is_live(studio.run.evolution.phase()));
+    CHECK(studio.run.evolution.phase() != RunPhase::Paused);
+    const int before_quit = studio.run.evolution.snapshot()->generation;
     testing::run_script_patiently(session, json::parse(R"([{"key": "ctrl+q"},
                                  {"click": "Finish generation, then quit"},
                                  {"wait_run": "paused"},
                                  {"frames": 2}])"));
-    CHECK(studio.quit_requested);
-    CHECK(studio.evolution.snapshot()->generation >= before_quit + 1);
+    CHECK(studio.ui.quit_requested);
+    CHECK(studio.run.evolution.snapshot()->generation >= before_quit + 1);
 }
 
 TEST_CASE(
@@ -170,15 +170,15 @@ TEST_CASE(
     e.evolution.generations = 7;
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     run_script(session, json::parse(R"([{"click": "Start"}])"));
     // The frame after Start: the run's own rules, budget and folder, no stale warning.
-    REQUIRE(studio.run);
-    CHECK(studio.run->loaded);
-    CHECK(studio.run->experiment == e);
-    CHECK(studio.run->generation_budget == 7);
-    CHECK(studio.run->run_dir == fs::absolute(dir / "run").lexically_normal().string());
+    REQUIRE(studio.run.snapshot);
+    CHECK(studio.run.snapshot->loaded);
+    CHECK(studio.run.snapshot->experiment == e);
+    CHECK(studio.run.snapshot->generation_budget == 7);
+    CHECK(studio.run.snapshot->run_dir == fs::absolute(dir / "run").lexically_normal().string());
     CHECK(editing_run_document(studio));
     CHECK_FALSE(rules_differ_from_run(studio));
     // Ctrl+Q now: the question promises no checkpoint (none exists before generation 0 ends).
@@ -190,7 +190,7 @@ TEST_CASE(
     answer_quit_run(studio, QuitRunAnswer::Cancel);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Stop"},
                                                            {"wait_run": "stopped"}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     CHECK(run->generation == 0);
     CHECK(run->message.find("no checkpoint") != std::string::npos);
     CHECK(run->message.find("stopped at a checkpoint") == std::string::npos);
@@ -206,44 +206,44 @@ TEST_CASE(
     e.evolution.generations = 3;
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_generations": 1}])"));
     // Pause inside generation 1, once some of its simulations are done. Until then the Run
     // panel's figures move inside the generation: elapsed grows, the progress bar is shown.
-    const auto first = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
-                                    studio.evolution.phase());
+    const auto first = live_figures(*studio.run.evolution.snapshot(),
+                                    studio.run.evolution.progress(), studio.run.evolution.phase());
     // Until the count has moved on from `first`: by the time the wait for generation 1 ends,
     // some of its simulations may be done already (more of them the more loaded the machine).
     REQUIRE(testing::frames_until(session, [&] {
-        return live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
-                            studio.evolution.phase())
+        return live_figures(*studio.run.evolution.snapshot(), studio.run.evolution.progress(),
+                            studio.run.evolution.phase())
                    .simulations > first.simulations;
     }));
     session.frame();
-    const auto later = live_figures(*studio.evolution.snapshot(), studio.evolution.progress(),
-                                    studio.evolution.phase());
-    CHECK(studio.evolution.snapshot()->generation == 1);
+    const auto later = live_figures(*studio.run.evolution.snapshot(),
+                                    studio.run.evolution.progress(), studio.run.evolution.phase());
+    CHECK(studio.run.evolution.snapshot()->generation == 1);
     CHECK(later.elapsed_s > first.elapsed_s);
     CHECK(later.simulations > first.simulations);
     CHECK(later.eta_s > 0.0);
     CHECK(on_screen(studio, "generation progress"));
     run_script(session, json::parse(R"([{"click": "Pause"}])"));
-    CHECK(studio.evolution.phase() == RunPhase::Paused);  // the frame after the click
-    const auto frozen = studio.evolution.progress();
+    CHECK(studio.run.evolution.phase() == RunPhase::Paused);  // the frame after the click
+    const auto frozen = studio.run.evolution.progress();
     MESSAGE("paused in generation " << frozen.generation << " after " << frozen.simulations_done
                                     << " / " << frozen.simulations_total << " simulations");
     const auto paused_at = std::chrono::steady_clock::now();
     while (std::chrono::steady_clock::now() - paused_at < std::chrono::milliseconds(1500))
         session.frame();
-    const auto still = studio.evolution.progress();
+    const auto still = studio.run.evolution.progress();
     CHECK(still.simulations_done == frozen.simulations_done);  // nothing moved while paused
     CHECK(still.generation_s == doctest::Approx(frozen.generation_s).epsilon(0.05));
-    CHECK(studio.evolution.snapshot()->generation == 1);
+    CHECK(studio.run.evolution.snapshot()->generation == 1);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Resume"},
                                                            {"wait_run": "finished"}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
 
     evo::RunOptions options;  // the twin: in memory, never paused
     evo::EvolutionRun twin(e, options);
@@ -259,9 +259,9 @@ TEST_CASE(
     studio.document.reset(testing::tiny_experiment({4, 4, 2}), "");
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
-    REQUIRE(studio.run);
-    CHECK(studio.run->loaded);
-    CHECK(studio.run->history.size() == 3);
+    REQUIRE(studio.run.snapshot);
+    CHECK(studio.run.snapshot->loaded);
+    CHECK(studio.run.snapshot->history.size() == 3);
     CHECK(studio.document.experiment() == e);  // the editor took the run's own experiment
 }
 
@@ -270,25 +270,25 @@ TEST_CASE("studio integrity: a tiny resize does not squeeze the layout for good,
     studio.document.reset(testing::tiny_experiment(), "");
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"frames": 2}])"));
-    const TileLayout before = studio.tiles;
+    const TileLayout before = studio.ui.tiles;
     const PanelLayout preferred = studio.settings.layout;
     run_script(session, json::parse(R"([{"resize": [300, 200]}, {"frames": 3}])"));
-    CHECK(studio.tiles.right < before.right);
+    CHECK(studio.ui.tiles.right < before.right);
     run_script(session, json::parse(R"([{"resize": [1280, 800]}, {"frames": 2}])"));
-    CHECK(studio.tiles == before);
+    CHECK(studio.ui.tiles == before);
     CHECK(studio.settings.layout == preferred);
 
     // The right column widens from its edge; the replay panel grows from its top edge, bounded.
     run_script(session, json::parse(R"([{"drag": "splitter right", "by": [-100, 0]}])"));
-    CHECK(studio.tiles.right == doctest::Approx(before.right + 100.0f).epsilon(0.01));
+    CHECK(studio.ui.tiles.right == doctest::Approx(before.right + 100.0f).epsilon(0.01));
     run_script(session, json::parse(R"([{"drag": "splitter replay", "by": [0, -3000]},
                                         {"frames": 5}])"));
-    const float area = studio.tiles.view + studio.tiles.bottom;
-    CHECK(studio.tiles.view >= kMinView - 0.5f);
-    CHECK(studio.tiles.bottom <= area - kMinView + 0.5f);
-    const TileLayout settled = studio.tiles;
+    const float area = studio.ui.tiles.view + studio.ui.tiles.bottom;
+    CHECK(studio.ui.tiles.view >= kMinView - 0.5f);
+    CHECK(studio.ui.tiles.bottom <= area - kMinView + 0.5f);
+    const TileLayout settled = studio.ui.tiles;
     run_script(session, json::parse(R"([{"frames": 5}])"));
-    CHECK(studio.tiles == settled);  // it stays where it was released
+    CHECK(studio.ui.tiles == settled);  // it stays where it was released
 }
 
 TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, presets are kept") {
@@ -301,14 +301,14 @@ TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, pre
     const std::string shipped = read_text(presets / "quick-demo.json");
 
     Studio studio;
-    studio.presets_dir = presets.string();
+    studio.library.presets_dir = presets.string();
     auto e = testing::tiny_experiment();
     e.evolution.generations = 1;
     studio.document.reset(e, "");
     HeadlessStudio session(studio, 1280, 800);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_run": "finished"}])"));
-    const auto run_dir = studio.evolution.snapshot()->run_dir;
+    const auto run_dir = studio.run.evolution.snapshot()->run_dir;
     CHECK(fs::path(run_dir).is_absolute());
     CHECK(run_dir.rfind((dir / "data" / "bhm-studio" / "runs").string(), 0) == 0);
     CHECK(fs::exists(fs::path(run_dir) / "fitness.csv"));
@@ -321,8 +321,8 @@ TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, pre
     run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.3},
                                         {"key": "ctrl+s"}])"));
     CHECK(read_text(presets / "quick-demo.json") == shipped);
-    CHECK(studio.status_is_error);
-    CHECK(studio.status.find("shipped preset") != std::string::npos);
+    CHECK(studio.ui.status_is_error);
+    CHECK(studio.ui.status.find("shipped preset") != std::string::npos);
     CHECK(studio.path_field.find("quick-demo-edited.json") != std::string::npos);
     CHECK(studio.document.dirty());
     run_script(session, json::parse(R"([{"click": "tab Experiment"}, {"frames": 2},
@@ -332,13 +332,13 @@ TEST_CASE("studio integrity: runs go to the data folder, paths are absolute, pre
     CHECK(read_text(presets / "quick-demo.json") == shipped);
 
     // The file browser walks folders and opens experiment files (asking first when modified).
-    studio.browser_dir = dir.string();
+    studio.library.browser_dir = dir.string();
     run_script(session, json::parse(R"([{"set": "simulation.settle_s", "value": 0.25},
                                         {"click": "tab Files"}, {"frames": 3},
                                         {"click": "folder presets"}, {"frames": 3}])"));
-    CHECK(studio.browser_dir == presets.string());
+    CHECK(studio.library.browser_dir == presets.string());
     run_script(session, json::parse(R"([{"click": "file quick-demo.json"}, {"frames": 2}])"));
-    INFO("status: " << studio.status << ", dirty " << studio.document.dirty() << ", path "
+    INFO("status: " << studio.ui.status << ", dirty " << studio.document.dirty() << ", path "
                     << studio.document.path());
     CHECK(asking_unsaved(studio));
     run_script(session, json::parse(R"([{"click": "Discard changes"}])"));
@@ -406,8 +406,8 @@ TEST_CASE("studio integrity: viewing a run over a saved document never lets Save
     CHECK(studio.document.experiment().name == "the run");
     CHECK(studio.document.path().empty());
     CHECK(studio.path_field.empty());
-    CHECK_MESSAGE(studio.status.find(my_file + " is unchanged") != std::string::npos,
-                  studio.status);
+    CHECK_MESSAGE(studio.ui.status.find(my_file + " is unchanged") != std::string::npos,
+                  studio.ui.status);
     // Save asks for a name rather than writing over the file the editor held before.
     CHECK_FALSE(save_experiment(studio));
     CHECK(read_text(my_file) == saved_text);

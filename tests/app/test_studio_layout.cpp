@@ -24,8 +24,8 @@ using nlohmann::json;
 namespace {
 
 bool drawn_now(const Studio& s, const std::string& widget) {
-    const auto it = s.widgets.find(widget);
-    return it != s.widgets.end() && it->second.frame == s.frame;
+    const auto it = s.ui.widgets.find(widget);
+    return it != s.ui.widgets.end() && it->second.frame == s.ui.frame;
 }
 
 }  // namespace
@@ -62,15 +62,15 @@ TEST_CASE("studio layout: a small window keeps the 3D view large and folds the l
         // It was 170 x 120 px at 800 x 500 and a 20 px strip at 640 x 400 (issue 25 item 7).
         CHECK(studio.view.size_px.x >= 0.45f * w);
         CHECK(studio.view.size_px.y >= 0.4f * h);
-        CHECK(studio.tiles.left_collapsed);
+        CHECK(studio.ui.tiles.left_collapsed);
         CHECK(drawn_now(studio, "design strip"));
         CHECK_FALSE(drawn_now(studio, "tab Experiment"));
         // The strip opens the Experiment, Constraints, Files and Export tabs over the view...
         run_script(session, json::parse(R"([{"click": "design strip"}, {"frames": 2}])"));
-        REQUIRE(studio.design_open);
+        REQUIRE(studio.ui.design_open);
         REQUIRE(drawn_now(studio, "design panel"));
         CHECK(drawn_now(studio, "tab Experiment"));
-        const WidgetRect panel = studio.widgets.at("design panel");
+        const WidgetRect panel = studio.ui.widgets.at("design panel");
         CHECK(panel.max.x - panel.min.x >= kMinSide);
         CHECK(panel.max.x <= static_cast<float>(w));
         // ...and they work there: the Constraints tab paints a face.
@@ -79,16 +79,16 @@ TEST_CASE("studio layout: a small window keeps the 3D view large and folds the l
         CHECK(studio.document.experiment().boundary.faces[static_cast<int>(evo::Face::XMax)] ==
               evo::BoundaryKind::Fixed);
         run_script(session, json::parse(R"([{"click": "design strip"}, {"frames": 2}])"));
-        CHECK_FALSE(studio.design_open);
+        CHECK_FALSE(studio.ui.design_open);
         CHECK_FALSE(drawn_now(studio, "design panel"));
     }
     // A wide window: the column is there, at its preferred width.
     Studio wide;
     HeadlessStudio big(wide, 1280, 800);
     run_script(big, json::parse(R"([{"frames": 2}])"));
-    CHECK_FALSE(wide.tiles.left_collapsed);
+    CHECK_FALSE(wide.ui.tiles.left_collapsed);
     CHECK(drawn_now(wide, "tab Experiment"));
-    CHECK(wide.tiles.left == wide.settings.layout.left_px);
+    CHECK(wide.ui.tiles.left == wide.settings.layout.left_px);
 }
 
 TEST_CASE("studio layout: tick labels keep their distance on any axis length") {
@@ -128,9 +128,9 @@ TEST_CASE("studio layout: several measures get one tab each, each plot keeps its
     run->generation = 9;
     run->generation_budget = 9;
     // Shown as a watched run directory that is never re-read.
-    studio.showing_run_directory = true;
-    studio.last_directory_check = std::chrono::steady_clock::now() + std::chrono::hours(1);
-    studio.run = run;
+    studio.run.showing_directory = true;
+    studio.run.last_directory_check = std::chrono::steady_clock::now() + std::chrono::hours(1);
+    studio.run.snapshot = run;
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"frames": 3}])"));
     // Three plots stacked had 30 px each (issue 25 item 7): now three tabs, the newest measure's
@@ -142,7 +142,7 @@ TEST_CASE("studio layout: several measures get one tab each, each plot keeps its
     CHECK_FALSE(drawn_now(studio, "fitness plot bend_angle_deg"));
     const float min_height = kMinPlotFonts * 15.0f * 0.99f;  // DejaVu Sans at 15 px
     const auto plot_height = [&](const char* name) {
-        const WidgetRect r = studio.widgets.at(name);
+        const WidgetRect r = studio.ui.widgets.at(name);
         return r.max.y - r.min.y;
     };
     CHECK(plot_height("fitness plot com_max_3d") >= min_height);
@@ -165,20 +165,20 @@ TEST_CASE("studio layout: the Run panel does not move when the run finishes") {
     auto e = testing::tiny_experiment();
     e.evolution.generations = 3;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"click": "Start"}])"));
     REQUIRE(
         testing::frames_until(session, [&] { return drawn_now(studio, "generation progress"); }));
     session.frame();
     REQUIRE(drawn_now(studio, "run folder"));
-    const WidgetRect running = studio.widgets.at("run folder");
-    const WidgetRect fields_running = studio.widgets.at("run dir");
+    const WidgetRect running = studio.ui.widgets.at("run folder");
+    const WidgetRect fields_running = studio.ui.widgets.at("run dir");
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"},
                                                            {"frames": 2}])"));
     REQUIRE(drawn_now(studio, "run folder"));
-    CHECK(studio.widgets.at("run folder").min.y == running.min.y);
-    CHECK(studio.widgets.at("run dir").min.y == fields_running.min.y);
+    CHECK(studio.ui.widgets.at("run folder").min.y == running.min.y);
+    CHECK(studio.ui.widgets.at("run dir").min.y == fields_running.min.y);
 }
 
 TEST_CASE("studio layout: the view names the body being simulated, not the one still shown") {
@@ -225,12 +225,12 @@ TEST_CASE("studio layout: at 900 x 600 the Analysis tile shows more than its tab
     HeadlessStudio session(studio, 900, 600);
     run_script(session, json::parse(R"([{"frames": 3}, {"click": "tab FEM"}, {"frames": 2}])"));
     REQUIRE(drawn_now(studio, "analysis panel"));
-    const WidgetRect tile = studio.widgets.at("analysis panel");
+    const WidgetRect tile = studio.ui.widgets.at("analysis panel");
     const float lines = (tile.max.y - tile.min.y) / ImGui::GetTextLineHeightWithSpacing();
     CHECK_MESSAGE(lines >= 8.0f, "the Analysis tile is " << lines << " lines high");
-    CHECK(studio.tiles.population >= kMinPopulation);
-    CHECK(studio.tiles.run >= kMinRun);
-    CHECK(studio.tiles.plot >= kMinPlot);
+    CHECK(studio.ui.tiles.population >= kMinPopulation);
+    CHECK(studio.ui.tiles.run >= kMinRun);
+    CHECK(studio.ui.tiles.plot >= kMinPlot);
     // The view keeps its share all the same.
     CHECK(studio.view.size_px.y >= 0.4f * 600.0f);
 }

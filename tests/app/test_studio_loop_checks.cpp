@@ -37,8 +37,8 @@ evo::LoopCheck made_check(evo::LoopCheckOutcome outcome, double worst, int gener
 }
 
 bool drawn_now(const Studio& s, const std::string& widget) {
-    const auto it = s.widgets.find(widget);
-    return it != s.widgets.end() && it->second.frame == s.frame;
+    const auto it = s.ui.widgets.find(widget);
+    return it != s.ui.widgets.end() && it->second.frame == s.ui.frame;
 }
 
 //! PATH without CalculiX for as long as it lives (ccx_available asks the shell for `ccx`).
@@ -135,7 +135,7 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
     e.evolution.generations = 30;  // stopped long before
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 1400);  // tall: the editor's Evolution section opened
     testing::run_script_patiently(session,
                                   json::parse(R"([{"click": "header Evolution"}, {"frames": 2},
@@ -158,10 +158,11 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
         PathWithoutCcx no_ccx(dir / "empty-bin");
         CHECK_THROWS_WITH_AS(run_script(session, json::parse(R"([{"apply_rules": true}])")),
                              doctest::Contains("CalculiX (ccx) is not on the PATH"), ScriptError);
-        CHECK(studio.status_is_error);
-        CHECK_MESSAGE(studio.status.find("continuum checks were not changed") != std::string::npos,
-                      studio.status);
-        CHECK(studio.evolution.sent_verify() == nullptr);
+        CHECK(studio.ui.status_is_error);
+        CHECK_MESSAGE(
+            studio.ui.status.find("continuum checks were not changed") != std::string::npos,
+            studio.ui.status);
+        CHECK(studio.run.evolution.sent_verify() == nullptr);
         CHECK(verify_differs_from_run(studio));  // the edits wait in the editor
     }
     // Checks off, policy reject: nothing needs CalculiX, and the run takes it between
@@ -170,24 +171,24 @@ TEST_CASE("studio loop checks: the checks' settings go to the live run as a rule
                                         {"set": "evolution.verify.policy", "value": "reject"},
                                         {"apply_rules": true},
                                         {"frames": 2}])"));
-    INFO("status: " << studio.status);
-    CHECK_FALSE(studio.status_is_error);
-    REQUIRE(studio.evolution.sent_verify());
-    CHECK(studio.evolution.sent_verify()->policy == evo::VerifyPolicy::Reject);
+    INFO("status: " << studio.ui.status);
+    CHECK_FALSE(studio.ui.status_is_error);
+    REQUIRE(studio.run.evolution.sent_verify());
+    CHECK(studio.run.evolution.sent_verify()->policy == evo::VerifyPolicy::Reject);
     CHECK_FALSE(rules_differ_from_run(studio));
     CHECK_FALSE(drawn_now(studio, "edited rules"));
     CHECK_FALSE(drawn_now(studio, "Apply checks to run"));
     // Nothing left to send: the script step says so rather than pass silently.
     CHECK_THROWS_AS(run_script(session, json::parse(R"([{"apply_rules": true}])")), ScriptError);
     CHECK(drawn_now(studio, "loop checks pending"));
-    const int at = studio.evolution.snapshot()->generation;
-    CHECK(studio.evolution.snapshot()->experiment.evolution.verify.policy ==
+    const int at = studio.run.evolution.snapshot()->generation;
+    CHECK(studio.run.evolution.snapshot()->experiment.evolution.verify.policy ==
           evo::VerifyPolicy::Flag);  // not before the next generation
     // The frozen generation finishes under the old settings; the next one is under the new.
     testing::run_script_patiently(
         session,
         json::array({{{"click", "Resume"}}, {{"wait_generations", at + 2}}, {{"frames", 2}}}));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     CHECK(run->experiment.evolution.verify.policy == evo::VerifyPolicy::Reject);
     REQUIRE_FALSE(run->rule_changes.empty());
     CHECK(run->rule_changes.back().description == "CalculiX checks off");
@@ -210,7 +211,7 @@ TEST_CASE("studio loop checks with CalculiX: checks turned on mid-run mark the c
     e.evolution.generations = 6;
     Studio studio;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1280, 900);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                  {"wait_generations": 1},
@@ -224,9 +225,9 @@ TEST_CASE("studio loop checks with CalculiX: checks turned on mid-run mark the c
     testing::run_script_patiently(session, json::parse(R"([{"click": "Resume"},
                                  {"wait_run": "finished"},
                                  {"click": "tab Population"}, {"frames": 3}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     REQUIRE(run);
-    INFO("status: " << studio.status << "; message: " << run->message);
+    INFO("status: " << studio.ui.status << "; message: " << run->message);
     CHECK(run->experiment.evolution.verify.every_generations == 1);
     REQUIRE_FALSE(run->loop_checks.empty());
     CHECK(drawn_now(studio, "loop checks"));
@@ -247,7 +248,7 @@ TEST_CASE("studio loop checks with CalculiX: checks turned on mid-run mark the c
     // Champions: the newest champion's row has the champion's badge.
     run_script(session, json::parse(R"([{"click": "tab Champions"}, {"frames": 40}])"));
     int champion_badges = 0;
-    for (const auto& entry : studio.champion_history.entries()) {
+    for (const auto& entry : studio.run.champion_history.entries()) {
         const bool checked = loop_check_of(*run, entry.id) != nullptr;
         CHECK(drawn_now(studio, "champion check gen " + std::to_string(entry.generation)) ==
               checked);

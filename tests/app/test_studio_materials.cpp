@@ -18,14 +18,14 @@ using nlohmann::json;
 namespace {
 const std::string kLibrary = std::string(BHM_SOURCE_DIR) + "/assets/materials";
 bool on_screen(const Studio& s, const std::string& widget) {
-    const auto it = s.widgets.find(widget);
-    return it != s.widgets.end() && it->second.frame >= s.frame - 1;
+    const auto it = s.ui.widgets.find(widget);
+    return it != s.ui.widgets.end() && it->second.frame >= s.ui.frame - 1;
 }
 }  // namespace
 
 TEST_CASE("studio materials: a slot is filled from the library and undone as one edit") {
     Studio studio;
-    studio.material_library_dir = kLibrary;
+    studio.library.materials_dir = kLibrary;
     studio.document.reset(testing::tiny_experiment(), "");
     const auto original = studio.document.experiment();
     const auto* library = studio_material_library(studio);
@@ -61,7 +61,7 @@ TEST_CASE("studio materials: a slot is filled from the library and undone as one
 
 TEST_CASE("studio materials: the picker opens, lists the library and fills the slot on a click") {
     Studio studio;
-    studio.material_library_dir = kLibrary;
+    studio.library.materials_dir = kLibrary;
     studio.document.reset(testing::tiny_experiment(), "");
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"frames": 2}, {"click": "header Materials"},
@@ -78,7 +78,7 @@ TEST_CASE("studio materials: the picker opens, lists the library and fills the s
 
 TEST_CASE("studio materials: the presets gallery lists and opens the biohybrid catheter") {
     Studio studio;
-    studio.presets_dir = std::string(BHM_SOURCE_DIR) + "/assets/experiments";
+    studio.library.presets_dir = std::string(BHM_SOURCE_DIR) + "/assets/experiments";
     studio.document.reset(testing::tiny_experiment(), "");
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"click": "tab Files"}, {"frames": 2}])"));

@@ -3,8 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/shell/headless_studio.hpp"
@@ -30,8 +32,8 @@ void write_run(const fs::path& dir, const evo::Experiment& e) {
 }
 
 bool drawn_now(const Studio& s, const std::string& widget) {
-    const auto it = s.widgets.find(widget);
-    return it != s.widgets.end() && it->second.frame == s.frame;
+    const auto it = s.ui.widgets.find(widget);
+    return it != s.ui.widgets.end() && it->second.frame == s.ui.frame;
 }
 
 }  // namespace
@@ -53,11 +55,12 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
                                   json::parse(R"([{"wait_run": "failed"}, {"frames": 2}])"));
     // The Run panel says why, in the CLI's words (it said "loading the checkpoint" for ever).
     CHECK(drawn_now(studio, "run failure"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     REQUIRE(run);
     CHECK_MESSAGE(run->message.find("no usable checkpoint") != std::string::npos, run->message);
-    CHECK(studio.status_is_error);
-    CHECK_MESSAGE(studio.status.find("no usable checkpoint") != std::string::npos, studio.status);
+    CHECK(studio.ui.status_is_error);
+    CHECK_MESSAGE(studio.ui.status.find("no usable checkpoint") != std::string::npos,
+                  studio.ui.status);
 
     // The fallback: the run's own experiment from generation 0 in a new folder.
     const auto runs_root = dir / "data";
@@ -65,11 +68,11 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
     REQUIRE(drawn_now(studio, "Start again from generation 0"));
     run_script(session, json::parse(R"([{"click": "Start again from generation 0"},
                                         {"frames": 2}])"));
-    INFO("status: " << studio.status);
-    REQUIRE(run_is_live(studio.evolution.phase()));
+    INFO("status: " << studio.ui.status);
+    REQUIRE(run_is_live(studio.run.evolution.phase()));
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     unsetenv("XDG_DATA_HOME");
-    const auto fresh = studio.evolution.snapshot();
+    const auto fresh = studio.run.evolution.snapshot();
     REQUIRE(fresh);
     CHECK(fresh->loaded);
     CHECK(fresh->experiment.name == "damaged");
@@ -79,13 +82,45 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
     CHECK(studio.document.experiment().name == "damaged");
 }
 
+TEST_CASE("studio run states: a second resume that fails within one frame says so, not 'resumed'") {
+    // Issue 39, a low (a stale status line): the line told of a run's end only when the run's
+    // phase differed from the last one it had heard of. A resume that failed as the one before
+    // it had, before a frame saw it running (one slow frame: 5-20 fps while evolving), left
+    // "resumed ..." on the line, in black, over a run panel saying it failed.
+    const auto dir = fs::absolute(testing::fresh_dir("states-failed-twice"));
+    auto e = testing::tiny_experiment();
+    e.evolution.generations = 1;
+    write_run(dir / "run", e);
+    for (const char* name : {evo::kCheckpointFile, evo::kPreviousCheckpointFile})
+        std::ofstream(dir / "run" / name) << "{ damaged";
+
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1024, 700);
+    for (int attempt = 1; attempt <= 2; ++attempt) {
+        CAPTURE(attempt);
+        REQUIRE(resume_run_directory(studio, (dir / "run").string()));
+        // The run fails before the next frame begins.
+        REQUIRE(bhm::test::wait_until(
+            [&] {
+                const auto run = studio.run.evolution.snapshot();
+                return run && run->phase == RunPhase::Failed;
+            },
+            [] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); }));
+        session.frame();
+        CHECK(studio.ui.status_is_error);
+        CHECK_MESSAGE(studio.ui.status.find("no usable checkpoint") != std::string::npos,
+                      studio.ui.status);
+    }
+}
+
 namespace {
 
-// As the Run panel reads it: the progress first, then the snapshot (studio.run_progress).
+// As the Run panel reads it: the progress first, then the snapshot (studio.run.progress).
 double live_elapsed(const Studio& s) {
-    const LiveProgress progress = s.evolution.progress();
-    const auto run = s.evolution.snapshot();
-    return live_figures(*run, progress, s.evolution.phase()).elapsed_s;
+    const LiveProgress progress = s.run.evolution.progress();
+    const auto run = s.run.evolution.snapshot();
+    return live_figures(*run, progress, s.run.evolution.phase()).elapsed_s;
 }
 
 }  // namespace
@@ -96,13 +131,13 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     auto e = testing::tiny_experiment();
     e.evolution.generations = 8;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_generations": 1}])"));
     // Paused inside a generation with simulations done: its time so far is on the clock.
     REQUIRE(testing::frames_until(session, [&] {
-        const auto p = studio.evolution.progress();
+        const auto p = studio.run.evolution.progress();
         return p.running && p.simulations_done >= 1;
     }));
     testing::run_script_patiently(session, json::parse(R"([{"click": "Pause"},
@@ -116,7 +151,7 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     CHECK_FALSE(needs_animation(studio));
     // The note names what was edited (it named the measure, whatever the edit).
     CHECK(drawn_now(studio, "edited rules"));
-    CHECK(describe_fitness_change(studio.evolution.snapshot()->experiment.fitness,
+    CHECK(describe_fitness_change(studio.run.evolution.snapshot()->experiment.fitness,
                                   studio.document.experiment().fitness) == "min fill 0.05");
     const double before = live_elapsed(studio);
     CHECK(before > 0.0);
@@ -125,7 +160,7 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     run_script(session, json::parse(R"([{"click": "Resume"}])"));
     CHECK_FALSE(drawn_now(studio, "edited rules"));
     CHECK(needs_animation(studio));
-    const int resumed_at = studio.evolution.snapshot()->generation;
+    const int resumed_at = studio.run.evolution.snapshot()->generation;
     double last = live_elapsed(studio);
     CHECK(last >= before - 1e-9);
     double worst_step = 0.0;
@@ -136,10 +171,10 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
         worst_step = std::min(worst_step, now - last);
         last = now;
         CHECK_FALSE(drawn_now(studio, "edited rules"));
-        return studio.evolution.snapshot()->generation > resumed_at + 1;
+        return studio.run.evolution.snapshot()->generation > resumed_at + 1;
     }));
     CHECK_MESSAGE(worst_step >= -1e-9, "the elapsed time went back by " << -worst_step << " s");
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     CHECK(run->experiment.fitness.constraints.min_fill_fraction == 0.05);
     CHECK(run->elapsed_s >= before);
     testing::run_script_patiently(session,
@@ -153,12 +188,12 @@ TEST_CASE("studio run states: after Stop and a resume of the folder the clock go
     e.evolution.generations = 6;
     e.evolution.population = 12;  // a generation long enough to stop inside it
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_generations": 1}])"));
     REQUIRE(testing::frames_until(session, [&] {
-        const auto p = studio.evolution.progress();
+        const auto p = studio.run.evolution.progress();
         return p.running && p.simulations_done >= 2;
     }));
     double last = live_elapsed(studio);
@@ -171,7 +206,7 @@ TEST_CASE("studio run states: after Stop and a resume of the folder the clock go
     run_script(session, json::parse(R"([{"click": "Stop"}])"));
     REQUIRE(testing::frames_until(session, [&] {
         watch();
-        return studio.evolution.phase() == RunPhase::Stopped;
+        return studio.run.evolution.phase() == RunPhase::Stopped;
     }));
     for (int i = 0; i < 3; ++i) {
         session.frame();
@@ -183,9 +218,9 @@ TEST_CASE("studio run states: after Stop and a resume of the folder the clock go
     CHECK(state.state.elapsed_s == doctest::Approx(at_stop).epsilon(1e-9));
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
     REQUIRE(testing::frames_until(session, [&] {
-        const auto run = studio.evolution.snapshot();
+        const auto run = studio.run.evolution.snapshot();
         if (run && run->loaded) watch();
-        return run && run->loaded && studio.evolution.progress().simulations_done >= 1;
+        return run && run->loaded && studio.run.evolution.progress().simulations_done >= 1;
     }));
     CHECK(last >= at_stop);
     CHECK_MESSAGE(worst_step >= -1e-9, "the elapsed time went back by " << -worst_step << " s");
@@ -200,7 +235,7 @@ TEST_CASE("studio run states: a new run never plays the last run's champion unde
     e.name = "first";
     e.evolution.generations = 1;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "first").string();
+    studio.run.dir_field = (dir / "first").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_run": "finished"},
@@ -209,7 +244,7 @@ TEST_CASE("studio run states: a new run never plays the last run's champion unde
     CHECK(studio.bodies.shown->experiment.name == "first");
     e.name = "second";
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "second").string();
+    studio.run.dir_field = (dir / "second").string();
     run_script(session, json::parse(R"([{"click": "Start"}])"));
     CHECK_FALSE(studio.bodies.shown);  // not the first run's body under the second run's panel
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"},
@@ -225,7 +260,7 @@ TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no emp
     {
         Studio studio;
         studio.document.reset(e, "");
-        studio.run_dir_field = (dir / "stopped").string();
+        studio.run.dir_field = (dir / "stopped").string();
         HeadlessStudio session(studio, 1024, 700);
         run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}])"));
         REQUIRE(fs::exists(dir / "stopped" / "run.json"));
@@ -233,10 +268,10 @@ TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no emp
                                                                {"wait_run": "stopped"},
                                                                {"frames": 2}])"));
         CHECK_FALSE(fs::exists(dir / "stopped"));
-        CHECK(studio.evolution.snapshot()->message.find("no checkpoint") != std::string::npos);
+        CHECK(studio.run.evolution.snapshot()->message.find("no checkpoint") != std::string::npos);
         // A run that had completed a generation keeps everything (tested in the session tests);
         // quitting mid-generation 0 is the same stop, at the studio's end.
-        studio.run_dir_field = (dir / "quit").string();
+        studio.run.dir_field = (dir / "quit").string();
         run_script(session, json::parse(R"([{"click": "Start"}, {"frames": 2}])"));
         REQUIRE(fs::exists(dir / "quit" / "run.json"));
     }
@@ -247,7 +282,7 @@ TEST_CASE("studio run states: stopping or quitting in generation 0 leaves no emp
     {
         Studio studio;
         studio.document.reset(e, "");
-        studio.run_dir_field = (dir / "kept").string();
+        studio.run.dir_field = (dir / "kept").string();
         HeadlessStudio session(studio, 1024, 700);
         testing::run_script_patiently(
             session, json::parse(R"([{"click": "Start"}, {"frames": 2}, {"click": "Stop"},
@@ -264,21 +299,21 @@ TEST_CASE("studio run states: after Stop, Resume goes on from the run's folder, 
     auto e = testing::tiny_experiment();
     e.evolution.generations = 6;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                                            {"wait_generations": 1},
                                                            {"click": "Stop"},
                                                            {"wait_run": "stopped"}])"));
-    const int stopped_at = studio.evolution.snapshot()->generation;
+    const int stopped_at = studio.run.evolution.snapshot()->generation;
     REQUIRE(stopped_at >= 1);
     REQUIRE(stopped_at < 6);  // the budget leaves something to resume
     // The Run directory section holds the folder, so Resume run works from there too.
-    CHECK(studio.open_run_field == (dir / "run").lexically_normal().string());
+    CHECK(studio.run.open_field == (dir / "run").lexically_normal().string());
     run_script(session, json::parse(R"([{"click": "Resume"}, {"frames": 2}])"));
-    CHECK_MESSAGE(run_is_live(studio.evolution.phase()), studio.status);
+    CHECK_MESSAGE(run_is_live(studio.run.evolution.phase()), studio.ui.status);
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     CHECK(run->generation == 6);
     CHECK(run->history.size() == 6);
     CHECK(run->run_dir == (dir / "run").lexically_normal().string());

@@ -38,7 +38,7 @@ TEST_CASE("studio session: face clicks, undo / redo shortcuts, voxel painting, r
     run_script(session, json::parse(R"([{"click_face": "x+"}])"));
     CHECK(face_kind(studio, evo::Face::XMax) == evo::BoundaryKind::Fixed);
     CHECK(studio.document.undo_label() == "face x+ fixed");
-    CHECK(studio.status == "face x+ fixed");
+    CHECK(studio.ui.status == "face x+ fixed");
 
     run_script(session, json::parse(R"([{"key": "ctrl+z"}])"));
     CHECK(face_kind(studio, evo::Face::XMax) == evo::BoundaryKind::Free);
@@ -67,7 +67,7 @@ TEST_CASE("studio session: face clicks, undo / redo shortcuts, voxel painting, r
                    json::parse(R"([{"set": "materials[0].poisson_ratio", "value": 0.7}])")),
         doctest::Contains("materials[0].poisson_ratio: must be in [-0.9, 0.49]"), ScriptError);
     CHECK(studio.document.experiment() == before);
-    CHECK(studio.status_is_error);
+    CHECK(studio.ui.status_is_error);
     run_script(session, json::parse(R"([{"set": "simulation.evaluate_s", "value": 0.5}])"));
     CHECK(studio.document.experiment().simulation.evaluate_s == 0.5);
 
@@ -87,29 +87,29 @@ TEST_CASE("studio session: the help panel lists every shortcut (golden)") {
     Studio studio;
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"key": "f1"}, {"frames": 3}])"));
-    CHECK(studio.show_help);
+    CHECK(studio.ui.show_help);
     // Every shortcut is drawn whole inside the help window: no key, description or row cut off.
-    const auto window = studio.widgets.at("help window");
+    const auto window = studio.ui.widgets.at("help window");
     for (const auto& binding : key_bindings())
         for (const char* prefix : {"help keys: ", "help: "}) {
             const std::string name = prefix + std::string(binding.keys);
-            const auto it = studio.widgets.find(name);
-            REQUIRE_MESSAGE(it != studio.widgets.end(), name);
+            const auto it = studio.ui.widgets.find(name);
+            REQUIRE_MESSAGE(it != studio.ui.widgets.end(), name);
             const auto& item = it->second;
             CHECK_MESSAGE(item.max.x <= window.max.x, name);
             CHECK_MESSAGE(item.max.y <= window.max.y, name);
-            CHECK_MESSAGE(item.frame >= studio.frame - 1, name);
+            CHECK_MESSAGE(item.frame >= studio.ui.frame - 1, name);
         }
     testing::check_studio_golden("help", session.capture(), session.font());
     run_script(session, json::parse(R"([{"key": "f1"}])"));
-    CHECK_FALSE(studio.show_help);
+    CHECK_FALSE(studio.ui.show_help);
 }
 
 TEST_CASE("studio session: Start runs two generations, the champion is selected and replayed") {
     const auto dir = testing::fresh_dir("session-run");
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([
         {"click": "Start"},
@@ -118,7 +118,7 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
         {"select": "champion"},
         {"wait_simulation": true},
         {"replay": {"time_s": 0.3, "playing": false}}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     REQUIRE(run);
     CHECK(run->phase == RunPhase::Finished);
     CHECK(run->generation == 2);
@@ -173,12 +173,12 @@ TEST_CASE("studio session: Start runs two generations, the champion is selected 
     // The folder the run wrote, opened as a run directory, shows the same history and champion.
     REQUIRE(open_run_directory(studio, (dir / "run").string()));
     session.frame();
-    REQUIRE(studio.run);
-    CHECK(studio.run->history.size() == 2);
-    CHECK(studio.run->champion.id == run->champion.id);
-    CHECK(studio.run->champion.fitness == run->champion.fitness);
-    CHECK(*studio.run->champion.body == *run->champion.body);
-    CHECK(studio.run->history.back().best_fitness == run->history.back().best_fitness);
+    REQUIRE(studio.run.snapshot);
+    CHECK(studio.run.snapshot->history.size() == 2);
+    CHECK(studio.run.snapshot->champion.id == run->champion.id);
+    CHECK(studio.run.snapshot->champion.fitness == run->champion.fitness);
+    CHECK(*studio.run.snapshot->champion.body == *run->champion.body);
+    CHECK(studio.run.snapshot->history.back().best_fitness == run->history.back().best_fitness);
 }
 
 TEST_CASE("studio session: pause, change the fitness measure, resume, stop and resume the folder") {
@@ -187,7 +187,7 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     auto e = testing::tiny_experiment();
     e.evolution.generations = 8;
     studio.document.reset(e, "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
     testing::run_script_patiently(session, json::parse(R"([
         {"click": "Start"},
@@ -198,13 +198,13 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
         {"click": "Resume"}])"));
     // Generations are fast here: the pause may land a generation or two later than asked, so
     // wait for the first generation scored under the new rules, counted from where it paused.
-    const int paused_at = studio.evolution.snapshot()->generation;
-    CHECK(studio.status == "evolution resumed");
+    const int paused_at = studio.run.evolution.snapshot()->generation;
+    CHECK(studio.ui.status == "evolution resumed");
     CHECK(paused_at < 6);  // leaves room to stop before the budget of 8
     testing::run_script_patiently(session, json::array({{{"wait_generations", paused_at + 1}},
                                                         {{"click", "Stop"}},
                                                         {{"wait_run", "stopped"}}}));
-    auto run = studio.evolution.snapshot();
+    auto run = studio.run.evolution.snapshot();
     REQUIRE(run);
     CHECK(run->experiment.fitness.measure == evo::FitnessMeasure::ComFinal3d);
     REQUIRE(run->rule_changes.size() == 1);
@@ -215,9 +215,10 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     // A stopped run is going nowhere: its last estimate stays in the snapshot, the Run panel's
     // figures have no ETA.
     CHECK(run->eta_s > 0.0);
-    CHECK(live_figures(*run, studio.evolution.progress(), studio.evolution.phase()).eta_s < 0.0);
+    CHECK(live_figures(*run, studio.run.evolution.progress(), studio.run.evolution.phase()).eta_s <
+          0.0);
     session.frame();  // the status line says how the run ended, not the last button's word
-    CHECK_MESSAGE(studio.status == run->message, studio.status);
+    CHECK_MESSAGE(studio.ui.status == run->message, studio.ui.status);
     // One plot per measure: degrees and voxels never share a line or an axis.
     const auto series = split_by_measure(*run);
     REQUIRE(series.size() == 2);
@@ -229,16 +230,16 @@ TEST_CASE("studio session: pause, change the fitness measure, resume, stop and r
     // Too low for two plots stacked at their minimum height: a tab each, the newest measure's
     // shown (tests/app/test_studio_layout.cpp).
     for (const char* tab : {"fitness tab bend_angle_deg", "fitness tab com_final_3d"})
-        CHECK_MESSAGE(studio.widgets.at(tab).frame >= studio.frame - 1, tab);
-    CHECK(studio.widgets.at("fitness plot com_final_3d").frame >= studio.frame - 1);
+        CHECK_MESSAGE(studio.ui.widgets.at(tab).frame >= studio.ui.frame - 1, tab);
+    CHECK(studio.ui.widgets.at("fitness plot com_final_3d").frame >= studio.ui.frame - 1);
 
     // Resume the folder from its checkpoint: it finishes the budget of 8 generations, keeping
     // the history and the rule change.
     REQUIRE(resume_run_directory(studio, (dir / "run").string()));
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     session.frame();
-    CHECK_MESSAGE(studio.status == "finished: generation budget reached", studio.status);
-    run = studio.evolution.snapshot();
+    CHECK_MESSAGE(studio.ui.status == "finished: generation budget reached", studio.ui.status);
+    run = studio.run.evolution.snapshot();
     CHECK(run->generation == 8);
     CHECK(run->history.size() == 8);
     CHECK(run->rule_changes.size() == 1);
@@ -274,7 +275,7 @@ TEST_CASE("studio session: the experiment editor picks NEAT, Start runs it and s
     const auto dir = testing::fresh_dir("session-neat");
     Studio studio;
     studio.document.reset(testing::tiny_experiment(), "");
-    studio.run_dir_field = (dir / "run").string();
+    studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 1400);
     run_script(session, json::parse(R"([
         {"click": "header Evolution"}, {"frames": 2},
@@ -288,7 +289,7 @@ TEST_CASE("studio session: the experiment editor picks NEAT, Start runs it and s
         {"wait_generations": 2},
         {"wait_run": "finished"},
         {"frames": 2}])"));
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     REQUIRE(run);
     CHECK(run->experiment.evolution.algorithm == evo::Algorithm::Neat);
     CHECK(run->experiment.evolution.neat.target_species == 2);
@@ -312,11 +313,12 @@ TEST_CASE("studio session: opening a file with several errors names every one in
     Studio studio;
     HeadlessStudio session(studio, 800, 500);
     CHECK_THROWS_AS(run_script(session, json::array({{{"load", path}}})), ScriptError);
-    CHECK(studio.status_is_error);
-    CHECK_MESSAGE(studio.status.find("materials[0].poisson_ratio") != std::string::npos,
-                  studio.status);
-    CHECK_MESSAGE(studio.status.find("evolution.generations") != std::string::npos, studio.status);
-    CHECK(studio.edit_problems.size() == 2);
+    CHECK(studio.ui.status_is_error);
+    CHECK_MESSAGE(studio.ui.status.find("materials[0].poisson_ratio") != std::string::npos,
+                  studio.ui.status);
+    CHECK_MESSAGE(studio.ui.status.find("evolution.generations") != std::string::npos,
+                  studio.ui.status);
+    CHECK(studio.ui.edit_problems.size() == 2);
 }
 
 TEST_CASE("studio session: F12 numbers its screenshots in the data folder and names them whole") {
@@ -335,11 +337,12 @@ TEST_CASE("studio session: F12 numbers its screenshots in the data folder and na
         const auto first = dir / "bhm-studio" / "screenshots" / "bhm-view-001.png";
         const auto second = dir / "bhm-studio" / "screenshots" / "bhm-view-002.png";
         CHECK(fs::exists(first));
-        CHECK_MESSAGE(studio.status.find(first.string()) != std::string::npos, studio.status);
+        CHECK_MESSAGE(studio.ui.status.find(first.string()) != std::string::npos, studio.ui.status);
         run_script(session, json::parse(R"([{"key": "f12"}])"));
         CHECK(fs::exists(first));  // kept, not overwritten
         CHECK(fs::exists(second));
-        CHECK_MESSAGE(studio.status.find(second.string()) != std::string::npos, studio.status);
+        CHECK_MESSAGE(studio.ui.status.find(second.string()) != std::string::npos,
+                      studio.ui.status);
         CHECK(render::read_png(second.string()).width == 64);
     }
     if (old_xdg)

@@ -295,7 +295,7 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
     {
         Studio studio;
         studio.document.reset(testing::tiny_experiment({4, 2, 2}), "");
-        studio.run_dir_field = run_dir.string();
+        studio.run.dir_field = run_dir.string();
         HeadlessStudio session(studio, 1024, 800);
         testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                      {"wait_run": "finished"},
@@ -310,28 +310,29 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
             fs::create_directories(empty);
             PathOverride path(empty.string());
             run_script(session, json::parse(R"([{"click": "Verify in FEM"}, {"frames": 2}])"));
-            CHECK(studio.status_is_error);
+            CHECK(studio.ui.status_is_error);
             CHECK_MESSAGE(
-                studio.status.find("ccx (CalculiX) is not on the PATH") != std::string::npos,
-                studio.status);
-            const auto it = studio.widgets.find("fem error");
-            CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+                studio.ui.status.find("ccx (CalculiX) is not on the PATH") != std::string::npos,
+                studio.ui.status);
+            const auto it = studio.ui.widgets.find("fem error");
+            CHECK((it != studio.ui.widgets.end() && it->second.frame == studio.ui.frame));
         }
         testing::run_script_patiently(session, json::parse(R"([{"click": "Verify in FEM"},
                                                                {"wait_verify": true},
                                                                {"frames": 2}])"));
-        REQUIRE_MESSAGE(studio.verify.result, studio.status);
+        REQUIRE_MESSAGE(studio.verify.result, studio.ui.status);
         CHECK(studio.verify.result->id == id);
         verdict = studio.verify.result->verdict;
-        CHECK_MESSAGE(studio.status.find(verdict) != std::string::npos, studio.status);
+        CHECK_MESSAGE(studio.ui.status.find(verdict) != std::string::npos, studio.ui.status);
         CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
-        const auto it = studio.widgets.find("fem verdict");
-        CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+        const auto it = studio.ui.widgets.find("fem verdict");
+        CHECK((it != studio.ui.widgets.end() && it->second.frame == studio.ui.frame));
         // Beside the verdict, the FEM's own mesh error; below it, the mesh and why.
         CHECK(studio.verify.result->mesh_error.rfind("FEM mesh error ~", 0) == 0);
         for (const char* widget : {"fem mesh error", "fem mesh"}) {
-            const auto w = studio.widgets.find(widget);
-            CHECK_MESSAGE((w != studio.widgets.end() && w->second.frame == studio.frame), widget);
+            const auto w = studio.ui.widgets.find(widget);
+            CHECK_MESSAGE((w != studio.ui.widgets.end() && w->second.frame == studio.ui.frame),
+                          widget);
         }
 
         // The 3D view: our static shape at +A with the FEM's as a ghost over it.
@@ -361,8 +362,8 @@ TEST_CASE("studio verify: Verify in FEM from the panel, the ghost in the view, k
     REQUIRE(again.verify.result);
     CHECK(again.verify.result->verdict == verdict);
     CHECK_FALSE(again.verify.result->fem_shape.empty());
-    const auto it = again.widgets.find("fem verdict");
-    CHECK((it != again.widgets.end() && it->second.frame == again.frame));
+    const auto it = again.ui.widgets.find("fem verdict");
+    CHECK((it != again.ui.widgets.end() && it->second.frame == again.ui.frame));
 }
 
 TEST_CASE("studio verify: Cancel during our engine's run stops within a slice, writes nothing") {
@@ -438,17 +439,18 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
     {
         Studio studio;
         studio.document.reset(testing::tiny_experiment({4, 2, 2}), "");
-        studio.run_dir_field = run_dir.string();
+        studio.run.dir_field = run_dir.string();
         HeadlessStudio session(studio, 1024, 800);
         testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
                                      {"wait_run": "finished"},
                                      {"click": "tab Population"}, {"frames": 2}])"));
-        REQUIRE(studio.run);
+        REQUIRE(studio.run.snapshot);
         // A member other than the champion (nor an earlier one): its row, not the champion's,
         // is what is verified, and a reopened run finds its body only in the checkpoint.
-        const auto& history = studio.champion_history.entries();
-        for (const auto& m : studio.run->population)
-            if (m.body && !(studio.run->has_champion && m.id == studio.run->champion.id) &&
+        const auto& history = studio.run.champion_history.entries();
+        for (const auto& m : studio.run.snapshot->population)
+            if (m.body &&
+                !(studio.run.snapshot->has_champion && m.id == studio.run.snapshot->champion.id) &&
                 std::none_of(history.begin(), history.end(),
                              [&](const ChampionEntry& e) { return e.id == m.id; })) {
                 id = m.id;
@@ -468,12 +470,12 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
         CHECK(studio.verify.state->label.rfind("individual #" + std::to_string(id), 0) == 0);
         REQUIRE(studio.bodies.shown);
         CHECK(studio.bodies.shown->id == id);  // the row's body is shown as well
-        REQUIRE_MESSAGE(studio.verify.result, studio.status);
+        REQUIRE_MESSAGE(studio.verify.result, studio.ui.status);
         CHECK(studio.verify.result->id == id);
         verdict = studio.verify.result->verdict;
         CHECK(fs::exists(fs::path(verification_dir(run_dir.string(), id)) / "report.json"));
-        const auto it = studio.widgets.find("fem verdict");
-        CHECK((it != studio.widgets.end() && it->second.frame == studio.frame));
+        const auto it = studio.ui.widgets.find("fem verdict");
+        CHECK((it != studio.ui.widgets.end() && it->second.frame == studio.ui.frame));
     }
     // A crash's leftover beside the report: opening the run clears it, the report stays.
     const auto crashed = make_folder(
@@ -491,16 +493,16 @@ TEST_CASE("studio verify: FEM on a Population row verifies that individual, kept
           again.verify.kept_reports.end());
     testing::run_script_patiently(
         session, json::array({{{"click", kept}}, {{"wait_simulation", true}}, {{"frames", 2}}}));
-    CHECK_MESSAGE(again.status.find("(checkpoint)") != std::string::npos, again.status);
+    CHECK_MESSAGE(again.ui.status.find("(checkpoint)") != std::string::npos, again.ui.status);
     REQUIRE(again.bodies.shown);
     CHECK(again.bodies.shown->id == id);
-    REQUIRE_MESSAGE(again.verify.result, again.status);
+    REQUIRE_MESSAGE(again.verify.result, again.ui.status);
     CHECK(again.verify.result->id == id);
     CHECK(again.verify.result->verdict == verdict);
     CHECK_FALSE(again.verify.worker.running());  // shown, not solved again
     CHECK_FALSE(again.verify.state);
-    const auto it = again.widgets.find("fem verdict");
-    CHECK((it != again.widgets.end() && it->second.frame == again.frame));
+    const auto it = again.ui.widgets.find("fem verdict");
+    CHECK((it != again.ui.widgets.end() && it->second.frame == again.ui.frame));
     set_view_mode(again, ViewMode::Simulation);
     const FemVerification* overlay = fem_overlay(again);
     REQUIRE(overlay);
@@ -540,10 +542,11 @@ TEST_CASE("studio verify: the FEM tab with a finished result (golden)") {
     run_script(session, json::parse(R"([{"click": "tab FEM"}, {"frames": 3}])"));
     for (const char* widget :
          {"fem verdict", "fem ghost", "fem load rest", "fem load +A", "fem load -A"}) {
-        const auto it = studio.widgets.find(widget);
-        CHECK_MESSAGE((it != studio.widgets.end() && it->second.frame == studio.frame), widget);
+        const auto it = studio.ui.widgets.find(widget);
+        CHECK_MESSAGE((it != studio.ui.widgets.end() && it->second.frame == studio.ui.frame),
+                      widget);
     }
-    const auto tile = studio.widgets.at("analysis panel");
+    const auto tile = studio.ui.widgets.at("analysis panel");
     const render::Image screen = session.capture();
     const int x0 = static_cast<int>(tile.min.x), y0 = static_cast<int>(tile.min.y);
     const int x1 = std::min(screen.width, static_cast<int>(tile.max.x));
@@ -588,8 +591,8 @@ TEST_CASE("studio verify: the verdict states its tolerance; the split view's lin
     run_script(session, json::parse(R"([{"mode": "simulation"}, {"frames": 2}])"));
     REQUIRE(studio.view.split);
     for (const char* name : {"view overlay", "compared overlay"}) {
-        const WidgetRect text = studio.widgets.at(name);
-        CHECK(text.frame == studio.frame);
+        const WidgetRect text = studio.ui.widgets.at(name);
+        CHECK(text.frame == studio.ui.frame);
         const bool left = std::string(name) == "view overlay";
         const float pane_right = left ? studio.view.origin_px.x + studio.view.size_px.x
                                       : studio.view.second.origin_px.x + studio.view.second.size_px.x;

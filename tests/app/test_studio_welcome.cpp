@@ -119,7 +119,7 @@ TEST_CASE("studio welcome: a first start is a settings path without a file or a 
 
 TEST_CASE("studio welcome: the gallery, thumbnails, legend, and Start held until a choice") {
     Studio studio;
-    studio.presets_dir = kPresets;
+    studio.library.presets_dir = kPresets;
     REQUIRE(open_welcome(studio));
     // Not "untitled" with 2000 generations and 48 h: the quick demo, not a recent file.
     const auto& e = studio.document.experiment();
@@ -130,18 +130,18 @@ TEST_CASE("studio welcome: the gallery, thumbnails, legend, and Start held until
 
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"frames": 2}])"));
-    REQUIRE(studio.welcome_open);
-    const auto& w = studio.widgets;
+    REQUIRE(studio.ui.welcome_open);
+    const auto& w = studio.ui.widgets;
     REQUIRE(w.count("welcome preset quick-demo"));
     REQUIRE(w.count("welcome legend"));
     const float first_y = w.at("welcome preset quick-demo").min.y;
     const float first_x = w.at("welcome preset quick-demo").min.x;
     const render::Image image = session.capture();
-    for (const auto& c : studio.welcome_cards) {
+    for (const auto& c : studio.ui.welcome_cards) {
         CAPTURE(c.stem);
         REQUIRE(w.count("welcome preset " + c.stem));
         const auto& r = w.at("welcome preset " + c.stem);
-        CHECK(r.frame == studio.frame);
+        CHECK(r.frame == studio.ui.frame);
         if (c.stem != "quick-demo")  // reading order: the demo is the first card
             CHECK((r.min.y > first_y || (r.min.y == first_y && r.min.x > first_x)));
         // A thumbnail drawn by the renderer: shaded faces, edges and floor, not a flat box.
@@ -154,25 +154,25 @@ TEST_CASE("studio welcome: the gallery, thumbnails, legend, and Start held until
 
     // Start (the button and F5) waits for a choice.
     run_script(session, json::parse(R"([{"click": "Start"}, {"key": "f5"}, {"frames": 2}])"));
-    CHECK(studio.evolution.phase() == RunPhase::Idle);
+    CHECK(studio.run.evolution.phase() == RunPhase::Idle);
     CHECK_FALSE(start_run(studio));
-    CHECK(studio.status.find("welcome") != std::string::npos);
+    CHECK(studio.ui.status.find("welcome") != std::string::npos);
 
     // A preset's card opens it and closes the welcome.
     run_script(session, json::parse(R"([{"click": "welcome preset paper-exp3"}, {"frames": 2}])"));
-    CHECK_FALSE(studio.welcome_open);
+    CHECK_FALSE(studio.ui.welcome_open);
     CHECK(studio.document.experiment().name == "paper-exp3");
-    CHECK(studio.widgets.at("welcome window").frame < studio.frame);
+    CHECK(studio.ui.widgets.at("welcome window").frame < studio.ui.frame);
     CHECK(studio.settings.recent_files.size() == 1);  // chosen by the user: recent
 }
 
 TEST_CASE("studio welcome: Close keeps the quick demo, and Start is offered again") {
     Studio studio;
-    studio.presets_dir = kPresets;
+    studio.library.presets_dir = kPresets;
     REQUIRE(open_welcome(studio));
     HeadlessStudio session(studio, 1024, 700);
     run_script(session, json::parse(R"([{"click": "Close"}, {"frames": 2}])"));
-    CHECK_FALSE(studio.welcome_open);
+    CHECK_FALSE(studio.ui.welcome_open);
     CHECK(studio.document.experiment().name == "quick-demo");
     CHECK_FALSE(studio.document.dirty());
 }
@@ -181,17 +181,18 @@ TEST_CASE("studio welcome: a card's tooltip (its whole description) stays on the
     // Issue 39, a low: hovering a preset showed its description as one line running off the
     // right of the screen.
     Studio studio;
-    studio.presets_dir = kPresets;
+    studio.library.presets_dir = kPresets;
     REQUIRE(open_welcome(studio));
     HeadlessStudio session(studio, 1280, 800);
     run_script(session, json::parse(R"([{"frames": 2}])"));
-    const auto longest = std::max_element(studio.welcome_cards.begin(), studio.welcome_cards.end(),
-                                          [](const PresetCard& a, const PresetCard& b) {
-                                              return a.description.size() < b.description.size();
-                                          });
-    REQUIRE(longest != studio.welcome_cards.end());
+    const auto longest =
+        std::max_element(studio.ui.welcome_cards.begin(), studio.ui.welcome_cards.end(),
+                         [](const PresetCard& a, const PresetCard& b) {
+                             return a.description.size() < b.description.size();
+                         });
+    REQUIRE(longest != studio.ui.welcome_cards.end());
     REQUIRE(longest->description.size() > 200);  // a paragraph, wider than the screen on one line
-    const auto card = studio.widgets.at("welcome preset " + longest->stem);
+    const auto card = studio.ui.widgets.at("welcome preset " + longest->stem);
     session.input().mouse = {(card.min.x + card.max.x) * 0.5f, (card.min.y + card.max.y) * 0.5f};
     session.frame();
     session.frame();

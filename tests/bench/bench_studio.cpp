@@ -164,9 +164,9 @@ int main(int argc, char** argv) {
     std::filesystem::path run_dir = std::filesystem::temp_directory_path() / "bench-studio-run";
     std::filesystem::remove_all(run_dir);
     if (evolution) {
-        studio.run_dir_field = run_dir.string();
+        studio.run.dir_field = run_dir.string();
         if (!start_run(studio)) {
-            std::cerr << "bench_studio: " << studio.status << "\n";
+            std::cerr << "bench_studio: " << studio.ui.status << "\n";
             return 1;
         }
     }
@@ -192,10 +192,10 @@ int main(int argc, char** argv) {
     }
     const double wall = seconds_since(start);
     const double ui_cpu_ms = 1000.0 * (thread_cpu_s() - cpu_start) / frames;
-    const auto run = studio.evolution.snapshot();
+    const auto run = studio.run.evolution.snapshot();
     const int generations = run ? run->generation : 0;
     const long long simulations = run ? static_cast<long long>(run->evaluations) : 0;
-    studio.evolution.stop();
+    studio.run.evolution.stop();
 
     if (!frames_csv.empty()) {
         std::ofstream out(frames_csv);
@@ -222,7 +222,7 @@ int main(int argc, char** argv) {
         "s\n",
         width, height, samples, shown->replay.voxel_cell.size(), evolution ? 1 : 0, frames, wall,
         frames / wall, mean, percentile(ms, 0.5), percentile(ms, 0.95),
-        *std::max_element(ms.begin(), ms.end()), over, studio.max_update_ms, ui_cpu_ms,
+        *std::max_element(ms.begin(), ms.end()), over, studio.ui.max_update_ms, ui_cpu_ms,
         lp_threads ? lp_threads : "default", load, generations, simulations, renderer.c_str(),
         std::thread::hardware_concurrency(), machine_description().c_str(), commit.c_str());
     return 0;

@@ -196,7 +196,7 @@ bool apply_calibration(Studio& s) {
     c.applied_job = snap->job;
     show_calibrated_body(s);
     // The live run keeps its physics until Apply to the live run sends them.
-    if (run_is_live(s.evolution.phase()) && editing_run_document(s))
+    if (run_is_live(s.run.evolution.phase()) && editing_run_document(s))
         set_status(s, label + " (the live run keeps its physics: Apply to the live run changes it)");
     return true;
 }
@@ -208,8 +208,8 @@ bool apply_calibration_to_run(Studio& s) {
         set_status(s, "apply to the live run: no finished calibration", true);
         return false;
     }
-    const auto run = s.evolution.snapshot();
-    if (!run || !run->loaded || !run_is_live(s.evolution.phase())) {
+    const auto run = s.run.evolution.snapshot();
+    if (!run || !run->loaded || !run_is_live(s.run.evolution.phase())) {
         set_status(s, "apply to the live run: no live run", true);
         return false;
     }
@@ -220,7 +220,7 @@ bool apply_calibration_to_run(Studio& s) {
         evo::copy_fitted_values(snap->result->calibrated.experiment, snap->parameters, next);
         const evo::PhysicsRules physics = evo::physics_of(next);
         what = evo::describe_physics_change(run->experiment, physics);
-        s.evolution.change_physics(physics);
+        s.run.evolution.change_physics(physics);
     } catch (const std::exception& e) {
         set_status(s, std::string("apply to the live run: ") + e.what(), true);
         return false;

@@ -37,9 +37,9 @@ const evo::Body* body_to_export(const Studio& s, const evo::Experiment** experim
         *experiment = &s.bodies.shown->experiment;
         return s.bodies.shown->framed_body.get();
     }
-    if (s.run && s.run->has_champion && s.run->champion.body) {
-        *experiment = &s.run->experiment;
-        return s.run->champion.body.get();
+    if (s.run.snapshot && s.run.snapshot->has_champion && s.run.snapshot->champion.body) {
+        *experiment = &s.run.snapshot->experiment;
+        return s.run.snapshot->champion.body.get();
     }
     return nullptr;
 }

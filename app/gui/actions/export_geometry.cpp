@@ -46,9 +46,10 @@ bool export_mesh(Studio& s, const std::string& path, bool deformed) {
             const evo::Body& b = *s.bodies.shown->framed_body;
             experiment = &s.bodies.shown->experiment;
             mesh = evo::rest_surface(b.size, b.cells, experiment->voxel_size_m);
-        } else if (s.run && s.run->has_champion && s.run->champion.body) {
-            const evo::Body& b = *s.run->champion.body;
-            experiment = &s.run->experiment;
+        } else if (s.run.snapshot && s.run.snapshot->has_champion &&
+                   s.run.snapshot->champion.body) {
+            const evo::Body& b = *s.run.snapshot->champion.body;
+            experiment = &s.run.snapshot->experiment;
             mesh = evo::rest_surface(b.size, b.cells, experiment->voxel_size_m);
         } else {
             set_status(s, "mesh: no champion or simulated body yet", true);

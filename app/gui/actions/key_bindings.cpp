@@ -63,7 +63,7 @@ void dispatch_key_bindings(Studio& studio) {
     // was released before this frame: a quick Ctrl+Z was lost when only the keys still down at
     // the frame's start counted.
     std::vector<KeyChord> presses;
-    presses.swap(studio.key_presses);
+    presses.swap(studio.ui.key_presses);
     if (ImGui::GetIO().WantTextInput) return;
     for (const KeyChord& press : presses) {
         if (press.repeat) continue;  // a held F5 or Ctrl+Z acts once
@@ -137,10 +137,10 @@ void run_action(Studio& studio, Action action) {
             set_view_mode(studio, ViewMode::Workspace);
             break;
         case Action::Screenshot:
-            studio.screenshot_requested = true;
+            studio.ui.screenshot_requested = true;
             break;
         case Action::ToggleHelp:
-            studio.show_help = !studio.show_help;
+            studio.ui.show_help = !studio.ui.show_help;
             break;
         case Action::Quit:
             request_quit(studio);

@@ -51,7 +51,7 @@ const std::vector<KeyBinding>& key_bindings();
 //! Mouse gestures of the 3D view, for the help panel (pairs: gesture, what it does).
 const std::vector<std::pair<const char*, const char*>>& mouse_gestures();
 
-//! Runs the bound actions of the presses since the last frame (studio.key_presses, filled by the
+//! Runs the bound actions of the presses since the last frame (studio.ui.key_presses, filled by the
 //! window's key callback or the headless input; emptied here). Call between NewFrame and Render.
 //! Skipped while a text field has the keyboard, so typing never triggers shortcuts.
 void dispatch_key_bindings(Studio& studio);

@@ -14,8 +14,8 @@
 namespace bhm::app::gui {
 
 void set_status(Studio& studio, const std::string& message, bool is_error) {
-    studio.status = message;
-    studio.status_is_error = is_error;
+    studio.ui.status = message;
+    studio.ui.status_is_error = is_error;
 }
 
 std::string describe_problems(const std::string& prefix,
@@ -32,7 +32,7 @@ std::string describe_problems(const std::string& prefix,
 
 bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label) {
     auto problems = studio.document.edit(next, label);
-    studio.edit_problems = problems;
+    studio.ui.edit_problems = problems;
     if (!problems.empty()) {
         set_status(studio, describe_problems("refused: ", problems), true);
         return false;
@@ -50,19 +50,20 @@ std::string material_library_warning(const evo::MaterialLibrary& library) {
 }
 
 const evo::MaterialLibrary* studio_material_library(Studio& studio) {
-    if (!studio.material_library && studio.material_library_error.empty()) {
+    if (!studio.library.materials && studio.library.materials_error.empty()) {
         try {
-            studio.material_library = evo::load_material_library(studio.material_library_dir);
+            studio.library.materials = evo::load_material_library(studio.library.materials_dir);
             // A skipped entry or a damaged file is said where the library is first used (issue
             // 41 R10); the picker lists every one.
-            if (auto warning = material_library_warning(*studio.material_library); !warning.empty())
+            if (auto warning = material_library_warning(*studio.library.materials);
+                !warning.empty())
                 set_status(studio, warning);
         } catch (const evo::ValidationError& e) {
-            studio.material_library_error =
+            studio.library.materials_error =
                 e.problems.empty() ? std::string(e.what()) : e.problems[0].to_string();
         }
     }
-    return studio.material_library ? &*studio.material_library : nullptr;
+    return studio.library.materials ? &*studio.library.materials : nullptr;
 }
 
 bool choose_library_material(Studio& studio, std::size_t slot, const std::string& id) {
@@ -83,7 +84,7 @@ bool choose_library_material(Studio& studio, std::size_t slot, const std::string
 void new_experiment(Studio& studio) {
     studio.document = ExperimentDocument();
     studio.view.camera_needs_framing = true;
-    studio.edit_problems.clear();
+    studio.ui.edit_problems.clear();
     set_status(studio, "new experiment");
 }
 
@@ -94,7 +95,7 @@ bool open_experiment(Studio& studio, const std::string& path) {
         studio.settings.remember(path);
         studio.path_field = path;
         studio.view.camera_needs_framing = true;
-        studio.edit_problems.clear();
+        studio.ui.edit_problems.clear();
         set_view_mode(studio, ViewMode::Workspace);
         std::string status = "opened " + path;
         // Filled from a library with a damaged file or a skipped entry: it loaded, and says so.
@@ -108,7 +109,7 @@ bool open_experiment(Studio& studio, const std::string& path) {
         set_status(studio, status);
         return true;
     } catch (const evo::ValidationError& e) {
-        studio.edit_problems = e.problems;
+        studio.ui.edit_problems = e.problems;
         set_status(studio,
                    e.problems.empty()
                        ? std::string(e.what())
@@ -121,14 +122,15 @@ bool open_experiment(Studio& studio, const std::string& path) {
 }
 
 bool open_welcome(Studio& s) {
-    s.welcome_open = true;
-    s.welcome_cards = read_preset_cards(s.presets_dir);
-    const auto& cards = s.welcome_cards;
+    s.ui.welcome_open = true;
+    s.ui.welcome_cards = read_preset_cards(s.library.presets_dir);
+    const auto& cards = s.ui.welcome_cards;
     const auto demo = std::find_if(cards.begin(), cards.end(),
                                    [](const PresetCard& c) { return c.stem == kStartHerePreset; });
     if (demo == cards.end()) {
-        set_status(s, std::string("welcome: no ") + kStartHerePreset + ".json in " + s.presets_dir,
-                   true);
+        set_status(
+            s, std::string("welcome: no ") + kStartHerePreset + ".json in " + s.library.presets_dir,
+            true);
         return false;
     }
     const auto recent = s.settings.recent_files;
@@ -143,7 +145,7 @@ bool save_experiment_as(Studio& studio, const std::string& path) {
         set_status(studio, "save: type a file name in the path field first", true);
         return false;
     }
-    if (is_shipped_preset(path, studio.presets_dir)) {
+    if (is_shipped_preset(path, studio.library.presets_dir)) {
         // The gallery's presets stay as shipped: propose a name of the user's own instead.
         const auto stem = std::filesystem::path(path).stem().string();
         studio.path_field = (std::filesystem::path(default_runs_root()).parent_path() /
@@ -244,32 +246,45 @@ void forget_shown_bodies(Studio& studio) {
     studio.bodies.shown_version = studio.bodies.simulator.version();
     studio.bodies.compared.reset();
     studio.bodies.compared_version = studio.bodies.compare_simulator.version();
-    studio.selected_id = -1;
+    studio.run.selected_id = -1;
 }
 
+namespace {
+
+// A run was launched (it has published its first, running, snapshot): the action's own word on
+// the status line, and whatever way the run ends is news, even the way the last one ended. The
+// line heard only of a change of phase, so a second resume that failed as the first had, before
+// a frame saw it running (one slow frame), left "resumed ..." standing (issue 39, a low).
+void report_run_launched(Studio& studio, const std::string& message) {
+    set_status(studio, message);
+    studio.ui.status_run_phase = RunPhase::Running;
+}
+
+}  // namespace
+
 bool start_run(Studio& studio) {
-    if (run_is_live(studio.evolution.phase())) {
+    if (run_is_live(studio.run.evolution.phase())) {
         set_status(studio, "a run is already going: stop it first", true);
         return false;
     }
-    if (studio.welcome_open) {  // F5 too: the newcomer chooses an experiment first
+    if (studio.ui.welcome_open) {  // F5 too: the newcomer chooses an experiment first
         set_status(studio, "choose an experiment in the welcome first (or close it)", true);
         return false;
     }
     // Absolute, so the run is found again whatever folder the studio was started from.
-    std::string dir = studio.run_dir_field.empty()
+    std::string dir = studio.run.dir_field.empty()
                           ? fresh_run_dir(studio.document.experiment(), default_runs_root())
-                          : absolute_path(studio.run_dir_field);
+                          : absolute_path(studio.run.dir_field);
     try {
-        studio.evolution.start(studio.document.experiment(), dir);
+        studio.run.evolution.start(studio.document.experiment(), dir);
         close_run_directory(studio);
         forget_shown_bodies(studio);
-        studio.run_dir_field.clear();
-        studio.run_document = studio.document.identity();
-        studio.adopt_run_experiment = false;
+        studio.run.dir_field.clear();
+        studio.run.document_id = studio.document.identity();
+        studio.run.adopt_experiment = false;
         studio.bodies.follow_champion = true;
         studio.bodies.requested_champion = -1;
-        set_status(studio, "evolution started: " + dir);
+        report_run_launched(studio, "evolution started: " + dir);
         return true;
     } catch (const std::exception& e) {
         set_status(studio, e.what(), true);
@@ -278,29 +293,31 @@ bool start_run(Studio& studio) {
 }
 
 bool pause_run(Studio& studio) {
-    if (studio.evolution.phase() != RunPhase::Running) return false;
-    studio.evolution.pause();
+    if (studio.run.evolution.phase() != RunPhase::Running) return false;
+    studio.run.evolution.pause();
     set_status(studio, "pausing: the generation in progress is interrupted and re-run on resume");
     return true;
 }
 
 bool resume_run(Studio& studio) {
-    const auto phase = studio.evolution.phase();
+    const auto phase = studio.run.evolution.phase();
     if (phase != RunPhase::Paused && phase != RunPhase::Pausing) return false;
     // A refused change (the status says why) does not hold the run: it goes on under the rules
     // it has, and the edits wait in the editor.
     const bool refused = rules_differ_from_run(studio) && !apply_rules_to_run(studio);
-    studio.evolution.resume();
+    studio.run.evolution.resume();
     if (!refused) set_status(studio, "evolution resumed");
     return true;
 }
 
 bool stop_run(Studio& studio) {
-    if (!run_is_live(studio.evolution.phase())) return false;
-    studio.evolution.stop();
-    const int done = studio.run && studio.run->loaded ? studio.run->generation : 0;
+    if (!run_is_live(studio.run.evolution.phase())) return false;
+    studio.run.evolution.stop();
+    const int done =
+        studio.run.snapshot && studio.run.snapshot->loaded ? studio.run.snapshot->generation : 0;
     // Resume run (Run directory) goes on from this folder without its path typed (issue 39, M1).
-    if (done > 0 && !studio.run->run_dir.empty()) studio.open_run_field = studio.run->run_dir;
+    if (done > 0 && !studio.run.snapshot->run_dir.empty())
+        studio.run.open_field = studio.run.snapshot->run_dir;
     set_status(studio, done > 0 ? "stopping: the generation in progress is abandoned, the "
                                   "checkpoint of generation " +
                                       std::to_string(done - 1) + " is kept"
@@ -310,8 +327,9 @@ bool stop_run(Studio& studio) {
 }
 
 std::string stopped_run_folder(const Studio& studio) {
-    if (studio.showing_run_directory || studio.evolution.phase() != RunPhase::Stopped) return "";
-    const auto run = studio.evolution.snapshot();
+    if (studio.run.showing_directory || studio.run.evolution.phase() != RunPhase::Stopped)
+        return "";
+    const auto run = studio.run.evolution.snapshot();
     // Generation 0 stopped leaves no checkpoint (and no folder): nothing to go on from.
     if (!run || !run->loaded || run->generation < 1) return "";
     return run->run_dir;
@@ -324,7 +342,7 @@ bool resume_stopped_run(Studio& studio) {
 }
 
 bool resume_run_directory(Studio& studio, const std::string& run_dir) {
-    if (run_is_live(studio.evolution.phase())) {
+    if (run_is_live(studio.run.evolution.phase())) {
         set_status(studio, "a run is already going: stop it first", true);
         return false;
     }
@@ -333,16 +351,16 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
         return false;
     }
     try {
-        studio.evolution.resume_from(absolute_path(run_dir));
+        studio.run.evolution.resume_from(absolute_path(run_dir));
         close_run_directory(studio);
         forget_shown_bodies(studio);
         // The editor takes the run's experiment once its checkpoint is loaded (when it holds
         // no unsaved edits); until then no document of the editor belongs to the run.
-        studio.run_document = 0;
-        studio.adopt_run_experiment = true;
+        studio.run.document_id = 0;
+        studio.run.adopt_experiment = true;
         studio.bodies.follow_champion = true;
         studio.bodies.requested_champion = -1;
-        set_status(studio, "resumed " + run_dir);
+        report_run_launched(studio, "resumed " + run_dir);
         return true;
     } catch (const std::exception& e) {
         set_status(studio, e.what(), true);
@@ -351,8 +369,8 @@ bool resume_run_directory(Studio& studio, const std::string& run_dir) {
 }
 
 bool restart_from_run_info(Studio& studio) {
-    const auto run = studio.evolution.snapshot();
-    if (!run || run->run_dir.empty() || run_is_live(studio.evolution.phase())) return false;
+    const auto run = studio.run.evolution.snapshot();
+    if (!run || run->run_dir.empty() || run_is_live(studio.run.evolution.phase())) return false;
     if (studio.document.dirty()) {
         set_status(studio, "the editor holds unsaved edits: save or undo them first", true);
         return false;
@@ -361,7 +379,7 @@ bool restart_from_run_info(Studio& studio) {
         const evo::RunInfo info = evo::read_run_info(run->run_dir);
         studio.document.reset(info.started, "");
         studio.view.camera_needs_framing = true;
-        studio.run_dir_field.clear();  // a new folder: the damaged one is left as it is
+        studio.run.dir_field.clear();  // a new folder: the damaged one is left as it is
     } catch (const std::exception& e) {
         set_status(studio, std::string("cannot start again: ") + e.what(), true);
         return false;
@@ -370,20 +388,20 @@ bool restart_from_run_info(Studio& studio) {
 }
 
 bool editing_run_document(const Studio& studio) {
-    return studio.run_document != 0 && studio.run_document == studio.document.identity() &&
-           run_is_live(studio.evolution.phase());
+    return studio.run.document_id != 0 && studio.run.document_id == studio.document.identity() &&
+           run_is_live(studio.run.evolution.phase());
 }
 
 std::optional<evo::Fitness> run_fitness_rules(const Studio& studio) {
-    if (const evo::Experiment* sent = studio.evolution.sent_rules()) return sent->fitness;
-    const auto snapshot = studio.evolution.snapshot();
+    if (const evo::Experiment* sent = studio.run.evolution.sent_rules()) return sent->fitness;
+    const auto snapshot = studio.run.evolution.snapshot();
     if (!snapshot || !snapshot->loaded) return std::nullopt;
     return snapshot->experiment.fitness;
 }
 
 std::optional<evo::LoopVerifySettings> run_verify_settings(const Studio& studio) {
-    if (const evo::LoopVerifySettings* sent = studio.evolution.sent_verify()) return *sent;
-    const auto snapshot = studio.evolution.snapshot();
+    if (const evo::LoopVerifySettings* sent = studio.run.evolution.sent_verify()) return *sent;
+    const auto snapshot = studio.run.evolution.snapshot();
     if (!snapshot || !snapshot->loaded) return std::nullopt;
     return snapshot->experiment.evolution.verify;
 }
@@ -420,8 +438,8 @@ std::string describe_rules_to_send(const Studio& studio) {
 }
 
 bool apply_rules_to_run(Studio& studio) {
-    const auto snapshot = studio.evolution.snapshot();
-    if (!snapshot || !run_is_live(studio.evolution.phase())) {
+    const auto snapshot = studio.run.evolution.snapshot();
+    if (!snapshot || !run_is_live(studio.run.evolution.phase())) {
         set_status(studio, "no run to change", true);
         return false;
     }
@@ -441,7 +459,7 @@ bool apply_rules_to_run(Studio& studio) {
     // range), and a refusal then sends nothing, so the edits stay to be fixed and sent again.
     if (verify) {
         try {
-            studio.evolution.change_verify(doc.evolution.verify);
+            studio.run.evolution.change_verify(doc.evolution.verify);
         } catch (const std::exception& e) {
             set_status(studio, std::string("the run's continuum checks were not changed: ") +
                                    e.what(),
@@ -452,7 +470,7 @@ bool apply_rules_to_run(Studio& studio) {
     if (fitness) {
         evo::Experiment rules = snapshot->experiment;
         rules.fitness = doc.fitness;
-        studio.evolution.change_rules(rules);
+        studio.run.evolution.change_rules(rules);
     }
     set_status(studio, fitness && verify ? "fitness rules and CalculiX checks changed: the "
                                            "population is re-scored before the next generation"
@@ -465,7 +483,7 @@ bool apply_rules_to_run(Studio& studio) {
 }
 
 bool boundary_differs_from_run(const Studio& studio) {
-    const auto snapshot = studio.evolution.snapshot();
+    const auto snapshot = studio.run.evolution.snapshot();
     if (!snapshot || !snapshot->loaded || !editing_run_document(studio)) return false;
     return !(snapshot->experiment.boundary == studio.document.experiment().boundary);
 }
@@ -474,28 +492,28 @@ bool boundary_differs_from_run(const Studio& studio) {
 
 bool open_run_directory(Studio& studio, const std::string& run_dir) {
     try {
-        studio.run_directory.open(run_dir);
-        studio.run_directory.refresh();
-        studio.showing_run_directory = true;
+        studio.run.directory.open(run_dir);
+        studio.run.directory.refresh();
+        studio.run.showing_directory = true;
         forget_shown_bodies(studio);
         studio.bodies.follow_champion = true;
         studio.bodies.requested_champion = -1;
-        studio.run = studio.run_directory.snapshot();
+        studio.run.snapshot = studio.run.directory.snapshot();
         // The hidden folders of verifications a crash interrupted (never a finished report).
         remove_stale_partials(run_dir);
         std::string note;
-        if (studio.run && !studio.document.dirty()) {
+        if (studio.run.snapshot && !studio.document.dirty()) {
             // Show the run's experiment in the editor (a copy; the run directory is never
             // written). It is untitled, and so is the path field: Save must never write the
             // run's experiment over the file the editor held before (issue 39, H1).
             const std::string previous = studio.document.path();
-            studio.document.reset(studio.run->experiment, "");
+            studio.document.reset(studio.run.snapshot->experiment, "");
             studio.path_field.clear();
             studio.view.camera_needs_framing = true;
             note = previous.empty() ? std::string(" (the editor shows its experiment, untitled)")
                                     : " (the editor shows its experiment, untitled; " + previous +
                                           " is unchanged)";
-        } else if (studio.run) {
+        } else if (studio.run.snapshot) {
             note = " (the editor keeps your unsaved experiment)";
         }
         set_status(studio, "watching run directory " + run_dir + note);
@@ -507,14 +525,14 @@ bool open_run_directory(Studio& studio, const std::string& run_dir) {
 }
 
 void close_run_directory(Studio& studio) {
-    studio.run_directory.close();
-    if (studio.showing_run_directory) {
+    studio.run.directory.close();
+    if (studio.run.showing_directory) {
         // Back to the live session's run: the directory's bodies are not its own.
         forget_shown_bodies(studio);
         studio.bodies.follow_champion = true;
         studio.bodies.requested_champion = -1;
     }
-    studio.showing_run_directory = false;
+    studio.run.showing_directory = false;
 }
 
 // --- Bodies and replay ---------------------------------------------------------------------
@@ -542,20 +560,22 @@ void request_simulation(Studio& studio, const EvolutionSnapshot& run, const Popu
 }  // namespace
 
 bool select_individual(Studio& studio, std::int64_t id) {
-    if (!studio.run) return false;
-    const PopulationMember* m = find_member(*studio.run, id);
+    if (!studio.run.snapshot) return false;
+    const PopulationMember* m = find_member(*studio.run.snapshot, id);
     if (!m || !m->body) {
         set_status(studio, "individual #" + std::to_string(id) + " is not in the population", true);
         return false;
     }
-    studio.selected_id = id;
-    const bool champion = studio.run->has_champion && studio.run->champion.id == id;
+    studio.run.selected_id = id;
+    const bool champion =
+        studio.run.snapshot->has_champion && studio.run.snapshot->champion.id == id;
     studio.bodies.follow_champion = champion;
     if (champion) studio.bodies.requested_champion = id;
     request_simulation(
-        studio, *studio.run, *m,
+        studio, *studio.run.snapshot, *m,
         (champion ? "champion #" : "individual #") + std::to_string(id) +
-            (champion ? ", generation " + std::to_string(studio.run->champion_generation) : ""));
+            (champion ? ", generation " + std::to_string(studio.run.snapshot->champion_generation)
+                      : ""));
     set_status(studio,
                std::string(champion ? "simulating the champion #" : "simulating individual #") +
                    std::to_string(id));
@@ -567,14 +587,14 @@ SimulationRequest champion_request(const Studio& studio, const ChampionEntry& en
     request.id = entry.id;
     request.label = "champion #" + std::to_string(entry.id) + " of generation " +
                     std::to_string(entry.generation);
-    request.experiment = studio.run->experiment;
+    request.experiment = studio.run.snapshot->experiment;
     request.experiment.fitness.measure = entry.measure;
     request.framed_body = load_champion_body(entry.path);
     return request;
 }
 
 bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
-    if (!studio.run) return false;
+    if (!studio.run.snapshot) return false;
     try {
         SimulationRequest request = champion_request(studio, entry);
         if (beside) {
@@ -583,7 +603,7 @@ bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
                                    std::to_string(entry.generation) + " to show beside");
         } else {
             studio.bodies.follow_champion = false;
-            studio.selected_id = entry.id;
+            studio.run.selected_id = entry.id;
             studio.bodies.simulator.request(std::move(request));
             set_status(studio,
                        "simulating the champion of generation " + std::to_string(entry.generation));
@@ -598,13 +618,13 @@ bool replay_champion(Studio& studio, const ChampionEntry& entry, bool beside) {
 const evo::ExploitReport* shown_exploits(const Studio& studio) {
     if (!studio.bodies.shown) return nullptr;
     const auto id = studio.bodies.shown->id;
-    if (studio.run) {
-        if (studio.run->has_champion && studio.run->champion.id == id)
-            return &studio.run->champion.exploits;
-        for (const auto& m : studio.run->population)
+    if (studio.run.snapshot) {
+        if (studio.run.snapshot->has_champion && studio.run.snapshot->champion.id == id)
+            return &studio.run.snapshot->champion.exploits;
+        for (const auto& m : studio.run.snapshot->population)
             if (m.id == id) return &m.exploits;
     }
-    for (const auto& e : studio.champion_history.entries())
+    for (const auto& e : studio.run.champion_history.entries())
         if (e.id == id) return &e.exploits;
     return nullptr;
 }
@@ -617,7 +637,7 @@ void clear_compared_body(Studio& studio) {
 
 bool add_compared_run(Studio& studio, const std::string& run_dir) {
     const std::string dir = absolute_path(run_dir);
-    for (const auto& c : studio.compared_runs)
+    for (const auto& c : studio.run.compared)
         if (c.dir == dir) return true;
     try {
         RunDirectoryWatch watch;
@@ -628,7 +648,7 @@ bool add_compared_run(Studio& studio, const std::string& run_dir) {
         run.dir = dir;
         run.label = std::filesystem::path(dir).filename().string();
         run.snapshot = watch.snapshot();
-        studio.compared_runs.push_back(std::move(run));
+        studio.run.compared.push_back(std::move(run));
         set_status(studio, "comparing with " + dir);
         return true;
     } catch (const std::exception& e) {
@@ -638,8 +658,8 @@ bool add_compared_run(Studio& studio, const std::string& run_dir) {
 }
 
 void remove_compared_run(Studio& studio, std::size_t index) {
-    if (index < studio.compared_runs.size())
-        studio.compared_runs.erase(studio.compared_runs.begin() + static_cast<long>(index));
+    if (index < studio.run.compared.size())
+        studio.run.compared.erase(studio.run.compared.begin() + static_cast<long>(index));
 }
 
 void follow_champion(Studio& studio) {
@@ -686,31 +706,32 @@ void set_named_view(Studio& studio, render::NamedView view) {
 namespace {
 
 bool simulating_status(const Studio& studio) {
-    return !studio.status_is_error && studio.status.starts_with("simulating");
+    return !studio.ui.status_is_error && studio.ui.status.starts_with("simulating");
 }
 
 // The run shown this frame: a watched run directory (re-read twice a second), else the live
 // session, whose end the status line then reports.
 void take_run_snapshot(Studio& studio) {
     // The snapshot to show: a watched run directory, else the live (or last) session.
-    if (studio.showing_run_directory) {
+    if (studio.run.showing_directory) {
         // Twice a second is enough for a run that writes once per generation; stat() is cheap.
         const auto now = std::chrono::steady_clock::now();
-        if (now - studio.last_directory_check > std::chrono::milliseconds(500)) {
-            studio.last_directory_check = now;
-            if (studio.run_directory.refresh()) studio.run = studio.run_directory.snapshot();
+        if (now - studio.run.last_directory_check > std::chrono::milliseconds(500)) {
+            studio.run.last_directory_check = now;
+            if (studio.run.directory.refresh())
+                studio.run.snapshot = studio.run.directory.snapshot();
         }
     } else {
-        studio.evolution.collect_ended();
-        studio.run_progress = studio.evolution.progress();
-        studio.run = studio.evolution.snapshot();
+        studio.run.evolution.collect_ended();
+        studio.run.progress = studio.run.evolution.progress();
+        studio.run.snapshot = studio.run.evolution.snapshot();
         // The run ended: the status line says how, instead of the last action's word.
-        const RunPhase phase = studio.run ? studio.run->phase : RunPhase::Idle;
+        const RunPhase phase = studio.run.snapshot ? studio.run.snapshot->phase : RunPhase::Idle;
         const bool ended =
             phase == RunPhase::Finished || phase == RunPhase::Stopped || phase == RunPhase::Failed;
-        if (ended && phase != studio.status_run_phase && !studio.run->message.empty())
-            set_status(studio, studio.run->message, phase == RunPhase::Failed);
-        studio.status_run_phase = phase;
+        if (ended && phase != studio.ui.status_run_phase && !studio.run.snapshot->message.empty())
+            set_status(studio, studio.run.snapshot->message, phase == RunPhase::Failed);
+        studio.ui.status_run_phase = phase;
     }
 }
 
@@ -718,12 +739,12 @@ void take_run_snapshot(Studio& studio) {
 void adopt_resumed_run_experiment(Studio& studio) {
     // A resumed run's experiment, once loaded, becomes the editor's document (the run's own),
     // unless the editor holds unsaved edits of another one.
-    if (studio.adopt_run_experiment && studio.run && studio.run->loaded &&
-        !studio.showing_run_directory) {
-        studio.adopt_run_experiment = false;
+    if (studio.run.adopt_experiment && studio.run.snapshot && studio.run.snapshot->loaded &&
+        !studio.run.showing_directory) {
+        studio.run.adopt_experiment = false;
         if (!studio.document.dirty()) {
-            studio.document.reset(studio.run->experiment, "");
-            studio.run_document = studio.document.identity();
+            studio.document.reset(studio.run.snapshot->experiment, "");
+            studio.run.document_id = studio.document.identity();
             studio.view.camera_needs_framing = true;
         }
     }
@@ -732,12 +753,13 @@ void adopt_resumed_run_experiment(Studio& studio) {
 // A new champion of the run shown is simulated for the 3D view (when following champions).
 void follow_new_champion(Studio& studio) {
     // A new champion: simulate it for the live view.
-    if (studio.bodies.follow_champion && studio.run && studio.run->has_champion &&
-        studio.run->champion.id != studio.bodies.requested_champion) {
-        studio.bodies.requested_champion = studio.run->champion.id;
-        request_simulation(studio, *studio.run, studio.run->champion,
-                           "champion #" + std::to_string(studio.run->champion.id) +
-                               ", generation " + std::to_string(studio.run->champion_generation));
+    if (studio.bodies.follow_champion && studio.run.snapshot && studio.run.snapshot->has_champion &&
+        studio.run.snapshot->champion.id != studio.bodies.requested_champion) {
+        studio.bodies.requested_champion = studio.run.snapshot->champion.id;
+        request_simulation(studio, *studio.run.snapshot, studio.run.snapshot->champion,
+                           "champion #" + std::to_string(studio.run.snapshot->champion.id) +
+                               ", generation " +
+                               std::to_string(studio.run.snapshot->champion_generation));
     }
 }
 
@@ -777,7 +799,7 @@ void advance_replay_clock(Studio& studio) {
         const auto& frames = studio.bodies.shown->replay.frames;
         studio.clock.set_duration(frames.empty() ? 0.0 : frames.back().time_s);
     }
-    studio.clock.advance(studio.frame_dt_s);
+    studio.clock.advance(studio.ui.frame_dt_s);
 }
 
 }  // namespace

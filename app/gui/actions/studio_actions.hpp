@@ -16,12 +16,12 @@ namespace bhm::app::gui {
 void set_status(Studio& studio, const std::string& message, bool is_error = false);
 
 //! One status line naming every problem ("field: message; field: message"), prefixed by
-//! `prefix`; the status bar's tooltip lists them one per line (studio.edit_problems).
+//! `prefix`; the status bar's tooltip lists them one per line (studio.ui.edit_problems).
 std::string describe_problems(const std::string& prefix, const std::vector<evo::Problem>& problems);
 
 // --- Document ------------------------------------------------------------------------------
 //! Validates and applies an edited experiment; on refusal the status names every problem
-//! (studio.edit_problems holds them). Returns true when applied (or unchanged).
+//! (studio.ui.edit_problems holds them). Returns true when applied (or unchanged).
 bool apply_edit(Studio& studio, const evo::Experiment& next, const std::string& label);
 void new_experiment(Studio& studio);
 bool open_experiment(Studio& studio, const std::string& path);
@@ -33,8 +33,8 @@ bool open_welcome(Studio& studio);
 bool save_experiment_as(Studio& studio, const std::string& path);
 bool save_experiment(Studio& studio);  //!< to the current path (Save As when untitled)
 bool undo(Studio& studio);
-//! The material library, read from studio.material_library_dir on first use; nullptr (and
-//! studio.material_library_error) when it does not load.
+//! The material library, read from studio.library.materials_dir on first use; nullptr (and
+//! studio.library.materials_error) when it does not load.
 const evo::MaterialLibrary* studio_material_library(Studio& studio);
 //! "material library: FILE:(file): skipped: ... (and N more)", or "" when every entry read.
 std::string material_library_warning(const evo::MaterialLibrary& library);
@@ -50,7 +50,7 @@ bool set_enclosure_thickness(Studio& studio, evo::Face face, int voxels);
 bool paint_cell(Studio& studio, const std::array<int, 3>& cell);  //!< with the current brush
 
 // --- Evolution -----------------------------------------------------------------------------
-//! Starts a run of the document's experiment into studio.run_dir_field (a fresh folder under
+//! Starts a run of the document's experiment into studio.run.dir_field (a fresh folder under
 //! default_runs_root() when empty), the same files and checkpoints as `bhm evolve`.
 bool start_run(Studio& studio);
 bool pause_run(Studio& studio);

@@ -3,7 +3,7 @@
 // closing the window first ask what to do with unsaved edits (Save, Discard, Cancel: Cancel keeps
 // the document and its undo history as they were), and quitting while a run is going asks whether
 // to wait for the generation in progress or abandon it (the last checkpoint is kept either way).
-// The action waits in studio.pending until answered; panels/panel_confirm_dialogs.cpp shows
+// The action waits in studio.ui.pending until answered; panels/panel_confirm_dialogs.cpp shows
 // the questions.
 #include <string>
 

@@ -47,12 +47,12 @@ bool verify_shown_body(Studio& studio) {
     request.label = studio.bodies.shown->label;
     request.experiment = studio.bodies.shown->experiment;
     request.framed_body = studio.bodies.shown->framed_body;
-    request.run_dir = studio.run ? studio.run->run_dir : "";
+    request.run_dir = studio.run.snapshot ? studio.run.snapshot->run_dir : "";
     return start_verification(studio, std::move(request));
 }
 
 bool verify_champion(Studio& studio, const ChampionEntry& entry) {
-    if (!studio.run) return false;
+    if (!studio.run.snapshot) return false;
     if (studio.verify.worker.running()) {
         set_status(studio, "a verification is running: cancel it first", true);
         return false;
@@ -65,7 +65,7 @@ bool verify_champion(Studio& studio, const ChampionEntry& entry) {
         request.label = std::move(champion.label);
         request.experiment = std::move(champion.experiment);
         request.framed_body = std::move(champion.framed_body);
-        request.run_dir = studio.run->run_dir;
+        request.run_dir = studio.run.snapshot->run_dir;
         return start_verification(studio, std::move(request));
     } catch (const std::exception& e) {
         set_status(studio, e.what(), true);
@@ -74,13 +74,14 @@ bool verify_champion(Studio& studio, const ChampionEntry& entry) {
 }
 
 bool verify_individual(Studio& studio, std::int64_t id) {
-    if (!studio.run) return false;
+    if (!studio.run.snapshot) return false;
     if (studio.verify.worker.running()) {
         set_status(studio, "a verification is running: cancel it first", true);
         return false;
     }
     // The member's own framed body, as its row simulates it; select_individual says why not.
-    const auto run = studio.run;  // held: the snapshot outlives a newer one taken meanwhile
+    const auto run =
+        studio.run.snapshot;  // held: the snapshot outlives a newer one taken meanwhile
     const auto it = std::find_if(run->population.begin(), run->population.end(),
                                  [id](const PopulationMember& m) { return m.id == id; });
     if (!select_individual(studio, id) || it == run->population.end() || !it->body) return false;
@@ -96,14 +97,15 @@ bool verify_individual(Studio& studio, std::int64_t id) {
 }
 
 bool show_kept_verification(Studio& studio, std::int64_t id) {
-    if (!studio.run) return false;
-    const auto run = studio.run;  // held: the snapshot outlives a newer one taken meanwhile
+    if (!studio.run.snapshot) return false;
+    const auto run =
+        studio.run.snapshot;  // held: the snapshot outlives a newer one taken meanwhile
     // The member's body as its row or champion file holds it; the report follows the body
     // shown (update_verification reads it), so nothing is solved.
     if (run->has_champion && run->champion.id == id) return select_individual(studio, id);
     for (const auto& m : run->population)
         if (m.id == id && m.body) return select_individual(studio, id);
-    for (const auto& e : studio.champion_history.entries())
+    for (const auto& e : studio.run.champion_history.entries())
         if (e.id == id) return replay_champion(studio, e, false);
     // A reopened run directory lists only its champions: the population is in the checkpoint.
     try {
@@ -130,7 +132,7 @@ bool show_kept_verification(Studio& studio, std::int64_t id) {
         request.experiment = run->experiment;
         request.framed_body = std::make_shared<const evo::Body>(found->phenotype.body);
         studio.bodies.follow_champion = false;
-        studio.selected_id = id;
+        studio.run.selected_id = id;
         studio.bodies.simulator.request(std::move(request));
         set_status(studio, "simulating individual #" + std::to_string(id) +
                                " from the checkpoint, with its kept FEM report");
@@ -183,7 +185,7 @@ void update_verification(Studio& studio) {
         }
     }
     // A body newly shown: the report kept for it in its run directory, if any.
-    const std::string run_dir = studio.run ? studio.run->run_dir : "";
+    const std::string run_dir = studio.run.snapshot ? studio.run.snapshot->run_dir : "";
     // The reports kept in that run directory: listed again when another run is shown or a
     // verification has ended (it may have added one).
     const std::string kept_key = run_dir + "#" + std::to_string(studio.verify.job_reported);

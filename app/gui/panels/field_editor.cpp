@@ -22,8 +22,8 @@ std::string visible(const char* label) {
 template <class Host>
 void tooltip_on_hover(Studio& s, const evo::FieldOf<Host>& f) {
     if (ImGui::IsItemHovered()) {
-        s.shown_tooltip = evo::field_tooltip(f);
-        ImGui::SetTooltip("%s", s.shown_tooltip.c_str());
+        s.ui.shown_tooltip = evo::field_tooltip(f);
+        ImGui::SetTooltip("%s", s.ui.shown_tooltip.c_str());
     }
 }
 

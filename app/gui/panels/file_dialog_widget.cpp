@@ -30,11 +30,11 @@ void apply_choice(Studio& s, FileDialogPurpose purpose, const std::string& path)
             save_experiment_as(s, path);
             break;
         case FileDialogPurpose::OpenRun:
-            s.open_run_field = path;
+            s.run.open_field = path;
             open_run_directory(s, path);
             break;
         case FileDialogPurpose::CompareRun:
-            s.compare_field = path;
+            s.run.compare_field = path;
             add_compared_run(s, path);
             break;
         case FileDialogPurpose::ShowBody:
@@ -73,22 +73,22 @@ const char* ok_label(FileDialogPurpose purpose) {
 }  // namespace
 
 void show_file_dialog(Studio& s, FileDialogPurpose purpose) {
-    std::string dir = s.browser_dir;
+    std::string dir = s.library.browser_dir;
     std::string name;
     const bool experiment = purpose == FileDialogPurpose::SaveExperimentAs ||
                             purpose == FileDialogPurpose::OpenExperiment;
     // A path typed in the panel's field goes into the dialog's name field: Enter takes it.
-    const std::string& typed = experiment                                   ? s.path_field
+    const std::string& typed = experiment                                ? s.path_field
                                : purpose == FileDialogPurpose::ShowBody  ? s.calibration.body_field
                                : purpose == FileDialogPurpose::LoadTrack ? s.calibration.track_field
-                                                                          : s.open_run_field;
+                                                                         : s.run.open_field;
     if (experiment) {
         if (!s.document.path().empty()) dir = parent_of(s.document.path());
         if (purpose == FileDialogPurpose::SaveExperimentAs)
             name = s.document.path().empty() ? s.document.experiment().name + ".json"
                                              : fs::path(s.document.path()).filename().string();
-    } else if (purpose_wants_run(purpose) && s.run && !s.run->run_dir.empty()) {
-        dir = parent_of(s.run->run_dir);
+    } else if (purpose_wants_run(purpose) && s.run.snapshot && !s.run.snapshot->run_dir.empty()) {
+        dir = parent_of(s.run.snapshot->run_dir);
     }
     if (!typed.empty() && typed != s.document.path()) {
         name = typed;
@@ -96,13 +96,13 @@ void show_file_dialog(Studio& s, FileDialogPurpose purpose) {
         const std::string parent = parent_of(absolute_path(typed));
         if (fs::is_directory(parent, ec)) dir = parent;
     }
-    open_file_dialog(s.file_dialog, purpose, dir, name);
+    open_file_dialog(s.ui.file_dialog, purpose, dir, name);
 }
 
 void take_file_dialog_keys(Studio& s) {
-    if (!s.file_dialog.open) return;
+    if (!s.ui.file_dialog.open) return;
     std::vector<KeyChord> presses;
-    presses.swap(s.key_presses);
+    presses.swap(s.ui.key_presses);
     for (const KeyChord& k : presses) {
         // A held Up / Down moves on with the system's key repeat; Enter, Backspace and Escape
         // act once per press (a held Backspace must not climb to the root).
@@ -129,17 +129,17 @@ void take_file_dialog_keys(Studio& s) {
                 break;
         }
         if (!key) continue;
-        const FileDialogPurpose purpose = s.file_dialog.purpose;
-        if (const auto chosen = file_dialog_key(s.file_dialog, *key)) {
+        const FileDialogPurpose purpose = s.ui.file_dialog.purpose;
+        if (const auto chosen = file_dialog_key(s.ui.file_dialog, *key)) {
             apply_choice(s, purpose, *chosen);
             return;
         }
-        if (!s.file_dialog.open) return;
+        if (!s.ui.file_dialog.open) return;
     }
 }
 
 void draw_file_dialog(Studio& s) {
-    FileDialog& d = s.file_dialog;
+    FileDialog& d = s.ui.file_dialog;
     if (!d.open) return;
     centre_next_window(40.0f, 30.0f, ImGuiCond_Appearing);
     ImGui::SetNextWindowFocus();
@@ -151,8 +151,8 @@ void draw_file_dialog(Studio& s) {
     }
     {
         const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-        s.widgets["file dialog"] =
-            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+        s.ui.widgets["file dialog"] =
+            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.ui.frame};
     }
     ImGui::TextWrapped("%s", d.dir.c_str());
     ImGui::TextDisabled("%s; Up/Down, Enter, Backspace: parent, Esc",

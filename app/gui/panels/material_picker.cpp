@@ -63,7 +63,7 @@ void material_library_picker(Studio& s, std::size_t slot) {
                                                       : entry.library + " (not in the library)";
     const std::string popup = "library_popup";
     if (ImGui::Button((preview + "##library").c_str())) {
-        s.material_filter.clear();
+        s.library.material_filter.clear();
         ImGui::OpenPopup(popup.c_str());
     }
     record_widget(s, "library " + std::to_string(slot + 1));
@@ -102,21 +102,21 @@ void material_library_picker(Studio& s, std::size_t slot) {
     std::string chosen;
     if (ImGui::BeginPopup(popup.c_str())) {
         if (!library) {
-            ImGui::TextDisabled("the library did not load: %s", s.material_library_error.c_str());
+            ImGui::TextDisabled("the library did not load: %s", s.library.materials_error.c_str());
         } else {
             // What the library did not read, above its list (issue 41 R10).
             for (const auto& w : library->warnings())
                 ImGui::TextColored(ImColor(IM_COL32(190, 60, 30, 255)), "%s", w.c_str());
             char buffer[128];
-            std::snprintf(buffer, sizeof buffer, "%s", s.material_filter.c_str());
+            std::snprintf(buffer, sizeof buffer, "%s", s.library.material_filter.c_str());
             ImGui::SetNextItemWidth(ImGui::GetFontSize() * 24.0f);
             if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
             if (ImGui::InputTextWithHint("##filter", "search: name, id, category, active",
                                          buffer, sizeof buffer))
-                s.material_filter = buffer;
+                s.library.material_filter = buffer;
             int shown = 0;
             for (const auto& m : library->materials) {
-                if (!library_material_matches(m, s.material_filter)) continue;
+                if (!library_material_matches(m, s.library.material_filter)) continue;
                 ++shown;
                 const std::string label = m.name + "   E " +
                                           short_number(m.youngs_modulus_pa.value) + " Pa" +

@@ -19,9 +19,9 @@ namespace {
 
 void champions_tab(Studio& s) {
     // (the flags column: exploit_cell, panels.hpp)
-    const std::string dir = s.run ? s.run->run_dir : "";
-    s.champion_history.refresh(dir);
-    const auto& entries = s.champion_history.entries();
+    const std::string dir = s.run.snapshot ? s.run.snapshot->run_dir : "";
+    s.run.champion_history.refresh(dir);
+    const auto& entries = s.run.champion_history.entries();
     if (entries.empty()) {
         ImGui::TextDisabled(dir.empty() ? "No run: champions appear here as a run finds them."
                                         : "No champion saved yet.");
@@ -37,7 +37,7 @@ void champions_tab(Studio& s) {
                                   ImGuiTableFlags_BordersOuter | ImGuiTableFlags_SizingStretchProp;
     // CalculiX in the loop: the badge of each champion whose body was checked (the live run's
     // checks, matched by id; a watched directory's files do not hold them).
-    const bool checks = s.run && !s.run->loop_checks.empty();
+    const bool checks = s.run.snapshot && !s.run.snapshot->loop_checks.empty();
     if (!ImGui::BeginTable("champions", 7 + checks, flags, ImGui::GetContentRegionAvail())) return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("gen");
@@ -73,7 +73,7 @@ void champions_tab(Studio& s) {
         exploit_cell(s, e.exploits, "champion flags gen " + std::to_string(e.generation));
         if (checks) {
             ImGui::TableNextColumn();
-            draw_check_badge(s, loop_check_of(*s.run, e.id),
+            draw_check_badge(s, loop_check_of(*s.run.snapshot, e.id),
                              "champion check gen " + std::to_string(e.generation));
         }
         ImGui::TableNextColumn();
@@ -93,11 +93,11 @@ void champions_tab(Studio& s) {
 }
 
 void scatter_tab(Studio& s) {
-    if (!s.run || s.run->population.empty()) {
+    if (!s.run.snapshot || s.run.snapshot->population.empty()) {
         ImGui::TextDisabled("The population appears after the first generation.");
         return;
     }
-    const auto& run = *s.run;
+    const auto& run = *s.run.snapshot;
     std::vector<ScatterPoint> points;
     std::vector<std::int64_t> ids;
     for (const auto& m : run.population) {

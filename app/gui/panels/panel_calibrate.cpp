@@ -191,7 +191,7 @@ void report(Studio& s) {
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("Writes the fitted values into the experiment being edited as one "
                           "undoable edit (Ctrl+Z reverts it)");
-    if (!run_is_live(s.evolution.phase())) return;
+    if (!run_is_live(s.run.evolution.phase())) return;
     const bool sent = s.calibration.applied_run_job == snap->job;
     ImGui::SameLine();
     ImGui::BeginDisabled(sent);

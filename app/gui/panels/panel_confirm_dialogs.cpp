@@ -28,17 +28,18 @@ void draw_confirm_dialogs(Studio& s) {
     ImGui::SetNextWindowPos(centre, ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     if (ImGui::BeginPopupModal(kUnsavedTitle, nullptr, flags)) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
-        const char* what = s.pending.kind == PendingAction::Kind::Quit            ? "Quit"
-                           : s.pending.kind == PendingAction::Kind::NewExperiment ? "New experiment"
-                                                                                  : "Open";
+        const char* what = s.ui.pending.kind == PendingAction::Kind::Quit ? "Quit"
+                           : s.ui.pending.kind == PendingAction::Kind::NewExperiment
+                               ? "New experiment"
+                               : "Open";
         ImGui::TextWrapped("%s has unsaved edits. %s would discard them and their undo history.",
                            document_label(s.document).c_str(), what);
-        if (s.pending.kind == PendingAction::Kind::OpenExperiment)
-            ImGui::TextDisabled("open: %s", s.pending.path.c_str());
+        if (s.ui.pending.kind == PendingAction::Kind::OpenExperiment)
+            ImGui::TextDisabled("open: %s", s.ui.pending.path.c_str());
         // Only this question's own failure: an older error in the status bar (say, another file
         // that did not open) is not about it.
-        if (!s.pending.error.empty()) {
-            ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", s.pending.error.c_str());
+        if (!s.ui.pending.error.empty()) {
+            ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", s.ui.pending.error.c_str());
             record_widget(s, "dialog error");
         }
         ImGui::PopTextWrapPos();

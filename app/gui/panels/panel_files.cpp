@@ -20,7 +20,7 @@ namespace {
 
 // The listing is re-read twice a second at most: the panel is drawn every frame.
 const FileListing& listing_of(Studio& s, const std::string& dir) {
-    auto& cache = s.file_listings[dir];
+    auto& cache = s.library.file_listings[dir];
     const auto now = std::chrono::steady_clock::now();
     if (!cache.valid || now - cache.read_at > std::chrono::milliseconds(500)) {
         cache = read_file_listing(dir);
@@ -32,9 +32,9 @@ const FileListing& listing_of(Studio& s, const std::string& dir) {
 
 void presets(Studio& s) {
     section_title("Presets");
-    const auto& list = listing_of(s, s.presets_dir);
+    const auto& list = listing_of(s, s.library.presets_dir);
     if (list.experiments.empty()) {
-        ImGui::TextDisabled("no presets in %s", s.presets_dir.c_str());
+        ImGui::TextDisabled("no presets in %s", s.library.presets_dir.c_str());
         return;
     }
     for (const auto& path : list.experiments) {
@@ -62,17 +62,17 @@ void recent(Studio& s) {
 
 void browser(Studio& s) {
     section_title("Browse");
-    if (s.browser_dir.empty()) s.browser_dir = absolute_path(".");
-    ImGui::TextWrapped("%s", s.browser_dir.c_str());
-    const fs::path dir(s.browser_dir);
+    if (s.library.browser_dir.empty()) s.library.browser_dir = absolute_path(".");
+    ImGui::TextWrapped("%s", s.library.browser_dir.c_str());
+    const fs::path dir(s.library.browser_dir);
     if (dir.has_parent_path() && dir.parent_path() != dir) {
         if (ImGui::Selectable(".. (up)")) {
-            s.browser_dir = dir.parent_path().string();
+            s.library.browser_dir = dir.parent_path().string();
             return;
         }
         record_widget(s, "folder ..");
     }
-    const auto& list = listing_of(s, s.browser_dir);
+    const auto& list = listing_of(s, s.library.browser_dir);
     if (!list.error.empty())
         ImGui::TextColored(ImVec4(0.8f, 0.15f, 0.1f, 1.0f), "%s", list.error.c_str());
     for (const auto& [path, is_run] : list.folders) {
@@ -80,10 +80,10 @@ void browser(Studio& s) {
         const std::string label = (is_run ? "[run] " : "[dir] ") + name + "##" + path;
         if (ImGui::Selectable(label.c_str())) {
             if (is_run) {
-                s.open_run_field = path;
+                s.run.open_field = path;
                 open_run_directory(s, path);
             } else {
-                s.browser_dir = path;
+                s.library.browser_dir = path;
             }
             return;  // the listing changes
         }

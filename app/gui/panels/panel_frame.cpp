@@ -59,28 +59,28 @@ void draw_menu_bar(Studio& s) {
         if (ImGui::SliderFloat("UI scale (HiDPI)", &scale, 0.5f, 3.0f, "%.2f"))
             s.settings.ui_scale = scale;
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("takes effect at the next start");
-        ImGui::MenuItem("Frame-time overlay", nullptr, &s.show_demo_metrics);
+        ImGui::MenuItem("Frame-time overlay", nullptr, &s.ui.show_demo_metrics);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {
-        if (ImGui::MenuItem("Shortcuts and mouse", "F1")) s.show_help = true;
+        if (ImGui::MenuItem("Shortcuts and mouse", "F1")) s.ui.show_help = true;
         ImGui::EndMenu();
     }
     ImGui::EndMainMenuBar();
 }
 
 void draw_help_window(Studio& s) {
-    if (!s.show_help) return;
+    if (!s.ui.show_help) return;
     // Tall enough for every shortcut (wrapped) at the usual window sizes; smaller windows scroll.
     centre_next_window(60.0f, 44.0f, ImGuiCond_Appearing);
-    if (!ImGui::Begin("Help: shortcuts and mouse", &s.show_help, ImGuiWindowFlags_NoCollapse)) {
+    if (!ImGui::Begin("Help: shortcuts and mouse", &s.ui.show_help, ImGuiWindowFlags_NoCollapse)) {
         ImGui::End();
         return;
     }
     {  // recorded so tests can check that every line is inside it
         const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-        s.widgets["help window"] =
-            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+        s.ui.widgets["help window"] =
+            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.ui.frame};
     }
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
     if (ImGui::BeginTable("help layout", 2, ImGuiTableFlags_SizingStretchSame)) {
@@ -147,21 +147,21 @@ void draw_status_bar(Studio& s) {
     ImGui::SameLine();
     ImGui::TextDisabled("|");
     ImGui::SameLine();
-    if (s.status_is_error)
-        ImGui::TextColored(ImVec4(0.80f, 0.15f, 0.10f, 1.0f), "%s", s.status.c_str());
+    if (s.ui.status_is_error)
+        ImGui::TextColored(ImVec4(0.80f, 0.15f, 0.10f, 1.0f), "%s", s.ui.status.c_str());
     else
-        ImGui::TextUnformatted(s.status.c_str());
-    if (s.status_is_error && s.edit_problems.size() > 1 && ImGui::IsItemHovered()) {
+        ImGui::TextUnformatted(s.ui.status.c_str());
+    if (s.ui.status_is_error && s.ui.edit_problems.size() > 1 && ImGui::IsItemHovered()) {
         // The line may be cut at the window's edge: the tooltip lists every problem in full.
         ImGui::BeginTooltip();
-        for (const auto& problem : s.edit_problems)
+        for (const auto& problem : s.ui.edit_problems)
             ImGui::Text("%s: %s", problem.field.c_str(), problem.message.c_str());
         ImGui::EndTooltip();
     }
-    if (s.show_demo_metrics) {
+    if (s.ui.show_demo_metrics) {
         char fps[48];
-        std::snprintf(fps, sizeof fps, "%.0f fps (%.1f ms)", s.fps,
-                      s.fps > 0 ? 1000.0 / s.fps : 0.0);
+        std::snprintf(fps, sizeof fps, "%.0f fps (%.1f ms)", s.ui.fps,
+                      s.ui.fps > 0 ? 1000.0 / s.ui.fps : 0.0);
         ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(fps).x -
                         ImGui::GetStyle().WindowPadding.x);
         ImGui::TextDisabled("%s", fps);

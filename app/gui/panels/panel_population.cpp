@@ -18,9 +18,10 @@ void draw_fitness_panel(Studio& s) {
     // One plot per measure: after a change of rules, values in voxels and in degrees never share
     // a line or an axis. Other runs (Compare) are overlaid thin on the plot of the same measure.
     std::vector<MeasureSeries> plots;
-    if (s.run && !s.run->history.empty()) plots = split_by_measure(*s.run);
+    if (s.run.snapshot && !s.run.snapshot->history.empty())
+        plots = split_by_measure(*s.run.snapshot);
     std::vector<std::vector<OverlayCurve>> overlays(plots.size());
-    for (const auto& other : s.compared_runs) {
+    for (const auto& other : s.run.compared) {
         if (!other.snapshot) continue;
         for (auto& series : split_by_measure(*other.snapshot)) {
             auto it = std::find_if(plots.begin(), plots.end(), [&](const MeasureSeries& m) {
@@ -37,33 +38,34 @@ void draw_fitness_panel(Studio& s) {
     }
     if (plots.empty()) {
         // Before a run has history, label the axis with the measure the next run will use.
-        plots.push_back({s.run && s.run->loaded ? s.run->experiment.fitness.measure
-                                                : s.document.experiment().fitness.measure,
+        plots.push_back({s.run.snapshot && s.run.snapshot->loaded
+                             ? s.run.snapshot->experiment.fitness.measure
+                             : s.document.experiment().fitness.measure,
                          {}});
         overlays.emplace_back();
     }
     const std::vector<RuleChangeNote> no_changes;
-    const auto& changes = s.run ? s.run->rule_changes : no_changes;
+    const auto& changes = s.run.snapshot ? s.run.snapshot->rule_changes : no_changes;
     const float line = ImGui::GetTextLineHeightWithSpacing();
     const float min_height = ImGui::GetFontSize() * kMinPlotFonts;
     const float avail = ImGui::GetContentRegionAvail().y;
     const float each = (avail - line * plots.size()) / plots.size();
-    s.fitness_plot_overlays = 0;
+    s.run.fitness_plot_overlays = 0;
     for (const auto& o : overlays)
-        s.fitness_plot_overlays += static_cast<int>(o.size());
+        s.run.fitness_plot_overlays += static_cast<int>(o.size());
     auto draw_plot = [&](std::size_t k, float height) {
         const auto measure = plots[k].measure;
         const char* name = evo::kFitnessNames[static_cast<std::size_t>(measure)];
         const float width = ImGui::GetContentRegionAvail().x;
-        s.fitness_plot.draw(plots[k].records, changes, ImVec2(width, height),
-                            fitness_unit(measure), overlays[k]);
+        s.run.fitness_plot.draw(plots[k].records, changes, ImVec2(width, height),
+                                fitness_unit(measure), overlays[k]);
         record_widget(s, std::string("fitness plot ") + name);
     };
     // Stacked while each keeps its minimum height (at most two); else one tab per measure, the
     // newest measure's selected when it appears.
     const bool tabs = plots.size() > 2 || (plots.size() > 1 && each < min_height);
-    const bool new_measure = plots.size() != s.fitness_plot.measures_seen;
-    s.fitness_plot.measures_seen = plots.size();
+    const bool new_measure = plots.size() != s.run.fitness_plot.measures_seen;
+    s.run.fitness_plot.measures_seen = plots.size();
     if (tabs) {
         if (ImGui::BeginTabBar("measures")) {
             for (std::size_t k = 0; k < plots.size(); ++k) {
@@ -107,11 +109,11 @@ void exploit_cell(Studio& s, const evo::ExploitReport& report, const std::string
 }
 
 void draw_population_panel(Studio& s) {
-    if (!s.run || s.run->population.empty()) {
+    if (!s.run.snapshot || s.run.snapshot->population.empty()) {
         ImGui::TextDisabled("The population appears after the first generation.");
         return;
     }
-    const auto& run = *s.run;
+    const auto& run = *s.run.snapshot;
     const auto measure = run.experiment.fitness.measure;
     ImGui::BeginDisabled(s.bodies.follow_champion);
     if (tracked_button(s, "Follow champion")) follow_champion(s);

@@ -26,13 +26,13 @@ void text_field(Studio& s, const char* id, const char* hint, std::string& value)
 }
 
 void controls(Studio& s) {
-    const RunPhase phase = s.evolution.phase();
+    const RunPhase phase = s.run.evolution.phase();
     const bool live = run_is_live(phase);
     const float w = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4.0f;
-    ImGui::BeginDisabled(live || s.welcome_open);
+    ImGui::BeginDisabled(live || s.ui.welcome_open);
     if (tracked_button(s, "Start", ImVec2(w, 0))) start_run(s);
     ImGui::EndDisabled();
-    if (s.welcome_open && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    if (s.ui.welcome_open && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("choose an experiment in the welcome first");
     ImGui::SameLine();
     ImGui::BeginDisabled(phase != RunPhase::Running);
@@ -60,9 +60,9 @@ void controls(Studio& s) {
     // The same fields whether a run is live or not (issue 25 item 7: the panel jumped when a
     // run finished and they came back): while it runs they show its own values, greyed.
     sync_draft(s);
-    const bool show_run = live && s.run && s.run->loaded;
-    evo::Evolution run_params = show_run ? s.run->experiment.evolution : s.draft.evolution;
-    std::string run_dir = show_run ? s.run->run_dir : s.run_dir_field;
+    const bool show_run = live && s.run.snapshot && s.run.snapshot->loaded;
+    evo::Evolution run_params = show_run ? s.run.snapshot->experiment.evolution : s.draft.evolution;
+    std::string run_dir = show_run ? s.run.snapshot->run_dir : s.run.dir_field;
     auto& ev = live ? run_params : s.draft.evolution;
     ImGui::BeginDisabled(live);
     {
@@ -80,14 +80,15 @@ void controls(Studio& s) {
         if (!live && ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
         ImGui::PopItemWidth();
         text_field(s, "##run dir", "run directory (empty: a new folder in the data folder)",
-                   live ? run_dir : s.run_dir_field);
+                   live ? run_dir : s.run.dir_field);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("empty: %s/<name>-<time>", default_runs_root().c_str());
     }
     ImGui::EndDisabled();
     if (!live) {
         // nothing to say: the fields above are the next run's
-    } else if (s.run && s.run->loaded && !s.showing_run_directory && !editing_run_document(s)) {
+    } else if (s.run.snapshot && s.run.snapshot->loaded && !s.run.showing_directory &&
+               !editing_run_document(s)) {
         // The run owns its experiment: say so, so nobody expects these edits to reach it.
         ImGui::TextDisabled(
             "The editor shows another experiment than the run's: its edits "
@@ -134,8 +135,8 @@ void failure(Studio& s, const EvolutionSnapshot& run) {
 void loop_checks_line(Studio& s, const EvolutionSnapshot& run) {
     const auto& verify = run.experiment.evolution.verify;
     const evo::LoopVerifySettings* sent =
-        s.showing_run_directory ? nullptr : s.evolution.sent_verify();
-    const bool pending = sent && !(*sent == verify) && run_is_live(s.evolution.phase());
+        s.run.showing_directory ? nullptr : s.run.evolution.sent_verify();
+    const bool pending = sent && !(*sent == verify) && run_is_live(s.run.evolution.phase());
     if (!verify.enabled() && run.loop_checks.empty() && !pending) return;
     int agree = 0;
     for (const auto& c : run.loop_checks)
@@ -174,12 +175,12 @@ void loop_checks_line(Studio& s, const EvolutionSnapshot& run) {
 }
 
 void status(Studio& s) {
-    const auto& run = s.run;
+    const auto& run = s.run.snapshot;
     if (!run || (run->phase == RunPhase::Idle && run->history.empty())) {
-        if (s.showing_run_directory && !s.run_directory.error().empty())
+        if (s.run.showing_directory && !s.run.directory.error().empty())
             // e.g. a damaged run.json: say which file, rather than "No run yet".
             ImGui::TextColored(kErrorRed, "Cannot show the run: %s",
-                               s.run_directory.error().c_str());
+                               s.run.directory.error().c_str());
         else
             ImGui::TextDisabled("No run yet: Start evolves the current experiment.");
         return;
@@ -198,8 +199,8 @@ void status(Studio& s) {
     const auto measure = run->experiment.fitness.measure;
     // The session's phase is read live (an atomic), not from the last snapshot: Pause or Stop
     // shows at once.
-    const RunPhase phase = s.showing_run_directory ? run->phase : s.evolution.phase();
-    const LiveProgress& progress = s.run_progress;
+    const RunPhase phase = s.run.showing_directory ? run->phase : s.run.evolution.phase();
+    const LiveProgress& progress = s.run.progress;
     if (ImGui::BeginTable("status", 4, ImGuiTableFlags_SizingStretchProp)) {
         auto cell = [](const char* name, const std::string& value) {
             ImGui::TableNextColumn();
@@ -210,9 +211,9 @@ void status(Studio& s) {
         char text[64];
         // Live: the generation in progress counts (elapsed, simulations, rate, ETA move inside a
         // generation); a watched directory has only its files.
-        const LiveFigures live = s.showing_run_directory ? live_figures(*run, {}, phase)
+        const LiveFigures live = s.run.showing_directory ? live_figures(*run, {}, phase)
                                                          : live_figures(*run, progress, phase);
-        cell("state", s.showing_run_directory ? "viewing" : run_phase_name(phase));
+        cell("state", s.run.showing_directory ? "viewing" : run_phase_name(phase));
         std::snprintf(text, sizeof text, "%d / %d", run->generation, run->generation_budget);
         cell("generation", text);
         cell("best", run->has_champion ? format_fitness(run->best_fitness, measure) : "-");
@@ -238,7 +239,7 @@ void status(Studio& s) {
         ImGui::EndTable();
     }
     loop_checks_line(s, *run);
-    if (!s.showing_run_directory && progress.running && run_is_live(phase) &&
+    if (!s.run.showing_directory && progress.running && run_is_live(phase) &&
         progress.generation >= run->generation) {
         // Per-simulation progress of the generation in progress.
         char text[96];
@@ -253,7 +254,7 @@ void status(Studio& s) {
         ImGui::ProgressBar(total > 0 ? float(progress.simulations_done) / float(total) : 0.0f,
                            ImVec2(-1.0f, 0.0f), text);
         record_widget(s, "generation progress");
-    } else if (!s.showing_run_directory) {
+    } else if (!s.run.showing_directory) {
         // The bar's line stays when no generation is in progress: nothing under it moves.
         ImGui::Dummy(ImVec2(1.0f, ImGui::GetFrameHeight()));
     }
@@ -264,7 +265,7 @@ void status(Studio& s) {
     // The message says what the run is doing now: the session's phase moves at once (Pause,
     // Stop), the snapshot's message only when the run thread publishes.
     std::string message = run->message;
-    if (!s.showing_run_directory && phase != run->phase) {
+    if (!s.run.showing_directory && phase != run->phase) {
         if (phase == RunPhase::Paused)
             message = "paused: the simulations in flight are frozen and go on at Resume";
         else if (phase == RunPhase::Pausing)
@@ -274,7 +275,7 @@ void status(Studio& s) {
         else if (phase == RunPhase::Running && run->phase == RunPhase::Paused)
             message = "resumed";
     }
-    if (phase == RunPhase::Failed && !s.showing_run_directory) {
+    if (phase == RunPhase::Failed && !s.run.showing_directory) {
         failure_message(s, message);
     } else if (!message.empty()) {
         ImGui::TextWrapped("%s", message.c_str());
@@ -283,24 +284,24 @@ void status(Studio& s) {
 
 void run_directory(Studio& s) {
     if (!ImGui::TreeNode("Run directory (bhm evolve)")) return;
-    text_field(s, "##open run", "run directory", s.open_run_field);
+    text_field(s, "##open run", "run directory", s.run.open_field);
     if (tracked_button(s, "Open run...")) show_file_dialog(s, FileDialogPurpose::OpenRun);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("browse for a run directory to view");
     ImGui::SameLine();
     if (tracked_button(s, "Compare...")) show_file_dialog(s, FileDialogPurpose::CompareRun);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("browse for a run directory whose fitness history to overlay");
-    if (tracked_button(s, "View")) open_run_directory(s, s.open_run_field);
+    if (tracked_button(s, "View")) open_run_directory(s, s.run.open_field);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("inspect, plot and replay it; refreshed as it grows");
     ImGui::SameLine();
-    if (tracked_button(s, "Resume run")) resume_run_directory(s, s.open_run_field);
+    if (tracked_button(s, "Resume run")) resume_run_directory(s, s.run.open_field);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("continue it from its last checkpoint");
     ImGui::SameLine();
-    if (tracked_button(s, "Compare")) add_compared_run(s, s.open_run_field);
+    if (tracked_button(s, "Compare")) add_compared_run(s, s.run.open_field);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("overlay its fitness history, thin, on the plots of the same measure");
-    for (std::size_t k = 0; k < s.compared_runs.size(); ++k) {
+    for (std::size_t k = 0; k < s.run.compared.size(); ++k) {
         ImGui::PushID(static_cast<int>(k));
         if (ImGui::SmallButton("x")) {
             remove_compared_run(s, k);
@@ -308,15 +309,14 @@ void run_directory(Studio& s) {
             break;
         }
         ImGui::SameLine();
-        ImGui::TextDisabled("compared: %s", s.compared_runs[k].dir.c_str());
+        ImGui::TextDisabled("compared: %s", s.run.compared[k].dir.c_str());
         ImGui::PopID();
     }
-    if (s.showing_run_directory) {
+    if (s.run.showing_directory) {
         ImGui::SameLine();
         if (tracked_button(s, "Close")) close_run_directory(s);
-        if (!s.run_directory.error().empty())
-            ImGui::TextColored(kErrorRed, "%s",
-                               s.run_directory.error().c_str());
+        if (!s.run.directory.error().empty())
+            ImGui::TextColored(kErrorRed, "%s", s.run.directory.error().c_str());
     }
     ImGui::TreePop();
 }

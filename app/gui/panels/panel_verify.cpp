@@ -186,10 +186,10 @@ void result_section(Studio& s) {
 
 // Every report kept in the run directory: a member's too, which a reopened run does not list.
 void kept_section(Studio& s) {
-    if (s.verify.kept_reports.empty() || !s.run) return;
+    if (s.verify.kept_reports.empty() || !s.run.snapshot) return;
     ImGui::Separator();
     ImGui::TextDisabled("Kept FEM reports (%s/verify): choose one to show its body with it",
-                        s.run->run_dir.c_str());
+                        s.run.snapshot->run_dir.c_str());
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     const ImGuiStyle& style = ImGui::GetStyle();
     ImGui::PushID("kept reports");

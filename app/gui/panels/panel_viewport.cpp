@@ -139,7 +139,7 @@ class OverlayText {
         : s_(s), name_(name), from_{origin.x + 10.0f, origin.y + 8.0f}, at_(from_),
           wrap_(std::max(40.0f, size.x - 20.0f)), right_(from_.x) {}
     ~OverlayText() {
-        s_.widgets[name_] = WidgetRect{{from_.x, from_.y}, {right_, at_.y}, s_.frame};
+        s_.ui.widgets[name_] = WidgetRect{{from_.x, from_.y}, {right_, at_.y}, s_.ui.frame};
     }
     //! Returns the line's bottom-right corner (its top-left is at() before the call).
     ImVec2 line(ImU32 color, const std::string& text) {
@@ -283,8 +283,8 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     if (s.view.mode == ViewMode::Simulation && waiting) {
         const ImVec2 from = lines.at();
         text(IM_COL32(190, 110, 0, 255), "simulating " + pending + " ...");
-        s.widgets["simulating note"] =
-            WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, lines.at().y}, s.frame};
+        s.ui.widgets["simulating note"] =
+            WidgetRect{{from.x, from.y}, {from.x + size.x * 0.5f, lines.at().y}, s.ui.frame};
     }
     if (s.view.mode == ViewMode::Simulation && s.bodies.shown) {
         const auto& b = *s.bodies.shown;
@@ -298,13 +298,14 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
         if (const auto* flags = shown_exploits(s); flags && flags->any())
             text(IM_COL32(200, 40, 30, 255), "exploit flags: " + exploit_summary(*flags));
         // CalculiX in the loop: the shown body's badge, the verdict on hover.
-        if (const evo::LoopCheck* check = s.run ? loop_check_of(*s.run, b.id) : nullptr) {
+        if (const evo::LoopCheck* check =
+                s.run.snapshot ? loop_check_of(*s.run.snapshot, b.id) : nullptr) {
             const CheckBadge badge = check_badge(*check);
             const ImVec2 from = lines.at();
             const ImVec2 to = lines.line(ImGui::ColorConvertFloat4ToU32(badge.color),
                                          badge.text + "  (CalculiX in the loop)");
-            s.widgets["view check badge"] =
-                WidgetRect{{from.x, from.y}, {to.x, to.y}, s.frame};
+            s.ui.widgets["view check badge"] =
+                WidgetRect{{from.x, from.y}, {to.x, to.y}, s.ui.frame};
             if (ImGui::IsMouseHoveringRect(from, to)) ImGui::SetTooltip("%s", badge.tooltip.c_str());
         }
         if (s.bodies.compared && !s.view.split)
@@ -376,7 +377,7 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
             dl->AddRect(lo, hi, IM_COL32(190, 110, 0, 255), 3.0f);
             dl->AddText({lo.x + 6.0f, lo.y + 3.0f}, dark, first);
             dl->AddText({lo.x + 6.0f, lo.y + 3.0f + line}, dark, second);
-            s.widgets["voxel inspector"] = WidgetRect{{lo.x, lo.y}, {hi.x, hi.y}, s.frame};
+            s.ui.widgets["voxel inspector"] = WidgetRect{{lo.x, lo.y}, {hi.x, hi.y}, s.ui.frame};
         }
     }
 }

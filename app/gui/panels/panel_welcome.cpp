@@ -23,7 +23,7 @@ constexpr int kThumbW = 168, kThumbH = 104;
 
 // One card: the thumbnail over the name and its line; the whole card is one button.
 void card(Studio& s, std::size_t i, unsigned texture, float width) {
-    const PresetCard& c = s.welcome_cards[i];
+    const PresetCard& c = s.ui.welcome_cards[i];
     const bool start_here = c.stem == kStartHerePreset;
     ImGui::PushID(static_cast<int>(i));
     ImGui::BeginGroup();
@@ -38,8 +38,8 @@ void card(Studio& s, std::size_t i, unsigned texture, float width) {
     if (texture) {
         dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture)), img,
                      {img.x + kThumbW, img.y + kThumbH}, {0, 1}, {1, 0});
-        s.widgets["welcome thumbnail " + c.stem] =
-            WidgetRect{{img.x, img.y}, {img.x + kThumbW, img.y + kThumbH}, s.frame};
+        s.ui.widgets["welcome thumbnail " + c.stem] =
+            WidgetRect{{img.x, img.y}, {img.x + kThumbW, img.y + kThumbH}, s.ui.frame};
     }
     dl->AddRect(img, {img.x + kThumbW, img.y + kThumbH},
                 start_here ? IM_COL32(190, 110, 0, 255) : IM_COL32(0, 0, 0, 40), 3.0f, 0,
@@ -54,7 +54,7 @@ void card(Studio& s, std::size_t i, unsigned texture, float width) {
     ImGui::EndGroup();
     ImGui::PopID();
     if (chosen) {
-        s.welcome_open = false;
+        s.ui.welcome_open = false;
         const bool already = s.document.path() == c.path && !s.document.dirty();
         if (!already) request_open_experiment(s, c.path);
     }
@@ -108,8 +108,8 @@ void legend(Studio& s) {
     }
     const float height = line * float(rows);
     ImGui::Dummy(ImVec2(column * 2.0f, height));
-    s.widgets["welcome legend"] =
-        WidgetRect{{start.x, start.y}, {start.x + column * 2.0f, start.y + height}, s.frame};
+    s.ui.widgets["welcome legend"] =
+        WidgetRect{{start.x, start.y}, {start.x + column * 2.0f, start.y + height}, s.ui.frame};
     ImGui::TextWrapped(
         "Click a voxel in Simulation mode to read its material, displacement, strain and "
         "actuation; F1 lists every shortcut.");
@@ -118,8 +118,8 @@ void legend(Studio& s) {
 }  // namespace
 
 void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& thumbnails) {
-    if (!s.welcome_open) return;
-    thumbnails.ensure(renderer, s.welcome_cards, kThumbW, kThumbH, s.view.samples);
+    if (!s.ui.welcome_open) return;
+    thumbnails.ensure(renderer, s.ui.welcome_cards, kThumbW, kThumbH, s.view.samples);
     centre_next_window(62.0f, 46.0f, ImGuiCond_Always);
     ImGui::SetNextWindowFocus();
     bool open = true;
@@ -131,8 +131,8 @@ void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& t
     }
     {
         const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-        s.widgets["welcome window"] =
-            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.frame};
+        s.ui.widgets["welcome window"] =
+            WidgetRect{{pos.x, pos.y}, {pos.x + size.x, pos.y + size.y}, s.ui.frame};
     }
     ImGui::TextWrapped(
         "BHM Studio evolves soft biohybrid actuators: describe the design problem, run "
@@ -143,27 +143,28 @@ void draw_welcome_window(Studio& s, ViewRenderer& renderer, WelcomeThumbnails& t
         ImGui::GetFrameHeightWithSpacing() + ImGui::GetStyle().ItemSpacing.y * 2.0f;
     ImGui::BeginChild("welcome body", ImVec2(0, -footer));
     section_title("Presets");
-    if (s.welcome_cards.empty()) ImGui::TextDisabled("no presets in %s", s.presets_dir.c_str());
+    if (s.ui.welcome_cards.empty())
+        ImGui::TextDisabled("no presets in %s", s.library.presets_dir.c_str());
     const float card_w = kThumbW + 24.0f;
     const int per_row = std::max(1, static_cast<int>(ImGui::GetContentRegionAvail().x /
                                                      (card_w + ImGui::GetStyle().ItemSpacing.x)));
-    for (std::size_t i = 0; i < s.welcome_cards.size() && s.welcome_open; ++i) {
+    for (std::size_t i = 0; i < s.ui.welcome_cards.size() && s.ui.welcome_open; ++i) {
         if (i % static_cast<std::size_t>(per_row) != 0) ImGui::SameLine();
         card(s, i, thumbnails.texture(i), card_w);
     }
-    if (s.welcome_open) legend(s);
+    if (s.ui.welcome_open) legend(s);
     ImGui::EndChild();
     ImGui::Separator();
     if (tracked_button(s, "Empty experiment")) {
-        s.welcome_open = false;
+        s.ui.welcome_open = false;
         request_new_experiment(s);
     }
     if (ImGui::IsItemHovered())
         wrapped_tooltip("the paper's materials on an 8x8x7 workspace held at x- "
                         "(the paper's 2000 generations and 48 h: set the budget first)");
     ImGui::SameLine();
-    if (tracked_button(s, "Close")) s.welcome_open = false;
-    if (!open) s.welcome_open = false;
+    if (tracked_button(s, "Close")) s.ui.welcome_open = false;
+    if (!open) s.ui.welcome_open = false;
     ImGui::End();
 }
 

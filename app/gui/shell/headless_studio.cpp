@@ -109,7 +109,7 @@ void HeadlessStudio::frame(double dt_s) {
     io.KeyShift = io.KeyShift || input_.shift;
     if (input_.key > 0 && input_.key < IM_ARRAYSIZE(io.KeysDown)) io.KeysDown[input_.key] = true;
     for (const KeyChord& press : input_.key_presses)
-        studio_.key_presses.push_back(press);
+        studio_.ui.key_presses.push_back(press);
     input_.key_presses.clear();
 
     ImGui_ImplOpenGL3_NewFrame();

@@ -34,7 +34,7 @@ struct SyntheticInput {
     bool ctrl = false, shift = false;
     int key = 0;  //!< GLFW key code held down (0 = none)
     //! Presses since the last frame, as the window's key callback records them (a press and its
-    //! release may both come before the frame). Moved into studio.key_presses by the frame.
+    //! release may both come before the frame). Moved into studio.ui.key_presses by the frame.
     std::vector<KeyChord> key_presses;
     //! What ImGui's text fields get: the same events a window's key and char callbacks queue
     //! (a fast key's press and release, typed characters), handed over a frame at a time.

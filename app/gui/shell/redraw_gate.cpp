@@ -5,7 +5,7 @@
 namespace bhm::app::gui {
 
 bool needs_animation(const Studio& s) {
-    const RunPhase phase = s.evolution.phase();
+    const RunPhase phase = s.run.evolution.phase();
     const bool evolving = run_is_live(phase) && phase != RunPhase::Paused;
     return s.clock.playing || evolving || s.bodies.simulator.busy() ||
            s.bodies.compare_simulator.busy() || s.calibration.session.running() ||
@@ -15,7 +15,7 @@ bool needs_animation(const Studio& s) {
 bool RedrawGate::should_draw(const Studio& s, double now_s) {
     // Every published snapshot (run, simulated bodies) moves the stamp.
     const std::uint64_t stamp =
-        s.evolution.version() * 1000003u + s.bodies.simulator.version() * 1009u +
+        s.run.evolution.version() * 1000003u + s.bodies.simulator.version() * 1009u +
         s.bodies.compare_simulator.version() + s.calibration.session.version() * 7919u;
     if (input_ || stamp != stamp_) settle_ = kSettleFrames;
     input_ = false;

@@ -44,13 +44,13 @@ void frames_until(HeadlessStudio& session, double timeout_s, const std::function
 }
 
 glm::vec2 widget_centre(HeadlessStudio& session, const std::string& name) {
-    auto& widgets = session.studio().widgets;
+    auto& widgets = session.studio().ui.widgets;
     auto it = widgets.find(name);
-    if (it == widgets.end() || it->second.frame < session.studio().frame - 1) {
+    if (it == widgets.end() || it->second.frame < session.studio().ui.frame - 1) {
         session.frame();  // it may appear once the UI caught up with the state
         it = widgets.find(name);
     }
-    if (it == widgets.end() || it->second.frame < session.studio().frame - 1)
+    if (it == widgets.end() || it->second.frame < session.studio().ui.frame - 1)
         throw ScriptError("no widget named '" + name + "' on screen");
     return 0.5f * (it->second.min + it->second.max);
 }
@@ -134,7 +134,7 @@ void click_cell(HeadlessStudio& session, const json& step) {
 
 void step_load(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
-    if (!open_experiment(s, step.at("load").get<std::string>())) throw ScriptError(s.status);
+    if (!open_experiment(s, step.at("load").get<std::string>())) throw ScriptError(s.ui.status);
 }
 
 void step_set(HeadlessStudio& session, const json& step) {
@@ -206,14 +206,14 @@ void step_wait_generations(HeadlessStudio& session, const json& step) {
     frames_until(
         session, timeout_of(step, 300.0),
         [&] {
-            const auto run = s.evolution.snapshot();
+            const auto run = s.run.evolution.snapshot();
             if (run && run->phase == RunPhase::Failed)
                 throw ScriptError("the run failed: " + run->message);
             return run && (run->generation >= n ||
                            (!run_is_live(run->phase) && run->phase != RunPhase::Idle));
         },
         std::to_string(n) + " generations");
-    const auto run = s.evolution.snapshot();
+    const auto run = s.run.evolution.snapshot();
     if (!run || run->generation < n)
         throw ScriptError("the run ended after " + std::to_string(run ? run->generation : 0) +
                           " generations");
@@ -225,7 +225,7 @@ void step_wait_run(HeadlessStudio& session, const json& step) {
     frames_until(
         session, timeout_of(step, 300.0),
         [&] {
-            const auto phase = s.evolution.phase();
+            const auto phase = s.run.evolution.phase();
             return run_phase_name(phase) == want;
         },
         "the run to be " + want);
@@ -236,9 +236,9 @@ void step_select(HeadlessStudio& session, const json& step) {
     if (step.at("select") != "champion")
         throw ScriptError("select: only \"champion\" is supported");
     frames_until(
-        session, timeout_of(step, 30.0), [&] { return s.run && s.run->has_champion; },
-        "a champion");
-    const auto id = s.run->champion.id;
+        session, timeout_of(step, 30.0),
+        [&] { return s.run.snapshot && s.run.snapshot->has_champion; }, "a champion");
+    const auto id = s.run.snapshot->champion.id;
     click_at(session, widget_centre(session, "individual #" + std::to_string(id)));
     if (s.bodies.simulator.pending_id() != id && !(s.bodies.shown && s.bodies.shown->id == id))
         throw ScriptError("the click did not select the champion #" + std::to_string(id));
@@ -258,12 +258,12 @@ void step_wait_simulation(HeadlessStudio& session, const json& step) {
 
 void step_show_body(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
-    if (!show_body_file(s, step.at("show_body").get<std::string>())) throw ScriptError(s.status);
+    if (!show_body_file(s, step.at("show_body").get<std::string>())) throw ScriptError(s.ui.status);
 }
 
 void step_load_track(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
-    if (!load_track(s, step.at("load_track").get<std::string>())) throw ScriptError(s.status);
+    if (!load_track(s, step.at("load_track").get<std::string>())) throw ScriptError(s.ui.status);
 }
 
 void step_calibrate(HeadlessStudio& session, const json& step) {
@@ -274,7 +274,7 @@ void step_calibrate(HeadlessStudio& session, const json& step) {
     for (std::size_t i = 0; i < c.fit_names.size(); ++i)
         c.fit_on[i] = ("," + list + ",").find("," + c.fit_names[i] + ",") != std::string::npos;
     if (step.contains("max_simulations")) c.max_simulations = step.at("max_simulations").get<int>();
-    if (!start_calibration(s)) throw ScriptError(s.status);
+    if (!start_calibration(s)) throw ScriptError(s.ui.status);
 }
 
 void step_wait_calibration(HeadlessStudio& session, const json& step) {
@@ -297,7 +297,7 @@ void step_apply_rules(HeadlessStudio& session, const json&) {
     // can take between generations. Nothing to send is an error too: the script expected some.
     if (!rules_differ_from_run(s))
         throw ScriptError("apply_rules: the editor's rules and checks are the live run's");
-    if (!apply_rules_to_run(s)) throw ScriptError(s.status);
+    if (!apply_rules_to_run(s)) throw ScriptError(s.ui.status);
     session.frame();
 }
 
@@ -334,12 +334,12 @@ void step_export_view(HeadlessStudio& session, const json& step) {
     const auto size = step.value("size", std::array<int, 2>{1280, 720});
     if (!export_screenshot(s, session.app().renderer(),
                            step.at("export_view").get<std::string>(), size[0], size[1]))
-        throw ScriptError(s.status);
+        throw ScriptError(s.ui.status);
 }
 
 void step_save(HeadlessStudio& session, const json& step) {
     Studio& s = session.studio();
-    if (!save_experiment_as(s, step.at("save").get<std::string>())) throw ScriptError(s.status);
+    if (!save_experiment_as(s, step.at("save").get<std::string>())) throw ScriptError(s.ui.status);
 }
 
 }  // namespace
@@ -466,13 +466,14 @@ void set_experiment_field(Studio& studio, const std::string& path, const json& v
     try {
         next = evo::parse_experiment(doc, document_label(studio.document));
     } catch (const evo::ValidationError& e) {
-        studio.edit_problems = e.problems;
+        studio.ui.edit_problems = e.problems;
         set_status(studio, describe_problems("refused: ", e.problems), true);
         throw ScriptError(std::string("set ") + path +
                           " refused: " + e.problems.front().to_string());
     }
     if (!apply_edit(studio, next, "set " + path))
-        throw ScriptError("set " + path + " refused: " + studio.edit_problems.front().to_string());
+        throw ScriptError("set " + path +
+                          " refused: " + studio.ui.edit_problems.front().to_string());
 }
 
 const std::vector<ScriptStep>& script_steps() {

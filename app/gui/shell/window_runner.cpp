@@ -60,7 +60,7 @@ void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int mods)
     c->gate.input();
     c->keys.key(key, action, mods);
     if (const auto chord = key_event_chord(key, action, mods))
-        c->studio.key_presses.push_back(*chord);
+        c->studio.ui.key_presses.push_back(*chord);
 }
 void on_char(GLFWwindow* window, unsigned int codepoint) {
     if (WindowContext* c = context_of(window)) {
@@ -121,7 +121,7 @@ int run_window(Studio& studio, const WindowOptions& options) {
         std::string shown_title;
         double cursor_x = -1.0, cursor_y = -1.0;
         int window_w = 0, window_h = 0;
-        for (int frame = 0; !studio.quit_requested; ++frame) {
+        for (int frame = 0; !studio.ui.quit_requested; ++frame) {
             if (options.max_frames > 0 && frame >= options.max_frames) break;
             // The window's close button asks like Ctrl+Q (unsaved edits, a running run); the
             // window stays open while the question is shown.
@@ -153,7 +153,7 @@ int run_window(Studio& studio, const WindowOptions& options) {
             last = now;
             fps_accumulator += dt;
             if (++fps_frames == 30) {
-                studio.fps = fps_frames / fps_accumulator;
+                studio.ui.fps = fps_frames / fps_accumulator;
                 fps_accumulator = 0.0;
                 fps_frames = 0;
             }
@@ -203,7 +203,7 @@ int run_headless(Studio& studio, const HeadlessOptions& options) {
         std::cerr << "bhm studio: " << options.script << ": " << e.what() << "\n";
         return 1;
     }
-    while (studio.frame < options.frames)
+    while (studio.ui.frame < options.frames)
         session.frame();
     if (!options.screenshot.empty()) render::write_png(options.screenshot, session.capture());
     save_settings_quietly(studio);

@@ -1,6 +1,7 @@
 #include "app/gui/view/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <glm/gtc/quaternion.hpp>
@@ -17,6 +18,15 @@ namespace {
 constexpr glm::vec4 kForbiddenColor{0.25f, 0.25f, 0.28f, 0.45f};
 constexpr glm::vec4 kFixedMarkerColor{0.18f, 0.72f, 0.30f, 0.55f};
 constexpr glm::vec4 kFixedFaceHatch{0.10f, 0.58f, 0.22f, 1.0f};
+//! How far outside the workspace a face's tint lies, in voxels (lift_face_tints).
+constexpr float kFaceTintLift = 0.05f;
+
+//! Where a face's tint lies along its axis: just outside the workspace, except the bottom face,
+//! which lies just above it (the floor is at z = 0 and would hide a tint under it).
+float face_tint_level(int axis, bool high, const glm::vec3& workspace_hi, float voxel) {
+    if (axis == 2 && !high) return kFaceTintLift * voxel;
+    return high ? workspace_hi[axis] + kFaceTintLift * voxel : -kFaceTintLift * voxel;
+}
 
 std::array<render::FaceMarking, 6> face_markings(const evo::Boundary& boundary) {
     std::array<render::FaceMarking, 6> faces{};
@@ -325,7 +335,8 @@ void add_face_highlight(render::DrawList& list, const std::array<int, 3>& worksp
     const float s = static_cast<float>(voxel_size_m);
     const glm::vec3 hi{workspace[0] * s, workspace[1] * s, workspace[2] * s};
     const int axis = static_cast<int>(face) / 2;
-    const float level = static_cast<int>(face) % 2 ? hi[axis] : 0.0f;
+    const bool high = static_cast<int>(face) % 2 != 0;
+    const float level = high ? hi[axis] : 0.0f;
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     glm::vec3 corner[4];
     const float us[4] = {0.0f, hi[u], hi[u], 0.0f}, vs[4] = {0.0f, 0.0f, hi[v], hi[v]};
@@ -334,11 +345,37 @@ void add_face_highlight(render::DrawList& list, const std::array<int, 3>& worksp
         corner[k][u] = us[k];
         corner[k][v] = vs[k];
     }
-    for (int k : {0, 1, 2, 0, 2, 3})
-        list.translucent_triangles.push_back({corner[k], color});
+    // The tint beside the face (lift_face_tints), its outline on the workspace's edges.
+    for (int k : {0, 1, 2, 0, 2, 3}) {
+        glm::vec3 p = corner[k];
+        p[axis] = face_tint_level(axis, high, hi, s);
+        list.translucent_triangles.push_back({p, color});
+    }
     for (int k = 0; k < 4; ++k) {
         list.lines.push_back({corner[k], glm::vec4(glm::vec3(color), 1.0f), 3.0f});
         list.lines.push_back({corner[(k + 1) % 4], glm::vec4(glm::vec3(color), 1.0f), 3.0f});
+    }
+}
+
+void lift_face_tints(render::DrawList& list, const std::array<int, 3>& workspace,
+                     double voxel_size_m) {
+    const float s = static_cast<float>(voxel_size_m);
+    const glm::vec3 hi{workspace[0] * s, workspace[1] * s, workspace[2] * s};
+    const float tolerance = 1e-4f * s;
+    auto& triangles = list.translucent_triangles;
+    // The renderer's face tints are quads of six vertices (render::add_boundary_faces).
+    for (std::size_t i = 0; i + 6 <= triangles.size(); i += 6) {
+        for (int axis = 0; axis < 3; ++axis) {
+            for (const bool high : {false, true}) {
+                const float level = high ? hi[axis] : 0.0f;
+                bool on_face = true;
+                for (std::size_t k = i; k < i + 6 && on_face; ++k)
+                    on_face = std::fabs(triangles[k].position[axis] - level) <= tolerance;
+                if (!on_face) continue;
+                for (std::size_t k = i; k < i + 6; ++k)
+                    triangles[k].position[axis] = face_tint_level(axis, high, hi, s);
+            }
+        }
     }
 }
 

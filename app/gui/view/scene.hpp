@@ -48,7 +48,7 @@ render::Scene simulation_scene(const SimulatedBody& body, double t_s, const View
 bool apply_fem_overlay(render::Scene& scene, const FemVerification& verification, int load);
 
 //! Highlights for the painter drawn into an existing draw list: a wire box around a cell and a
-//! tinted quad over a face.
+//! tinted quad over a face (just outside it, see lift_face_tints).
 void add_cell_highlight(render::DrawList& list, const std::array<int, 3>& cell, double voxel_size_m,
                         glm::vec4 color);
 void add_face_highlight(render::DrawList& list, const std::array<int, 3>& workspace,
@@ -58,6 +58,14 @@ void add_face_highlight(render::DrawList& list, const std::array<int, 3>& worksp
 //! neighbours' faces. Nothing when the index is out of range.
 void add_posed_voxel_highlight(render::DrawList& list, const engine::VoxelPoses& poses, int voxel,
                                glm::vec4 color);
+//! Workspace mode: the renderer's face tints (translucent quads lying in a face of the
+//! workspace) moved a twentieth of a voxel outside it, as add_face_highlight's are (the bottom
+//! face's a twentieth of a voxel above it, over the floor at z = 0). In the face
+//! the tint shared a plane with the voxels on that face (the frame, overrides, the champion) and
+//! fought them in the depth buffer: a speckle that changed with each turn of the camera (the
+//! faces flickered, issue 39). Their outlines stay on the workspace's edges.
+void lift_face_tints(render::DrawList& list, const std::array<int, 3>& workspace,
+                     double voxel_size_m);
 //! Simulation mode: a fixed face as an opaque green outline with diagonal hatching, a tenth of a
 //! voxel outside the workspace (no tint over the body, no z-fighting with the voxels on it).
 void add_fixed_face_hatch(render::DrawList& list, const std::array<int, 3>& workspace,

@@ -96,9 +96,10 @@ void append_offset(render::DrawList& into, const render::DrawList& from, glm::ve
 }  // namespace
 
 const evo::Body* painter_context_body(const Studio& s) {
-    if (!s.painter.show_champion || !s.run || !s.run->has_champion || !s.run->champion.body)
+    if (!s.painter.show_champion || !s.run.snapshot || !s.run.snapshot->has_champion ||
+        !s.run.snapshot->champion.body)
         return nullptr;
-    return s.run->champion.body.get();
+    return s.run.snapshot->champion.body.get();
 }
 
 render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterState& painter,
@@ -106,6 +107,7 @@ render::DrawList workspace_draw_list(const evo::Experiment& e, const PainterStat
     render::Scene scene = workspace_scene(e, painter, context_body);
     scene.options.show_edges = show_edges;
     render::DrawList list = render::build_draw_list(scene);
+    lift_face_tints(list, e.workspace_size, e.voxel_size_m);
     // The renderer's fixed-face tint is faint over a light background; the painter's job is to
     // show which faces hold the body, so fixed faces get a second green layer here.
     for (int f = 0; f < 6; ++f)

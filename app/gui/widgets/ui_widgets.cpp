@@ -33,7 +33,7 @@ bool finished_edit() {
 
 void record_widget(Studio& studio, const std::string& name) {
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-    studio.widgets[name] = WidgetRect{{lo.x, lo.y}, {hi.x, hi.y}, studio.frame};
+    studio.ui.widgets[name] = WidgetRect{{lo.x, lo.y}, {hi.x, hi.y}, studio.ui.frame};
 }
 
 bool tracked_button(Studio& studio, const char* label, ImVec2 size) {
