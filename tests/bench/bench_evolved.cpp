@@ -94,7 +94,8 @@ int run(int argc, char** argv) {
         else if (a == "--legs")
             legs = value();
         else if (a == "--assets")
-            value();  // accepted for symmetry with the other benches; the checkpoints hold the experiment
+            value();  // accepted for symmetry with the other benches; the checkpoints hold the
+                      // experiment
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: bench_evolved [--dir DIR] [--threads N] [--commit SHA] "
                          "[--legs both|gen0|evolved] [PRESET...]\n";
@@ -116,8 +117,8 @@ int run(int argc, char** argv) {
         char row[512];
         std::snprintf(row, sizeof row, "%s,%s,%d,%d,%d,%.1f,%d,%.3f,%.2f,%.2f,%.3f,%.1f,%d,%s,%s",
                       preset.c_str(), name, leg.generation, leg.population, leg.simulations,
-                      leg.mean_voxels, leg.ended_early, leg.mean_simulated_s, leg.cpu_s,
-                      leg.wall_s, per_sim, gph, threads, machine.c_str(), commit.c_str());
+                      leg.mean_voxels, leg.ended_early, leg.mean_simulated_s, leg.cpu_s, leg.wall_s,
+                      per_sim, gph, threads, machine.c_str(), commit.c_str());
         std::cout << row << std::endl;
     };
     for (const std::string& preset : presets) {
