@@ -3,7 +3,7 @@
 //
 // Before actuation starts (t < settle_s) a body only sags under gravity and comes to rest; the
 // rest of its settling changes nothing. Every track the measures use (evo/evaluate/tracks.hpp) is
-// watched over windows of W = 0.2 s of samples: s_w = max_i |x[i] - x[e]| over the window ending at
+// watched over windows of W = 0.1 s of samples: s_w = max_i |x[i] - x[e]| over the window ending at
 // sample e (voxel lengths; mass moments as the centre-of-mass shift they make), s_{w-1} the same
 // one window earlier, r = s_w / s_{w-1}. A creep that falls by r a window still has s_w r / (1 - r)
 // to go, so the body is at rest when for every track
@@ -12,8 +12,9 @@
 // lets the rest of the settling pass without integrating (engine::World::rest_until) and feeds the
 // samples the full run would have taken meanwhile as copies of the last one.
 // The criterion is on positions, not kinetic energy: a kinetic energy vanishes at every turning
-// point of a slow swing, a window's spread does not (a swing of period T <= 1 s moves by at least
-// 0.69 of its amplitude inside 0.2 s).
+// point of a slow swing, a window's spread does not (a swing of period T <= 0.5 s moves by at
+// least 0.69 of its amplitude inside 0.1 s; a slower one of amplitude A still spreads by at least
+// A (1 - cos(pi W / T)), 0.05 A at T = 1 s, against a tenth of the tolerance).
 // Only held bodies (every_part_held) end their settling early: a free body's later walk can be
 // chaotic, and a state a tolerance away from the full run's may then end somewhere else.
 // It applies with end_when_periodic, when settle_s is a whole number of samples, and never on the

@@ -11,6 +11,9 @@
 // --body NAME keeps only the bodies of that name (repeatable: random-05 of paper-exp3). --every K keeps every K-th body of each file (a spread of sizes in less time); FILE-STEMs pick
 // corpus files (e.g. paper-exp1 paper-exp3-champions), all by default. --tolerance-scale
 // multiplies the presets' periodic_tolerance (10 shows what a tenfold looser one does).
+// --early-only skips the full run (no gate: the columns of the early run only, for a profile).
+// integrated_s is the simulated time the early run actually stepped (the rest of a settling at
+// rest is skipped, evo/evaluate/settle_rest.hpp), settle_integrated_s its part before settle_s.
 #include <time.h>
 
 #include <algorithm>
@@ -25,6 +28,7 @@
 
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/periodic_end.hpp"
+#include "evo/evaluate/simulate.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
@@ -42,6 +46,7 @@ int run(int argc, char** argv) {
     std::string corpus_dir = "tests/bench/corpus", assets = "assets/experiments";
     int min_voxels = 0, max_voxels = 1 << 30, every = 1;
     double tolerance_scale = 1.0;
+    bool early_only = false;
     std::vector<std::string> stems, only_bodies;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -61,12 +66,14 @@ int run(int argc, char** argv) {
             every = std::max(1, std::stoi(value()));
         else if (a == "--tolerance-scale")
             tolerance_scale = std::stod(value());
+        else if (a == "--early-only")
+            early_only = true;
         else if (a == "--body")
             only_bodies.push_back(value());
         else if (a == "--help" || a == "-h") {
             std::cout << "usage: bench_periodic_end [--corpus DIR] [--assets DIR] [--min-voxels N] "
                          "[--max-voxels N]"
-                         " [--every K] [--tolerance-scale X] [--body NAME]... [FILE-STEM...]\n";
+                         " [--every K] [--tolerance-scale X] [--early-only] [--body NAME]... [FILE-STEM...]\n";
             return 0;
         } else
             stems.push_back(a);
@@ -76,7 +83,7 @@ int run(int argc, char** argv) {
         if (entry.path().extension() == ".json") files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     std::cout << "file,body,voxels,ended_early,stopped_s,periodic_residual,gate_error,"
-                 "cpu_full_s,cpu_early_s\n";
+                 "cpu_full_s,cpu_early_s,integrated_s,settle_integrated_s\n";
     int bodies = 0, early = 0, failed = 0;
     double worst = 0.0, cpu_full = 0.0, cpu_early = 0.0;
     std::string worst_body;
@@ -106,7 +113,7 @@ int run(int argc, char** argv) {
             double t0 = thread_cpu_s();
             const FitnessReport e = evaluate_body(on, body);
             double t1 = thread_cpu_s();
-            const FitnessReport f = evaluate_body(off, body);
+            const FitnessReport f = early_only ? e : evaluate_body(off, body);
             double t2 = thread_cpu_s();
             const double error = e.ended_early ? periodic_end_error(e, f) : 0.0;
             ++bodies;
@@ -119,11 +126,16 @@ int run(int argc, char** argv) {
                 worst = error;
                 worst_body = name;
             }
+            const double dt = model_of(on, body)->dt_s();
+            const double integrated_s = static_cast<double>(e.steps) * dt;
+            const double settle_s = on.simulation.settle_s;
+            const double settle_integrated_s =
+                integrated_s - std::max(0.0, e.simulated_s - settle_s);
             char row[512];
-            std::snprintf(row, sizeof row, "%s,%s,%d,%d,%.4f,%.3g,%.4f,%.3f,%.3f", stem.c_str(),
-                          entry.at("name").get<std::string>().c_str(), voxels,
+            std::snprintf(row, sizeof row, "%s,%s,%d,%d,%.4f,%.3g,%.4f,%.3f,%.3f,%.4f,%.4f",
+                          stem.c_str(), entry.at("name").get<std::string>().c_str(), voxels,
                           e.ended_early ? 1 : 0, e.simulated_s, e.periodic_residual, error, t2 - t1,
-                          t1 - t0);
+                          t1 - t0, integrated_s, settle_integrated_s);
             std::cout << row << std::endl;
             if (error > 0.3) {
                 std::cerr << name << (error > 1.0 ? " over the gate:" : " near the gate:");
