@@ -227,7 +227,7 @@ TEST_CASE("simulate --help documents the outputs and the diverged exit status") 
 
 TEST_CASE("simulate's summary says where an evaluation's settling would end at rest") {
     // The held 3x2x2 block settling for 1 s under gravity: at rest well before (windows of
-    // 0.2 s, evo/evaluate/settle_rest.hpp), so an evaluation would stop integrating there and
+    // 0.1 s, evo/evaluate/settle_rest.hpp), so an evaluation would stop integrating there and
     // resume at settle_s; bhm simulate runs it all and reports the stop.
     const fs::path dir = fresh_dir("settle_rest");
     const fs::path experiment = dir / "experiment.json", body = dir / "body.json";
@@ -243,7 +243,7 @@ TEST_CASE("simulate's summary says where an evaluation's settling would end at r
     const nlohmann::json r = nlohmann::json::parse(summary_file).at("settle_rest");
     CHECK(r.at("applies") == true);
     REQUIRE(r.at("ends_early") == true);
-    CHECK(r.at("stop_s").get<double>() >= 0.4);  // two windows at least
+    CHECK(r.at("stop_s").get<double>() >= 0.2);  // two windows at least
     CHECK(r.at("stop_s").get<double>() < 1.0);
     CHECK(r.at("resume_s").get<double>() == 1.0);
     // Without the early ends nothing stops.

@@ -309,20 +309,3 @@ TEST_CASE("studio analysis: exploit flags on the champion and in the population 
     REQUIRE(shown);
     CHECK(shown->escaped);
 }
-
-// The newcomer's "clipped text" (issue 39): at 1600x1000 the Analysis tab bar shrank every tab to
-// one width and cut the labels ("Populat..."). Tabs keep their labels' widths and the bar scrolls
-// instead, so a longer label gets a wider tab.
-TEST_CASE("studio analysis: the Analysis tabs keep their whole labels at 1600x1000") {
-    Studio studio;
-    studio.document.reset(testing::tiny_experiment(), "");
-    HeadlessStudio session(studio, 1600, 1000);
-    run_script(session, json::parse(R"([{"frames": 3}])"));
-    auto width = [&](const std::string& tab) {
-        const auto it = studio.ui.widgets.find("tab " + tab);
-        REQUIRE(it != studio.ui.widgets.end());
-        return it->second.max.x - it->second.min.x;
-    };
-    CHECK(width("Age vs fitness") > width("Population") + 10.0f);
-    CHECK(width("Population") > width("FEM") + 10.0f);
-}

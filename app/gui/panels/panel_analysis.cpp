@@ -161,8 +161,7 @@ void time_plots_tab(Studio& s) {
 }  // namespace
 
 void draw_analysis_panel(Studio& s) {
-    // Scroll rather than shrink: shrunk tabs cut their labels ("Populat...") at common widths.
-    if (!ImGui::BeginTabBar("analysis tabs", ImGuiTabBarFlags_FittingPolicyScroll)) return;
+    if (!ImGui::BeginTabBar("analysis tabs")) return;
     const std::pair<const char*, void (*)(Studio&)> tabs[] = {{"Population", draw_population_panel},
                                                               {"Champions", champions_tab},
                                                               {"Age vs fitness", scatter_tab},
