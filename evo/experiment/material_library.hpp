@@ -38,6 +38,9 @@ struct LibraryMaterial {
     //! Active tissue ("active" object): contraction strain (linear, fraction) and frequency (Hz).
     bool active = false;
     std::optional<SourcedValue> contraction_strain, frequency_hz;
+    //! Active tissue's twitch: the activation's rise and decay time constants (s) of the muscle
+    //! model (engine/muscle.hpp), where a source gives them (issue 43).
+    std::optional<SourcedValue> rise_s, decay_s;
     std::optional<std::array<float, 3>> color;
     bool operator==(const LibraryMaterial&) const = default;
 };
@@ -86,7 +89,9 @@ LibraryMaterial parse_library_material(const nlohmann::json& json, const std::st
 //! What filling a slot from the library sets: E, and nu, density, friction, colour where the
 //! library has them; for active tissue with a contraction strain, cte_per_c = strain /
 //! temperature_amplitude_c (the engine's actuation strain is cte x amplitude,
-//! docs/materials-format.md). The name is set when the slot has none. entry.library = m.id.
+//! docs/materials-format.md), and the muscle model's contraction strain, rise and decay times and
+//! frequency where it has them (used when the slot's actuation_model is muscle, which then sets
+//! cte_per_c to 0). The name is set when the slot has none. entry.library = m.id.
 void apply_library_material(const LibraryMaterial& m, double temperature_amplitude_c,
                             MaterialEntry& entry);
 
