@@ -139,6 +139,7 @@ class LibraryFill {
             r.problem(field, message + "; `bhm materials` lists it");
             return base;
         }
+        if (muscle) base.physics.actuation_model = engine::ActuationModel::Muscle;
         apply_library_material(*lm, temperature_amplitude_c, base);
         auto require = [&](const char* key, bool sourced) {
             if (!sourced && !m.contains(key))

@@ -302,14 +302,21 @@ void apply_library_material(const LibraryMaterial& m, double temperature_amplitu
     if (m.density_kg_m3) p.density_kg_m3 = m.density_kg_m3->value;
     if (m.static_friction) p.static_friction = m.static_friction->value;
     if (m.dynamic_friction) p.dynamic_friction = m.dynamic_friction->value;
-    if (!m.active)
+    // A sine slot takes the tissue's strain as a thermal expansion; a muscle slot takes it, the
+    // twitch times and the rate as its muscle fields and keeps no cte. Only the slot's own model
+    // is filled: a sine slot is written without muscle keys, so a filled muscle object would not
+    // survive its round trip.
+    const bool muscle = p.actuation_model == engine::ActuationModel::Muscle;
+    if (!m.active || muscle)
         p.cte_per_c = 0.0;
     else if (m.contraction_strain && temperature_amplitude_c > 0)
         p.cte_per_c = m.contraction_strain->value / temperature_amplitude_c;
-    if (m.contraction_strain) p.muscle.contraction_strain = m.contraction_strain->value;
-    if (m.rise_s) p.muscle.rise_s = m.rise_s->value;
-    if (m.decay_s) p.muscle.decay_s = m.decay_s->value;
-    if (m.frequency_hz) p.muscle.frequency_hz = m.frequency_hz->value;
+    if (muscle) {
+        if (m.contraction_strain) p.muscle.contraction_strain = m.contraction_strain->value;
+        if (m.rise_s) p.muscle.rise_s = m.rise_s->value;
+        if (m.decay_s) p.muscle.decay_s = m.decay_s->value;
+        if (m.frequency_hz) p.muscle.frequency_hz = m.frequency_hz->value;
+    }
     if (m.color) {
         entry.color = *m.color;
         entry.has_color = true;

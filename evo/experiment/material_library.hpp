@@ -87,11 +87,11 @@ LibraryMaterial parse_library_material(const nlohmann::json& json, const std::st
                                        const std::string& id);
 
 //! What filling a slot from the library sets: E, and nu, density, friction, colour where the
-//! library has them; for active tissue with a contraction strain, cte_per_c = strain /
-//! temperature_amplitude_c (the engine's actuation strain is cte x amplitude,
-//! docs/materials-format.md), and the muscle model's contraction strain, rise and decay times and
-//! frequency where it has them (used when the slot's actuation_model is muscle, which then sets
-//! cte_per_c to 0). The name is set when the slot has none. entry.library = m.id.
+//! library has them. For active tissue, by the slot's actuation_model: a sine slot gets cte_per_c =
+//! strain / temperature_amplitude_c (the engine's actuation strain is cte x amplitude,
+//! docs/materials-format.md); a muscle slot gets cte_per_c 0 and the muscle model's contraction
+//! strain, rise and decay times and frequency where the library has them. The name is set when the
+//! slot has none. entry.library = m.id.
 void apply_library_material(const LibraryMaterial& m, double temperature_amplitude_c,
                             MaterialEntry& entry);
 

@@ -142,8 +142,11 @@ TEST_CASE("every field of the table is written at its path and read back unchang
             if (f.parent() == "muscle") m.actuation_model = bhm::engine::ActuationModel::Muscle;
             m.cte_per_c = 0.0;
             m.muscle.contraction_strain = 0.05;
-            m.muscle.train_on_s = 0.3;  // bursts, so that a rest between them is valid
-            m.muscle.train_off_s = 0.2;
+            // Bursts, so that a rest between them is valid; but the stimulus field turns the
+            // train into spontaneous beating, which has no on/off schedule.
+            const bool beating_next = std::string_view(f.path) == "muscle.stimulus";
+            m.muscle.train_on_s = beating_next ? 0.0 : 0.3;
+            m.muscle.train_off_s = beating_next ? 0.0 : 0.2;
         }
         Experiment e = from;
         const json value = change(f, e.materials[1].physics);  // the active one
