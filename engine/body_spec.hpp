@@ -7,6 +7,28 @@
 
 namespace bhm::engine {
 
+//! How an active material is driven (docs/physics.md, "Actuation"): Sine is the paper's
+//! isotropic thermal expansion, cte x A sin(2 pi f t + phase), the default; Muscle is
+//! contraction along a fibre axis with twitch activation dynamics (engine/muscle.hpp).
+enum class ActuationModel : std::uint8_t { Sine = 0, Muscle = 1 };
+//! What excites a muscle: an external pulse train (electrical or optical, with an optional on/off
+//! schedule) or its own spontaneous beating (cardiomyocytes) at a fixed rate.
+enum class MuscleStimulus : std::uint8_t { PulseTrain = 0, Beating = 1 };
+
+//! The muscle model of one material (used when Material::actuation_model is Muscle).
+struct Muscle {
+    int fibre_axis = 0;               //!< 0 = x, 1 = y, 2 = z (lattice axes)
+    double contraction_strain = 0.0;  //!< free shortening along the fibre at full activation; > 0
+    double rise_s = 0.03;             //!< activation time constant while stimulated
+    double decay_s = 0.06;            //!< deactivation time constant between stimuli
+    MuscleStimulus stimulus = MuscleStimulus::PulseTrain;
+    double frequency_hz = 1.0;     //!< pulses (or beats) per second
+    double pulse_width_s = 0.01;   //!< how long each pulse excites the muscle
+    double train_on_s = 0.0;       //!< pulse train: length of a burst; 0 = one endless train
+    double train_off_s = 0.0;      //!< pulse train: rest between bursts
+    bool operator==(const Muscle&) const = default;
+};
+
 //! One material of the palette (paper Table 1). Material index k in a lattice means materials[k-1].
 struct Material {
     double youngs_modulus_pa = 5e6;  //!< E
@@ -15,8 +37,17 @@ struct Material {
     double cte_per_c = 0.0;          //!< linear thermal expansion; > 0 makes the voxel active
     double static_friction = 1.0;    //!< mu_s against the floor
     double dynamic_friction = 0.5;   //!< mu_k against the floor
+    ActuationModel actuation_model = ActuationModel::Sine;
+    Muscle muscle;  //!< used when actuation_model is Muscle (then cte_per_c must be 0)
     bool operator==(const Material&) const = default;
 };
+
+//! Whether a material's voxels are driven: cte > 0 under the sine model, a contraction strain
+//! > 0 under the muscle model.
+inline bool is_active(const Material& m) {
+    return m.actuation_model == ActuationModel::Muscle ? m.muscle.contraction_strain > 0.0
+                                                       : m.cte_per_c > 0.0;
+}
 
 struct Environment {
     double gravity_m_s2 = -9.81;  //!< along z; negative pulls toward the floor

@@ -9,6 +9,7 @@
 
 #include "engine/internal/poisson.hpp"
 #include "engine/internal/moduli.hpp"
+#include "engine/muscle.hpp"
 
 namespace bhm::engine::limits {
 namespace {
@@ -59,6 +60,8 @@ std::vector<Problem> material_problems(const Material& m, double temperature_amp
         out.push_back({"static_friction", "must be >= 0"});
     if (!finite(m.dynamic_friction) || m.dynamic_friction < 0.0)
         out.push_back({"dynamic_friction", "must be >= 0"});
+    for (const muscle::Problem& p : muscle::material_problems(m))
+        out.push_back({p.field, p.message});
     return out;
 }
 
@@ -142,6 +145,13 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec) {
             }
         }
         if (!any_voxel) out.push_back({"material", "the body has no voxels: nothing to simulate"});
+        // One actuation model per body, at most two muscle signals (engine/muscle.hpp).
+        std::vector<bool> used(spec.materials.size(), false);
+        for (long long c = 0; c < cells; ++c)
+            if (const int k = spec.material[c]; k > 0 && k <= static_cast<int>(used.size()))
+                used[k - 1] = true;
+        for (const muscle::Problem& p : muscle::palette_problems(spec.materials, &used))
+            out.push_back({p.field, p.message});
     }
     for (float p : spec.phase_rad)
         if (!std::isfinite(p)) {
@@ -154,6 +164,7 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec) {
 namespace {
 // Largest size scale 1 + |cte A| of a material's voxels over an actuation period.
 double largest_scale(const Material& m, double temperature_amplitude_c) {
+    if (m.actuation_model == ActuationModel::Muscle) return muscle::largest_scale(m);
     return 1.0 + std::fabs(m.cte_per_c * temperature_amplitude_c);
 }
 }  // namespace

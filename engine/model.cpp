@@ -12,6 +12,7 @@
 #include "engine/internal/link_confinement.hpp"
 #include "engine/internal/model_data.hpp"
 #include "engine/internal/moduli.hpp"
+#include "engine/internal/muscle_drive.hpp"
 #include "engine/internal/poisson.hpp"
 #include "engine/limits.hpp"
 
@@ -31,7 +32,9 @@ void validate(const BodySpec& spec) {
 
 // The largest relative size change a voxel's actuation reaches (|size - 1|).
 double actuation_reach(const Model::Data& d, int v) {
-    return std::sqrt(d.act_sin[v] * d.act_sin[v] + d.act_cos[v] * d.act_cos[v]);
+    const double reach = std::sqrt(d.act_sin[v] * d.act_sin[v] + d.act_cos[v] * d.act_cos[v]);
+    // A muscle voxel's links reach further than its isotropic (mean) scale (muscle_drive.hpp).
+    return d.muscle.signals == 0 ? reach : std::max(reach, d.muscle.reach[v]);
 }
 
 // A bound on the damping rate of one link: the largest eigenvalue of M^-1/2 C M^-1/2 over the
@@ -335,6 +338,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         if (d.voxel_fixed[v] && turns_at_all(d, v))
             d.wall_stiffness[v] = kClampWallStiffness * mat.youngs_modulus_pa * L * L * L;
     }
+    build_muscle_drive(d);  // muscle voxels' signals and coefficients (issue 43)
 
     // Poisson coupling (poisson.hpp): per-voxel moduli and centre-strain coefficients; a link's
     // own modulus is the mean over the four octants at each end.
@@ -409,6 +413,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         }
     }
 
+    set_muscle_link_rests(d);
     build_edge_springs(d, max_omega2);
 
     // A body without links (a lone voxel) has no strain to couple: skip the pass (it would

@@ -11,6 +11,7 @@
 #include "engine/internal/damping_pass.hpp"
 #include "engine/internal/edge_springs.hpp"
 #include "engine/internal/link_pass.hpp"
+#include "engine/internal/muscle_drive.hpp"
 #include "engine/internal/poisson.hpp"
 #include "engine/internal/voxel_pass.hpp"
 #include "engine/internal/world_state.hpp"
@@ -78,17 +79,25 @@ void init_links(const Model::Data& d, LinkScratch& l) {
         l.damp_turn_pos[i] = next();
 }
 
+// The two actuation signals every pass reads (sin_t, cos_t: the sine model's sin and cos of
+// 2 pi f tau, or a muscle body's two activations, muscle_drive.hpp) and their rates.
 struct Phase {
     double sin_t = 0.0, cos_t = 0.0;
-    double omega = 0.0;  //!< 2 pi f once the actuation runs, else 0
+    double rate_sin = 0.0, rate_cos = 0.0;  //!< d/dt of sin_t and cos_t
 };
 
 Phase actuation_phase(const Model::Data& d, double t) {
+    if (d.muscle.signals > 0) {
+        const DriveSignals s = muscle_signals(d.muscle, t);
+        return {s.c0, s.c1, s.rate0, s.rate1};
+    }
     const Actuation& a = d.spec.actuation;
     const double tau = t - a.start_s;
     if (!d.any_active || tau < 0.0) return {};
     const double angle = 2.0 * std::numbers::pi * a.frequency_hz * tau;
-    return {std::sin(angle), std::cos(angle), 2.0 * std::numbers::pi * a.frequency_hz};
+    const double omega = 2.0 * std::numbers::pi * a.frequency_hz;
+    const double sin_t = std::sin(angle), cos_t = std::cos(angle);
+    return {sin_t, cos_t, omega * cos_t, -omega * sin_t};
 }
 
 const char* kAxisNames[3] = {"x", "y", "z"};
@@ -176,8 +185,8 @@ void World::step() {
         // Jacobi sweeps, the last of which moves the pose (damping_pass.hpp).
         in.velocity_only = true;
         voxel_pass(d, s.voxels, s.links, in);
-        const auto rate_sin = static_cast<float>(phase.omega * phase.cos_t);
-        const auto rate_cos = static_cast<float>(-phase.omega * phase.sin_t);
+        const auto rate_sin = static_cast<float>(phase.rate_sin);
+        const auto rate_cos = static_cast<float>(phase.rate_cos);
         const PoissonScratch* poisson = d.poisson.active ? &s.poisson : nullptr;
         for (int sweep = 1; sweep <= d.implicit_sweeps; ++sweep) {
             for (int axis = 0; axis < 3; ++axis)
@@ -277,6 +286,11 @@ void World::read_poses(VoxelPoses& out) const {
             d.voxel_size_m * (1.0 + d.act_sin[v] * phase.sin_t + d.act_cos[v] * phase.cos_t);
         for (int i = 0; i < 3; ++i)
             out.size_m[3 * v + i] = static_cast<float>(size);
+        if (d.muscle.signals == 0) continue;
+        // A muscle voxel is shorter along its fibre than across it (muscle_drive.hpp).
+        for (int i = 0; i < 3; ++i)
+            out.size_m[3 * v + i] = static_cast<float>(
+                d.voxel_size_m * muscle_axis_scale(d, v, i, phase.sin_t, phase.cos_t));
     }
 }
 

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "engine/body_spec.hpp"
+#include "engine/internal/muscle_drive.hpp"
 #include "engine/model.hpp"
 
 namespace bhm::engine {
@@ -189,6 +190,9 @@ struct Model::Data {
 
     std::array<LinkParams, 3> links;  //!< per axis, one slot per voxel slot
     PoissonParams poisson;
+    //! Muscle voxels (muscle_drive.hpp): their signals and per-axis strains; signals == 0 in a
+    //! body driven by the sine model
+    MuscleDrive muscle;
 
     //! Springs across shared voxel edges (edge_springs.hpp), structure of arrays over the
     //! springs (empty in most bodies). Float like the link kernel (the float edge kernel reads

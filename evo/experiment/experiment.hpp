@@ -22,7 +22,8 @@ struct MaterialEntry {
     //! The library material (assets/materials/<id>.json) the slot was filled from; "" = typed by
     //! hand. Provenance only once written: the file keeps every value (docs/materials-format.md).
     std::string library;
-    bool active() const { return physics.cte_per_c > 0.0; }
+    //! cte > 0 under the sine model, a contraction strain > 0 under the muscle model
+    bool active() const { return engine::is_active(physics); }
     bool operator==(const MaterialEntry&) const = default;
 };
 

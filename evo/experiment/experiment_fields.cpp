@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "engine/limits.hpp"
+#include "engine/muscle.hpp"
 #include "evo/experiment/field_rules.hpp"
 
 namespace bhm::evo {
@@ -14,6 +15,10 @@ namespace bhm::evo {
 namespace {
 
 namespace lim = engine::limits;
+namespace mus = engine::muscle;
+constexpr std::array<const char*, 2> kActuationModelNames = {"sine", "muscle"};
+constexpr std::array<const char*, 3> kAxisNames = {"x", "y", "z"};
+constexpr std::array<const char*, 2> kStimulusNames = {"pulse_train", "beating"};
 constexpr bool kOpen = true;  // Range{lo, hi, kOpen}: lo excluded
 // BoundaryKind's names in the file, in the enum's order.
 constexpr std::array<const char*, 2> kBoundaryKindNames = {"free", "fixed"};
@@ -39,6 +44,10 @@ constexpr std::array<const char*, 2> kBoundaryKindNames = {"free", "fixed"};
      .unit = "voxels", .help = "thickness of the passive frame (enclosure) on this face",  \
      .range = {0, kMaxWorkspaceDimension}, BHM_INTEGER(boundary.enclosure_thickness[i])}
 #define BHM_MATERIAL(member) .number = [](engine::Material& m) -> double& { return m.member; }
+#define BHM_MATERIAL_CHOICE(member, Enum, names)                                           \
+    .get_choice = [](const engine::Material& m) { return static_cast<int>(m.member); },   \
+    .set_choice = [](engine::Material& m, int v) { m.member = static_cast<Enum>(v); },    \
+    .choices = names
 
 const ExperimentField kExperimentFields[] = {
     {.path = "name", .label = "##name", .unit = "", .help = "experiment name",
@@ -265,6 +274,45 @@ const MaterialField kMaterialFields[] = {
      .help = "Coulomb friction against the floor while sliding; paper: 0.5", .range = {0},
      .format = "%.3f",
      BHM_MATERIAL(dynamic_friction)},
+    {.path = "actuation_model", .label = "Actuation model", .unit = "",
+     .help = "how an active material is driven: sine (the paper's thermal expansion, cte x "
+             "amplitude sin(2 pi f t)) or muscle (contraction along fibres, twitch dynamics; "
+             "the muscle fields below)",
+     BHM_MATERIAL_CHOICE(actuation_model, engine::ActuationModel, kActuationModelNames)},
+    {.path = "muscle.fibre_axis", .label = "Fibre axis", .unit = "",
+     .help = "muscle: the lattice axis its fibres run along; it contracts along it and "
+             "thickens across by Poisson's ratio",
+     BHM_MATERIAL_CHOICE(muscle.fibre_axis, int, kAxisNames)},
+    {.path = "muscle.contraction_strain", .label = "Contraction strain", .unit = "",
+     .help = "muscle: free shortening along the fibres at full (tetanic) activation; > 0 makes "
+             "the material active",
+     .range = {0, mus::kMaxContractionStrain}, .note = "(the engine's stable actuation strain)",
+     .format = "%.4f", BHM_MATERIAL(muscle.contraction_strain)},
+    {.path = "muscle.rise_s", .label = "Activation time", .unit = "s",
+     .help = "muscle: time constant of the activation's rise while stimulated (a twitch's "
+             "contraction phase)",
+     .range = {mus::kMinTimeConstantS, mus::kMaxTimeConstantS}, BHM_MATERIAL(muscle.rise_s)},
+    {.path = "muscle.decay_s", .label = "Relaxation time", .unit = "s",
+     .help = "muscle: time constant of the activation's decay between stimuli (a twitch's "
+             "relaxation)",
+     .range = {mus::kMinTimeConstantS, mus::kMaxTimeConstantS}, BHM_MATERIAL(muscle.decay_s)},
+    {.path = "muscle.stimulus", .label = "Stimulus", .unit = "",
+     .help = "muscle: pulse_train (electrical or optical pacing, optional on/off schedule) or "
+             "beating (spontaneous, cardiomyocytes)",
+     BHM_MATERIAL_CHOICE(muscle.stimulus, engine::MuscleStimulus, kStimulusNames)},
+    {.path = "muscle.frequency_hz", .label = "Pulse / beat rate", .unit = "Hz",
+     .help = "muscle: pulses (or beats) per second; fast trains fuse twitches into tetanus",
+     .range = {0, mus::kMaxStimulusFrequencyHz, kOpen}, BHM_MATERIAL(muscle.frequency_hz)},
+    {.path = "muscle.pulse_width_s", .label = "Pulse width", .unit = "s",
+     .help = "muscle: how long each pulse excites the tissue; twitch peak / tetanus = "
+             "1 - exp(-width / activation time)",
+     .range = {0, mus::kMaxTimeConstantS, kOpen}, BHM_MATERIAL(muscle.pulse_width_s)},
+    {.path = "muscle.train_on_s", .label = "Burst length", .unit = "s",
+     .help = "muscle pulse train: length of a burst of pulses; 0 = one endless train",
+     .range = {0, mus::kMaxTrainS}, .note = "(0 = endless)", BHM_MATERIAL(muscle.train_on_s)},
+    {.path = "muscle.train_off_s", .label = "Rest between bursts", .unit = "s",
+     .help = "muscle pulse train: rest between bursts; 0 = one endless train",
+     .range = {0, mus::kMaxTrainS}, .note = "(0 = endless)", BHM_MATERIAL(muscle.train_off_s)},
 };
 
 // clang-format on
@@ -277,6 +325,7 @@ const MaterialField kMaterialFields[] = {
 #undef BHM_FACE
 #undef BHM_FRAME
 #undef BHM_MATERIAL
+#undef BHM_MATERIAL_CHOICE
 
 std::string printed(const char* format, double x) {
     char buf[48];

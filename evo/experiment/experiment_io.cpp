@@ -63,6 +63,9 @@ MaterialEntry parse_material(JsonReader& r, const json& m, const std::string& pa
                              const MaterialEntry& base) {
     MaterialEntry entry = base;
     read_fields(r, m, path, material_fields(), entry.physics, {{"", {"name", "library", "color"}}});
+    // A library's contraction strain fills a sine slot's cte; a muscle slot's strain is its own.
+    if (entry.physics.actuation_model == engine::ActuationModel::Muscle && !m.contains("cte_per_c"))
+        entry.physics.cte_per_c = 0.0;
     entry.name = r.string(m, "name", path, base.name);
     if (auto it = m.find("color"); it != m.end()) {
         const std::string field = JsonReader::join(path, "color");
@@ -102,8 +105,18 @@ class LibraryFill {
         }
         base.library = it->get<std::string>();
         bool missing = !m.contains("name") || !m.contains("color");
-        for (const auto& f : material_fields())
+        const bool muscle = m.contains("actuation_model") && m["actuation_model"] == "muscle";
+        for (const auto& f : material_fields()) {
+            // A sine slot has no muscle keys; a muscle slot's sit in its "muscle" object.
+            if (f.parent() == "muscle") {
+                const auto o = m.find("muscle");
+                missing = missing || (muscle && (o == m.end() || !o->is_object() ||
+                                                 !o->contains(std::string(f.key()))));
+                continue;
+            }
+            if (std::string_view(f.path) == "actuation_model") continue;
             missing = missing || !m.contains(f.path);
+        }
         if (!missing) return base;
         const MaterialLibrary* library = load(r, field);
         if (!library) return base;
@@ -126,6 +139,7 @@ class LibraryFill {
             r.problem(field, message + "; `bhm materials` lists it");
             return base;
         }
+        if (muscle) base.physics.actuation_model = engine::ActuationModel::Muscle;
         apply_library_material(*lm, temperature_amplitude_c, base);
         auto require = [&](const char* key, bool sourced) {
             if (!sourced && !m.contains(key))
@@ -135,9 +149,16 @@ class LibraryFill {
         };
         require("poisson_ratio", lm->poisson_ratio.has_value());
         require("density_kg_m3", lm->density_kg_m3.has_value());
-        if (lm->active)
+        if (lm->active && !muscle)
             require("cte_per_c",
                     lm->contraction_strain.has_value() && temperature_amplitude_c > 0);
+        if (lm->active && muscle && !lm->contraction_strain) {
+            const auto o = m.find("muscle");
+            if (o == m.end() || !o->is_object() || !o->contains("contraction_strain"))
+                r.problem(JsonReader::join(path, "muscle.contraction_strain"),
+                          "is required: library material '" + lm->id +
+                              "' has no sourced value for it (docs/materials-format.md)");
+        }
         return base;
     }
 
@@ -271,7 +292,9 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
         for (const auto& problem :
              engine::limits::material_problems(m, e.actuation.temperature_amplitude_c))
             if (const std::string field = p + "." + problem.field;
-                problem.field != "cte_per_c" && !reported(field))
+                (problem.field != "cte_per_c" ||
+                 m.actuation_model == engine::ActuationModel::Muscle) &&
+                !reported(field))
                 bad(field, problem.message);
     }
 
@@ -292,6 +315,11 @@ json experiment_to_json(const Experiment& e) {
     for (const auto& m : e.materials) {
         json mj = {{"name", m.name}};
         write_fields(m.physics, material_fields(), mj);
+        // The muscle model's keys only in a muscle slot: sine experiments stay byte for byte.
+        if (m.physics.actuation_model == engine::ActuationModel::Sine) {
+            mj.erase("actuation_model");
+            mj.erase("muscle");
+        }
         if (m.has_color) mj["color"] = m.color;
         if (!m.library.empty()) mj["library"] = m.library;
         j["materials"].push_back(mj);

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "engine/limits.hpp"
+#include "engine/muscle.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 
@@ -58,6 +59,8 @@ void actuation_strain_rule(const RuleCheck& c) {
     for (std::size_t i = 0; i < e.materials.size(); ++i) {
         const std::string p = "materials[" + std::to_string(i) + "]";
         if (c.reported(p + ".cte_per_c")) continue;
+        // A muscle's cte must be 0, whatever the amplitude (experiment_io.cpp reports it).
+        if (e.materials[i].physics.actuation_model == engine::ActuationModel::Muscle) continue;
         for (const auto& problem :
              lim::material_problems(e.materials[i].physics, e.actuation.temperature_amplitude_c))
             if (problem.field == "cte_per_c")
@@ -84,7 +87,17 @@ void active_and_passive_rule(const RuleCheck& c) {
     if (!materials.empty() && !(has_active(c.experiment) && passive))
         c.bad("materials",
               "evolution needs a passive material (cte_per_c = 0) and an active one "
-              "(cte_per_c > 0)");
+              "(cte_per_c > 0, or a muscle with muscle.contraction_strain > 0)");
+}
+
+// One actuation model per body and at most two muscle signals (engine/muscle.hpp): the palette
+// as a whole, since evolution may paint any of its materials.
+void actuation_model_rule(const RuleCheck& c) {
+    std::vector<engine::Material> palette;
+    for (const auto& m : c.experiment.materials)
+        palette.push_back(m.physics);
+    for (const auto& p : engine::muscle::palette_problems(palette))
+        if (!c.reported(p.field)) c.bad(p.field, p.message);
 }
 
 void frame_thickness_rule(const RuleCheck& c) {
@@ -210,6 +223,12 @@ const FieldRule kRules[] = {
      .check = friction_order_rule},
     {.text = [] { return std::string("a passive material (cte_per_c = 0) and an active one"); },
      .check = active_and_passive_rule},
+    {.fields = {"materials[].actuation_model"},
+     .text = [] {
+         return std::string("one model per experiment (sine or muscle), at most 2 distinct "
+                            "muscle stimuli and time constants");
+     },
+     .check = actuation_model_rule},
     {.fields = {"boundary.enclosure.thickness_voxels."},
      .text = [] { return std::string("the two faces of an axis leave design space: x- + x+ < "
                                      "workspace x"); },

@@ -11,6 +11,7 @@
 
 #include "engine/io/text_file.hpp"
 #include "engine/limits.hpp"
+#include "engine/muscle.hpp"
 #include "evo/experiment/json_reader.hpp"
 
 #ifndef BHM_MATERIALS_DIR_DEFAULT
@@ -108,6 +109,10 @@ const PropertyRule kDynamicFriction{"dynamic_friction", 0.0, 100.0, false, "[0, 
 const PropertyRule kStrain{"contraction_strain", 0.0, engine::limits::kMaxActuationStrain, true,
                            "(0, 0.6], the engine's largest actuation strain"};
 const PropertyRule kFrequency{"frequency_hz", 0.0, 1000.0, true, "(0, 1000] Hz"};
+const PropertyRule kRise{"rise_s", engine::muscle::kMinTimeConstantS,
+                         engine::muscle::kMaxTimeConstantS, false, "[1e-4, 100] s"};
+const PropertyRule kDecay{"decay_s", engine::muscle::kMinTimeConstantS,
+                          engine::muscle::kMaxTimeConstantS, false, "[1e-4, 100] s"};
 
 }  // namespace
 
@@ -184,9 +189,11 @@ LibraryMaterial parse_library_material(const json& root, const std::string& file
         r.problem("dynamic_friction.value", "must not exceed static_friction.value");
     if (const json* a = r.object(root, "active", "")) {
         m.active = true;
-        r.check_keys(*a, "active", {"contraction_strain", "frequency_hz"});
+        r.check_keys(*a, "active", {"contraction_strain", "frequency_hz", "rise_s", "decay_s"});
         m.contraction_strain = read_value(r, *a, kStrain, "active", false);
         m.frequency_hz = read_value(r, *a, kFrequency, "active", false);
+        m.rise_s = read_value(r, *a, kRise, "active", false);
+        m.decay_s = read_value(r, *a, kDecay, "active", false);
     }
     if (auto it = root.find("color"); it != root.end()) {
         std::array<float, 3> c{};
@@ -295,10 +302,21 @@ void apply_library_material(const LibraryMaterial& m, double temperature_amplitu
     if (m.density_kg_m3) p.density_kg_m3 = m.density_kg_m3->value;
     if (m.static_friction) p.static_friction = m.static_friction->value;
     if (m.dynamic_friction) p.dynamic_friction = m.dynamic_friction->value;
-    if (!m.active)
+    // A sine slot takes the tissue's strain as a thermal expansion; a muscle slot takes it, the
+    // twitch times and the rate as its muscle fields and keeps no cte. Only the slot's own model
+    // is filled: a sine slot is written without muscle keys, so a filled muscle object would not
+    // survive its round trip.
+    const bool muscle = p.actuation_model == engine::ActuationModel::Muscle;
+    if (!m.active || muscle)
         p.cte_per_c = 0.0;
     else if (m.contraction_strain && temperature_amplitude_c > 0)
         p.cte_per_c = m.contraction_strain->value / temperature_amplitude_c;
+    if (muscle) {
+        if (m.contraction_strain) p.muscle.contraction_strain = m.contraction_strain->value;
+        if (m.rise_s) p.muscle.rise_s = m.rise_s->value;
+        if (m.decay_s) p.muscle.decay_s = m.decay_s->value;
+        if (m.frequency_hz) p.muscle.frequency_hz = m.frequency_hz->value;
+    }
     if (m.color) {
         entry.color = *m.color;
         entry.has_color = true;
@@ -331,6 +349,8 @@ std::string describe_library_material(const LibraryMaterial& m) {
     if (m.active) {
         line("contraction strain", m.contraction_strain, "");
         line("frequency", m.frequency_hz, " Hz");
+        line("twitch rise time constant", m.rise_s, " s");
+        line("twitch decay time constant", m.decay_s, " s");
     }
     out += "  engine: " + m.engine_note + "\n";
     return out;

@@ -38,6 +38,9 @@ struct LibraryMaterial {
     //! Active tissue ("active" object): contraction strain (linear, fraction) and frequency (Hz).
     bool active = false;
     std::optional<SourcedValue> contraction_strain, frequency_hz;
+    //! Active tissue's twitch: the activation's rise and decay time constants (s) of the muscle
+    //! model (engine/muscle.hpp), where a source gives them (issue 43).
+    std::optional<SourcedValue> rise_s, decay_s;
     std::optional<std::array<float, 3>> color;
     bool operator==(const LibraryMaterial&) const = default;
 };
@@ -84,9 +87,11 @@ LibraryMaterial parse_library_material(const nlohmann::json& json, const std::st
                                        const std::string& id);
 
 //! What filling a slot from the library sets: E, and nu, density, friction, colour where the
-//! library has them; for active tissue with a contraction strain, cte_per_c = strain /
-//! temperature_amplitude_c (the engine's actuation strain is cte x amplitude,
-//! docs/materials-format.md). The name is set when the slot has none. entry.library = m.id.
+//! library has them. For active tissue, by the slot's actuation_model: a sine slot gets cte_per_c =
+//! strain / temperature_amplitude_c (the engine's actuation strain is cte x amplitude,
+//! docs/materials-format.md); a muscle slot gets cte_per_c 0 and the muscle model's contraction
+//! strain, rise and decay times and frequency where the library has them. The name is set when the
+//! slot has none. entry.library = m.id.
 void apply_library_material(const LibraryMaterial& m, double temperature_amplitude_c,
                             MaterialEntry& entry);
 

@@ -31,7 +31,8 @@ CppnMaterials checked_materials(const Experiment& experiment) {
     if (m.active == 0)
         throw std::invalid_argument(
             "experiment '" + experiment.name +
-            "': materials: the CPPN needs an active material (cte_per_c > 0)");
+            "': materials: the CPPN needs an active material (cte_per_c > 0, or a muscle "
+            "with muscle.contraction_strain > 0)");
     return m;
 }
 

@@ -113,6 +113,12 @@ std::string describe_physics_change(const Experiment& before, const PhysicsRules
         note(out, "cte" + n, a.cte_per_c, b.cte_per_c, "1/C");
         note(out, "static friction" + n, a.static_friction, b.static_friction, "");
         note(out, "dynamic friction" + n, a.dynamic_friction, b.dynamic_friction, "");
+        note(out, "contraction strain" + n, a.muscle.contraction_strain,
+             b.muscle.contraction_strain, "");
+        note(out, "activation time" + n, a.muscle.rise_s, b.muscle.rise_s, "s");
+        note(out, "relaxation time" + n, a.muscle.decay_s, b.muscle.decay_s, "s");
+        note(out, "pulse rate" + n, a.muscle.frequency_hz, b.muscle.frequency_hz, "Hz");
+        note(out, "pulse width" + n, a.muscle.pulse_width_s, b.muscle.pulse_width_s, "s");
     }
     note(out, "amplitude", before.actuation.temperature_amplitude_c, after.temperature_amplitude_c,
          "C");

@@ -136,7 +136,7 @@ std::vector<FemLoad> loads_of(const engine::BodySpec& spec) {
     bool active = false;
     for (int m : spec.material)
         active = active ||
-                 (m != 0 && spec.materials[static_cast<std::size_t>(m - 1)].cte_per_c != 0.0);
+                 (m != 0 && engine::is_active(spec.materials[static_cast<std::size_t>(m - 1)]));
     if (active && amplitude != 0.0) {
         loads.push_back({"+A", amplitude});
         loads.push_back({"-A", -amplitude});
@@ -238,6 +238,12 @@ std::string continuum_reach_problem(const engine::BodySpec& s) {
         }
     }
     if (voxels == 0) return "the body has no voxel";
+    for (int m : s.material)
+        if (m != 0 &&
+            s.materials[static_cast<std::size_t>(m - 1)].actuation_model ==
+                engine::ActuationModel::Muscle)
+            return "the muscle actuation model has no continuum counterpart yet (CalculiX's "
+                   "orthotropic expansion at peak activation, issue 43)";
     if (todo.empty())
         return "no voxel is held (a free body moves by its contact with the floor, which the "
                "continuum model does not have)";
@@ -296,7 +302,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         if (m == 0) continue;
         ++out.voxels;
         if (held_cell(spec, c)) ++out.held_voxels;
-        if (spec.materials[static_cast<std::size_t>(m - 1)].cte_per_c != 0.0) ++out.active_voxels;
+        if (engine::is_active(spec.materials[static_cast<std::size_t>(m - 1)])) ++out.active_voxels;
     }
     if (out.voxels > options.max_voxels)
         throw std::runtime_error("body too large to verify: " + std::to_string(out.voxels) +

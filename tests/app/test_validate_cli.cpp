@@ -40,8 +40,8 @@ Result run(const std::string& args) {
 TEST_CASE("bhm validate accepts every preset") {
     auto r = run("validate " + kSource + "/assets/experiments/*.json");
     CHECK(r.status == 0);
-    // multi-material.json and biohybrid-catheter.json too
-    CHECK(r.output.find("7 file(s) valid") != std::string::npos);
+    // multi-material.json, biohybrid-catheter.json and muscle-catheter.json too
+    CHECK(r.output.find("8 file(s) valid") != std::string::npos);
 }
 
 TEST_CASE("bhm validate warns outside the validated envelope and still passes") {

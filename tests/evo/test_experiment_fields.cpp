@@ -134,14 +134,33 @@ TEST_CASE("every field of the table is written at its path and read back unchang
     }
     for (const auto& f : material_fields()) {
         CAPTURE(f.path);
-        Experiment e = base;
+        // The muscle model's fields are written only in a muscle slot (issue 43): change them
+        // on a muscle material; actuation_model itself turns the sine one into a muscle.
+        Experiment from = base;
+        if (f.parent() == "muscle" || std::string_view(f.path) == "actuation_model") {
+            auto& m = from.materials[1].physics;
+            if (f.parent() == "muscle") m.actuation_model = bhm::engine::ActuationModel::Muscle;
+            m.cte_per_c = 0.0;
+            m.muscle.contraction_strain = 0.05;
+            // Bursts, so that a rest between them is valid; but the stimulus field turns the
+            // train into spontaneous beating, which has no on/off schedule.
+            const bool beating_next = std::string_view(f.path) == "muscle.stimulus";
+            m.muscle.train_on_s = beating_next ? 0.0 : 0.3;
+            m.muscle.train_off_s = beating_next ? 0.0 : 0.2;
+        }
+        Experiment e = from;
         const json value = change(f, e.materials[1].physics);  // the active one
-        REQUIRE_FALSE(e == base);
+        REQUIRE_FALSE(e == from);
         const json written = experiment_to_json(e);
-        CHECK(written["materials"][1][f.path] == value);
+        const json* at = at_path(written["materials"][1], f.path);
+        REQUIRE(at != nullptr);
+        CHECK(*at == value);
         CHECK(parse_experiment(written, "e.json") == e);
         ++checked;
     }
+    // A sine slot is written without the muscle model's keys: files stay as they were.
+    CHECK_FALSE(experiment_to_json(base)["materials"][1].contains("muscle"));
+    CHECK_FALSE(experiment_to_json(base)["materials"][1].contains("actuation_model"));
     CHECK(checked == static_cast<int>(experiment_fields().size() + material_fields().size()));
     std::filesystem::remove_all(dir);
 }
@@ -258,6 +277,23 @@ TEST_CASE("the table's physics ranges are the engine's: what it accepts, Model::
         for (double v : inside(f->range))
             CHECK_FALSE(refuses(v));
     }
+    // The muscle model's numbers (issue 43): the table's range is the engine's, on a muscle.
+    for (const auto& f : material_fields()) {
+        if (f.parent() != "muscle" || f.kind() != FieldKind::Number) continue;
+        CAPTURE(f.path);
+        auto refuses = [&](double v) {
+            bhm::engine::Material m;
+            m.actuation_model = bhm::engine::ActuationModel::Muscle;
+            f.number(m) = v;
+            for (const auto& p : bhm::engine::limits::material_problems(m, 0.0))
+                if (p.field == f.path) return true;
+            return false;
+        };
+        for (double v : outside(f.range, false))
+            CHECK(refuses(v));
+        for (double v : inside(f.range))
+            CHECK_FALSE(refuses(v));
+    }
     // The amplitude's tooltip states the engine's actuation strain bound.
     CHECK(field_tooltip(*find_experiment_field("actuation.temperature_amplitude_c"))
               .find("<= " + range_number(bhm::engine::limits::kMaxActuationStrain)) !=
@@ -283,6 +319,15 @@ TEST_CASE("each rule between fields is declared once: validated, and in its fiel
              e.materials[0].physics.dynamic_friction = 0.6;
          }},
         {"materials", [](Experiment& e) { e.materials[1].physics.cte_per_c = 0; }},
+        // A muscle beside the sine-active material (issue 43): one model per experiment.
+        {"materials[2].actuation_model",
+         [](Experiment& e) {
+             MaterialEntry m = e.materials[1];
+             m.physics.cte_per_c = 0.0;
+             m.physics.actuation_model = bhm::engine::ActuationModel::Muscle;
+             m.physics.muscle.contraction_strain = 0.05;
+             e.materials.push_back(m);
+         }},
         {"boundary.enclosure.thickness_voxels",
          [](Experiment& e) {
              e.boundary.enclosure_material = 1;

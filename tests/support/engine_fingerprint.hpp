@@ -26,10 +26,14 @@ namespace bhm::test {
 // Paper Table 1: E = 5 MPa, density 1000, Poisson 0.35, friction 1 / 0.5; CTE 0 passive,
 // 0.01 active.
 inline engine::Material passive_material() {
-    return engine::Material{5e6, 1000.0, 0.35, 0.0, 1.0, 0.5};
+    engine::Material m;
+    m.cte_per_c = 0.0;
+    return m;
 }
 inline engine::Material active_material() {
-    return engine::Material{5e6, 1000.0, 0.35, 0.01, 1.0, 0.5};
+    engine::Material m;
+    m.cte_per_c = 0.01;
+    return m;
 }
 
 //! A filled nx x ny x nz block, its x = 0 layer held, material per cell from material_at(x)

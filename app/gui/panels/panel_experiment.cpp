@@ -81,8 +81,13 @@ void materials_section(Studio& s) {
             if (field_text("##name", m.name, "material name")) commit_draft(s, "material name");
             material_library_picker(s, k);
             const std::string idx = std::to_string(k + 1);
-            for (const auto& f : evo::material_fields())
+            const bool muscle = m.physics.actuation_model == engine::ActuationModel::Muscle;
+            for (const auto& f : evo::material_fields()) {
+                // The muscle model's fields only where it drives the material (issue 43).
+                if (f.parent() == "muscle" && !muscle) continue;
+                if (std::string_view(f.path) == "cte_per_c" && muscle) continue;
                 material_field(s, k, f.path);
+            }
             ImGui::SetNextItemWidth(field_width());
             if (ImGui::ColorEdit3("Colour", color, ImGuiColorEditFlags_NoInputs)) {
                 m.color = {color[0], color[1], color[2]};

@@ -1,0 +1,220 @@
+// The muscle model's stimulus and activation (muscle.hpp; docs/physics.md, "Muscle actuation").
+#include "engine/muscle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace bhm::engine::muscle {
+namespace {
+
+// a -> exp(log_slope) a + offset: what a stretch of stimulus or rest does to the activation.
+struct Affine {
+    double log_slope = 0.0;  //!< <= 0
+    double offset = 0.0;
+    double apply(double a) const { return std::exp(log_slope) * a + offset; }
+};
+
+// Stimulated for x seconds: a -> 1 - (1 - a) e^(-x / rise).
+Affine stimulated_for(const Muscle& m, double x) {
+    return {-x / m.rise_s, -std::expm1(-x / m.rise_s)};
+}
+// Resting for x seconds: a -> a e^(-x / decay).
+Affine resting_for(const Muscle& m, double x) {
+    return {-x / m.decay_s, 0.0};
+}
+// first, then second.
+Affine then(const Affine& first, const Affine& second) {
+    return {first.log_slope + second.log_slope,
+            std::exp(second.log_slope) * first.offset + second.offset};
+}
+// f applied n times: slope^n, offset (1 + s + ... + s^(n-1)) = offset (1 - s^n) / (1 - s).
+Affine power(const Affine& f, double n) {
+    if (n <= 0.0) return {};
+    if (f.log_slope == 0.0) return {0.0, f.offset * n};
+    return {f.log_slope * n, f.offset * (std::expm1(n * f.log_slope) / std::expm1(f.log_slope))};
+}
+
+struct Train {
+    double period = 0.0;  //!< between pulse starts
+    double width = 0.0;   //!< of a pulse, at most the period
+    double on = 0.0;      //!< of a burst; infinity for one endless train
+    double off = 0.0;     //!< rest between bursts
+};
+
+Train train_of(const Muscle& m) {
+    Train t;
+    t.period = 1.0 / m.frequency_hz;
+    t.width = std::min(m.pulse_width_s, t.period);
+    const bool bursts = m.stimulus == MuscleStimulus::PulseTrain && m.train_on_s > 0.0 &&
+                        m.train_off_s > 0.0;
+    t.on = bursts ? m.train_on_s : std::numeric_limits<double>::infinity();
+    t.off = bursts ? m.train_off_s : 0.0;
+    return t;
+}
+
+// r seconds into a pulse period: stimulated for min(r, width), then resting.
+Affine into_period(const Muscle& m, const Train& t, double r) {
+    if (r <= t.width) return stimulated_for(m, r);
+    return then(stimulated_for(m, t.width), resting_for(m, r - t.width));
+}
+
+// s seconds into a burst (s <= t.on): whole pulse periods, then the part of one.
+Affine into_burst(const Muscle& m, const Train& t, double s, bool* stimulated_now) {
+    double n = std::floor(s / t.period);
+    double r = s - n * t.period;
+    if (r < 0.0) r = 0.0;
+    if (r >= t.period) {  // rounding at a period's end
+        n += 1.0;
+        r = 0.0;
+    }
+    if (stimulated_now) *stimulated_now = r < t.width;
+    const Affine period = into_period(m, t, t.period);
+    return then(power(period, n), into_period(m, t, r));
+}
+
+}  // namespace
+
+bool stimulated(const Muscle& m, double tau) {
+    return activation(m, tau).stimulated;
+}
+
+Activation activation(const Muscle& m, double tau) {
+    Activation out;
+    if (!(tau > 0.0) || !(m.frequency_hz > 0.0) || !(m.rise_s > 0.0) || !(m.decay_s > 0.0))
+        return out;
+    const Train t = train_of(m);
+    double a_start = 0.0;  // at the start of the current burst
+    double s = tau;        // time into it
+    bool on = false;
+    if (std::isfinite(t.on)) {
+        const double burst_period = t.on + t.off;
+        double k = std::floor(tau / burst_period);
+        s = tau - k * burst_period;
+        if (s < 0.0) s = 0.0;
+        if (s >= burst_period) {
+            k += 1.0;
+            s = 0.0;
+        }
+        const Affine burst = then(into_burst(m, t, t.on, nullptr), resting_for(m, t.off));
+        a_start = power(burst, k).apply(0.0);
+        if (s >= t.on) {
+            out.a = then(into_burst(m, t, t.on, nullptr), resting_for(m, s - t.on)).apply(a_start);
+            out.a = std::clamp(out.a, 0.0, 1.0);
+            out.rate = -out.a / m.decay_s;
+            return out;
+        }
+    }
+    out.a = std::clamp(into_burst(m, t, s, &on).apply(a_start), 0.0, 1.0);
+    out.stimulated = on;
+    out.rate = on ? (1.0 - out.a) / m.rise_s : -out.a / m.decay_s;
+    return out;
+}
+
+double axis_strain(const Material& m, int axis) {
+    const double e = m.muscle.contraction_strain;
+    return axis == m.muscle.fibre_axis ? -e : m.poisson_ratio * e;
+}
+
+double largest_scale(const Material& m) {
+    return 1.0 + std::max(0.0, m.poisson_ratio) * std::fabs(m.muscle.contraction_strain);
+}
+
+namespace {
+std::string number(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
+bool within(double x, double lo, double hi) {
+    return std::isfinite(x) && x >= lo && x <= hi;
+}
+}  // namespace
+
+std::vector<Problem> material_problems(const Material& m) {
+    std::vector<Problem> out;
+    if (m.actuation_model != ActuationModel::Muscle) return out;
+    const Muscle& u = m.muscle;
+    if (m.cte_per_c != 0.0)
+        out.push_back({"cte_per_c", "must be 0 under the muscle model (its strain is "
+                                    "muscle.contraction_strain)"});
+    if (u.fibre_axis < 0 || u.fibre_axis > 2)
+        out.push_back({"muscle.fibre_axis", "must be x, y or z"});
+    if (!within(u.contraction_strain, 0.0, kMaxContractionStrain))
+        out.push_back({"muscle.contraction_strain",
+                       "must be in [0, " + number(kMaxContractionStrain) +
+                           "] (the engine's stable actuation strain)"});
+    const std::pair<const char*, double> times[] = {{"muscle.rise_s", u.rise_s},
+                                                    {"muscle.decay_s", u.decay_s}};
+    for (const auto& [field, x] : times)
+        if (!within(x, kMinTimeConstantS, kMaxTimeConstantS))
+            out.push_back({field, "must be in [" + number(kMinTimeConstantS) + ", " +
+                                      number(kMaxTimeConstantS) + "] s"});
+    if (!within(u.frequency_hz, 0.0, kMaxStimulusFrequencyHz) || u.frequency_hz == 0.0)
+        out.push_back({"muscle.frequency_hz",
+                       "must be in (0, " + number(kMaxStimulusFrequencyHz) + "] Hz"});
+    if (!within(u.pulse_width_s, 0.0, kMaxTimeConstantS) || u.pulse_width_s == 0.0)
+        out.push_back({"muscle.pulse_width_s",
+                       "must be in (0, " + number(kMaxTimeConstantS) + "] s"});
+    const std::pair<const char*, double> train[] = {{"muscle.train_on_s", u.train_on_s},
+                                                    {"muscle.train_off_s", u.train_off_s}};
+    for (const auto& [field, x] : train) {
+        if (!within(x, 0.0, kMaxTrainS))
+            out.push_back({field, "must be in [0, " + number(kMaxTrainS) + "] s"});
+        else if (u.stimulus == MuscleStimulus::Beating && x != 0.0)
+            out.push_back({field, "must be 0 for spontaneous beating (an on/off schedule is a "
+                                  "pulse train's)"});
+    }
+    if (u.stimulus == MuscleStimulus::PulseTrain && u.train_off_s > 0.0 && u.train_on_s == 0.0)
+        out.push_back({"muscle.train_on_s", "must be > 0 when muscle.train_off_s is (the bursts "
+                                            "between the rests)"});
+    return out;
+}
+
+bool same_signal(const Muscle& a, const Muscle& b) {
+    Muscle x = a, y = b;
+    x.fibre_axis = y.fibre_axis = 0;
+    x.contraction_strain = y.contraction_strain = 0.0;
+    if (x.stimulus == MuscleStimulus::Beating) x.train_on_s = x.train_off_s = 0.0;
+    if (y.stimulus == MuscleStimulus::Beating) y.train_on_s = y.train_off_s = 0.0;
+    return x == y;
+}
+
+std::vector<Problem> palette_problems(const std::vector<Material>& materials,
+                                      const std::vector<bool>* used) {
+    std::vector<Problem> out;
+    int sine = -1;
+    std::vector<int> signals;  // the first material of each distinct muscle signal
+    auto name = [](std::size_t k) { return "materials[" + std::to_string(k) + "]"; };
+    for (std::size_t k = 0; k < materials.size(); ++k) {
+        if (used && (k >= used->size() || !(*used)[k])) continue;
+        const Material& m = materials[k];
+        if (!is_active(m)) continue;
+        if (m.actuation_model == ActuationModel::Sine) {
+            if (sine < 0) sine = static_cast<int>(k);
+            continue;
+        }
+        bool known = false;
+        for (int s : signals)
+            known = known || same_signal(materials[static_cast<std::size_t>(s)].muscle, m.muscle);
+        if (known) continue;
+        signals.push_back(static_cast<int>(k));
+        if (static_cast<int>(signals.size()) > kMaxSignals)
+            out.push_back({name(k) + ".muscle",
+                           "is a third distinct muscle signal (stimulus and time constants) in "
+                           "one body; the engine drives at most " +
+                               std::to_string(kMaxSignals) +
+                               ": give it the stimulus and time constants of " +
+                               name(static_cast<std::size_t>(signals[0])) + " or " +
+                               name(static_cast<std::size_t>(signals[1]))});
+    }
+    if (sine >= 0 && !signals.empty())
+        out.push_back({name(static_cast<std::size_t>(signals[0])) + ".actuation_model",
+                       "is muscle but " + name(static_cast<std::size_t>(sine)) +
+                           " is active under the sine model: one body is driven by one model "
+                           "(make the other passive or give it the same model)"});
+    return out;
+}
+
+}  // namespace bhm::engine::muscle
