@@ -298,6 +298,10 @@ struct UiState {
     std::map<std::string, WidgetRect> widgets;
     //! The last tooltip an experiment field showed (field_editor.hpp); tests read it.
     std::string shown_tooltip;
+    //! The multiline text field open for typing (its path; empty: none) and the frame it was
+    //! opened: the others show their text wrapped (field_editor.cpp).
+    std::string text_field_open;
+    int text_field_opened_frame = 0;
     TileLayout tiles;  //!< this frame's tile sizes (fit_layout of the settings' preferences)
     //! A narrow window folds the left column into a strip: its panels open over the 3D view.
     bool design_open = false;

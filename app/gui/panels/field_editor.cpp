@@ -1,10 +1,12 @@
 #include "app/gui/panels/field_editor.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the frame a text box was opened
 
 #include "app/gui/actions/draft_edits.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
@@ -38,6 +40,59 @@ void after_item(Studio& s, const evo::FieldOf<Host>& f, const std::string& name)
     }
 }
 
+// The text box opens with its caret at the end of the text: a click on the wrapped text
+// cannot say where in the unwrapped one it fell.
+int caret_at_end_when_opened(ImGuiInputTextCallbackData* data) {
+    if (ImGui::GetCurrentContext()->ActiveIdIsJustActivated)
+        data->CursorPos = data->SelectionStart = data->SelectionEnd = data->BufTextLen;
+    return 0;
+}
+
+// A multiline text shown wrapped to the panel in a box, opened for typing by a click: ImGui
+// 1.86's text box cannot wrap, so a paragraph ran off the panel on one line (issue 39, the
+// clipped-text low). True when an edit completed.
+bool wrapped_text_field(Studio& s, const char* label, std::string& value, const std::string& name) {
+    const ImVec2 pad = ImGui::GetStyle().FramePadding;
+    const float width = ImGui::GetContentRegionAvail().x;
+    const float text_height =
+        ImGui::CalcTextSize(value.c_str(), nullptr, false, width - 2.0f * pad.x).y;
+    const float lines = ImGui::GetTextLineHeight();
+    // At least the four lines the text box had: the panel does not jump as the box opens.
+    const ImVec2 size(width, std::max(text_height, 4.0f * lines) + 2.0f * pad.y);
+    if (s.ui.text_field_open != name) {
+        const ImVec2 at = ImGui::GetCursorScreenPos();
+        const std::string id = std::string(label) + " wrapped";
+        if (ImGui::InvisibleButton(id.c_str(), size)) {
+            s.ui.text_field_open = name;
+            s.ui.text_field_opened_frame = s.ui.frame;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetMouseCursor(ImGuiMouseCursor_TextInput);
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        const ImVec2 end(at.x + size.x, at.y + size.y);
+        draw->AddRectFilled(at, end, ImGui::GetColorU32(ImGuiCol_FrameBg),
+                            ImGui::GetStyle().FrameRounding);
+        draw->AddRect(at, end, ImGui::GetColorU32(ImGuiCol_Border),
+                      ImGui::GetStyle().FrameRounding);
+        draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(at.x + pad.x, at.y + pad.y),
+                      ImGui::GetColorU32(ImGuiCol_Text), value.c_str(), nullptr,
+                      width - 2.0f * pad.x);
+        return false;
+    }
+    // The frame after the click asks for the keyboard; ImGui hands it over the frame after.
+    if (s.ui.frame == s.ui.text_field_opened_frame + 1) ImGui::SetKeyboardFocusHere();
+    char buffer[2048];
+    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
+    ImGui::InputTextMultiline(label, buffer, sizeof buffer, size,
+                              ImGuiInputTextFlags_CallbackAlways, caret_at_end_when_opened);
+    if (ImGui::IsItemEdited()) value = buffer;
+    const bool done = ImGui::IsItemDeactivatedAfterEdit();
+    // Left (a click elsewhere, Escape), or never taken: shown wrapped again.
+    if (ImGui::IsItemDeactivated() ||
+        (!ImGui::IsItemActive() && s.ui.frame > s.ui.text_field_opened_frame + 3))
+        s.ui.text_field_open.clear();
+    return done;
+}
+
 // Draws f bound to host; true when an edit completed.
 template <class Host>
 bool draw(Studio& s, const evo::FieldOf<Host>& f, Host& host, const std::string& name,
@@ -46,15 +101,14 @@ bool draw(Studio& s, const evo::FieldOf<Host>& f, Host& host, const std::string&
     switch (f.kind()) {
         case evo::FieldKind::Text: {
             std::string& value = f.text(host);
+            if (multiline) {
+                done = wrapped_text_field(s, f.label, value, name);
+                break;
+            }
             char buffer[2048];
             std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
-            if (multiline) {
-                ImGui::InputTextMultiline(f.label, buffer, sizeof buffer,
-                                          ImVec2(-1.0f, ImGui::GetTextLineHeight() * 4.0f));
-            } else {
-                ImGui::SetNextItemWidth(-1.0f);
-                ImGui::InputText(f.label, buffer, sizeof buffer);
-            }
+            ImGui::SetNextItemWidth(-1.0f);
+            ImGui::InputText(f.label, buffer, sizeof buffer);
             if (ImGui::IsItemEdited()) value = buffer;
             done = ImGui::IsItemDeactivatedAfterEdit();
             break;

@@ -1,6 +1,7 @@
 // The Analysis tile (bottom right): the population table, every generation's champion (replay
 // any, or beside the one shown), the AFPO age-vs-fitness scatter of the population, and time
 // plots of the body shown (centre of mass, tip, bend angle) whose cursor is the replay clock.
+#include <array>
 #include <cstdio>
 #include <string>
 
@@ -158,21 +159,65 @@ void time_plots_tab(Studio& s) {
     }
 }
 
+// A tab of the Analysis tile: its name (the script's "tab <name>", the tooltip) and the shorter
+// label it shows when the tile is too narrow for every name.
+struct AnalysisTab {
+    const char* name;
+    const char* short_label;
+    void (*draw)(Studio&);
+};
+
+float tab_width(const char* label) {
+    // ImGui's tab: the label between two frame paddings, and one pixel (TabItemCalcSize).
+    return ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x +
+           1.0f;
+}
+
+// Which tabs show their short label: the widest names give way first, until the row fits. A tab
+// bar that does not fit shrinks every tab and cuts their labels ("Populat..."), and one that
+// scrolls instead hid Calibrate and FEM at 1280x800 (issue 39): a shorter label keeps every tab
+// whole and in reach, and its tooltip says the name.
+template <std::size_t N>
+std::array<bool, N> short_labels(const AnalysisTab (&tabs)[N], float available) {
+    std::array<bool, N> shortened{};
+    float row = ImGui::GetStyle().ItemInnerSpacing.x * static_cast<float>(N - 1);
+    for (const auto& tab : tabs)
+        row += tab_width(tab.name);
+    while (row > available) {
+        std::size_t widest = N;
+        float saved = 0.0f;
+        for (std::size_t k = 0; k < N; ++k) {
+            const float gain = tab_width(tabs[k].name) - tab_width(tabs[k].short_label);
+            if (!shortened[k] && gain > saved) widest = k, saved = gain;
+        }
+        if (widest == N) break;  // all short and still too wide: ImGui shrinks them
+        shortened[widest] = true;
+        row -= saved;
+    }
+    return shortened;
+}
+
 }  // namespace
 
 void draw_analysis_panel(Studio& s) {
+    static constexpr AnalysisTab tabs[] = {{"Population", "Population", draw_population_panel},
+                                           {"Champions", "Champs", champions_tab},
+                                           {"Age vs fitness", "Ages", scatter_tab},
+                                           {"Time plots", "Plots", time_plots_tab},
+                                           {"Calibrate", "Calib.", draw_calibrate_panel},
+                                           {"FEM", "FEM", draw_verify_panel}};
+    const auto shortened = short_labels(tabs, ImGui::GetContentRegionAvail().x);
     if (!ImGui::BeginTabBar("analysis tabs")) return;
-    const std::pair<const char*, void (*)(Studio&)> tabs[] = {{"Population", draw_population_panel},
-                                                              {"Champions", champions_tab},
-                                                              {"Age vs fitness", scatter_tab},
-                                                              {"Time plots", time_plots_tab},
-                                                              {"Calibrate", draw_calibrate_panel},
-                                                              {"FEM", draw_verify_panel}};
-    for (const auto& [name, draw] : tabs) {
-        const bool open = ImGui::BeginTabItem(name);
-        record_widget(s, std::string("tab ") + name);
+    for (std::size_t k = 0; k < std::size(tabs); ++k) {
+        const auto& tab = tabs[k];
+        // "###name": the tab keeps its identity (and stays selected) whichever label it shows.
+        const std::string label =
+            std::string(shortened[k] ? tab.short_label : tab.name) + "###" + tab.name;
+        const bool open = ImGui::BeginTabItem(label.c_str());
+        record_widget(s, std::string("tab ") + tab.name);
+        if (shortened[k] && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tab.name);
         if (open) {
-            draw(s);
+            tab.draw(s);
             ImGui::EndTabItem();
         }
     }

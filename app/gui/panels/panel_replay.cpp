@@ -93,14 +93,24 @@ void draw_replay_panel(Studio& s) {
     ImGui::SameLine();
     ImGui::Checkbox("loop", &clock.loop);
     ImGui::EndDisabled();
-    if (ImGui::GetContentRegionAvail().x > ImGui::GetFontSize() * 22.0f) ImGui::SameLine();
+    // The clock beside the buttons where it fits, else under them: a fixed guess of the room
+    // left ran "no simulation yet" past the tile at 900x640 (issue 39, the clipped-text low).
+    char line[96];
     if (s.bodies.shown) {
         const double settle = s.bodies.shown->experiment.simulation.settle_s;
-        ImGui::Text("t = %.3f s / %.3f s   %s", clock.time_s, clock.duration_s,
-                    clock.time_s < settle ? "(settling, actuation off)" : "(actuated)");
+        std::snprintf(line, sizeof line, "t = %.3f s / %.3f s   %s", clock.time_s, clock.duration_s,
+                      clock.time_s < settle ? "(settling, actuation off)" : "(actuated)");
     } else {
-        ImGui::TextDisabled("no simulation yet");
+        std::snprintf(line, sizeof line, "no simulation yet");
     }
+    const float spacing = ImGui::GetStyle().ItemSpacing.x;
+    const float row_end = ImGui::GetItemRectMax().x + spacing + ImGui::CalcTextSize(line).x;
+    if (row_end <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x)
+        ImGui::SameLine();
+    if (s.bodies.shown)
+        ImGui::TextUnformatted(line);
+    else
+        ImGui::TextDisabled("%s", line);
     timeline(s, std::max(ImGui::GetContentRegionAvail().y, ImGui::GetFontSize() * 2.5f));
 }
 
