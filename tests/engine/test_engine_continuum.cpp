@@ -520,3 +520,91 @@ TEST_CASE("continuum: actuated layer profiles" * doctest::skip()) {
             std::fflush(stdout);
         }
 }
+
+namespace {
+
+// The body with every voxel split into 2 x 2 x 2 of half the size. A held voxel's clamp is the
+// plane through its centre, which in the refined lattice lies between the two sub-layers of the
+// held layer: `hold_both` holds both (the clamp half a sub-voxel beyond the coarse one's, the
+// narrow part shorter by a quarter voxel), otherwise only the outer one (longer by a quarter).
+engine::BodySpec refined_body(const engine::BodySpec& s, bool hold_both) {
+    engine::BodySpec r = s;
+    r.nx = 2 * s.nx;
+    r.ny = 2 * s.ny;
+    r.nz = 2 * s.nz;
+    r.voxel_size_m = 0.5 * s.voxel_size_m;
+    r.material.assign(r.cell_count(), 0);
+    r.fixed.assign(r.cell_count(), 0);
+    for (int z = 0; z < r.nz; ++z)
+        for (int y = 0; y < r.ny; ++y)
+            for (int x = 0; x < r.nx; ++x) {
+                const int c = s.cell_index(x / 2, y / 2, z / 2);
+                r.material[r.cell_index(x, y, z)] = s.material[c];
+                r.fixed[r.cell_index(x, y, z)] =
+                    s.fixed.empty() ? 0 : (s.fixed[c] != 0 && (hold_both || x % 2 == 0));
+            }
+    return r;
+}
+
+// The coarse measures from the refined answer: a coarse voxel's centre moves as the mean of its
+// eight sub-voxels.
+Measures refined_actuation(const engine::BodySpec& coarse, bool hold_both) {
+    const engine::BodySpec r = refined_body(coarse, hold_both);
+    const evo::QuasiStaticResult hot = evo::engine_quasi_static(r, 1.0),
+                                 cold = evo::engine_quasi_static(r, 0.0);
+    REQUIRE_MESSAGE(hot.settled, hot.problem);
+    REQUIRE_MESSAGE(cold.settled, cold.problem);
+    std::vector<double> dz(coarse.cell_count(), 0.0);
+    int i = 0;
+    for (int c = 0; c < r.cell_count(); ++c) {
+        if (r.material[c] == 0) continue;
+        const int x = c % r.nx, y = (c / r.nx) % r.ny, z = c / (r.nx * r.ny);
+        dz[coarse.cell_index(x / 2, y / 2, z / 2)] +=
+            (hot.displacement_m[i][2] - cold.displacement_m[i][2]) / 8.0;
+        ++i;
+    }
+    std::vector<double> by_voxel;
+    for (int c = 0; c < coarse.cell_count(); ++c)
+        if (coarse.material[c] != 0) by_voxel.push_back(dz[c]);
+    return measures(coarse, [&](int j) { return by_voxel[j]; });
+}
+
+}  // namespace
+
+// Whether the actuated narrow bodies' error is the lattice's resolution (issue 40): the engine on
+// the same bodies with every voxel split in eight, against the stored 4-per-edge references, for
+// BHM_CONTINUUM_CASES (default p1e,p2z,p4sqe,neck1x2,neck2x1,full) at nu 0, 0.35, 0.49, with the
+// refined clamp a quarter voxel either side of the coarse one (a few seconds per run):
+//   build/bin/test_engine -tc="continuum: actuated on a refined lattice" --no-skip
+TEST_CASE("continuum: actuated on a refined lattice" * doctest::skip()) {
+    std::vector<std::string> names = {"p1e", "p2z", "p4sqe", "neck1x2", "neck2x1", "full"};
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) {
+        names.clear();
+        std::string rest = list;
+        while (!rest.empty()) {
+            const std::size_t comma = rest.find(',');
+            names.push_back(rest.substr(0, comma));
+            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        }
+    }
+    for (const std::string& name : names)
+        for (double nu : {0.0, 0.35, 0.49}) {
+            const Reference* ref = nullptr;
+            for (const Reference& a : kActuatedReferences)
+                if (name == a.name && std::abs(nu - a.nu) < 1e-9) ref = &a;
+            if (ref == nullptr) continue;
+            const auto s = continuum_body(name, nu, true);
+            const Measures coarse = engine_actuation(s);
+            const Measures outer = refined_actuation(s, false), both = refined_actuation(s, true);
+            auto pct = [](double ours_m, double ref_mm) {
+                return 100.0 * (ours_m * 1e3 / ref_mm - 1.0);
+            };
+            std::printf(
+                "%-8s nu %.2f  tip / com vs CalculiX: coarse %+6.1f / %+6.1f %%, refined "
+                "(outer held) %+6.1f / %+6.1f %%, refined (both held) %+6.1f / %+6.1f %%\n",
+                name.c_str(), nu, pct(coarse.tip, ref->tip4), pct(coarse.com, ref->com4),
+                pct(outer.tip, ref->tip4), pct(outer.com, ref->com4), pct(both.tip, ref->tip4),
+                pct(both.com, ref->com4));
+            std::fflush(stdout);
+        }
+}
