@@ -32,10 +32,10 @@
 #include <vector>
 
 #include "calculix.hpp"
-#include "support/ccx_skip.hpp"
 #include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/quasi_static.hpp"
+#include "support/ccx_skip.hpp"
 
 using namespace bhm;
 
@@ -134,7 +134,8 @@ engine::BodySpec continuum_body(const std::string& name, double nu, bool actuate
         for (int z = 2; z < s.nz; ++z)
             for (int y = 0; y < s.ny; ++y)
                 for (int x = 1; x < s.nx; ++x)
-                    if (s.material[s.cell_index(x, y, z)] != 0) s.material[s.cell_index(x, y, z)] = 2;
+                    if (s.material[s.cell_index(x, y, z)] != 0)
+                        s.material[s.cell_index(x, y, z)] = 2;
     }
     return s;
 }
@@ -183,7 +184,8 @@ Measures fem_measures(const engine::BodySpec& s, int subdivision, int threads = 
     const evo::FemModel model = evo::build_fem_model(s, o);
     std::vector<evo::FemLoad> loads = {{"rest", 0.0}};
     if (actuated) loads.push_back({"+A", 1.0});
-    const evo::CcxResult r = evo::run_ccx("continuum", evo::ccx_deck(model, s, loads, false), threads);
+    const evo::CcxResult r =
+        evo::run_ccx("continuum", evo::ccx_deck(model, s, loads, false), threads);
     REQUIRE(r.blocks.size() == loads.size());
     const evo::NodalDisplacements& u = r.blocks.back();
     const evo::NodalDisplacements& u0 = r.blocks.front();
@@ -260,12 +262,13 @@ double compare(const std::string& name, double nu) {
         const auto tip_limit = richardson_limit(r.tip2, r.tip4, six.tip6);
         const auto com_limit = richardson_limit(r.com2, r.com4, six.com6);
         if (!tip_limit || !com_limit) continue;
-        std::printf("%-9s          limit of 2/4/6 per edge: tip %8.4f mm (+-%4.1f %%) %+6.1f %%   "
-                    "com %8.4f mm (+-%4.1f %%) %+6.1f %%\n",
-                    "", *tip_limit, 100.0 * std::abs(*tip_limit / six.tip6 - 1.0),
-                    100.0 * (ours.tip * 1e3 / *tip_limit - 1.0), *com_limit,
-                    100.0 * std::abs(*com_limit / six.com6 - 1.0),
-                    100.0 * (ours.com * 1e3 / *com_limit - 1.0));
+        std::printf(
+            "%-9s          limit of 2/4/6 per edge: tip %8.4f mm (+-%4.1f %%) %+6.1f %%   "
+            "com %8.4f mm (+-%4.1f %%) %+6.1f %%\n",
+            "", *tip_limit, 100.0 * std::abs(*tip_limit / six.tip6 - 1.0),
+            100.0 * (ours.tip * 1e3 / *tip_limit - 1.0), *com_limit,
+            100.0 * std::abs(*com_limit / six.com6 - 1.0),
+            100.0 * (ours.com * 1e3 / *com_limit - 1.0));
     }
     return std::max(std::abs(tip), std::abs(com));
 }
@@ -421,4 +424,187 @@ TEST_CASE("continuum: held-out bodies under a small actuation" * doctest::skip()
         }
     std::printf("actuated: %d cases, worst %.1f %%\n", compared, 100.0 * worst);
     CHECK(compared > 0);
+}
+
+namespace {
+
+// Per x layer of the body: the mean vertical displacement (m) of its voxel centres and its tilt
+// about y (rad, from the layer's x displacements against height; 0 for a one-voxel-tall layer).
+struct LayerProfile {
+    std::vector<double> uz, tilt;
+};
+
+template <class UOf>
+LayerProfile layer_profile(const engine::BodySpec& s, UOf u_of) {
+    LayerProfile p;
+    p.uz.assign(s.nx, 0.0);
+    p.tilt.assign(s.nx, 0.0);
+    std::vector<double> n(s.nx, 0.0), sz(s.nx, 0.0), szz(s.nx, 0.0), sx(s.nx, 0.0), sxz(s.nx, 0.0);
+    int i = 0;
+    for (int c = 0; c < s.cell_count(); ++c) {
+        if (s.material[c] == 0) continue;
+        const std::array<double, 3> u = u_of(i++);
+        const int x = c % s.nx;
+        const double z = (c / (s.nx * s.ny)) * s.voxel_size_m;
+        n[x] += 1.0;
+        p.uz[x] += u[2];
+        sz[x] += z;
+        szz[x] += z * z;
+        sx[x] += u[0];
+        sxz[x] += u[0] * z;
+    }
+    for (int x = 0; x < s.nx; ++x) {
+        p.uz[x] /= n[x];
+        const double var = szz[x] / n[x] - (sz[x] / n[x]) * (sz[x] / n[x]);
+        // A rotation theta about y moves x by +theta z: the slope of u_x against z.
+        if (var > 1e-12) p.tilt[x] = (sxz[x] / n[x] - sx[x] / n[x] * sz[x] / n[x]) / var;
+    }
+    return p;
+}
+
+}  // namespace
+
+// Where the actuated narrow bodies differ from CalculiX (issue 40): per x layer, what the 1 %
+// expansion of the upper half adds to the mean vertical displacement (um) and to the tilt about y
+// (mrad), the engine's against CalculiX at BHM_CONTINUUM_SUBDIVISION (default 2) elements per voxel
+// edge, for the cases in BHM_CONTINUUM_CASES (default p1e,p2z,p4sqe,neck1x2,neck2x1,full) at
+// nu 0, 0.35, 0.49. A layer's tilt against the one before shows where the bending happens:
+//   build/bin/test_engine -tc="continuum: actuated layer profiles" --no-skip
+TEST_CASE("continuum: actuated layer profiles" * doctest::skip()) {
+    if (bhm::test::skip_without_ccx()) return;
+    std::vector<std::string> names = {"p1e", "p2z", "p4sqe", "neck1x2", "neck2x1", "full"};
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) {
+        names.clear();
+        std::string rest = list;
+        while (!rest.empty()) {
+            const std::size_t comma = rest.find(',');
+            names.push_back(rest.substr(0, comma));
+            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        }
+    }
+    const char* sub = std::getenv("BHM_CONTINUUM_SUBDIVISION");
+    const int subdivision = sub != nullptr ? std::atoi(sub) : 2;
+    for (const std::string& name : names)
+        for (double nu : {0.0, 0.35, 0.49}) {
+            const auto s = continuum_body(name, nu, true);
+            const evo::QuasiStaticResult hot = evo::engine_quasi_static(s, 1.0),
+                                         cold = evo::engine_quasi_static(s, 0.0);
+            REQUIRE(hot.settled);
+            REQUIRE(cold.settled);
+            const LayerProfile ours = layer_profile(s, [&](int i) {
+                std::array<double, 3> u;
+                for (int a = 0; a < 3; ++a)
+                    u[a] = hot.displacement_m[i][a] - cold.displacement_m[i][a];
+                return u;
+            });
+            evo::FemMeshOptions o;
+            o.element = evo::FemElement::C3D20R;
+            o.subdivision = subdivision;
+            const evo::FemModel model = evo::build_fem_model(s, o);
+            const std::vector<evo::FemLoad> loads = {{"rest", 0.0}, {"+A", 1.0}};
+            const evo::CcxResult r =
+                evo::run_ccx("continuum", evo::ccx_deck(model, s, loads, false), 2);
+            REQUIRE(r.blocks.size() == 2);
+            const LayerProfile fem = layer_profile(s, [&](int i) {
+                std::array<double, 3> u{};
+                for (auto [node, weight] : model.voxel_centre[i])
+                    for (int a = 0; a < 3; ++a)
+                        u[a] += weight * (r.blocks[1].at(node)[a] - r.blocks[0].at(node)[a]);
+                return u;
+            });
+            std::printf("%-8s nu %.2f  uz (um) ours/fem, tilt (mrad) ours/fem per layer:\n",
+                        name.c_str(), nu);
+            for (int x = 0; x < s.nx; ++x)
+                std::printf("   x %d  uz %8.2f / %8.2f   tilt %7.3f / %7.3f\n", x, 1e6 * ours.uz[x],
+                            1e6 * fem.uz[x], 1e3 * ours.tilt[x], 1e3 * fem.tilt[x]);
+            std::fflush(stdout);
+        }
+}
+
+namespace {
+
+// The body with every voxel split into 2 x 2 x 2 of half the size. A held voxel's clamp is the
+// plane through its centre, which in the refined lattice lies between the two sub-layers of the
+// held layer: `hold_both` holds both (the clamp half a sub-voxel beyond the coarse one's, the
+// narrow part shorter by a quarter voxel), otherwise only the outer one (longer by a quarter).
+engine::BodySpec refined_body(const engine::BodySpec& s, bool hold_both) {
+    engine::BodySpec r = s;
+    r.nx = 2 * s.nx;
+    r.ny = 2 * s.ny;
+    r.nz = 2 * s.nz;
+    r.voxel_size_m = 0.5 * s.voxel_size_m;
+    r.material.assign(r.cell_count(), 0);
+    r.fixed.assign(r.cell_count(), 0);
+    for (int z = 0; z < r.nz; ++z)
+        for (int y = 0; y < r.ny; ++y)
+            for (int x = 0; x < r.nx; ++x) {
+                const int c = s.cell_index(x / 2, y / 2, z / 2);
+                r.material[r.cell_index(x, y, z)] = s.material[c];
+                r.fixed[r.cell_index(x, y, z)] =
+                    s.fixed.empty() ? 0 : (s.fixed[c] != 0 && (hold_both || x % 2 == 0));
+            }
+    return r;
+}
+
+// The coarse measures from the refined answer: a coarse voxel's centre moves as the mean of its
+// eight sub-voxels.
+Measures refined_actuation(const engine::BodySpec& coarse, bool hold_both) {
+    const engine::BodySpec r = refined_body(coarse, hold_both);
+    const evo::QuasiStaticResult hot = evo::engine_quasi_static(r, 1.0),
+                                 cold = evo::engine_quasi_static(r, 0.0);
+    REQUIRE_MESSAGE(hot.settled, hot.problem);
+    REQUIRE_MESSAGE(cold.settled, cold.problem);
+    std::vector<double> dz(coarse.cell_count(), 0.0);
+    int i = 0;
+    for (int c = 0; c < r.cell_count(); ++c) {
+        if (r.material[c] == 0) continue;
+        const int x = c % r.nx, y = (c / r.nx) % r.ny, z = c / (r.nx * r.ny);
+        dz[coarse.cell_index(x / 2, y / 2, z / 2)] +=
+            (hot.displacement_m[i][2] - cold.displacement_m[i][2]) / 8.0;
+        ++i;
+    }
+    std::vector<double> by_voxel;
+    for (int c = 0; c < coarse.cell_count(); ++c)
+        if (coarse.material[c] != 0) by_voxel.push_back(dz[c]);
+    return measures(coarse, [&](int j) { return by_voxel[j]; });
+}
+
+}  // namespace
+
+// Whether the actuated narrow bodies' error is the lattice's resolution (issue 40): the engine on
+// the same bodies with every voxel split in eight, against the stored 4-per-edge references, for
+// BHM_CONTINUUM_CASES (default p1e,p2z,p4sqe,neck1x2,neck2x1,full) at nu 0, 0.35, 0.49, with the
+// refined clamp a quarter voxel either side of the coarse one (a few seconds per run):
+//   build/bin/test_engine -tc="continuum: actuated on a refined lattice" --no-skip
+TEST_CASE("continuum: actuated on a refined lattice" * doctest::skip()) {
+    std::vector<std::string> names = {"p1e", "p2z", "p4sqe", "neck1x2", "neck2x1", "full"};
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) {
+        names.clear();
+        std::string rest = list;
+        while (!rest.empty()) {
+            const std::size_t comma = rest.find(',');
+            names.push_back(rest.substr(0, comma));
+            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        }
+    }
+    for (const std::string& name : names)
+        for (double nu : {0.0, 0.35, 0.49}) {
+            const Reference* ref = nullptr;
+            for (const Reference& a : kActuatedReferences)
+                if (name == a.name && std::abs(nu - a.nu) < 1e-9) ref = &a;
+            if (ref == nullptr) continue;
+            const auto s = continuum_body(name, nu, true);
+            const Measures coarse = engine_actuation(s);
+            const Measures outer = refined_actuation(s, false), both = refined_actuation(s, true);
+            auto pct = [](double ours_m, double ref_mm) {
+                return 100.0 * (ours_m * 1e3 / ref_mm - 1.0);
+            };
+            std::printf(
+                "%-8s nu %.2f  tip / com vs CalculiX: coarse %+6.1f / %+6.1f %%, refined "
+                "(outer held) %+6.1f / %+6.1f %%, refined (both held) %+6.1f / %+6.1f %%\n",
+                name.c_str(), nu, pct(coarse.tip, ref->tip4), pct(coarse.com, ref->com4),
+                pct(outer.tip, ref->tip4), pct(outer.com, ref->com4), pct(both.tip, ref->tip4),
+                pct(both.com, ref->com4));
+            std::fflush(stdout);
+        }
 }
