@@ -84,8 +84,8 @@ void progress_section(Studio& s) {
         ImGui::PopStyleColor();
         record_widget(s, "fem error");
     } else if (st->phase == FemVerifyPhase::Cancelled) {
-        ImGui::TextDisabled("verification of %s cancelled after %s; nothing was written",
-                            st->label.c_str(), seconds);
+        hint_wrapped("verification of %s cancelled after %s; nothing was written",
+                     st->label.c_str(), seconds);
     }
 }
 
@@ -117,7 +117,7 @@ void result_section(Studio& s) {
     // Beside the verdict: how far the FEM's own answer moves with its mesh (absent in reports
     // written before the studio estimated it).
     if (!v->mesh_error.empty()) {
-        ImGui::TextUnformatted(v->mesh_error.c_str());
+        ImGui::TextWrapped("%s", v->mesh_error.c_str());
         record_widget(s, "fem mesh error");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip(
@@ -125,27 +125,28 @@ void result_section(Studio& s) {
                 "the elements per voxel edge): a difference between the models well above it\n"
                 "is the models', not the mesh's (docs/verify.md)");
     }
-    ImGui::TextDisabled("CalculiX %s, %d nodes, %.1f s CPU; our engine %.1f s CPU; %s",
-                        v->element.c_str(), v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s,
-                        v->dir.c_str());
-    if (!v->mesh_reason.empty()) {  // wrapped: the reason names a voxel and can be long
-        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-        ImGui::TextWrapped("mesh %s", v->mesh_reason.c_str());
-        ImGui::PopStyleColor();
+    hint_wrapped("CalculiX %s, %d nodes, %.1f s CPU; ours %.1f s CPU", v->element.c_str(),
+                 v->fem_nodes, v->fem_cpu_s, v->engine_cpu_s);
+    record_widget(s, "fem cost");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the report is kept in %s", v->dir.c_str());
+    if (!v->mesh_reason.empty()) {  // the reason names a voxel and can be long
+        hint_wrapped("mesh %s", v->mesh_reason.c_str());
         record_widget(s, "fem mesh");
     }
     // Above the table, so that a short tile still shows it.
     if (v->fem_shape.empty()) {
-        ImGui::TextDisabled("(no shapes.json: nothing to draw in the 3D view)");
+        hint_wrapped("(no shapes.json: nothing to draw in the 3D view)");
     } else {
         ImGui::Checkbox("FEM ghost in the 3D view", &s.verify.ghost);
         record_widget(s, "fem ghost");
-        ImGui::SameLine();
-        ImGui::TextDisabled("our static shape at the chosen load, CalculiX's as the grey ghost");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("our static shape at the chosen load, CalculiX's as the grey ghost");
     }
-    ImGui::TextDisabled(
-        "each cell: CalculiX / ours (relative difference); the radio button picks "
-        "the load drawn");
+    hint_wrapped("each cell: CalculiX / ours (difference)");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "the relative difference in brackets, green within the tolerance;\n"
+            "the radio button picks the load the 3D view draws");
     // Fixed-width columns that scroll sideways: a narrow tile never cuts a number.
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersOuter |
                                   ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
@@ -188,8 +189,8 @@ void result_section(Studio& s) {
 void kept_section(Studio& s) {
     if (s.verify.kept_reports.empty() || !s.run.snapshot) return;
     ImGui::Separator();
-    ImGui::TextDisabled("Kept FEM reports (%s/verify): choose one to show its body with it",
-                        s.run.snapshot->run_dir.c_str());
+    hint_wrapped("Kept FEM reports (%s/verify): choose one to show its body with it",
+                 s.run.snapshot->run_dir.c_str());
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     const ImGuiStyle& style = ImGui::GetStyle();
     ImGui::PushID("kept reports");
@@ -222,10 +223,9 @@ void draw_verify_panel(Studio& s) {
     ImGui::EndDisabled();
     ImGui::SameLine();
     if (s.bodies.shown)
-        ImGui::TextDisabled("%s against CalculiX at rest, +A and -A",
-                            s.bodies.shown->label.c_str());
+        hint_wrapped("%s against CalculiX at rest, +A and -A", s.bodies.shown->label.c_str());
     else
-        ImGui::TextDisabled("Select a champion or an individual to verify it.");
+        hint_wrapped("Select a champion or an individual to verify it.");
     progress_section(s);
     result_section(s);
     kept_section(s);

@@ -33,6 +33,9 @@ void section_title(const char* title);
 //! A tooltip of `text` wrapped at 35 font sizes (at most the display's width less 40 px): a
 //! paragraph (a preset's description) stays on the screen instead of one line running off it.
 void wrapped_tooltip(const std::string& text);
+//! A hint in the disabled colour, wrapped at the window's right edge: a narrow tile (the Analysis
+//! tile at 400 px) shows every word instead of cutting the line (ImGui::TextDisabled never wraps).
+void hint_wrapped(const char* format, ...) IM_FMTARGS(1);
 //! "(?)" marker with a tooltip.
 void help_marker(const char* text);
 //! Width for a field so the unit fits after it.
