@@ -13,6 +13,7 @@
 #include "app/gui/panels/file_dialog_widget.hpp"
 #include "app/gui/panels/material_picker.hpp"
 #include "app/gui/panels/panels.hpp"
+#include "app/gui/panels/twitch_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/validated_envelope.hpp"
@@ -88,6 +89,7 @@ void materials_section(Studio& s) {
                 if (std::string_view(f.path) == "cte_per_c" && muscle) continue;
                 material_field(s, k, f.path);
             }
+            if (muscle) draw_twitch_plot(s, k, m.physics.muscle);
             ImGui::SetNextItemWidth(field_width());
             if (ImGui::ColorEdit3("Colour", color, ImGuiColorEditFlags_NoInputs)) {
                 m.color = {color[0], color[1], color[2]};
@@ -121,9 +123,9 @@ void materials_section(Studio& s) {
 }
 
 void actuation_section(Studio& s) {
-    for (const char* path : {"actuation.frequency_hz", "actuation.temperature_amplitude_c",
-                             "actuation.phase", "actuation.phase_offset_rad",
-                             "environment.gravity_m_s2", "environment.floor"})
+    for (const char* path :
+         {"actuation.frequency_hz", "actuation.temperature_amplitude_c", "actuation.phase",
+          "actuation.phase_offset_rad", "environment.gravity_m_s2", "environment.floor"})
         experiment_field(s, path);
 }
 
@@ -132,8 +134,7 @@ void simulation_section(Studio& s) {
          {"simulation.settle_s", "simulation.evaluate_s", "simulation.dt_fraction",
           "simulation.bond_damping_ratio", "simulation.global_damping_ratio",
           "simulation.collision_damping_ratio", "simulation.implicit_damping_sweeps",
-          "simulation.record_fps",
-          "simulation.end_when_periodic", "simulation.periodic_tolerance"})
+          "simulation.record_fps", "simulation.end_when_periodic", "simulation.periodic_tolerance"})
         experiment_field(s, path);
 }
 
@@ -178,8 +179,9 @@ void evolution_section(Studio& s) {
     ImGui::TextDisabled("CalculiX in the loop");
     fields_under(s, "evolution.verify.");
     if (verify_differs_from_run(s)) {
-        ImGui::TextWrapped("These differ from the live run's: Apply (or Resume) sends them, and "
-                           "they take effect from its next generation.");
+        ImGui::TextWrapped(
+            "These differ from the live run's: Apply (or Resume) sends them, and "
+            "they take effect from its next generation.");
         if (tracked_button(s, "Apply checks to run")) apply_rules_to_run(s);
     }
 }
