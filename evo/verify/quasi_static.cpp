@@ -28,8 +28,10 @@ QuasiStaticResult engine_quasi_static(const engine::BodySpec& body, double tempe
                                                     std::numbers::pi));
     if (muscle_driven(body)) {
         if (temperature_c != 0.0 && temperature_c != 1.0)
-            throw std::invalid_argument("a muscle body's static load is its activation, 0 or "
-                                        "1, not " + std::to_string(temperature_c));
+            throw std::invalid_argument(
+                "a muscle body's static load is its activation, 0 or "
+                "1, not " +
+                std::to_string(temperature_c));
         // Stimulated throughout (one pulse as wide as its period), one signal for every muscle.
         for (engine::Material& m : spec.materials) {
             if (m.actuation_model != engine::ActuationModel::Muscle) continue;

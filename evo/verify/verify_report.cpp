@@ -128,9 +128,10 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                                          {"capped", v.mesh.capped},
                                          {"point_clamp", v.mesh.point_clamp}};
     if (v.muscle)
-        j["loads_note"] = "muscle model: rest and peak activation (a = 1, the muscles' free "
-                          "strain as CalculiX's orthotropic expansion); a muscle only "
-                          "contracts, so there is no -A load";
+        j["loads_note"] =
+            "muscle model: rest and peak activation (a = 1, the muscles' free "
+            "strain as CalculiX's orthotropic expansion); a muscle only "
+            "contracts, so there is no -A load";
     j["engine"] = {{"method", v.muscle ? "activation held at 1 (stimulated throughout) or 0, floor "
                                          "off, damped until at rest"
                                        : "constant temperature change, floor off, damped until "

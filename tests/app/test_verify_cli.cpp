@@ -168,9 +168,9 @@ TEST_CASE("bhm verify: the shipped muscle catheter at rest and peak activation, 
     // under its floor), the largest difference at rest (gravity), 7.4 % at peak activation.
     Fixture f;
     const std::string assets = std::string(BHM_SOURCE_DIR) + "/assets/";
-    const auto r = bhm_run("verify " + assets + "experiments/muscle-catheter.json --body " +
-                           assets + "bodies/muscle-catheter.body.json --no-mesh-error --out " +
-                           f.path("muscle"));
+    const auto r =
+        bhm_run("verify " + assets + "experiments/muscle-catheter.json --body " + assets +
+                "bodies/muscle-catheter.body.json --no-mesh-error --out " + f.path("muscle"));
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK(r.output.find(": agrees within ") != std::string::npos);
