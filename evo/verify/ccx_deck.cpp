@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include "engine/muscle.hpp"
+
 namespace bhm::evo {
 
 namespace {
@@ -15,6 +17,17 @@ void write_ids(std::ostringstream& out, const std::vector<int>& ids) {
 }
 
 }  // namespace
+
+bool muscle_driven(const engine::BodySpec& spec) {
+    for (int m : spec.material) {
+        if (m == 0) continue;
+        const engine::Material& material = spec.materials.at(static_cast<std::size_t>(m - 1));
+        if (material.actuation_model == engine::ActuationModel::Muscle &&
+            engine::is_active(material))
+            return true;
+    }
+    return false;
+}
 
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
                      const std::vector<FemLoad>& loads, bool nlgeom) {
@@ -49,7 +62,14 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
                       "*MATERIAL, NAME=MAT%d\n*ELASTIC\n%.10g, %.10g\n*DENSITY\n%.10g\n", material,
                       m.youngs_modulus_pa, m.poisson_ratio, m.density_kg_m3);
         out << line;
-        if (m.cte_per_c != 0.0) {
+        if (m.actuation_model == engine::ActuationModel::Muscle && engine::is_active(m)) {
+            // The free strain per unit activation along x, y, z (no *ORIENTATION: global axes).
+            std::snprintf(line, sizeof line,
+                          "*EXPANSION, TYPE=ORTHO, ZERO=0.\n%.10g, %.10g, %.10g\n",
+                          engine::muscle::axis_strain(m, 0), engine::muscle::axis_strain(m, 1),
+                          engine::muscle::axis_strain(m, 2));
+            out << line;
+        } else if (m.cte_per_c != 0.0) {
             std::snprintf(line, sizeof line, "*EXPANSION, ZERO=0.\n%.10g\n", m.cte_per_c);
             out << line;
         }

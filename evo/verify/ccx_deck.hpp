@@ -4,6 +4,12 @@
 // and one static step per load: the body at rest under gravity, then a uniform temperature
 // change of +A and -A (only materials with a cte expand). Displacements of every node are printed
 // at the end of each step.
+//
+// A muscle body (engine/muscle.hpp) has the loads rest and peak activation, its "temperature" the
+// activation a (0, then 1): a muscle material's expansion is orthotropic (*EXPANSION, TYPE=ORTHO,
+// in the global axes, which are the lattice's), -contraction_strain per unit a along its fibre
+// and +nu contraction_strain across it, the free strain muscle::axis_strain of our engine. A
+// muscle only contracts: there is no -A.
 #include <string>
 #include <vector>
 
@@ -13,9 +19,13 @@
 namespace bhm::evo {
 
 struct FemLoad {
-    std::string name;             //!< "rest", "+A", "-A"
-    double temperature_c = 0.0;   //!< uniform temperature change of the step
+    std::string name;            //!< "rest", "+A", "-A"; a muscle body's "rest", "peak"
+    double temperature_c = 0.0;  //!< uniform temperature change of the step (a muscle body: a)
 };
+
+//! Whether the body's active voxels are muscle (a body never mixes them with sine-active ones,
+//! muscle::palette_problems): its loads are then rest and peak activation.
+bool muscle_driven(const engine::BodySpec& spec);
 
 //! The deck; `nlgeom` solves each step geometrically nonlinear (large rotations), in increments.
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,

@@ -5,9 +5,11 @@
 #include <ctime>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 
 #include "engine/model.hpp"
 #include "engine/world.hpp"
+#include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/verify_progress.hpp"
 
 namespace bhm::evo {
@@ -24,6 +26,23 @@ QuasiStaticResult engine_quasi_static(const engine::BodySpec& body, double tempe
     spec.phase_rad.assign(spec.material.size(), static_cast<float>(
                                                     (temperature_c < 0.0 ? -0.5 : 0.5) *
                                                     std::numbers::pi));
+    if (muscle_driven(body)) {
+        if (temperature_c != 0.0 && temperature_c != 1.0)
+            throw std::invalid_argument(
+                "a muscle body's static load is its activation, 0 or "
+                "1, not " +
+                std::to_string(temperature_c));
+        // Stimulated throughout (one pulse as wide as its period), one signal for every muscle.
+        for (engine::Material& m : spec.materials) {
+            if (m.actuation_model != engine::ActuationModel::Muscle) continue;
+            m.muscle.stimulus = engine::MuscleStimulus::PulseTrain;
+            m.muscle.frequency_hz = 1.0;
+            m.muscle.pulse_width_s = 1.0;
+            m.muscle.train_on_s = m.muscle.train_off_s = 0.0;
+            m.muscle.rise_s = m.muscle.decay_s = kHoldRiseS;
+        }
+        spec.actuation.start_s = temperature_c == 1.0 ? 0.0 : options.max_time_s + 1.0;
+    }
     auto model = engine::Model::build(spec);
     engine::World world(model);
     const int n = model->voxel_count();

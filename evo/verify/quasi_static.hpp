@@ -6,6 +6,13 @@
 // less than `tolerance` of their displacement over a slice. Damping does not change where a body
 // comes to rest, only how soon; the ratio is a voxel's, so more of it overdamps a body's slow
 // modes and it creeps to rest (docs/verify.md, "Our engine's answer").
+//
+// A muscle body's load is its activation a, 0 or 1 (ccx_deck.hpp): at 1 every muscle material is
+// stimulated throughout from t = 0 (pulses as wide as their period), with a rise time of
+// kHoldRiseS, so its activation 1 - exp(-t / kHoldRiseS) is 1 to double precision from 0.4 s on
+// and within 3e-7 of it after the first three slices (the earliest a body may be found at rest);
+// at 0 the actuation starts after the run. Only the evo side's copy of the spec changes: the
+// engine and every experiment's own stimulus stay as they are.
 #include <array>
 #include <string>
 #include <vector>
@@ -38,7 +45,11 @@ struct QuasiStaticResult {
     double cpu_s = 0.0;
 };
 
-//! `temperature_c` is the uniform temperature change of every voxel (0 at rest).
+//! The rise time of a muscle held at full activation (the static answer does not depend on it).
+inline constexpr double kHoldRiseS = 0.01;
+
+//! `temperature_c` is the uniform temperature change of every voxel (0 at rest); of a muscle
+//! body (muscle_driven), the activation, 0 or 1 (else std::invalid_argument).
 QuasiStaticResult engine_quasi_static(const engine::BodySpec& spec, double temperature_c,
                                       const QuasiStaticOptions& options = {});
 

@@ -1,9 +1,9 @@
 #pragma once
 // One body checked against the continuum: the reach check, the CalculiX solve at rest, +A and -A
-// (fem_model, ccx_deck, ccx_run), our engine's quasi-static answer at the same loads
-// (quasi_static), and their comparison: tip displacement, bend angle, displacement of the centre
-// of mass (3-D and YZ) and the per-voxel displacement RMS, each as a relative difference, judged
-// on the experiment's own measure (verdict.hpp).
+// (a muscle body: rest and peak activation; fem_model, ccx_deck, ccx_run), our engine's
+// quasi-static answer at the same loads (quasi_static), and their comparison: tip displacement,
+// bend angle, displacement of the centre of mass (3-D and YZ) and the per-voxel displacement RMS,
+// each as a relative difference, judged on the experiment's own measure (verdict.hpp).
 #include <array>
 #include <optional>
 #include <string>
@@ -65,8 +65,8 @@ struct Differences {
 };
 
 struct LoadComparison {
-    std::string load;  //!< "rest", "+A", "-A"
-    double temperature_c = 0.0;
+    std::string load;            //!< "rest", "+A", "-A"; a muscle body's "rest", "peak"
+    double temperature_c = 0.0;  //!< a muscle body's: the activation (0, 1)
     ResponseMeasures fem, engine;
     Differences differences;
     double fem_rms_m = 0.0;  //!< RMS of the FEM's voxel displacements
@@ -78,10 +78,16 @@ struct LoadComparison {
 
 enum class VerifyStatus { Compared, OutOfReach };
 
+//! What a muscle body's verdict adds: which loads it was judged at, and why no -A.
+inline constexpr const char* kMuscleLoadsNote =
+    " at rest and peak activation (a muscle only contracts: no -A)";
+
 struct BodyVerification {
     VerifyStatus status = VerifyStatus::Compared;
     std::string reason;  //!< why the body is out of reach
     int voxels = 0, held_voxels = 0, active_voxels = 0;
+    //! Driven by the muscle model: the loads are rest and peak activation (ccx_deck.hpp).
+    bool muscle = false;
     int tip_cell = -1;
     std::vector<LoadComparison> loads;
     //! The verdict: the experiment's measure (`measure`) decides where it clears its floor, else

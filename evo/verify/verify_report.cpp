@@ -127,7 +127,15 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                                          {"held", v.mesh.narrowest.held},
                                          {"capped", v.mesh.capped},
                                          {"point_clamp", v.mesh.point_clamp}};
-    j["engine"] = {{"method", "constant temperature change, floor off, damped until at rest"},
+    if (v.muscle)
+        j["loads_note"] =
+            "muscle model: rest and peak activation (a = 1, the muscles' free "
+            "strain as CalculiX's orthotropic expansion); a muscle only "
+            "contracts, so there is no -A load";
+    j["engine"] = {{"method", v.muscle ? "activation held at 1 (stimulated throughout) or 0, floor "
+                                         "off, damped until at rest"
+                                       : "constant temperature change, floor off, damped until "
+                                         "at rest"},
                    {"global_damping_ratio", options.engine.global_damping_ratio},
                    {"rest_tolerance", options.engine.tolerance},
                    {"cpu_s", v.engine_cpu_s},
@@ -135,7 +143,7 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                    {"largest_bend_angle_deg", v.engine_bend_deg}};
     j["score"] = {{"fem", v.fem_score}, {"engine", v.engine_score}};
     nlohmann::json loads = nlohmann::json::array();
-    for (const auto& c : v.loads)
+    for (const auto& c : v.loads) {
         loads.push_back({{"load", c.load},
                          {"temperature_c", c.temperature_c},
                          {"fem", measures_json(c.fem)},
@@ -144,6 +152,8 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                          {"fem_largest_voxel_displacement_m", c.fem_largest_m},
                          {"relative_difference", differences_json(c)},
                          {"above_floor", floors_json(c, v.floors)}});
+        if (v.muscle) loads.back()["activation"] = c.temperature_c;
+    }
     j["loads"] = loads;
     return j;
 }
@@ -267,9 +277,9 @@ nlohmann::json write_verification(const BodyVerification& v, const VerifyOptions
     for (std::size_t k = 0; k < v.loads.size() && k < v.fem_displacements.size(); ++k) {
         const std::string load = v.loads[k].load;
         const std::string name = "fem-" +
-                                 std::string(load == "rest" ? "rest"
-                                             : load == "+A" ? "plus-A"
-                                                            : "minus-A") +
+                                 std::string(load == "+A"   ? "plus-A"
+                                             : load == "-A" ? "minus-A"
+                                                            : load) +  // rest, peak
                                  ".vtk";
         write_file_atomically(
             (dir / name).string(),

@@ -32,7 +32,8 @@ struct VerificationShapes {
 VerificationShapes verification_shapes_from_json(const nlohmann::json& j, const std::string& file);
 
 //! Writes report.json, shapes.json and the FEM's mesh per load (fem-rest.vtk, fem-plus-A.vtk,
-//! fem-minus-A.vtk) into `dir` (created), each file atomically; returns the report.
+//! fem-minus-A.vtk; a muscle body fem-rest.vtk, fem-peak.vtk) into `dir` (created), each file
+//! atomically; returns the report.
 nlohmann::json write_verification(const BodyVerification& v, const VerifyOptions& options,
                                   const std::string& dir);
 

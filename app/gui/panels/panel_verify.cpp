@@ -168,7 +168,11 @@ void result_section(Studio& s) {
             if (ImGui::RadioButton(label, s.verify.load == static_cast<int>(k)))
                 s.verify.load = static_cast<int>(k);
             record_widget(s, "fem load " + r.load);
-            if (ImGui::IsItemHovered())
+            if (ImGui::IsItemHovered() && r.load == "peak")  // a muscle body (issue 43)
+                ImGui::SetTooltip(
+                    "peak: the muscle voxels fully activated (a = 1); a muscle only "
+                    "contracts, so there is no -A");
+            else if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("%s: temperature change %+.3g degC of the active voxels",
                                   r.load.c_str(), r.temperature_c);
             ImGui::TableNextColumn();

@@ -25,7 +25,7 @@ namespace bhm::app::gui {
 
 //! One load's row of the result table: both answers' measures and their relative differences.
 struct FemLoadRow {
-    std::string load;  //!< "rest", "+A", "-A"
+    std::string load;  //!< "rest", "+A", "-A"; a muscle body's "rest", "peak"
     double temperature_c = 0.0;
     double fem_tip_m = 0.0, engine_tip_m = 0.0;        //!< |tip displacement|
     double fem_bend_deg = 0.0, engine_bend_deg = 0.0;  //!< bend angle
