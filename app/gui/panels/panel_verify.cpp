@@ -47,6 +47,13 @@ std::string percent(const std::optional<double>& d) {
     return buf;
 }
 
+// A muscle body is checked at rest and at peak activation (bhm verify; docs/verify.md).
+bool driven_by_muscle(const evo::Experiment& e) {
+    return std::any_of(e.materials.begin(), e.materials.end(), [](const evo::MaterialEntry& m) {
+        return m.physics.actuation_model == engine::ActuationModel::Muscle;
+    });
+}
+
 void pair_cell(double fem, double ours, const std::optional<double>& difference, double tolerance,
                const char* format) {
     char buf[96];
@@ -227,7 +234,10 @@ void draw_verify_panel(Studio& s) {
     ImGui::EndDisabled();
     ImGui::SameLine();
     if (s.bodies.shown)
-        hint_wrapped("%s against CalculiX at rest, +A and -A", s.bodies.shown->label.c_str());
+        hint_wrapped("%s against CalculiX at rest, %s", s.bodies.shown->label.c_str(),
+                     driven_by_muscle(s.bodies.shown->experiment)
+                         ? "and at peak activation (a muscle only contracts)"
+                         : "+A and -A");
     else
         hint_wrapped("Select a champion or an individual to verify it.");
     progress_section(s);
