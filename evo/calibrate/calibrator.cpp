@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -30,6 +31,17 @@ namespace {
 // One standard deviation of x beyond which a parameter is reported as poorly determined: a
 // factor of e^0.5 = 1.65 either way (0.5 rad for the phase lag).
 constexpr double kPoorlyDetermined = 0.5;
+
+// The search range as a reader knows it: "x1/5..5" (the default), the factors where a field's
+// own range narrowed it (a muscle's time constants), or the added angle.
+std::string search_range(const FitParameter& p) {
+    if (!p.log_scale) return "-pi..pi";
+    if (std::abs(p.lower + std::log(5.0)) < 1e-12 && std::abs(p.upper - std::log(5.0)) < 1e-12)
+        return "x1/5..5";
+    char text[64];
+    std::snprintf(text, sizeof text, "x%.3g..%.3g", std::exp(p.lower), std::exp(p.upper));
+    return text;
+}
 
 std::string join_names(const std::vector<FitParameter>& ps, const std::vector<int>& group) {
     std::string s;
@@ -262,9 +274,8 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
         f.sigma = id.sigma_x[i] * (ps[i].log_scale ? std::abs(f.value) : 1.0);
         f.at_bound = out.x[i] <= ps[i].lower + 1e-3 || out.x[i] >= ps[i].upper - 1e-3;
         if (f.at_bound)
-            out.warnings.push_back(ps[i].name + " ended at a bound of its search range (x" +
-                                   std::string(ps[i].log_scale ? "1/5..5" : "-pi..pi") +
-                                   "): the optimum may lie beyond");
+            out.warnings.push_back(ps[i].name + " ended at a bound of its search range (" +
+                                   search_range(ps[i]) + "): the optimum may lie beyond");
         out.fitted.push_back(f);
     }
     for (std::size_t i = 0; i < p; ++i)

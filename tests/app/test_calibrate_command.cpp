@@ -1,9 +1,11 @@
 // `bhm calibrate` end to end: a track the command's own --simulate-only writes for an experiment
-// with a known amplitude is fitted back from another amplitude; the files it leaves; bad input.
+// with a known amplitude (or muscle twitch) is fitted back from other values; the files it
+// leaves; bad input.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -65,7 +67,120 @@ void write_files(const fs::path& dir, double amplitude_c) {
     for (int k = 0; k <= 20; ++k) times << 0.01 * k << ",0,0,0\n";
 }
 
+// The bilayer with its top layer a muscle, fibres along x, free of the floor: 5 Hz pulses
+// 0.1 s wide, so each 0.1 s of stimulus is a rise toward full activation (its pace rise_s), each
+// 0.1 s of rest a decay (decay_s), and the bend's size follows contraction_strain. The cantilever's
+// own first mode (~70 Hz, damped) is fast beside both time constants, so the tip follows the
+// activation's shape. 0.3 s simulated: one and a half stimulus periods.
+bhm::evo::Experiment muscle_experiment(double rise_s, double decay_s, double strain) {
+    auto e = bilayer_experiment();
+    e.name = "muscle bilayer";
+    auto& m = e.materials[1].physics;
+    m.cte_per_c = 0.0;
+    m.actuation_model = bhm::engine::ActuationModel::Muscle;
+    m.muscle.fibre_axis = 0;
+    m.muscle.contraction_strain = strain;
+    m.muscle.rise_s = rise_s;
+    m.muscle.decay_s = decay_s;
+    m.muscle.frequency_hz = 5.0;
+    m.muscle.pulse_width_s = 0.1;
+    e.environment.floor = false;
+    e.simulation.settle_s = 0.02;
+    e.simulation.evaluate_s = 0.28;
+    return e;
+}
+
+void write_muscle_files(const fs::path& dir, double rise_s, double decay_s, double strain) {
+    write_files(dir, 14.47);  // the body and a times file, replaced below
+    bhm::evo::save_experiment((dir / "experiment.json").string(),
+                              muscle_experiment(rise_s, decay_s, strain));
+    std::ofstream times(dir / "times.csv");
+    times << "t_s,tip.x,tip.z\n";
+    for (int k = 0; k <= 30; ++k)
+        times << 0.01 * k << ",0,0\n";
+}
+
 }  // namespace
+
+TEST_CASE("bhm calibrate fits back a muscle's twitch times and contraction strain") {
+    if (!bhm::evo::calibration_available()) return;
+    // The truth, written by the command's own --simulate-only, then uniform noise of +-0.5 % of
+    // the motion's RMS (a fixed sequence) so that the fit's standard deviations are those of a
+    // measurement, not of the CSV's 9 digits.
+    const double rise_s = 0.03, decay_s = 0.06, strain = 0.1;
+    const fs::path truth = fresh_dir("muscle-truth"), dir = fresh_dir("muscle-fit");
+    write_muscle_files(truth, rise_s, decay_s, strain);
+    const auto sim = run_calibrate(
+        {(truth / "experiment.json").string(), "--body", (truth / "body.json").string(), "--track",
+         (truth / "times.csv").string(), "--simulate-only", "--out", (truth / "out").string()});
+    REQUIRE_MESSAGE(sim.exit_code == 0, sim.err);
+    auto track = bhm::evo::load_measured_track((truth / "out" / "simulated.csv").string());
+    const double rms = bhm::evo::track_motion_rms(track);
+    REQUIRE(rms > 1e-4);  // the muscle bends the 4 cm bilayer by a fraction of a millimetre or more
+    std::uint64_t state = 12345;
+    for (auto& point : track.points)
+        for (auto& p : point.position_m)
+            for (double& v : p) {
+                state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+                v += 0.005 * rms * (2.0 * static_cast<double>(state >> 11) * 0x1.0p-53 - 1.0);
+            }
+    std::ofstream(truth / "noisy.csv") << bhm::evo::measured_track_to_csv(track, "with noise");
+
+    // Started 1.5 times too slow to rise, 1.5 times too quick to decay, 0.7 times the strain.
+    write_muscle_files(dir, 1.5 * rise_s, decay_s / 1.5, 0.7 * strain);
+    const auto run = run_calibrate(
+        {(dir / "experiment.json").string(), "--body", (dir / "body.json").string(), "--track",
+         (truth / "noisy.csv").string(), "--fit", "rise_s,decay_s,contraction_strain", "--threads",
+         "2", "--out", (dir / "out").string()});
+    REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+    MESSAGE(run.out);
+    std::ifstream in(dir / "out" / "report.json");
+    const auto report = nlohmann::json::parse(in);
+    const double truths[] = {rise_s, decay_s, strain};
+    const char* names[] = {"rise_s", "decay_s", "contraction_strain"};
+    for (int i = 0; i < 3; ++i) {
+        const auto& f = report["fit"][i];
+        CAPTURE(f.dump());
+        CHECK(f["name"] == names[i]);
+        // The noise is the only error in the track, so the truth lies within 3 standard
+        // deviations of the fit (Gauss-Newton's, from the residuals); and the standard deviation
+        // is small, so that this check has teeth: under 5 % of the value.
+        REQUIRE(f["sigma"].is_number());
+        const double sigma = f["sigma"].get<double>();
+        CHECK(std::abs(f["fitted"].get<double>() - truths[i]) < 3.0 * sigma);
+        CHECK(sigma > 0.0);
+        CHECK(sigma < 0.05 * truths[i]);
+        CHECK(f["at_bound"] == false);
+    }
+    CHECK(report["fit"][0]["unit"] == "s");
+    CHECK(report["good_fit"] == true);
+    CHECK(report["identifiability"]["trade_offs"].empty());
+    const auto calibrated =
+        bhm::evo::load_experiment((dir / "out" / "calibrated-experiment.json").string());
+    const auto& muscle = calibrated.materials[1].physics.muscle;
+    CHECK(std::abs(muscle.rise_s - report["fit"][0]["fitted"].get<double>()) < 1e-9);
+    CHECK(std::abs(muscle.decay_s - report["fit"][1]["fitted"].get<double>()) < 1e-9);
+    CHECK(std::abs(muscle.contraction_strain - report["fit"][2]["fitted"].get<double>()) < 1e-9);
+}
+
+TEST_CASE(
+    "bhm calibrate refuses a muscle parameter on a sine experiment and lists them in --help") {
+    const fs::path dir = fresh_dir("muscle-sine");
+    write_files(dir, 14.47);
+    const auto run = run_calibrate(
+        {(dir / "experiment.json").string(), "--body", (dir / "body.json").string(), "--track",
+         (dir / "times.csv").string(), "--fit", "E,rise_s", "--out", (dir / "out").string()});
+    CHECK(run.exit_code == 2);
+    CHECK(run.err.find("--fit: 'rise_s' does not apply: no material of the experiment uses the "
+                       "muscle model (materials[k].actuation_model), so none has a "
+                       "muscle.rise_s") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "out"));
+    const auto help = run_calibrate({"--help"});
+    CHECK(help.exit_code == 0);
+    CHECK((help.out + help.err)
+              .find("rise_s[:MATERIAL], decay_s[:MATERIAL], "
+                    "contraction_strain[:MATERIAL]") != std::string::npos);
+}
 
 TEST_CASE("bhm calibrate fits back the amplitude of a track simulated with a known one") {
     if (!bhm::evo::calibration_available()) return;
