@@ -174,11 +174,22 @@ struct CalibrationState {
     evo::Experiment experiment;
     std::int64_t body_id = -1;
     std::string body_label;
-    //! The --fit names offered, and which are ticked.
-    std::vector<std::string> fit_names = {"E",         "density",      "cte",
-                                          "amplitude", "frequency",    "phase_lag",
-                                          "bond_damping", "global_damping", "friction"};
-    std::vector<bool> fit_on = {true, false, false, true, false, false, false, false, false};
+    //! The --fit names offered, and which are ticked; only those that apply to the experiment's
+    //! actuation model are shown and sent (fit_name_applies).
+    std::vector<std::string> fit_names = {"E",
+                                          "density",
+                                          "cte",
+                                          "amplitude",
+                                          "frequency",
+                                          "phase_lag",
+                                          "rise_s",
+                                          "decay_s",
+                                          "contraction_strain",
+                                          "bond_damping",
+                                          "global_damping",
+                                          "friction"};
+    std::vector<bool> fit_on = {true,  false, false, true,  false, false,
+                                false, false, false, false, false, false};
     int max_simulations = 200;
     int threads = 0;  //!< 0: all cores
     CalibrationSession session;

@@ -547,3 +547,45 @@ TEST_CASE("studio: Load track obeys bhm calibrate's budget up front and says a s
     CHECK(s.ui.status.rfind("track simulated", 0) == 0);
     CHECK(s.ui.status.find("; warning: " + s.calibration.track_warning) != std::string::npos);
 }
+
+TEST_CASE("studio: the Calibrate tab offers the twitch's names for a muscle body, not the sine's") {
+    // Issue 43: bhm calibrate fits rise_s, decay_s and contraction_strain of a muscle and refuses
+    // the sine model's cte, amplitude, frequency and phase_lag there (and the other way round), so
+    // the tab offers and sends only the names that apply to the track's experiment.
+    const auto presets = std::filesystem::path(BHM_SOURCE_DIR) / "assets" / "experiments";
+    const evo::Experiment muscle =
+        evo::load_experiment((presets / "muscle-catheter.json").string());
+    const evo::Experiment sine = evo::load_experiment((presets / "paper-exp3.json").string());
+    CalibrationState c;
+    c.fit_on.assign(c.fit_names.size(), true);
+    c.experiment = muscle;
+    CHECK(ticked_fit_list(c) ==
+          "E,density,rise_s,decay_s,contraction_strain,bond_damping,global_damping,friction");
+    c.experiment = sine;
+    CHECK(ticked_fit_list(c) ==
+          "E,density,cte,amplitude,frequency,phase_lag,bond_damping,global_damping,friction");
+    // Every name shown is one bhm calibrate takes for that experiment.
+    for (const evo::Experiment* e : {&muscle, &sine}) {
+        c.experiment = *e;
+        CHECK_NOTHROW(evo::parse_fit_list(ticked_fit_list(c), *e));
+    }
+
+    // In the tab: the boxes drawn follow the experiment of the body the track is on.
+    Studio s;
+    s.document.reset(muscle, "");
+    s.calibration.experiment = muscle;
+    HeadlessStudio session(s, 1600, 1000);
+    run_script(session, nlohmann::json::parse(R"([{"click": "tab Calibrate"}, {"frames": 3}])"));
+    auto drawn = [&](const char* name) {
+        const auto it = s.ui.widgets.find(std::string("fit ") + name);
+        return it != s.ui.widgets.end() && it->second.frame == s.ui.frame;
+    };
+    CHECK(drawn("rise_s"));
+    CHECK(drawn("contraction_strain"));
+    CHECK_FALSE(drawn("amplitude"));
+    CHECK_FALSE(drawn("cte"));
+    s.calibration.experiment = sine;
+    run_script(session, nlohmann::json::parse(R"([{"frames": 2}])"));
+    CHECK(drawn("amplitude"));
+    CHECK_FALSE(drawn("rise_s"));
+}

@@ -9,6 +9,7 @@
 #include "app/cli/simulation_limits.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/settings/studio_paths.hpp"
+#include "evo/calibrate/fit_parameters.hpp"
 #include "evo/calibrate/track_simulation.hpp"
 #include "evo/evaluate/simulate.hpp"
 #include "evo/experiment/body_spec_of.hpp"
@@ -105,10 +106,20 @@ bool load_track(Studio& s, const std::string& path) {
     }
 }
 
+bool fit_name_applies(const std::string& name, const evo::Experiment& experiment) {
+    try {
+        evo::parse_fit_list(name, experiment);
+        return true;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
 std::string ticked_fit_list(const CalibrationState& c) {
     std::string list;
     for (std::size_t i = 0; i < c.fit_names.size() && i < c.fit_on.size(); ++i)
-        if (c.fit_on[i]) list += (list.empty() ? "" : ",") + c.fit_names[i];
+        if (c.fit_on[i] && fit_name_applies(c.fit_names[i], c.experiment))
+            list += (list.empty() ? "" : ",") + c.fit_names[i];
     return list;
 }
 

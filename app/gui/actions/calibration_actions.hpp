@@ -39,6 +39,10 @@ void show_calibrated_body(Studio& studio);
 bool apply_calibration_to_run(Studio& studio);
 //! The fit list the ticked boxes make ("E,amplitude").
 std::string ticked_fit_list(const CalibrationState& calibration);
+//! Whether --fit `name` applies to the experiment: the sine model's cte, amplitude, frequency
+//! and phase_lag to a sine experiment, a muscle's rise_s, decay_s and contraction_strain to a
+//! muscle one (evo::parse_fit_list's own rule), the rest to any.
+bool fit_name_applies(const std::string& name, const evo::Experiment& experiment);
 
 //! Per frame (update_studio): takes the newest snapshot and puts the end of a job on the status
 //! line.

@@ -83,6 +83,8 @@ void fit_controls(Studio& s) {
     ImGui::BeginDisabled(running);
     ImGui::TextUnformatted("Fit:");
     for (std::size_t i = 0; i < c.fit_names.size(); ++i) {
+        // A muscle experiment has no sine amplitude, a sine one no twitch times.
+        if (!fit_name_applies(c.fit_names[i], c.experiment)) continue;
         ImGui::SameLine();
         if (ImGui::GetContentRegionAvail().x < ImGui::CalcTextSize(c.fit_names[i].c_str()).x + 30.0f)
             ImGui::NewLine();
