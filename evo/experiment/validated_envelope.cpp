@@ -1,6 +1,7 @@
 #include "evo/experiment/validated_envelope.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "evo/experiment/body_spec_of.hpp"
@@ -49,6 +50,23 @@ std::vector<Problem> envelope_warnings(const Experiment& e, const Body* body,
                                number_text(validated::kMaxPoissonRatio) +
                                "] (docs/physics.md, Known limits: auxetic voxels are not "
                                "tested in bending)"});
+        if (m.actuation_model == engine::ActuationModel::Muscle &&
+            m.muscle.contraction_strain > validated::kFastTwitchMaxStrain &&
+            m.youngs_modulus_pa > 0.0 && m.density_kg_m3 > 0.0) {
+            // The slowest transit: the workspace's longest side at this material's bar speed.
+            const double longest = e.voxel_size_m * *std::max_element(e.workspace_size.begin(),
+                                                                      e.workspace_size.end());
+            const double transit_s = longest / std::sqrt(m.youngs_modulus_pa / m.density_kg_m3);
+            if (m.muscle.rise_s < transit_s)
+                out.push_back(
+                    {file, "materials[" + std::to_string(k - 1) + "].muscle.rise_s",
+                     "warning: a twitch rising in " + number_text(m.muscle.rise_s) +
+                         " s, faster than a wave crosses the workspace (" + number_text(transit_s) +
+                         " s), at contraction_strain " + number_text(m.muscle.contraction_strain) +
+                         " (above " + number_text(validated::kFastTwitchMaxStrain) +
+                         ") can squeeze a link past the engine's guard: such a body stops as "
+                         "diverged (docs/physics.md, Known limits)"});
+        }
     }
     if (k_min == 0 || e_min <= 0) return out;
     const double contrast = e_max / e_min;

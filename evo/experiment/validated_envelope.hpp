@@ -25,6 +25,11 @@ inline constexpr double kMaxStiffnessContrast = 10.0;
 //! (nu < 0) pass axial tests only ("Known limits": not tested in bending).
 inline constexpr double kMinPoissonRatio = 0.0;
 inline constexpr double kMaxPoissonRatio = 0.49;
+//! Largest muscle contraction strain that runs whatever the twitch's rise time (the muscle
+//! envelope fuzz, docs/physics.md "Known limits"): a rise faster than an elastic wave's transit of
+//! the body acts as a step of rest length, the body overshoots to about 1 - 2 e of its length,
+//! and past e = 0.45 a link can be squeezed below the engine's 0.1 L guard.
+inline constexpr double kFastTwitchMaxStrain = 0.45;
 
 }  // namespace bhm::evo::validated
 
@@ -32,7 +37,9 @@ namespace bhm::evo {
 
 //! Warnings (not errors) for an experiment whose materials lie outside the validated envelope:
 //! the stiffness contrast and Poisson's ratios of the materials the body uses (with the frame and
-//! overrides), or of every material of the experiment when there is no body. Each is a Problem
+//! overrides), or of every material of the experiment when there is no body; and a muscle whose
+//! twitch rises faster than a wave crosses the workspace at a strain past kFastTwitchMaxStrain
+//! (its body may stop as diverged). Each is a Problem
 //! whose message starts with "warning: ".
 std::vector<Problem> envelope_warnings(const Experiment& experiment, const Body* body,
                                        const std::string& file_label);

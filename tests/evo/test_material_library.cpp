@@ -406,6 +406,30 @@ TEST_CASE("validated-envelope warnings fire for a contrast of 1000 and not for 1
     CHECK(warnings[0].field == "materials[1].poisson_ratio");
 }
 
+TEST_CASE("envelope warnings: a fast twitch at a large contraction strain") {
+    // The muscle envelope fuzz's minimal case (test_engine_envelope_muscle.cpp): a 4x4x4 block of
+    // 5 MPa, 1000 kg/m3 muscle (bar wave transit 0.04 m / 70.7 m/s = 0.57 ms) diverges at a
+    // contraction of 0.55-0.6 with rise_s 1e-4 s and runs with rise_s 1 ms or at 0.5.
+    Experiment e = parse_text(R"({"workspace": {"size": [4, 4, 4], "voxel_size_m": 0.01},
+        "materials": [{"name": "passive", "youngs_modulus_pa": 5e6, "poisson_ratio": 0.35},
+                      {"name": "muscle", "youngs_modulus_pa": 5e6, "density_kg_m3": 1000,
+                       "poisson_ratio": 0.35, "actuation_model": "muscle",
+                       "muscle": {"contraction_strain": 0.6, "rise_s": 1e-4}}]})");
+    auto warnings = envelope_warnings(e, nullptr, "m.json");
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0].field == "materials[1].muscle.rise_s");
+    CHECK(warnings[0].message.find("0.000566 s") != std::string::npos);
+    e.materials[1].physics.muscle.rise_s = 1e-3;  // slower than the transit: runs
+    CHECK(envelope_warnings(e, nullptr, "m.json").empty());
+    e.materials[1].physics.muscle.rise_s = 1e-4;
+    e.materials[1].physics.muscle.contraction_strain = 0.45;  // small enough at any rise
+    CHECK(envelope_warnings(e, nullptr, "m.json").empty());
+    // The shipped muscle preset is inside.
+    const Experiment preset =
+        load_experiment(std::string(BHM_SOURCE_DIR) + "/assets/experiments/muscle-catheter.json");
+    CHECK(envelope_warnings(preset, nullptr, "muscle-catheter").empty());
+}
+
 TEST_CASE("the biohybrid catheter preset fills its materials from the library") {
     const Experiment e = load_experiment(std::string(BHM_SOURCE_DIR) +
                                          "/assets/experiments/biohybrid-catheter.json");
