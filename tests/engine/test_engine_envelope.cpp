@@ -129,19 +129,7 @@ BodySpec random_admitted_body(Random& r, int steps) {
         m.dynamic_friction = m.static_friction * r.uniform();
         s.materials.push_back(m);
     }
-    const double fill = 0.5 + 0.5 * r.uniform();
-    s.material.assign(s.cell_count(), 0);
-    for (std::uint8_t& c : s.material)
-        c = r.uniform() < fill ? static_cast<std::uint8_t>(1 + r.below(materials)) : 0;
-    s.material[0] = 1;
-    if (r.below(2)) fix_x_min_layer(s);
-    if (r.below(3) == 0) s.damping.bond_ratio = limits::kMaxDampingRatio * r.uniform();
-    if (r.below(3) == 0) s.damping.global_ratio = r.uniform();
-    if (r.below(3) == 0) s.damping.collision_ratio = 2.0 * r.uniform();
-    s.dt_fraction = r.below(2)   ? 0.3 + 0.7 * r.uniform()
-                    : r.below(2) ? 0.9
-                                 : limits::kMaxDtFraction;
-    s.actuation.start_s = 0.0;
+    draw_cells_damping_and_step(r, s, materials);
     s.actuation.temperature_amplitude_c = amplitude;
     // A quarter period in `steps`: the actuation moves through its peak within the run.
     const double dt = Model::build(s)->dt_s();
