@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 
+#include "engine/body_spec.hpp"
 #include "engine/model.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
@@ -37,6 +38,27 @@ double angle_deg(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
+double drive_period_s(const Experiment& experiment) {
+    double muscle_period = 0.0;
+    bool muscles = false;
+    for (const auto& entry : experiment.materials) {
+        const engine::Material& m = entry.physics;
+        if (m.actuation_model != engine::ActuationModel::Muscle || !engine::is_active(m)) continue;
+        const engine::Muscle& u = m.muscle;
+        if (!(u.frequency_hz > 0.0)) return 0.0;
+        // The stimulus restarts its pulses at each burst (engine/muscle.hpp), so a scheduled
+        // train repeats with its burst, an endless one with its pulses.
+        const bool bursts = u.stimulus == engine::MuscleStimulus::PulseTrain &&
+                            u.train_on_s > 0.0 && u.train_off_s > 0.0;
+        const double period = bursts ? u.train_on_s + u.train_off_s : 1.0 / u.frequency_hz;
+        if (muscles && std::abs(period - muscle_period) > 1e-9 * period) return 0.0;
+        muscles = true;
+        muscle_period = period;
+    }
+    if (muscles) return muscle_period;
+    return experiment.actuation.frequency_hz > 0.0 ? 1.0 / experiment.actuation.frequency_hz : 0.0;
+}
+
 PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const ExploitGroups& groups,
                          bool held)
     : settle_s_(experiment.simulation.settle_s),
@@ -49,10 +71,10 @@ PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const Exploi
     const double fps =
         experiment.simulation.record_fps > 0.0 ? experiment.simulation.record_fps : 30.0;
     sample_period_s_ = 1.0 / fps;
-    if (!experiment.simulation.end_when_periodic || !(experiment.actuation.frequency_hz > 0.0))
-        return;
+    const double period_s = drive_period_s(experiment);
+    if (!experiment.simulation.end_when_periodic || !(period_s > 0.0)) return;
     if (!(total_mass_kg_ > 0.0) || !(sample_period_s_ > dt_s_)) return;
-    const std::int64_t per_period = whole(fps / experiment.actuation.frequency_hz);
+    const std::int64_t per_period = whole(fps * period_s);
     last_sample_ = whole(total_s_ * fps);
     if (per_period < 2 || last_sample_ == 0) return;
     samples_per_period_ = static_cast<int>(per_period);

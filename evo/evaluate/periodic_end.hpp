@@ -3,10 +3,11 @@
 //
 // Once the body has settled (t >= settle_s) every track the measures use (evo/evaluate/tracks.hpp:
 // centre of mass, bend line ends, descriptor tip, exploit centroids and mass moments, all linear
-// in the voxel positions) is compared period by period, sample by sample (S = record_fps /
-// frequency_hz samples a period). A held body (every connected part holds a fixed voxel) cannot
-// drift: its motion tends to one periodic orbit, and what separates it from that orbit is a
-// transient that decays. A free body (a walker) repeats plus a constant drift D per period.
+// in the voxel positions) is compared period by period, sample by sample (S = record_fps x the
+// drive's period, drive_period_s: the sine's 1 / frequency_hz, or a muscle's stimulus period). A
+// held body (every connected part holds a fixed voxel) cannot drift: its motion tends to one
+// periodic orbit, and what separates it from that orbit is a transient that decays. A free body (a
+// walker) repeats plus a constant drift D per period.
 // - Held: a_p = max_j |x_p[j] - x_{p-1}[j]| over the last period, a_{p-1} the same one period
 //   earlier, r = a_p / a_{p-1} their ratio. A transient decaying by r a period has
 //   a_p r / (1 - r) left to go, so the evaluation stops when
@@ -18,9 +19,9 @@
 //   decay (r ~ 0.9) look like r = 0.6 (paper-exp3/random-05 ended with 1.6x the allowed error).
 // - Free: the drift's change residual = max_j |d_j - D| (d_j = x_p[j] - x_{p-1}[j], D the last
 //   whole period's drift), with M periods left. A change kept up over the periods left adds up to
-//   residual (1 + 2 + ... + (M + 1)); one that decays by r a period to residual (1 + M r / (1 - r)).
-//   The evaluation stops when either bound is within the tolerance (the second only for r < 0.9),
-//   and the rest of the run is the last period plus q D.
+//   residual (1 + 2 + ... + (M + 1)); one that decays by r a period to residual (1 + M r / (1 -
+//   r)). The evaluation stops when either bound is within the tolerance (the second only for r <
+//   0.9), and the rest of the run is the last period plus q D.
 // Tracks in voxel lengths (mass moments as the centre-of-mass shift they make); the bend
 // direction's terms as an angle against the tolerance x (1 degree + its largest angle so far).
 // The samples the full run would still have taken are extrapolated,
@@ -44,6 +45,12 @@ class Model;
 }
 
 namespace bhm::evo {
+
+//! The period of the experiment's drive (s): 1 / actuation.frequency_hz under the sine model; under
+//! the muscle model its stimulus's (a burst and its rest, or one pulse period of an endless train
+//! or of beating), the same for every active muscle material, else 0 (no common period is sought:
+//! the run goes the full time). 0 when nothing drives the body periodically.
+double drive_period_s(const Experiment& experiment);
 
 class PeriodicEnd {
   public:

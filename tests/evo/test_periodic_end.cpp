@@ -271,6 +271,38 @@ TEST_CASE("no early end when switched off or when a period is not a whole number
     CHECK_FALSE(PeriodicEnd(e, 1e-4, unit_mass()).enabled());
 }
 
+TEST_CASE("a muscle body's period is its stimulus's, not the sine's frequency") {
+    // Issue 43: a muscle ignores actuation.frequency_hz, so comparing its motion at the sine's
+    // period would call a tetanic plateau "periodic" at the wrong period. The muscle catheter's
+    // burst (0.3 s on, 0.2 s off) happens to equal its 2 Hz sine; move it off.
+    auto e =
+        load_experiment(std::string(BHM_SOURCE_DIR) + "/assets/experiments/muscle-catheter.json");
+    CHECK(drive_period_s(e) == doctest::Approx(0.5));
+    bhm::engine::Muscle& u = e.materials[1].physics.muscle;
+    REQUIRE(e.materials[1].physics.actuation_model == bhm::engine::ActuationModel::Muscle);
+    u.train_off_s = 0.4;  // a burst every 0.7 s: 21 samples at 30 fps, not the sine's 15
+    CHECK(drive_period_s(e) == doctest::Approx(0.7));
+    e.simulation.settle_s = 0.5;  // the run a whole number of samples, with or without the settle
+    e.simulation.evaluate_s = 2.0;
+    CHECK(PeriodicEnd(e, 1e-4, unit_mass()).samples_per_period() == 21);
+    u.train_off_s = 0.0;  // one endless 50 Hz train: its pulse period (not a whole number of
+    CHECK(drive_period_s(e) == doctest::Approx(0.02));  // 30 fps samples: no early end)
+    CHECK_FALSE(PeriodicEnd(e, 1e-4, unit_mass()).enabled());
+    u.stimulus = bhm::engine::MuscleStimulus::Beating;
+    u.frequency_hz = 1.5;
+    u.train_on_s = 0.3;  // a beating muscle has no schedule
+    CHECK(drive_period_s(e) == doctest::Approx(1.0 / 1.5));
+    CHECK(PeriodicEnd(e, 1e-4, unit_mass()).samples_per_period() == 20);
+    // Two muscles on different periods: no common period is sought, the run goes the full time.
+    e.materials.push_back(e.materials[1]);
+    e.materials[2].physics.muscle.frequency_hz = 1.0;
+    CHECK(drive_period_s(e) == 0.0);
+    CHECK_FALSE(PeriodicEnd(e, 1e-4, unit_mass()).enabled());
+    // The sine model keeps its own.
+    CHECK(drive_period_s(paper_schedule()) ==
+          doctest::Approx(1.0 / paper_schedule().actuation.frequency_hz));
+}
+
 TEST_CASE("the option is read, written and checked with the experiment") {
     auto e = paper_schedule();
     e.simulation.end_when_periodic = false;
