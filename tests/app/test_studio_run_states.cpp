@@ -69,7 +69,10 @@ TEST_CASE("studio run states: a resume with no usable checkpoint fails in red an
     run_script(session, json::parse(R"([{"click": "Start again from generation 0"},
                                         {"frames": 2}])"));
     INFO("status: " << studio.ui.status);
-    REQUIRE(run_is_live(studio.run.evolution.phase()));
+    // Started: a one-generation run can already be finished two frames later on a loaded
+    // machine, where llvmpipe's frames are slow beside the worker.
+    const RunPhase started = studio.run.evolution.phase();
+    REQUIRE((run_is_live(started) || started == RunPhase::Finished));
     testing::run_script_patiently(session, json::parse(R"([{"wait_run": "finished"}])"));
     unsetenv("XDG_DATA_HOME");
     const auto fresh = studio.run.evolution.snapshot();
@@ -129,7 +132,9 @@ TEST_CASE("studio run states: rules sent on Resume end the edited-rules note, th
     const auto dir = testing::fresh_dir("states-rules");
     Studio studio;
     auto e = testing::tiny_experiment();
-    e.evolution.generations = 8;
+    // More than the test waits for: Stop must find the run live (8 generations ran out before
+    // the Stop on a loaded machine, and "stopped" never came).
+    e.evolution.generations = 500;
     studio.document.reset(e, "");
     studio.run.dir_field = (dir / "run").string();
     HeadlessStudio session(studio, 1024, 700);
