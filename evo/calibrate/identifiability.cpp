@@ -107,4 +107,43 @@ Identifiability analyse_identifiability(const std::vector<std::vector<double>>& 
     return out;
 }
 
+std::vector<double> gauss_newton_step(const std::vector<std::vector<double>>& jacobian,
+                                      const std::vector<double>& residuals) {
+    const std::size_t p = jacobian.empty() ? 0 : jacobian[0].size();
+    if (p == 0 || residuals.size() != jacobian.size()) return {};
+    std::vector<std::vector<double>> h(p, std::vector<double>(p, 0.0));
+    std::vector<double> g(p, 0.0);  // J^T r
+    for (std::size_t k = 0; k < jacobian.size(); ++k)
+        for (std::size_t i = 0; i < p; ++i) {
+            g[i] += jacobian[k][i] * residuals[k];
+            for (std::size_t j = 0; j < p; ++j)
+                h[i][j] += jacobian[k][i] * jacobian[k][j];
+        }
+    for (std::size_t i = 0; i < p; ++i)
+        if (!(h[i][i] > 0.0)) return {};
+    // Solved in the unit-diagonal scaling, as analyse_identifiability judges singularity.
+    std::vector<std::vector<double>> s(p, std::vector<double>(p, 0.0));
+    for (std::size_t i = 0; i < p; ++i)
+        for (std::size_t j = 0; j < p; ++j)
+            s[i][j] = h[i][j] / std::sqrt(h[i][i] * h[j][j]);
+    std::vector<double> values;
+    std::vector<std::vector<double>> vectors;
+    symmetric_eigen(s, values, vectors);
+    if (values[0] < kNearSingular) return {};
+    // delta = -D^-1 S^-1 D^-1 g, D = sqrt(diag H).
+    std::vector<double> scaled_g(p), delta(p, 0.0);
+    for (std::size_t i = 0; i < p; ++i)
+        scaled_g[i] = g[i] / std::sqrt(h[i][i]);
+    for (std::size_t c = 0; c < p; ++c) {
+        double along = 0.0;
+        for (std::size_t i = 0; i < p; ++i)
+            along += vectors[i][c] * scaled_g[i];
+        for (std::size_t i = 0; i < p; ++i)
+            delta[i] -= vectors[i][c] * along / values[c];
+    }
+    for (std::size_t i = 0; i < p; ++i)
+        delta[i] /= std::sqrt(h[i][i]);
+    return delta;
+}
+
 }  // namespace bhm::evo

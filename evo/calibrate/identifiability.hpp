@@ -29,6 +29,13 @@ struct Identifiability {
 Identifiability analyse_identifiability(const std::vector<std::vector<double>>& jacobian,
                                         double residual_variance);
 
+//! The Gauss-Newton step from the point where `jacobian` and `residuals` were taken:
+//! delta = -(J^T J)^-1 J^T r, where a linear model's misfit is least (the fit's check that it
+//! stopped at its minimum, not in a narrow valley short of it). Empty when J^T J is near singular
+//! or a column is zero (the step is not defined).
+std::vector<double> gauss_newton_step(const std::vector<std::vector<double>>& jacobian,
+                                      const std::vector<double>& residuals);
+
 //! Eigenvalues (ascending) and eigenvectors (columns, same order) of a symmetric matrix
 //! (cyclic Jacobi): small matrices only.
 void symmetric_eigen(std::vector<std::vector<double>> a, std::vector<double>& values,

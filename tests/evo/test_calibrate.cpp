@@ -206,6 +206,48 @@ TEST_CASE("two parameters whose effects are nearly proportional are reported as 
     CHECK(singular.trade_offs[0] == std::vector<int>{0, 1});
 }
 
+TEST_CASE("the Gauss-Newton step of a linear model lands on its least-squares solution") {
+    // r(x) = A x - b with A's columns strongly correlated (a narrow valley, as rise_s and the
+    // contraction strain of a fused muscle train): from any x0 one step reaches the minimum,
+    // which the normal equations give in closed form (Cramer's rule for two parameters).
+    std::vector<std::vector<double>> a;
+    std::vector<double> b;
+    for (int k = 0; k < 30; ++k) {
+        const double u = std::sin(0.4 * k), v = std::cos(1.1 * k);
+        a.push_back({u, 0.9 * u + 0.1 * v});
+        b.push_back(0.7 * u - 0.2 * v + 0.05 * std::sin(3.0 * k));
+    }
+    double h00 = 0, h01 = 0, h11 = 0, g0 = 0, g1 = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        h00 += a[k][0] * a[k][0];
+        h01 += a[k][0] * a[k][1];
+        h11 += a[k][1] * a[k][1];
+        g0 += a[k][0] * b[k];
+        g1 += a[k][1] * b[k];
+    }
+    const double det = h00 * h11 - h01 * h01;
+    const double x0 = (g0 * h11 - g1 * h01) / det, x1 = (h00 * g1 - h01 * g0) / det;
+    const std::vector<double> start = {2.0, -3.0};
+    std::vector<double> r;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        r.push_back(a[k][0] * start[0] + a[k][1] * start[1] - b[k]);
+    const auto step = gauss_newton_step(a, r);
+    REQUIRE(step.size() == 2);
+    CHECK(start[0] + step[0] == doctest::Approx(x0).epsilon(1e-9));
+    CHECK(start[1] + step[1] == doctest::Approx(x1).epsilon(1e-9));
+    // At the minimum the step is nil; with proportional columns it is not defined.
+    std::vector<double> at_min;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        at_min.push_back(a[k][0] * x0 + a[k][1] * x1 - b[k]);
+    const auto none = gauss_newton_step(a, at_min);
+    REQUIRE(none.size() == 2);
+    CHECK(std::abs(none[0]) < 1e-9);
+    CHECK(std::abs(none[1]) < 1e-9);
+    for (auto& row : a)
+        row[1] = 2.0 * row[0];
+    CHECK(gauss_newton_step(a, r).empty());
+}
+
 TEST_CASE("parameter names and points the body lacks are refused with one-line errors") {
     const Experiment e = calibration_experiment();
     CHECK_THROWS_WITH(parse_fit_list("E,youngs", e),
