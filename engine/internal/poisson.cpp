@@ -137,10 +137,34 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
     // The centre strain of each voxel on each axis (poisson.hpp), in the voxel's own strain
     // units: a link's strain times E_link / E_voxel (its stress over the voxel's modulus).
     auto young = [&](int v) { return spec.materials[d.voxel_material[v] - 1].youngs_modulus_pa; };
+    // Two voxels are one material to the coupling when E, nu and the free (actuation) strain
+    // agree. A link whose halves have different free strains (an active voxel bonded to a
+    // passive one, or two phases or muscle signals) takes the relaxed split too: with the equal
+    // split the passive half was forced to share the active half's thinning, which near a narrow
+    // part turned it (an actuated 2-voxel stalk 84 % too far at nu 0.49; docs/physics.md).
+    // (Per unit drive, so the model is the same at any amplitude, 0 included: a rest state and
+    // an actuated one are solved on one model.)
+    auto phase = [&](int v) {
+        return spec.phase_rad.empty() ? 0.0 : spec.phase_rad[d.voxel_cell[v]];
+    };
+    auto same_free_strain = [&](int v, int p) {
+        const double cte_v = spec.materials[d.voxel_material[v] - 1].cte_per_c;
+        const double cte_p = spec.materials[d.voxel_material[p] - 1].cte_per_c;
+        if (cte_v != cte_p || (cte_v != 0.0 && phase(v) != phase(p))) return false;
+        const MuscleDrive& m = d.muscle;
+        for (int a = 0; a < 3; ++a) {
+            if (!m.axis_signal0[a].empty() && m.axis_signal0[a][v] != m.axis_signal0[a][p])
+                return false;
+            if (!m.axis_signal1[a].empty() && m.axis_signal1[a][v] != m.axis_signal1[a][p])
+                return false;
+        }
+        return true;
+    };
     auto same_material = [&](int v, int p) {
         const Material& a = spec.materials[d.voxel_material[v] - 1];
         const Material& b = spec.materials[d.voxel_material[p] - 1];
-        return a.youngs_modulus_pa == b.youngs_modulus_pa && a.poisson_ratio == b.poisson_ratio;
+        return a.youngs_modulus_pa == b.youngs_modulus_pa && a.poisson_ratio == b.poisson_ratio &&
+               same_free_strain(v, p);
     };
     std::vector<char> pair_voxel(d.stored, 0);
     for (int v = 0; v < n; ++v)

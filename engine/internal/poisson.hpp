@@ -22,15 +22,15 @@
 // by -nu eps and keeps E), the energy is positive for nu >= 0 (auxetic voxels keep half-link
 // strains), and at nu = 0 it is the links' own E e^2 / 2.
 //
-// A link between two materials (E or nu differ, both ends coupled) splits its strain between its
-// halves as h = w e -+ d: w the series weights (stress continuity along the link, 2 E_p / (E_v +
-// E_p), right for a bar in tension) and d the same kind of relaxed internal variable as an
-// isolated link's, so the split settles where the full normal stress of both halves, lateral
-// Poisson terms included, is continuous (the minimum of the octants' energy over d). The lateral
-// strains of bending, equal in both materials, are no longer forced into the softer half. The
-// reduced energy min_d W is never stiffer than W at d = 0, so the stable step and the damping cap
-// still hold; d enters a column's centre strain with the half-link's weight in the mean (1/2
-// inside a column, 3/2 in an end's extrapolation).
+// A link between two materials (E, nu or the free strain of actuation differ, both ends coupled)
+// splits its strain between its halves as h = w e -+ d: w the series weights (stress continuity
+// along the link, 2 E_p / (E_v + E_p), right for a bar in tension) and d the same kind of relaxed
+// internal variable as an isolated link's, so the split settles where the full normal stress of
+// both halves, lateral Poisson terms included, is continuous (the minimum of the octants' energy
+// over d). The lateral strains of bending, equal in both materials, are no longer forced into the
+// softer half. The reduced energy min_d W is never stiffer than W at d = 0, so the stable step and
+// the damping cap still hold; d enters a column's centre strain with the half-link's weight in the
+// mean (1/2 inside a column, 3/2 in an end's extrapolation).
 //
 // At large strains (an active region held by a passive frame or the clamp, contracted to
 // 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link

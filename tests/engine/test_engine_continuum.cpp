@@ -426,6 +426,30 @@ TEST_CASE("continuum: held-out bodies under a small actuation" * doctest::skip()
     CHECK(compared > 0);
 }
 
+// A link between an active voxel and a passive one splits its strain by stress continuity
+// (engine/internal/poisson.cpp, same_free_strain; docs/physics.md "Actuated narrow parts"). With
+// the equal split the passive half shared the active half's thinning, and where that passive voxel
+// held a narrow part the Poisson coupling turned it: at 0508944 a 2-voxel-tall stalk moved
+// +84 / +110 % (tip / com) too far at nu 0.49, a 2x1 neck +48 %, an L of 4 +39 %, a 2x2 patch at
+// the bottom edge -136 %. Nothing in the change is fitted, so every case here is held out. The
+// bounds are today's envelope (the issue's target is 5 %; the one-voxel-tall patches at the bottom
+// edge, p1e and p2ye, are 31-44 % off on the tip, half of it the lattice's resolution).
+TEST_CASE("continuum: actuated narrow parts against CalculiX (active and passive halves split)") {
+    struct Bound {
+        const char* name;
+        double worst;  // of tip and com, at nu 0.35 and 0.49
+    };
+    for (const Bound& b : {Bound{"full", 0.10}, Bound{"neck2x1", 0.10}, Bound{"p4L", 0.10},
+                           Bound{"p8z", 0.15}, Bound{"p2z", 0.30}, Bound{"p4sqe", 0.35}})
+        for (double nu : {0.35, 0.49}) {
+            CAPTURE(b.name);
+            CAPTURE(nu);
+            const double d = compare_actuated(b.name, nu);
+            REQUIRE(d >= 0.0);
+            CHECK(d <= b.worst);
+        }
+}
+
 namespace {
 
 // Per x layer of the body: the mean vertical displacement (m) of its voxel centres and its tilt
@@ -606,5 +630,76 @@ TEST_CASE("continuum: actuated on a refined lattice" * doctest::skip()) {
                 pct(outer.tip, ref->tip4), pct(outer.com, ref->com4), pct(both.tip, ref->tip4),
                 pct(both.com, ref->com4));
             std::fflush(stdout);
+        }
+}
+
+// Where an actuated body's strain differs from CalculiX's, voxel by voxel (issue 40): for one case
+// (BHM_CONTINUUM_CASES, default p4sqe) at BHM_NU (default 0.49), the x layers 0-3 of the row
+// y = BHM_Y (default 1), what the 1 % expansion adds to each voxel centre's normal strains (central
+// differences of the centres' displacements) and to its x displacement, ours / CalculiX at 2
+// elements per voxel edge (a few seconds):
+//   build/bin/test_engine -tc="continuum: actuated strain map" --no-skip
+TEST_CASE("continuum: actuated strain map" * doctest::skip()) {
+    if (bhm::test::skip_without_ccx()) return;
+    const char* list = std::getenv("BHM_CONTINUUM_CASES");
+    std::string name = list ? list : "p4sqe";
+    const char* nus = std::getenv("BHM_NU");
+    const double nu = nus ? std::atof(nus) : 0.49;
+    const auto s = continuum_body(name, nu, true);
+    const evo::QuasiStaticResult hot = evo::engine_quasi_static(s, 1.0),
+                                 cold = evo::engine_quasi_static(s, 0.0);
+    REQUIRE(hot.settled);
+    std::vector<std::array<double, 3>> ours(s.cell_count()), fem(s.cell_count());
+    std::vector<int> idx(s.cell_count(), -1);
+    int i = 0;
+    for (int c = 0; c < s.cell_count(); ++c)
+        if (s.material[c] != 0) idx[c] = i++;
+    evo::FemMeshOptions o;
+    o.element = evo::FemElement::C3D20R;
+    o.subdivision = 2;
+    const evo::FemModel model = evo::build_fem_model(s, o);
+    const std::vector<evo::FemLoad> loads = {{"rest", 0.0}, {"+A", 1.0}};
+    const evo::CcxResult r = evo::run_ccx("continuum", evo::ccx_deck(model, s, loads, false), 2);
+    for (int c = 0; c < s.cell_count(); ++c) {
+        if (idx[c] < 0) continue;
+        for (int a = 0; a < 3; ++a) {
+            ours[c][a] = hot.displacement_m[idx[c]][a] - cold.displacement_m[idx[c]][a];
+            double u = 0;
+            for (auto [node, weight] : model.voxel_centre[idx[c]])
+                u += weight * (r.blocks[1].at(node)[a] - r.blocks[0].at(node)[a]);
+            fem[c][a] = u;
+        }
+    }
+    const double L = s.voxel_size_m;
+    auto strain = [&](const std::vector<std::array<double, 3>>& u, int x, int y, int z, int a) {
+        int p[3] = {x, y, z}, m[3] = {x, y, z};
+        p[a] += 1;
+        m[a] -= 1;
+        const int n[3] = {s.nx, s.ny, s.nz};
+        auto ok = [&](int* q) {
+            return q[a] >= 0 && q[a] < n[a] && idx[s.cell_index(q[0], q[1], q[2])] >= 0;
+        };
+        const int c = s.cell_index(x, y, z);
+        if (ok(p) && ok(m))
+            return (u[s.cell_index(p[0], p[1], p[2])][a] - u[s.cell_index(m[0], m[1], m[2])][a]) /
+                   (2 * L);
+        if (ok(p)) return (u[s.cell_index(p[0], p[1], p[2])][a] - u[c][a]) / L;
+        if (ok(m)) return (u[c][a] - u[s.cell_index(m[0], m[1], m[2])][a]) / L;
+        return 0.0;
+    };
+    const char* ys = std::getenv("BHM_Y");
+    const int y = ys ? std::atoi(ys) : 1;
+    std::printf("%s nu %.2f y %d: per voxel x,z: ex ours/fem  ey ours/fem  ez ours/fem (1e-3)\n",
+                name.c_str(), nu, y);
+    for (int x = 0; x < 4; ++x)
+        for (int z = 0; z < s.nz; ++z) {
+            if (idx[s.cell_index(x, y, z)] < 0) continue;
+            std::printf(
+                "  x %d z %d  ex %6.2f / %6.2f  ey %6.2f / %6.2f  ez %6.2f / %6.2f  ux %6.2f / "
+                "%6.2f um\n",
+                x, z, 1e3 * strain(ours, x, y, z, 0), 1e3 * strain(fem, x, y, z, 0),
+                1e3 * strain(ours, x, y, z, 1), 1e3 * strain(fem, x, y, z, 1),
+                1e3 * strain(ours, x, y, z, 2), 1e3 * strain(fem, x, y, z, 2),
+                1e6 * ours[s.cell_index(x, y, z)][0], 1e6 * fem[s.cell_index(x, y, z)][0]);
         }
 }
