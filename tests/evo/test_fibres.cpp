@@ -182,3 +182,21 @@ TEST_CASE("fibres: evolution.cppn.fibre_outputs round-trips and needs a muscle m
           "e.json:evolution.cppn.fibre_outputs: needs a muscle material (actuation_model "
           "\"muscle\") whose fibres it can turn");
 }
+
+TEST_CASE("fibres: the shipped example body with per-voxel axes is valid for the muscle catheter") {
+    const std::string root = BHM_SOURCE_DIR;
+    const auto loaded =
+        load_experiment_and_body(root + "/assets/experiments/muscle-catheter.json",
+                                 root + "/assets/bodies/muscle-catheter-fibres.body.json");
+    REQUIRE(loaded.body);
+    const Body& b = *loaded.body;
+    // The same cells as the example body without them; muscle along x for x < 5, across after.
+    CHECK(b.cells == load_body(root + "/assets/bodies/muscle-catheter.body.json").cells);
+    for (std::size_t c = 0; c < b.cells.size(); ++c) {
+        const int x = static_cast<int>(c) % b.size[0];
+        CHECK(b.fibre[c] == (b.cells[c] == 2 ? (x < 5 ? 0 : 1) : kM));
+    }
+    const Body framed = apply_frame_and_overrides(loaded.experiment, b);
+    CHECK(make_body_spec(loaded.experiment, framed).fibre_axis == framed.fibre);
+    CHECK(framed.fibre.size() == framed.cells.size());
+}
