@@ -15,6 +15,9 @@ enum class ActuationModel : std::uint8_t { Sine = 0, Muscle = 1 };
 //! schedule) or its own spontaneous beating (cardiomyocytes) at a fixed rate.
 enum class MuscleStimulus : std::uint8_t { PulseTrain = 0, Beating = 1 };
 
+//! A cell's entry in BodySpec::fibre_axis meaning "its material's Muscle::fibre_axis".
+inline constexpr std::uint8_t kMaterialFibreAxis = 255;
+
 //! The muscle model of one material (used when Material::actuation_model is Muscle).
 struct Muscle {
     int fibre_axis = 0;               //!< 0 = x, 1 = y, 2 = z (lattice axes)
@@ -84,6 +87,10 @@ struct BodySpec {
     //! or line, where it turns against a spring to the clamp (engine/model.cpp)
     std::vector<std::uint8_t> fixed;
     std::vector<float> phase_rad;  //!< (nx*ny*nz) or empty; actuation phase per cell
+    //! (nx*ny*nz) or empty; a muscle cell's own fibre axis, 0 = x, 1 = y, 2 = z, or
+    //! kMaterialFibreAxis for its material's (issue 43: fibres per voxel, e.g. from a CPPN).
+    //! Ignored in cells that are not muscle; empty = every cell takes its material's axis.
+    std::vector<std::uint8_t> fibre_axis;
     std::vector<Material> materials;
     Environment environment;
     Damping damping;

@@ -125,6 +125,16 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec) {
     if (!spec.phase_rad.empty() && static_cast<long long>(spec.phase_rad.size()) != cells)
         out.push_back({"phase_rad", "has " + count(spec.phase_rad.size()) +
                                         " entries, expected 0 or " + std::to_string(cells)});
+    if (!spec.fibre_axis.empty() && static_cast<long long>(spec.fibre_axis.size()) != cells)
+        out.push_back({"fibre_axis", "has " + count(spec.fibre_axis.size()) +
+                                         " entries, expected 0 or " + std::to_string(cells)});
+    for (std::size_t c = 0; c < spec.fibre_axis.size(); ++c)
+        if (spec.fibre_axis[c] > 2 && spec.fibre_axis[c] != kMaterialFibreAxis) {
+            out.push_back({"fibre_axis[" + std::to_string(c) + "]",
+                           "= " + std::to_string(spec.fibre_axis[c]) +
+                               ", expected 0 (x), 1 (y), 2 (z) or 255 (the material's axis)"});
+            break;
+        }
     for (std::size_t k = 0; k < spec.materials.size(); ++k)
         for (const Problem& p :
              material_problems(spec.materials[k], spec.actuation.temperature_amplitude_c))

@@ -39,7 +39,13 @@ void build_muscle_drive(Model::Data& d) {
         const int k = d.voxel_material[v] - 1;
         const int s = signal_of[k];
         if (s < 0) continue;
-        const Material& m = spec.materials[k];
+        // The voxel's own fibre axis when the body gives one, else its material's: only the
+        // axis differs, so a body without per-voxel axes gets the same coefficients as before.
+        Material m = spec.materials[k];
+        if (!spec.fibre_axis.empty()) {
+            const std::uint8_t own = spec.fibre_axis[static_cast<std::size_t>(d.voxel_cell[v])];
+            if (own != kMaterialFibreAxis) m.muscle.fibre_axis = own;
+        }
         double mean = 0.0;
         for (int axis = 0; axis < 3; ++axis) {
             const double strain = muscle::axis_strain(m, axis);

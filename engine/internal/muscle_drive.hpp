@@ -32,8 +32,9 @@ struct DriveSignals {
 };
 
 //! After the per-voxel loop of Model::build: finds the muscle signals, fills the per-axis
-//! coefficients, and sets a muscle voxel's isotropic act_sin / act_cos (floor contact, edge
-//! springs) to its mean axis strain, and any_active.
+//! coefficients (along each voxel's own fibre axis, BodySpec::fibre_axis, else its material's), and
+//! sets a muscle voxel's isotropic act_sin / act_cos (floor contact, edge springs) to its mean axis
+//! strain, and any_active.
 void build_muscle_drive(Model::Data& d);
 //! After the links are built: the rest-length coefficients of every link with a muscle end.
 void set_muscle_link_rests(Model::Data& d);

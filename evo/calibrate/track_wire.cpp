@@ -110,6 +110,7 @@ std::string encode_track_setup(const TrackSetupMessage& m) {
     w.text(encode_rules({0, m.experiment}));
     for (int k = 0; k < 3; ++k) w.uint(static_cast<std::uint32_t>(m.framed_body.size[k]), 4);
     w.text(std::string(m.framed_body.cells.begin(), m.framed_body.cells.end()));
+    w.text(std::string(m.framed_body.fibre.begin(), m.framed_body.fibre.end()));  // "" = none
     const MeasuredTrack& t = m.track;
     w.text(t.source);
     w.uint(t.t_s.size(), 8);
@@ -134,6 +135,8 @@ TrackSetupMessage decode_track_setup(const std::string& bytes) {
     for (int k = 0; k < 3; ++k) m.framed_body.size[k] = static_cast<std::int32_t>(r.uint(4));
     const std::string cells = r.text();
     m.framed_body.cells.assign(cells.begin(), cells.end());
+    const std::string fibre = r.text();
+    m.framed_body.fibre.assign(fibre.begin(), fibre.end());
     MeasuredTrack& t = m.track;
     t.source = r.text();
     t.t_s.resize(r.count(8));

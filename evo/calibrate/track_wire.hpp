@@ -21,7 +21,8 @@
 
 namespace bhm::evo {
 
-inline constexpr std::uint16_t kTrackWireVersion = 1;
+// Version 2: the setup's body carries its per-voxel fibre axes (Body::fibre) after its cells.
+inline constexpr std::uint16_t kTrackWireVersion = 2;
 
 struct TrackSetupMessage {
     std::int32_t requested_threads = 0;  //!< per rank; 0 = all cores of that rank's node

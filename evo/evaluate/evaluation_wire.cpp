@@ -149,6 +149,13 @@ std::string encode_job(const JobMessage& message) {
     for (int n : body.size)
         out.i32(n);
     out.raw(body.cells.data(), body.cells.size());
+    // Per-voxel fibre axes: a flag, then one byte per cell when the body has them.
+    const bool fibres = !body.fibre.empty();
+    if (fibres && body.fibre.size() != body.cells.size())
+        throw WireError("job: body fibre axes and cell count disagree");
+    const std::uint8_t flag = fibres ? 1 : 0;
+    out.raw(&flag, 1);
+    if (fibres) out.raw(body.fibre.data(), body.fibre.size());
     return out.take();
 }
 
@@ -164,6 +171,13 @@ JobMessage decode_job(const std::string& bytes) {
     }
     m.body.cells.resize(static_cast<std::size_t>(m.body.cell_count()));
     in.raw(m.body.cells.data(), m.body.cells.size());
+    std::uint8_t fibres = 0;
+    in.raw(&fibres, 1);
+    if (fibres > 1) throw WireError(in.what() + ": bad fibre flag");
+    if (fibres) {
+        m.body.fibre.resize(m.body.cells.size());
+        in.raw(m.body.fibre.data(), m.body.fibre.size());
+    }
     in.done();
     return m;
 }

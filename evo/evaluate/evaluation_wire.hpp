@@ -23,7 +23,8 @@
 
 namespace bhm::evo {
 
-inline constexpr std::uint16_t kEvaluationWireVersion = 2;
+// Version 3 jobs carry a body's per-voxel fibre axes (Body::fibre, issue 43) after its cells.
+inline constexpr std::uint16_t kEvaluationWireVersion = 3;
 
 struct WireError : std::runtime_error {
     using std::runtime_error::runtime_error;

@@ -29,6 +29,9 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
     Body out;
     out.size = e.workspace_size;
     out.cells.assign(static_cast<size_t>(out.cell_count()), 0);
+    // Per-voxel fibre axes travel with their cells; frame and override cells take the material's.
+    const bool fibres = body.fibre.size() == body.cells.size() && !body.fibre.empty();
+    if (fibres) out.fibre.assign(out.cells.size(), engine::kMaterialFibreAxis);
     const bool workspace_sized = body.size == e.workspace_size;
     const auto origin = workspace_sized ? std::array<int, 3>{0, 0, 0} : design_origin(e);
     for (int z = 0; z < body.size[2]; ++z)
@@ -37,6 +40,7 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
                 int wx = x + origin[0], wy = y + origin[1], wz = z + origin[2];
                 if (wx >= out.size[0] || wy >= out.size[1] || wz >= out.size[2]) continue;
                 out.cells[out.index(wx, wy, wz)] = body.cells[body.index(x, y, z)];
+                if (fibres) out.fibre[out.index(wx, wy, wz)] = body.fibre[body.index(x, y, z)];
             }
     const auto& t = e.boundary.enclosure_thickness;
     if (e.boundary.enclosure_material > 0) {
@@ -45,15 +49,17 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
                 for (int x = 0; x < out.size[0]; ++x) {
                     bool in_frame = x < t[0] || x >= out.size[0] - t[1] || y < t[2] ||
                                     y >= out.size[1] - t[3] || z < t[4] || z >= out.size[2] - t[5];
-                    if (in_frame)
-                        out.cells[out.index(x, y, z)] =
-                            static_cast<std::uint8_t>(e.boundary.enclosure_material);
+                    if (!in_frame) continue;
+                    out.cells[out.index(x, y, z)] =
+                        static_cast<std::uint8_t>(e.boundary.enclosure_material);
+                    if (fibres) out.fibre[out.index(x, y, z)] = engine::kMaterialFibreAxis;
                 }
     }
     for (const auto& o : e.boundary.voxel_overrides) {
         int k = out.index(o.voxel[0], o.voxel[1], o.voxel[2]);
         if (o.kind == OverrideKind::Empty) out.cells[k] = 0;
         if (o.kind == OverrideKind::Material) out.cells[k] = static_cast<std::uint8_t>(o.material);
+        if (fibres && o.kind != OverrideKind::Fixed) out.fibre[k] = engine::kMaterialFibreAxis;
     }
     return out;
 }
@@ -122,6 +128,7 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
     spec.ny = framed.size[1];
     spec.nz = framed.size[2];
     spec.material = framed.cells;
+    if (framed.fibre.size() == framed.cells.size()) spec.fibre_axis = framed.fibre;
     spec.phase_rad.assign(framed.cells.size(), 0.0f);
     for (const auto& m : e.materials)
         spec.materials.push_back(m.physics);

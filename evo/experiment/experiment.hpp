@@ -119,6 +119,9 @@ struct CppnSettings {
     double weight_range = 1.0;  //!< weights in [-range, range]
     double mutation_weight_sigma = 0.5;
     MaterialOutputs material_outputs = MaterialOutputs::ActivePassive;
+    //! Three more outputs choose each muscle voxel's fibre axis (x, y or z: the largest of the
+    //! three; evo/genome/cppn_decoder.hpp); off: every voxel has its material's muscle.fibre_axis.
+    bool fibre_outputs = false;
     bool operator==(const CppnSettings&) const = default;
 };
 
@@ -218,6 +221,10 @@ struct Experiment {
 struct Body {
     std::array<int, 3> size{0, 0, 0};
     std::vector<std::uint8_t> cells;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
+    //! (nx*ny*nz) or empty: a muscle cell's own fibre axis, 0 = x, 1 = y, 2 = z, or
+    //! engine::kMaterialFibreAxis (its material's muscle.fibre_axis); empty = all the material's.
+    //! The body file's "fibres" (docs/experiment-format.md), the CPPN's fibre outputs.
+    std::vector<std::uint8_t> fibre;
     int cell_count() const { return size[0] * size[1] * size[2]; }
     int index(int x, int y, int z) const { return x + size[0] * (y + size[1] * z); }
     bool operator==(const Body&) const = default;

@@ -190,6 +190,10 @@ const ExperimentField kExperimentFields[] = {
      .help = "how the CPPN picks a material: active or passive (the paper's two outputs), or "
              "one output per material",
      BHM_CHOICE(evolution.cppn.material_outputs, MaterialOutputs, kMaterialOutputsNames)},
+    {.path = "evolution.cppn.fibre_outputs", .label = "Fibre outputs", .unit = "",
+     .help = "three more CPPN outputs choose each muscle voxel's fibre axis (the largest of "
+             "x, y, z); off: every voxel has its material's fibre axis",
+     BHM_BOOLEAN(evolution.cppn.fibre_outputs)},
     {.path = "evolution.neat.c1", .label = "NEAT c1", .unit = "",
      .help = "compatibility distance: weight of excess genes", .range = {0, 100},
      .format = "%.3g", BHM_NUMBER(evolution.neat.c1)},

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 
 #include "engine/io/atomic_file.hpp"
@@ -340,6 +341,8 @@ json experiment_to_json(const Experiment& e) {
     if (ev.algorithm != Algorithm::Novelty && ev.novelty == NoveltySettings{})
         j["evolution"].erase("novelty");
     if (ev.verify == LoopVerifySettings{}) j["evolution"].erase("verify");
+    // Fibre outputs only when on: experiments without them stay byte for byte as they were.
+    if (!ev.cppn.fibre_outputs) j["evolution"]["cppn"].erase("fibre_outputs");
     return j;
 }
 
@@ -351,11 +354,50 @@ void save_experiment(const std::string& path, const Experiment& e) {
     write_file_atomically(path, experiment_to_json(e).dump(2) + "\n");
 }
 
+namespace {
+
+// The body file's "fibres": one string per z layer as "layers", a fibre axis character per cell.
+void read_fibres(const json& fibres, Body& body, JsonReader& r) {
+    const std::size_t per_layer = static_cast<std::size_t>(body.size[0]) * body.size[1];
+    if (!fibres.is_array() || fibres.size() != static_cast<std::size_t>(body.size[2])) {
+        r.problem("fibres", "expected an array of " + std::to_string(body.size[2]) +
+                                " strings, one per z layer as \"layers\"");
+        return;
+    }
+    body.fibre.assign(body.cells.size(), engine::kMaterialFibreAxis);
+    for (std::size_t z = 0; z < fibres.size(); ++z) {
+        const std::string field = "fibres[" + std::to_string(z) + "]";
+        const json& layer = fibres[z];
+        if (!layer.is_string() || layer.get_ref<const std::string&>().size() != per_layer) {
+            r.problem(field, "expected a string of nx*ny = " + std::to_string(per_layer) +
+                                 " characters 'x', 'y', 'z' or '.'");
+            continue;
+        }
+        const auto& text = layer.get_ref<const std::string&>();
+        for (std::size_t k = 0; k < text.size(); ++k) {
+            const char ch = text[k];
+            const auto axis = std::string_view("xyz").find(ch);
+            if (ch == '.') continue;
+            if (axis == std::string_view::npos) {
+                r.problem(
+                    field,
+                    "character " + std::to_string(k) + " ('" +
+                        std::string(1, std::isprint(static_cast<unsigned char>(ch)) ? ch : '?') +
+                        "') is not a fibre axis 'x', 'y', 'z' or '.' (the material's)");
+                break;
+            }
+            body.fibre[z * per_layer + k] = static_cast<std::uint8_t>(axis);
+        }
+    }
+}
+
+}  // namespace
+
 Body parse_body(const json& root, const std::string& file) {
     std::vector<Problem> problems;
     JsonReader r(file, problems);
     if (!root.is_object()) throw ValidationError({{file, "(root)", "expected a JSON object"}});
-    r.check_keys(root, "", {"size", "layers", "format_version", "name"});
+    r.check_keys(root, "", {"size", "layers", "fibres", "format_version", "name"});
     Body body;
     if (!root.contains("size")) r.problem("size", "is required");
     std::array<int, 3> size{0, 0, 0};
@@ -413,6 +455,7 @@ Body parse_body(const json& root, const std::string& file) {
             }
         }
     }
+    if (problems.empty() && root.contains("fibres")) read_fibres(root["fibres"], body, r);
     if (!problems.empty()) throw ValidationError(std::move(problems));
     return body;
 }
@@ -430,7 +473,20 @@ json body_to_json(const Body& body) {
             layer[k] = static_cast<char>('0' + body.cells[z * per_layer + k]);
         layers.push_back(layer);
     }
-    return {{"size", body.size}, {"layers", layers}};
+    json out = {{"size", body.size}, {"layers", layers}};
+    const bool own_axis =
+        std::any_of(body.fibre.begin(), body.fibre.end(), [](std::uint8_t a) { return a <= 2; });
+    if (own_axis && body.fibre.size() == body.cells.size()) {
+        json fibres = json::array();
+        for (int z = 0; z < body.size[2]; ++z) {
+            std::string layer(per_layer, '.');
+            for (size_t k = 0; k < per_layer; ++k)
+                if (const auto a = body.fibre[z * per_layer + k]; a <= 2) layer[k] = "xyz"[a];
+            fibres.push_back(layer);
+        }
+        out["fibres"] = fibres;
+    }
+    return out;
 }
 
 void save_body(const std::string& path, const Body& body) {

@@ -40,7 +40,9 @@ nlohmann::json experiment_to_json(const Experiment& experiment);
 //! Writes atomically (temp file + rename); throws std::runtime_error naming the path.
 void save_experiment(const std::string& path, const Experiment& experiment);
 
-//! Body file: {"size": [nx, ny, nz], "layers": ["...", ...]} (z layers bottom first, x fastest).
+//! Body file: {"size": [nx, ny, nz], "layers": ["...", ...]} (z layers bottom first, x fastest),
+//! optionally "fibres": ["...", ...] in the same layout, 'x', 'y' or 'z' a muscle voxel's own
+//! fibre axis and '.' its material's (Body::fibre; written only when a cell has its own axis).
 Body load_body(const std::string& path);
 Body parse_body(const nlohmann::json& json, const std::string& file_label);
 nlohmann::json body_to_json(const Body& body);

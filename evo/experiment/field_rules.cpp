@@ -176,6 +176,15 @@ void per_material_rule(const RuleCheck& c) {
               "\"per_material\" needs at least two materials to choose between");
 }
 
+void fibre_outputs_rule(const RuleCheck& c) {
+    const auto& e = c.experiment;
+    if (!e.evolution.cppn.fibre_outputs) return;
+    for (const auto& m : e.materials)
+        if (m.physics.actuation_model == engine::ActuationModel::Muscle && m.active()) return;
+    c.bad("evolution.cppn.fibre_outputs",
+          "needs a muscle material (actuation_model \"muscle\") whose fibres it can turn");
+}
+
 void elitism_rule(const RuleCheck& c) {
     const auto& ev = c.experiment.evolution;
     if (ev.neat.elitism > ev.population)
@@ -250,6 +259,9 @@ const FieldRule kRules[] = {
     {.fields = {"evolution.cppn.material_outputs"},
      .text = [] { return std::string("per_material needs two materials or more"); },
      .check = per_material_rule},
+    {.fields = {"evolution.cppn.fibre_outputs", "materials[].actuation_model"},
+     .text = [] { return std::string("fibre_outputs needs a muscle material"); },
+     .check = fibre_outputs_rule},
     {.fields = {"evolution.neat.elitism", "evolution.population"},
      .text = [] { return std::string("neat.elitism <= population"); },
      .check = elitism_rule},

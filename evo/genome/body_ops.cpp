@@ -51,7 +51,10 @@ Body largest_face_connected_component(const Body& body) {
     const int keep = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
     Body out = body;
     for (std::size_t i = 0; i < out.cells.size(); ++i)
-        if (label[i] != keep) out.cells[i] = 0;
+        if (label[i] != keep) {
+            out.cells[i] = 0;
+            if (i < out.fibre.size()) out.fibre[i] = engine::kMaterialFibreAxis;
+        }
     return out;
 }
 
@@ -66,6 +69,14 @@ std::uint64_t hash_body(const Body& body) {
             mix(static_cast<std::uint8_t>(static_cast<unsigned>(s) >> (8 * b)));
     for (auto c : body.cells)
         mix(c);
+    // Per-voxel fibre axes (only when some cell has its own): a body without them hashes as
+    // before, so caches and checkpoints of earlier runs still match.
+    if (std::any_of(body.fibre.begin(), body.fibre.end(),
+                    [](std::uint8_t a) { return a != engine::kMaterialFibreAxis; })) {
+        mix('f');
+        for (auto a : body.fibre)
+            mix(a);
+    }
     return h;
 }
 

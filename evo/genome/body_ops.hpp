@@ -15,8 +15,9 @@ std::vector<int> face_connected_labels(const Body& body, int* component_count = 
 //! first cell comes first in index order (x fastest, then y, then z).
 Body largest_face_connected_component(const Body& body);
 
-//! 64-bit FNV-1a of the size and the cells: the phenotype's identity for the fitness cache and the
-//! neutral-mutation test. A collision (odds ~1e-10 for a 2000-generation run) would reuse a result.
+//! 64-bit FNV-1a of the size, the cells and (when any cell has its own) the fibre axes: the
+//! phenotype's identity for the fitness cache and the neutral-mutation test. A collision (odds
+//! ~1e-10 for a 2000-generation run) would reuse a result.
 std::uint64_t hash_body(const Body& body);
 
 int count_filled(const Body& body);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace bhm::evo {
 
@@ -22,6 +23,19 @@ CppnMaterials cppn_materials(const Experiment& experiment) {
     return m;
 }
 
+CppnFibres cppn_fibres(const Experiment& experiment) {
+    CppnFibres f;
+    if (!experiment.evolution.cppn.fibre_outputs) return f;
+    const std::size_t n = std::min<std::size_t>(experiment.materials.size(), 255);
+    f.muscle.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const engine::Material& m = experiment.materials[i].physics;
+        f.muscle[i + 1] =
+            m.actuation_model == engine::ActuationModel::Muscle && engine::is_active(m);
+    }
+    return f;
+}
+
 namespace {
 
 //! Index i of n cells along an axis mapped onto [-1, 1].
@@ -31,8 +45,8 @@ double axis_coordinate(int i, int n) {
 
 }  // namespace
 
-CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials)
-    : size_(size), materials_(materials) {
+CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnFibres fibres)
+    : size_(size), materials_(std::move(materials)), fibres_(std::move(fibres)) {
     if (size[0] <= 0 || size[1] <= 0 || size[2] <= 0)
         throw std::invalid_argument("CPPN design space must have at least one cell per axis");
     const std::size_t cells = static_cast<std::size_t>(size[0]) * size[1] * size[2];
@@ -59,11 +73,11 @@ CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials)
 
 Body CppnDecoder::decode(const Genome& genome) const {
     const std::size_t cells = inputs_[0].size();
-    if (genome.output_count != materials_.output_count())
+    if (genome.output_count != output_count())
         throw std::invalid_argument("genome has " + std::to_string(genome.output_count) +
                                     " outputs, the experiment's CPPN " +
-                                    std::to_string(materials_.output_count()) +
-                                    " (evolution.cppn.material_outputs)");
+                                    std::to_string(output_count()) +
+                                    " (evolution.cppn.material_outputs, fibre_outputs)");
     const auto order = topological_order(genome);
     // Incoming edges grouped per target node, kept in genome order so sums are reproducible.
     std::vector<std::vector<const CppnEdge*>> incoming(
@@ -95,6 +109,25 @@ Body CppnDecoder::decode(const Genome& genome) const {
     Body body;
     body.size = size_;
     body.cells.assign(cells, 0);
+    paint_materials(value, body);
+    if (fibres_.enabled()) {
+        body.fibre.assign(cells, engine::kMaterialFibreAxis);
+        const std::size_t first = static_cast<std::size_t>(kInputCount) +
+                                  static_cast<std::size_t>(materials_.output_count());
+        for (std::size_t c = 0; c < cells; ++c) {
+            const std::uint8_t m = body.cells[c];
+            if (m == 0 || m >= fibres_.muscle.size() || !fibres_.muscle[m]) continue;
+            std::uint8_t best = 0;
+            for (std::uint8_t axis = 1; axis < 3; ++axis)
+                if (value[first + axis][c] > value[first + best][c]) best = axis;
+            body.fibre[c] = best;
+        }
+    }
+    return body;
+}
+
+void CppnDecoder::paint_materials(const std::vector<std::vector<double>>& value, Body& body) const {
+    const std::size_t cells = body.cells.size();
     if (!materials_.palette.empty()) {
         const auto& present = value[kInputCount];
         for (std::size_t c = 0; c < cells; ++c) {
@@ -104,7 +137,7 @@ Body CppnDecoder::decode(const Genome& genome) const {
                 if (value[kInputCount + 1 + k][c] > value[kInputCount + 1 + best][c]) best = k;
             body.cells[c] = materials_.palette[best];
         }
-        return body;
+        return;
     }
     const auto& present = value[kOutputMaterial];
     const auto& active = value[kOutputActive];
@@ -119,7 +152,6 @@ Body CppnDecoder::decode(const Genome& genome) const {
                       "output");
         body.cells[c] = m;
     }
-    return body;
 }
 
 }  // namespace bhm::evo

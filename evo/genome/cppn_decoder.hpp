@@ -10,6 +10,12 @@
 // otherwise the passive one. With per-material outputs (evolution.cppn.material_outputs =
 // "per_material"): presence output > 0 fills the cell, with the material whose output is largest
 // (the first of equal ones), any of the experiment's materials.
+// Fibre outputs (evolution.cppn.fibre_outputs, issue 43): three more outputs after those, one per
+// lattice axis; a cell of a muscle material takes the axis whose output is largest (the first of
+// equal ones) as its own fibre axis (Body::fibre); other cells keep kMaterialFibreAxis. Argmax
+// of three rather than one output cut in thirds: no axis lies between the other two, so x and z
+// are as near each other as either is to y, and each axis gets its own pattern to paint (three
+// regions of one output would order the axes x < y < z along it and favour the middle one).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -32,9 +38,21 @@ struct CppnMaterials {
 };
 CppnMaterials cppn_materials(const Experiment& experiment);
 
+//! Fibre outputs: muscle[k] is 1 where material k (1-based; muscle[0] unused) is an active muscle
+//! material, whose cells take an axis from the last three outputs; empty = no fibre outputs.
+struct CppnFibres {
+    std::vector<std::uint8_t> muscle;
+    bool enabled() const { return !muscle.empty(); }
+    int output_count() const { return enabled() ? 3 : 0; }
+};
+//! Empty unless the experiment sets evolution.cppn.fibre_outputs.
+CppnFibres cppn_fibres(const Experiment& experiment);
+
 class CppnDecoder {
   public:
-    CppnDecoder(std::array<int, 3> size, CppnMaterials materials);
+    CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnFibres fibres = {});
+    //! Outputs a genome needs: the material outputs, then the fibre outputs.
+    int output_count() const { return materials_.output_count() + fibres_.output_count(); }
 
     //! The raw lattice (no connectivity filter). Throws std::invalid_argument when a cell needs a
     //! material the experiment lacks (e.g. an active cell and no material with cte > 0) or the
@@ -46,8 +64,12 @@ class CppnDecoder {
     const std::array<std::vector<double>, kInputCount>& inputs() const { return inputs_; }
 
   private:
+    //! body.cells from the material outputs (value: every node's value per cell).
+    void paint_materials(const std::vector<std::vector<double>>& value, Body& body) const;
+
     std::array<int, 3> size_;
     CppnMaterials materials_;
+    CppnFibres fibres_;
     std::array<std::vector<double>, kInputCount> inputs_;
 };
 

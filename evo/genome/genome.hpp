@@ -49,7 +49,8 @@ struct Genome {
     //! Function of each hidden node; hidden node h is node first_hidden() + h.
     std::vector<Activation> hidden;
     std::vector<CppnEdge> edges;
-    int output_count = kOutputCount;  //!< 2 (the paper's) or 1 + materials (per_material)
+    //! 2 (the paper's) or 1 + materials (per_material), plus 3 with fibre_outputs
+    int output_count = kOutputCount;
     //! NEAT only: the run-wide id of each hidden node (hidden_ids[h] for node first_hidden() + h),
     //! so genes of two genomes can be aligned; inputs and outputs are their own ids. Empty in
     //! genomes without history.

@@ -49,8 +49,9 @@ std::array<int, 3> checked_size(const DesignSpace& space, const std::string& nam
 Developer::Developer(const Experiment& experiment)
     : experiment_(experiment),
       space_(design_space(experiment)),
-      decoder_(checked_size(space_, experiment.name), checked_materials(experiment)),
-      output_count_(cppn_materials(experiment).output_count()) {}
+      decoder_(checked_size(space_, experiment.name), checked_materials(experiment),
+               cppn_fibres(experiment)),
+      output_count_(decoder_.output_count()) {}
 
 Phenotype Developer::develop(const Genome& genome) const {
     const Body designed = largest_face_connected_component(decoder_.decode(genome));

@@ -32,7 +32,8 @@ struct Phenotype {
     int active_voxels = 0;    //!< cells of body with an active material
     int designed_voxels = 0;  //!< filled cells of body inside the design space
     bool operator==(const Phenotype& other) const {
-        return hash == other.hash && body.cells == other.body.cells;
+        return hash == other.hash && body.cells == other.body.cells &&
+               body.fibre == other.body.fibre;
     }
 };
 

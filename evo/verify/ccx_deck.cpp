@@ -4,12 +4,23 @@
 #include <cstdio>
 #include <set>
 #include <sstream>
+#include <string>
 
 #include "engine/muscle.hpp"
 
 namespace bhm::evo {
 
 namespace {
+
+// The elements of one material on one fibre axis (-1: the material's own).
+struct Group {
+    int material = 0;
+    int fibre = -1;
+    auto operator<=>(const Group&) const = default;
+    std::string name() const {
+        return std::to_string(material) + (fibre < 0 ? "" : std::string(1, "XYZ"[fibre]));
+    }
+};
 
 void write_ids(std::ostringstream& out, const std::vector<int>& ids) {
     for (std::size_t i = 0; i < ids.size(); ++i)
@@ -40,12 +51,19 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
         std::snprintf(line, sizeof line, "%d, %.10g, %.10g, %.10g\n", id, p[0], p[1], p[2]);
         out << line;
     }
-    const std::set<int> used(model.element_material.begin(), model.element_material.end());
-    for (int material : used) {
-        out << "*ELEMENT, TYPE=" << fem_element_name(model.options.element)
-            << ", ELSET=M" << material << "\n";
+    // One element set and material per (material, own fibre axis): "M3" / "MAT3" for a material
+    // on its own axis (every body without per-voxel axes, unchanged), "M3Y" / "MAT3Y" for its
+    // voxels whose fibres run along y instead.
+    std::vector<Group> group_of(model.elements.size());
+    for (std::size_t e = 0; e < model.elements.size(); ++e)
+        group_of[e] = {model.element_material[e],
+                       e < model.element_fibre.size() ? model.element_fibre[e] : -1};
+    const std::set<Group> used(group_of.begin(), group_of.end());
+    for (const Group& group : used) {
+        out << "*ELEMENT, TYPE=" << fem_element_name(model.options.element) << ", ELSET=M"
+            << group.name() << "\n";
         for (std::size_t e = 0; e < model.elements.size(); ++e) {
-            if (model.element_material[e] != material) continue;
+            if (group_of[e] != group) continue;
             out << e + 1;
             const auto& nodes = model.elements[e];
             for (std::size_t k = 0; k < nodes.size(); ++k)
@@ -54,13 +72,14 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
         }
     }
     out << "*ELSET, ELSET=EALL\n";
-    for (int material : used)
-        out << "M" << material << "\n";
-    for (int material : used) {
-        const engine::Material& m = spec.materials.at(static_cast<std::size_t>(material - 1));
+    for (const Group& group : used)
+        out << "M" << group.name() << "\n";
+    for (const Group& group : used) {
+        engine::Material m = spec.materials.at(static_cast<std::size_t>(group.material - 1));
+        if (group.fibre >= 0) m.muscle.fibre_axis = group.fibre;
         std::snprintf(line, sizeof line,
-                      "*MATERIAL, NAME=MAT%d\n*ELASTIC\n%.10g, %.10g\n*DENSITY\n%.10g\n", material,
-                      m.youngs_modulus_pa, m.poisson_ratio, m.density_kg_m3);
+                      "*MATERIAL, NAME=MAT%s\n*ELASTIC\n%.10g, %.10g\n*DENSITY\n%.10g\n",
+                      group.name().c_str(), m.youngs_modulus_pa, m.poisson_ratio, m.density_kg_m3);
         out << line;
         if (m.actuation_model == engine::ActuationModel::Muscle && engine::is_active(m)) {
             // The free strain per unit activation along x, y, z (no *ORIENTATION: global axes).
@@ -73,7 +92,8 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
             std::snprintf(line, sizeof line, "*EXPANSION, ZERO=0.\n%.10g\n", m.cte_per_c);
             out << line;
         }
-        out << "*SOLID SECTION, ELSET=M" << material << ", MATERIAL=MAT" << material << "\n";
+        out << "*SOLID SECTION, ELSET=M" << group.name() << ", MATERIAL=MAT" << group.name()
+            << "\n";
     }
     if (!model.fixed_nodes.empty()) {
         out << "*NSET, NSET=HELD\n";

@@ -9,7 +9,8 @@
 // activation a (0, then 1): a muscle material's expansion is orthotropic (*EXPANSION, TYPE=ORTHO,
 // in the global axes, which are the lattice's), -contraction_strain per unit a along its fibre
 // and +nu contraction_strain across it, the free strain muscle::axis_strain of our engine. A
-// muscle only contracts: there is no -A.
+// muscle only contracts: there is no -A. Muscle voxels with their own fibre axis
+// (BodySpec::fibre_axis) form one element set and material per (material, axis), "M3Y" / "MAT3Y".
 #include <string>
 #include <vector>
 

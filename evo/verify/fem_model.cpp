@@ -21,6 +21,17 @@ bool quadratic(FemElement e) {
     return e == FemElement::C3D20R;
 }
 
+// A muscle cell's own fibre axis where it differs from its material's, else -1 (the material's).
+int own_fibre_axis(const engine::BodySpec& spec, int cell) {
+    if (spec.fibre_axis.empty()) return -1;
+    const std::uint8_t axis = spec.fibre_axis[static_cast<std::size_t>(cell)];
+    const int k = spec.material[static_cast<std::size_t>(cell)];
+    if (axis > 2 || k == 0) return -1;
+    const engine::Material& m = spec.materials.at(static_cast<std::size_t>(k - 1));
+    if (m.actuation_model != engine::ActuationModel::Muscle || !engine::is_active(m)) return -1;
+    return axis == m.muscle.fibre_axis ? -1 : axis;
+}
+
 }  // namespace
 
 std::string fem_element_name(FemElement element) {
@@ -149,6 +160,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                 if (material == 0) continue;
                 const std::array<int, 3> cell{x, y, z};
                 m.voxel_cells.push_back(spec.cell_index(x, y, z));
+                const int fibre = own_fibre_axis(spec, spec.cell_index(x, y, z));
                 for (int c = 0; c < s; ++c)
                     for (int b = 0; b < s; ++b)
                         for (int a = 0; a < s; ++a) {
@@ -162,6 +174,7 @@ FemModel build_fem_model(const engine::BodySpec& spec, const FemMeshOptions& opt
                                             low[2] + kOffsets[e][2] * step / 2);
                             m.elements.push_back(std::move(element));
                             m.element_material.push_back(material);
+                            m.element_fibre.push_back(fibre);
                         }
                 // The voxel's centre: a node for an even subdivision, else the middle element's
                 // shape functions at its centre (20-node serendipity: -1/4 corners, 1/4 edges).

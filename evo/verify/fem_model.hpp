@@ -35,7 +35,10 @@ struct FemModel {
     std::vector<std::array<int, 3>> node_grid;  //!< node id - 1 -> grid point
     std::vector<std::vector<int>> elements;     //!< node ids in Abaqus order (8 or 20)
     std::vector<int> element_material;          //!< 1-based material index of each element
-    std::vector<int> fixed_nodes;               //!< node ids held in all three directions
+    //! Each element's own fibre axis (0 x, 1 y, 2 z) where its voxel is muscle and has one
+    //! other than its material's (BodySpec::fibre_axis); -1: its material's (ccx_deck.hpp)
+    std::vector<int> element_fibre;
+    std::vector<int> fixed_nodes;  //!< node ids held in all three directions
     //! A held voxel's rotation where its fixed nodes do not hold it (one inside the body, whose
     //! neighbours are all free, has only its centre fixed): for each axis whose two face-centre
     //! nodes are both free, their displacements across that axis are tied equal, so the line

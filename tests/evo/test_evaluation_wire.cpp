@@ -40,6 +40,14 @@ TEST_CASE("jobs carry the body cell for cell") {
     CHECK(back.rules_id == 7);
     CHECK(back.index == 50);
     CHECK(back.body == m.body);
+    CHECK(back.body.fibre.empty());
+
+    // Per-voxel fibre axes (issue 43) travel with the cells, byte for byte.
+    m.body.fibre = {255, 0, 1, 2, 255, 2, 1, 0, 255, 255, 1, 2};
+    CHECK(decode_job(encode_job(m)).body == m.body);
+    m.body.fibre.pop_back();  // fibres and cells disagree
+    CHECK_THROWS_AS(encode_job(m), WireError);
+    m.body.fibre.clear();
 
     m.body.cells.pop_back();  // size and cells disagree
     CHECK_THROWS_AS(encode_job(m), WireError);
@@ -92,7 +100,7 @@ TEST_CASE("other versions, kinds, truncations and garbage are refused by name") 
     other_version[4] = static_cast<char>(kEvaluationWireVersion + 1);
     CHECK_THROWS_WITH_AS(decode_job(other_version), doctest::Contains("wire version"), WireError);
     // Version 1 results had no behaviour descriptor: a rank of that build is refused, not misread.
-    static_assert(kEvaluationWireVersion == 2);
+    static_assert(kEvaluationWireVersion == 3);
     std::string version_1 = encode_result(ResultMessage{});
     version_1[4] = 1;
     CHECK_THROWS_WITH_AS(decode_result(version_1), doctest::Contains("wire version 1"), WireError);

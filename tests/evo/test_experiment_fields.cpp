@@ -120,8 +120,16 @@ TEST_CASE("every field of the table is written at its path and read back unchang
     for (const auto& f : experiment_fields()) {
         CAPTURE(f.path);
         Experiment e = base;
+        if (std::string_view(f.path) == "evolution.cppn.fibre_outputs") {
+            // Fibre outputs need a muscle material to turn (issue 43): the active one becomes one.
+            auto& m = e.materials[1].physics;
+            m.actuation_model = bhm::engine::ActuationModel::Muscle;
+            m.cte_per_c = 0.0;
+            m.muscle.contraction_strain = 0.05;
+        }
+        const Experiment before = e;
         const json value = change(f, e);
-        REQUIRE_FALSE(e == base);
+        REQUIRE_FALSE(e == before);
         const json written = experiment_to_json(e);
         const json* at = at_path(written, f.path);
         REQUIRE(at != nullptr);
@@ -363,6 +371,9 @@ TEST_CASE("each rule between fields is declared once: validated, and in its fiel
              e.evolution.cppn.material_outputs = MaterialOutputs::PerMaterial;
              e.materials.pop_back();
          }},
+        // Fibre outputs without a muscle material to turn (issue 43).
+        {"evolution.cppn.fibre_outputs",
+         [](Experiment& e) { e.evolution.cppn.fibre_outputs = true; }},
         {"evolution.neat.elitism",
          [](Experiment& e) { e.evolution.neat.elitism = e.evolution.population + 1; }},
         {"simulation", [](Experiment& e) { e.simulation.evaluate_s = 9e4; }},
