@@ -29,6 +29,11 @@ struct Muscle {
     double pulse_width_s = 0.01;   //!< how long each pulse excites the muscle
     double train_on_s = 0.0;       //!< pulse train: length of a burst; 0 = one endless train
     double train_off_s = 0.0;      //!< pulse train: rest between bursts
+    //! Fatigue (engine/muscle.hpp): time constant of the force's loss while stimulated; 0 = none
+    //! (the default: the fields below are then ignored).
+    double fatigue_s = 0.0;
+    double recovery_s = 0.0;      //!< fatigue: time constant of the recovery at rest
+    double fatigue_floor = 0.0;   //!< fatigue: the fraction of the force a long stimulus keeps
     bool operator==(const Muscle&) const = default;
 };
 

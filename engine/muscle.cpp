@@ -16,13 +16,31 @@ struct Affine {
     double apply(double a) const { return std::exp(log_slope) * a + offset; }
 };
 
-// Stimulated for x seconds: a -> 1 - (1 - a) e^(-x / rise).
-Affine stimulated_for(const Muscle& m, double x) {
-    return {-x / m.rise_s, -std::expm1(-x / m.rise_s)};
+// A state that relaxes at first order toward `on_target` with time constant `on_s` while
+// stimulated and toward `off_target` with `off_s` at rest: the activation (1 with rise_s, 0 with
+// decay_s) or the fatigue factor (fatigue_floor with fatigue_s, 1 with recovery_s).
+struct Relaxation {
+    double on_target = 1.0, on_s = 1.0, off_target = 0.0, off_s = 1.0;
+};
+Relaxation activation_of(const Muscle& m) {
+    return {1.0, m.rise_s, 0.0, m.decay_s};
 }
-// Resting for x seconds: a -> a e^(-x / decay).
-Affine resting_for(const Muscle& m, double x) {
-    return {-x / m.decay_s, 0.0};
+Relaxation fatigue_of(const Muscle& m) {
+    return {std::clamp(m.fatigue_floor, 0.0, 1.0), m.fatigue_s, 1.0, m.recovery_s};
+}
+
+// Toward `target` for x seconds at time constant s: y -> target + (y - target) e^(-x / s).
+// (For the activation: stimulated a -> 1 - (1 - a) e^(-x / rise), resting a -> a e^(-x / decay).)
+Affine relax(double target, double s, double x) {
+    return {-x / s, target * -std::expm1(-x / s)};
+}
+// Stimulated for x seconds.
+Affine stimulated_for(const Relaxation& m, double x) {
+    return relax(m.on_target, m.on_s, x);
+}
+// Resting for x seconds.
+Affine resting_for(const Relaxation& m, double x) {
+    return relax(m.off_target, m.off_s, x);
 }
 // first, then second.
 Affine then(const Affine& first, const Affine& second) {
@@ -55,13 +73,13 @@ Train train_of(const Muscle& m) {
 }
 
 // r seconds into a pulse period: stimulated for min(r, width), then resting.
-Affine into_period(const Muscle& m, const Train& t, double r) {
+Affine into_period(const Relaxation& m, const Train& t, double r) {
     if (r <= t.width) return stimulated_for(m, r);
     return then(stimulated_for(m, t.width), resting_for(m, r - t.width));
 }
 
 // s seconds into a burst (s <= t.on): whole pulse periods, then the part of one.
-Affine into_burst(const Muscle& m, const Train& t, double s, bool* stimulated_now) {
+Affine into_burst(const Relaxation& m, const Train& t, double s, bool* stimulated_now) {
     double n = std::floor(s / t.period);
     double r = s - n * t.period;
     if (r < 0.0) r = 0.0;
@@ -80,14 +98,18 @@ bool stimulated(const Muscle& m, double tau) {
     return activation(m, tau).stimulated;
 }
 
-Activation activation(const Muscle& m, double tau) {
-    Activation out;
-    if (!(tau > 0.0) || !(m.frequency_hz > 0.0) || !(m.rise_s > 0.0) || !(m.decay_s > 0.0))
-        return out;
-    const Train t = train_of(m);
-    double a_start = 0.0;  // at the start of the current burst
-    double s = tau;        // time into it
+namespace {
+
+// A relaxing state (starting at y0 when the actuation starts) tau > 0 seconds in, and whether the
+// stimulus is on then.
+struct State {
+    double y = 0.0;
     bool on = false;
+};
+State evolve(const Relaxation& r, const Train& t, double tau, double y0) {
+    State out;
+    double y_start = y0;  // at the start of the current burst
+    double s = tau;       // time into it
     if (std::isfinite(t.on)) {
         const double burst_period = t.on + t.off;
         double k = std::floor(tau / burst_period);
@@ -97,18 +119,40 @@ Activation activation(const Muscle& m, double tau) {
             k += 1.0;
             s = 0.0;
         }
-        const Affine burst = then(into_burst(m, t, t.on, nullptr), resting_for(m, t.off));
-        a_start = power(burst, k).apply(0.0);
+        const Affine burst = then(into_burst(r, t, t.on, nullptr), resting_for(r, t.off));
+        y_start = power(burst, k).apply(y0);
         if (s >= t.on) {
-            out.a = then(into_burst(m, t, t.on, nullptr), resting_for(m, s - t.on)).apply(a_start);
-            out.a = std::clamp(out.a, 0.0, 1.0);
-            out.rate = -out.a / m.decay_s;
+            out.y = then(into_burst(r, t, t.on, nullptr), resting_for(r, s - t.on)).apply(y_start);
             return out;
         }
     }
-    out.a = std::clamp(into_burst(m, t, s, &on).apply(a_start), 0.0, 1.0);
-    out.stimulated = on;
-    out.rate = on ? (1.0 - out.a) / m.rise_s : -out.a / m.decay_s;
+    out.y = into_burst(r, t, s, &out.on).apply(y_start);
+    return out;
+}
+
+}  // namespace
+
+bool fatigues(const Muscle& m) {
+    return m.fatigue_s > 0.0 && m.recovery_s > 0.0;
+}
+
+Activation activation(const Muscle& m, double tau) {
+    Activation out;
+    if (!(tau > 0.0) || !(m.frequency_hz > 0.0) || !(m.rise_s > 0.0) || !(m.decay_s > 0.0))
+        return out;
+    const Train t = train_of(m);
+    const State a = evolve(activation_of(m), t, tau, 0.0);
+    out.a = std::clamp(a.y, 0.0, 1.0);
+    out.stimulated = a.on;
+    out.rate = a.on ? (1.0 - out.a) / m.rise_s : -out.a / m.decay_s;
+    if (!fatigues(m)) return out;
+    // The force left, f(0) = 1, on the same stretches of stimulus and rest.
+    const double floor = std::clamp(m.fatigue_floor, 0.0, 1.0);
+    const double f = std::clamp(evolve(fatigue_of(m), t, tau, 1.0).y, floor, 1.0);
+    const double f_rate = a.on ? -(f - floor) / m.fatigue_s : (1.0 - f) / m.recovery_s;
+    out.rate = out.rate * f + out.a * f_rate;
+    out.a *= f;
+    out.fatigue = f;
     return out;
 }
 
@@ -169,6 +213,23 @@ std::vector<Problem> material_problems(const Material& m) {
     if (u.stimulus == MuscleStimulus::PulseTrain && u.train_off_s > 0.0 && u.train_on_s == 0.0)
         out.push_back({"muscle.train_on_s", "must be > 0 when muscle.train_off_s is (the bursts "
                                             "between the rests)"});
+    // Fatigue: off at fatigue_s = 0; when on, it needs a recovery and a floor in [0, 1].
+    if (!within(u.fatigue_s, 0.0, kMaxFatigueS) ||
+        (u.fatigue_s > 0.0 && u.fatigue_s < kMinTimeConstantS))
+        out.push_back({"muscle.fatigue_s", "must be 0 (no fatigue) or in [" +
+                                               number(kMinTimeConstantS) + ", " +
+                                               number(kMaxFatigueS) + "] s"});
+    if (!within(u.recovery_s, 0.0, kMaxFatigueS) ||
+        (u.recovery_s > 0.0 && u.recovery_s < kMinTimeConstantS))
+        out.push_back({"muscle.recovery_s", "must be 0 (unset) or in [" +
+                                                number(kMinTimeConstantS) + ", " +
+                                                number(kMaxFatigueS) + "] s"});
+    else if (u.fatigue_s > 0.0 && u.recovery_s == 0.0)
+        out.push_back({"muscle.recovery_s", "must be > 0 when muscle.fatigue_s is (the time "
+                                            "constant of the recovery at rest)"});
+    if (!within(u.fatigue_floor, 0.0, 1.0))
+        out.push_back({"muscle.fatigue_floor", "must be in [0, 1] (the fraction of the force a "
+                                               "long stimulus leaves)"});
     return out;
 }
 
@@ -178,6 +239,9 @@ bool same_signal(const Muscle& a, const Muscle& b) {
     x.contraction_strain = y.contraction_strain = 0.0;
     if (x.stimulus == MuscleStimulus::Beating) x.train_on_s = x.train_off_s = 0.0;
     if (y.stimulus == MuscleStimulus::Beating) y.train_on_s = y.train_off_s = 0.0;
+    // Without fatigue its other two fields do nothing.
+    for (Muscle* u : {&x, &y})
+        if (!fatigues(*u)) u->fatigue_s = u->recovery_s = u->fatigue_floor = 0.0;
     return x == y;
 }
 

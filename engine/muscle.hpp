@@ -13,6 +13,19 @@
 // one burst raised to the number elapsed: no state, the same value at any tau, whichever step
 // asks.
 //
+// Optional fatigue (muscle.fatigue_s > 0; off by default): the force a stimulus raises fades
+// while it goes on and comes back at rest. The activation the voxel takes is a(tau) f(tau), with
+// the force left f following
+//
+//     df/dt = -(f - floor) / fatigue_s   while stimulated,
+//     df/dt = (1 - f) / recovery_s       otherwise,          f(0) = 1,
+//
+// the first-order fitness model of Riener, Quintern & Schmidt (1996, J Biomech 29:1157) driven by
+// the stimulus u instead of the activation, so that f too is affine per stretch and evaluated by
+// the same maps, exactly and without state (a phenomenological model: it has one time constant
+// each way, not Ding et al.'s (2000) stimulation-pattern dependence). It never repeats within a
+// fatiguing stimulus, so a fatiguing body is not periodic (evo/evaluate/periodic_end.hpp).
+//
 // The voxel's active strain is along the fibre -contraction_strain x a(tau) and across it
 // +nu x contraction_strain x a(tau): the strain a free voxel takes under an active tension
 // E x contraction_strain x a along its fibres (the active-stress model of Hunter et al. 1998),
@@ -29,11 +42,15 @@ struct Activation {
     double a = 0.0;     //!< activation in [0, 1]
     double rate = 0.0;  //!< da/dtau (1/s)
     bool stimulated = false;
+    double fatigue = 1.0;  //!< f, the force left (a includes it); 1 without fatigue
 };
 
+//! Whether the muscle fatigues (fatigue_s > 0 and recovery_s > 0).
+bool fatigues(const Muscle& m);
 //! The stimulus u in {0, 1} at tau seconds after the actuation starts (0 before).
 bool stimulated(const Muscle& m, double tau);
-//! The activation at tau seconds after the actuation starts (a = 0, rate 0 for tau <= 0).
+//! The activation at tau seconds after the actuation starts (a = 0, rate 0 for tau <= 0),
+//! times the force left under fatigue.
 Activation activation(const Muscle& m, double tau);
 
 //! The free strain of a fully activated voxel of material m along lattice axis `axis`:
@@ -68,5 +85,7 @@ inline constexpr double kMinTimeConstantS = 1e-4;
 inline constexpr double kMaxTimeConstantS = 100.0;
 inline constexpr double kMaxStimulusFrequencyHz = 1000.0;
 inline constexpr double kMaxTrainS = 1e5;
+//! Longest fatigue or recovery time constant (an hour: tissue tires over seconds to minutes).
+inline constexpr double kMaxFatigueS = 3600.0;
 
 }  // namespace bhm::engine::muscle

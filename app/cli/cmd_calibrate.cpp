@@ -35,14 +35,16 @@ namespace {
 const char* const kSummary =
     "Finds the simulation parameters named by --fit that make BODY under EXPERIMENT move as the\n"
     "measured TRACK does (docs/track-format.md, docs/calibration.md): a parallel scan, then\n"
-    "NLopt's BOBYQA with restarts, bounded to 1/5..5 times the\n"
+    "NLopt's BOBYQA with restarts, then damped Gauss-Newton steps from its result (taken\n"
+    "only where the misfit drops), bounded to 1/5..5 times the\n"
     "experiment's value (phase_lag: -pi..pi; a muscle's rise_s, decay_s, contraction_strain also\n"
     "within their fields' ranges), minimising the RMS difference of the displacements\n"
     "from the first row at the track's times (parameters: see --fit; the sine model's and the\n"
     "muscle model's apply only to an experiment whose materials use that model). Writes into DIR:\n"
     "  report.json                 fitted values with one standard deviation (from the misfit's\n"
     "                              curvature at the optimum, Gauss-Newton), misfit before/after,\n"
-    "                              simulations used, correlations, parameters that trade off,\n"
+    "                              simulations used, the polish's steps, correlations,\n"
+    "                              parameters that trade off,\n"
     "                              and warnings (poor fit, a bound reached)\n"
     "  calibrated-experiment.json  EXPERIMENT with the fitted values\n"
     "  simulated-before.csv, simulated-after.csv  the simulated points at the track's times\n"
@@ -129,9 +131,16 @@ nlohmann::json report_json(const evo::CalibrationResult& r, const std::string& e
               {"uncertainty", r.jacobian_simulations},
               {"optimiser_passes", r.optimiser_passes},
               {"scan", r.scan_simulations},
+              {"polish", r.polish_simulations},
               {"before_after", 2},
               {"total", r.optimiser_simulations + r.jacobian_simulations + 2}}},
             {"stop_reason", r.stop_reason},
+            {"polish",
+             {{"steps", r.polish_steps},
+              {"simulations", r.polish_simulations},
+              {"misfit_before_m", finite_or_null(r.misfit_before_polish_m)},
+              {"misfit_after_m", finite_or_null(r.misfit_after_m)},
+              {"stop_reason", r.polish_stop}}},
             {"identifiability",
              {{"correlation", correlation},
               {"smallest_scaled_curvature_eigenvalue", id.smallest_eigenvalue},
@@ -276,6 +285,10 @@ int calibrate(ArgParser& args) {
     std::cout << "misfit " << r.misfit_before_m << " m -> " << r.misfit_after_m << " m (track motion "
               << r.motion_rms_m << " m), " << r.optimiser_simulations + r.jacobian_simulations + 2
               << " simulations, " << r.wall_s << " s\n";
+    std::cout << "Gauss-Newton polish: " << r.polish_steps << " step"
+              << (r.polish_steps == 1 ? "" : "s") << ", " << r.polish_simulations
+              << " simulations, misfit " << r.misfit_before_polish_m << " m -> "
+              << r.misfit_after_m << " m (" << r.polish_stop << ")\n";
     for (const auto& w : report["warnings"])
         if (w != span_warning) std::cerr << "warning: " << w.get<std::string>() << "\n";  // said up front
     std::cout << "wrote " << out_dir << "/report.json\n";
@@ -295,7 +308,10 @@ int cmd_calibrate(const Args& args) {
         .option("--out", "DIR", "output directory, replaced whole (default: ./calibrate-out)",
                 PathRole::OutputDir)
         .option("--threads", "N", "simulations at once in the scan and the uncertainty (default: all cores)")
-        .option("--max-simulations", "N", "budget of the scan's and the optimiser's simulations (default 200)")
+        .option("--max-simulations", "N",
+                "budget of the scan's, the optimiser's and the Gauss-Newton polish's "
+                "simulations (default 200; a tenth, at most 4p + 12 for p parameters, is kept "
+                "for the polish)")
         .flag("--simulate-only", "only simulate the experiment as given at the track's times");
     // Under mpirun every rank but 0 only simulates what rank 0 sends (docs/cluster.md).
     std::unique_ptr<EvolveCluster> cluster;

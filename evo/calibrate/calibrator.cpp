@@ -8,6 +8,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "evo/calibrate/gauss_newton_polish.hpp"
 #include "evo/calibrate/identifiability.hpp"
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/worker_pool.hpp"
@@ -37,6 +38,12 @@ constexpr double kPoorlyDetermined = 0.5;
 // finite differences and the optimiser's tolerance tell.
 constexpr double kShortOfMinimumSigmas = 3.0;
 constexpr double kShortOfMinimum = 0.01;
+
+// The Gauss-Newton polish's reserve of the budget: a tenth, at most two steps' worth (each a
+// Jacobian, 2p simulations, and up to six line-search trials: PolishOptions::halvings + 1).
+int polish_reserve(int budget, int p) {
+    return std::min(budget / 10, 2 * (2 * p + PolishOptions{}.halvings + 1));
+}
 
 // The search range as a reader knows it: "x1/5..5" (the default), the factors where a field's
 // own range narrowed it (a muscle's time constants), or the added angle.
@@ -146,6 +153,10 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     // First a scan of the box (a Halton sequence, all at once on the worker pool), then BOBYQA
     // from the experiment's values and from the best scan points.
     const int budget = std::max(o.max_simulations, static_cast<int>(2 * p + 2));
+    // BOBYQA may use all but a reserve, which the Gauss-Newton polish after it gets (with
+    // whatever BOBYQA leaves): a tenth of the budget, at most two steps' worth of simulations.
+    const int reserve = polish_reserve(budget, static_cast<int>(p));
+    const int search_budget = budget - reserve;
     const int scan = std::min(budget / 3, std::max(8, 8 * static_cast<int>(p)));
     std::vector<std::vector<double>> scan_x(static_cast<std::size_t>(scan), std::vector<double>(p));
     constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47};
@@ -209,14 +220,14 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
             },
             &tracked);
         for (int pass = 0; pass < 4; ++pass) {
-            if (sims + static_cast<int>(2 * p + 2) > budget) break;
+            if (sims + static_cast<int>(2 * p + 2) > search_budget) break;
             const double before_pass = here_best;
             std::vector<double> pass_step(p);
             for (std::size_t i = 0; i < p; ++i)
                 pass_step[i] = std::min(step[i] / static_cast<double>(1 << pass),
                                         0.5 * std::max(upper[i] - here[i], here[i] - lower[i]));
             opt.set_initial_step(pass_step);
-            opt.set_maxeval(budget - sims);
+            opt.set_maxeval(search_budget - sims);
             x = here;
             double final_value = 0.0;
             bool pass_converged = false;
@@ -249,14 +260,52 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     out.converged = best_converged;
     if (!out.converged) out.stop_reason = "simulation budget reached";
     out.x = best_x;
-    out.optimiser_simulations = sims;
     out.calibrated = apply_fit(e, ps, out.x);
     out.after = simulate_track(out.calibrated, body, track, o.cancel);
     out.misfit_after_m = track_misfit(track, out.after);
-    out.good_fit = out.misfit_after_m <= o.good_fit_fraction * out.motion_rms_m;
 
-    const auto jac = residual_jacobian(problem, *batches, out.x, o);
+    auto jac = residual_jacobian(problem, *batches, out.x, o);
     out.jacobian_simulations = static_cast<int>(2 * p);
+
+    // The Gauss-Newton polish from BOBYQA's result, on the Jacobian just taken, with the budget
+    // BOBYQA left (at least the reserve); the Jacobian at the point it reaches is the one the
+    // uncertainty below uses.
+    std::vector<std::pair<std::vector<double>, SimulatedTrack>> trials;
+    PolishProblem polish{lower, upper, nullptr, nullptr, static_cast<int>(2 * p)};
+    polish.residuals = [&](const std::vector<double>& trial) {
+        SimulatedTrack sim = simulate_track(apply_fit(e, ps, trial), body, track, o.cancel);
+        ++sims;
+        auto r = track_residuals(track, sim);
+        best = std::min(best, residual_rms(r));
+        if (o.progress) o.progress(sims, best);
+        trials.emplace_back(trial, std::move(sim));
+        return r;
+    };
+    polish.jacobian = [&](const std::vector<double>& at) {
+        auto j = residual_jacobian(problem, *batches, at, o);
+        sims += static_cast<int>(2 * p);
+        if (o.progress) o.progress(sims, best);
+        return j;
+    };
+    PolishOptions polish_options;
+    polish_options.max_simulations = std::max(reserve, budget - sims);
+    polish_options.x_tolerance = o.x_tolerance;
+    const PolishResult polished = gauss_newton_polish(
+        polish, out.x, track_residuals(track, out.after), jac, polish_options);
+    out.polish_steps = polished.steps;
+    out.polish_simulations = polished.simulations;
+    out.polish_stop = polished.stop;
+    out.misfit_before_polish_m = out.misfit_after_m;
+    if (polished.steps > 0) {
+        out.x = polished.x;
+        for (auto& [at, sim] : trials)
+            if (at == out.x) out.after = std::move(sim);
+        out.calibrated = apply_fit(e, ps, out.x);
+        out.misfit_after_m = track_misfit(track, out.after);
+        jac = polished.jacobian;
+    }
+    out.optimiser_simulations = sims;
+    out.good_fit = out.misfit_after_m <= o.good_fit_fraction * out.motion_rms_m;
     const std::size_t n = jac.size();
     const double ssr = out.misfit_after_m * out.misfit_after_m * static_cast<double>(n);
     // Degrees of freedom: the values less the parameters and the fitted offsets (one per point
@@ -268,12 +317,16 @@ CalibrationResult calibrate(const Experiment& e, const Body& body, const Measure
     if (!out.converged)
         out.warnings.push_back(
             "not converged: the fit stopped at its simulation budget (" + std::to_string(budget) +
+            (reserve > 0 ? ", " + std::to_string(reserve) +
+                               " of them kept for the Gauss-Newton polish"
+                         : std::string()) +
             "), so the values are the best found, not the best fit, and may be further off than "
             "their standard deviations; calibrate again with a larger budget");
     // The optimiser's own stop does not prove a minimum: in a narrow valley (a fused muscle
     // train's rise_s against its contraction strain, correlation 0.9) BOBYQA stopped with
-    // rise_s 18 standard deviations from the truth and called it converged. One Gauss-Newton
-    // step from the result, on the Jacobian already taken, says how far the minimum still is.
+    // rise_s 18 standard deviations from the truth and called it converged. The polish steps
+    // toward the minimum; one more Gauss-Newton step from where it stopped, on the Jacobian
+    // there, says whether the minimum is still far (its budget ran out, or no step helped).
     if (out.converged && !id.near_singular) {
         const auto step = gauss_newton_step(jac, track_residuals(track, out.after));
         for (std::size_t i = 0; i < step.size(); ++i) {

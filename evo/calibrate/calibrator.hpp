@@ -2,8 +2,10 @@
 // bhm calibrate's fit: the parameters (evo/calibrate/fit_parameters.hpp) that minimise the misfit
 // between a measured track and the simulated one (evo/calibrate/track_simulation.hpp), found by
 // NLopt's BOBYQA (Powell 2009: bounded, derivative-free, a quadratic model of the misfit) in log
-// space, after a parallel scan of the box on the worker pool; then the uncertainty and identifiability from the Jacobian of the residuals at the
-// optimum (evo/calibrate/identifiability.hpp), its 2p simulations run at once on the worker pool.
+// space, after a parallel scan of the box on the worker pool, polished by Gauss-Newton steps
+// (evo/calibrate/gauss_newton_polish.hpp); then the uncertainty and identifiability from the
+// Jacobian of the residuals at the optimum (evo/calibrate/identifiability.hpp), its 2p
+// simulations run at once on the worker pool.
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -23,7 +25,10 @@ bool calibration_available();
 
 struct CalibrationOptions {
     int threads = 0;             //!< worker threads for the Jacobian (0 = all)
-    int max_simulations = 200;   //!< budget of the optimiser's simulations
+    //! Budget of the scan's, BOBYQA's and the Gauss-Newton polish's simulations; BOBYQA leaves
+    //! the polish a tenth of it (at most two steps' worth, 4p + 12), and the polish also gets
+    //! what BOBYQA leaves unused.
+    int max_simulations = 200;
     double x_tolerance = 1e-4;   //!< stop once a step changes no x by more (log units)
     double jacobian_step = 0.01; //!< central-difference step in x
     //! A misfit below this fraction of the track's motion RMS counts as a good fit.
@@ -55,6 +60,12 @@ struct CalibrationResult {
     int optimiser_simulations = 0, jacobian_simulations = 0;
     int optimiser_passes = 0;  //!< BOBYQA runs (restarts included)
     int scan_simulations = 0;  //!< of optimiser_simulations, the parallel scan of the box
+    //! The Gauss-Newton polish after BOBYQA (evo/calibrate/gauss_newton_polish.hpp): steps taken
+    //! (each lowered the misfit), its simulations (of optimiser_simulations: line-search trials
+    //! and the Jacobians at the points reached), why it stopped, and the misfit before it.
+    int polish_steps = 0, polish_simulations = 0;
+    std::string polish_stop;
+    double misfit_before_polish_m = 0.0;
     std::string stop_reason;
     //! False when the best point was not reached by an optimiser pass that stopped by its own
     //! criterion (the pass hit the simulation budget, or the budget left no pass to run from the

@@ -108,7 +108,7 @@ Identifiability analyse_identifiability(const std::vector<std::vector<double>>& 
 }
 
 std::vector<double> gauss_newton_step(const std::vector<std::vector<double>>& jacobian,
-                                      const std::vector<double>& residuals) {
+                                      const std::vector<double>& residuals, double near_singular) {
     const std::size_t p = jacobian.empty() ? 0 : jacobian[0].size();
     if (p == 0 || residuals.size() != jacobian.size()) return {};
     std::vector<std::vector<double>> h(p, std::vector<double>(p, 0.0));
@@ -129,7 +129,7 @@ std::vector<double> gauss_newton_step(const std::vector<std::vector<double>>& ja
     std::vector<double> values;
     std::vector<std::vector<double>> vectors;
     symmetric_eigen(s, values, vectors);
-    if (values[0] < kNearSingular) return {};
+    if (!(values[0] >= near_singular)) return {};
     // delta = -D^-1 S^-1 D^-1 g, D = sqrt(diag H).
     std::vector<double> scaled_g(p), delta(p, 0.0);
     for (std::size_t i = 0; i < p; ++i)

@@ -17,7 +17,7 @@ inline constexpr double kNearSingular = 1e-6;
 struct Identifiability {
     std::vector<double> sigma_x;  //!< standard deviation of each x (NaN where not identifiable)
     std::vector<std::vector<double>> correlation;  //!< NaN where not defined
-    double smallest_eigenvalue = 0.0;  //!< of the scaled J^T J
+    double smallest_eigenvalue = 0.0;              //!< of the scaled J^T J
     bool near_singular = false;
     std::vector<int> no_effect;  //!< parameters whose Jacobian column is zero
     //! Groups that trade off: pairs with |corr| > kTradeOffCorrelation, and the parameters that
@@ -32,9 +32,12 @@ Identifiability analyse_identifiability(const std::vector<std::vector<double>>& 
 //! The Gauss-Newton step from the point where `jacobian` and `residuals` were taken:
 //! delta = -(J^T J)^-1 J^T r, where a linear model's misfit is least (the fit's check that it
 //! stopped at its minimum, not in a narrow valley short of it). Empty when J^T J is near singular
-//! or a column is zero (the step is not defined).
+//! or a column is zero (the step is not defined): its smallest scaled eigenvalue below
+//! `near_singular` (the polish, gauss_newton_polish.hpp, steps along narrower valleys than the
+//! uncertainty trusts).
 std::vector<double> gauss_newton_step(const std::vector<std::vector<double>>& jacobian,
-                                      const std::vector<double>& residuals);
+                                      const std::vector<double>& residuals,
+                                      double near_singular = kNearSingular);
 
 //! Eigenvalues (ascending) and eigenvectors (columns, same order) of a symmetric matrix
 //! (cyclic Jacobi): small matrices only.

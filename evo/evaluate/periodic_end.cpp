@@ -9,6 +9,7 @@
 
 #include "engine/body_spec.hpp"
 #include "engine/model.hpp"
+#include "engine/muscle.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::evo {
@@ -46,6 +47,8 @@ double drive_period_s(const Experiment& experiment) {
         if (m.actuation_model != engine::ActuationModel::Muscle || !engine::is_active(m)) continue;
         const engine::Muscle& u = m.muscle;
         if (!(u.frequency_hz > 0.0)) return 0.0;
+        // A fatiguing muscle's force fades over the stimulus and never repeats (engine/muscle.hpp).
+        if (engine::muscle::fatigues(u)) return 0.0;
         // The stimulus restarts its pulses at each burst (engine/muscle.hpp), so a scheduled
         // train repeats with its burst, an endless one with its pulses.
         const bool bursts = u.stimulus == engine::MuscleStimulus::PulseTrain &&

@@ -317,6 +317,19 @@ const MaterialField kMaterialFields[] = {
     {.path = "muscle.train_off_s", .label = "Rest between bursts", .unit = "s",
      .help = "muscle pulse train: rest between bursts; 0 = one endless train",
      .range = {0, mus::kMaxTrainS}, .note = "(0 = endless)", BHM_MATERIAL(muscle.train_off_s)},
+    {.path = "muscle.fatigue_s", .label = "Fatigue time", .unit = "s",
+     .help = "muscle: time constant of the force's loss while stimulated, toward the fatigue "
+             "floor (the force left is f, df/dt = -(f - floor) / fatigue time); 0 = no fatigue",
+     .range = {0, mus::kMaxFatigueS}, .note = "(0 = no fatigue)", BHM_MATERIAL(muscle.fatigue_s)},
+    {.path = "muscle.recovery_s", .label = "Recovery time", .unit = "s",
+     .help = "muscle with fatigue: time constant of the force's recovery at rest "
+             "(df/dt = (1 - f) / recovery time); needed when the fatigue time is > 0",
+     .range = {0, mus::kMaxFatigueS}, .note = "(> 0 with fatigue)",
+     BHM_MATERIAL(muscle.recovery_s)},
+    {.path = "muscle.fatigue_floor", .label = "Fatigue floor", .unit = "",
+     .help = "muscle with fatigue: the fraction of its force a long stimulus leaves it; 1 = none "
+             "lost",
+     .range = {0, 1}, .format = "%.3f", BHM_MATERIAL(muscle.fatigue_floor)},
 };
 
 // clang-format on

@@ -58,6 +58,14 @@ json parse_json_text(const std::string& text, const std::string& path) {
     }
 }
 
+// The muscle's optional fatigue fields (off at their defaults, engine/muscle.hpp).
+constexpr const char* kFatigueKeys[] = {"fatigue_s", "recovery_s", "fatigue_floor"};
+bool is_fatigue_key(std::string_view key) {
+    for (const char* k : kFatigueKeys)
+        if (key == k) return true;
+    return false;
+}
+
 // base: the defaults of the fields the object does not give (a library material's values, or
 // MaterialEntry's own). The physical fields come from the table (material_fields()).
 MaterialEntry parse_material(JsonReader& r, const json& m, const std::string& path,
@@ -110,6 +118,8 @@ class LibraryFill {
         for (const auto& f : material_fields()) {
             // A sine slot has no muscle keys; a muscle slot's sit in its "muscle" object.
             if (f.parent() == "muscle") {
+                // Fatigue is optional and off unless given: no library value to miss.
+                if (is_fatigue_key(f.key())) continue;
                 const auto o = m.find("muscle");
                 missing = missing || (muscle && (o == m.end() || !o->is_object() ||
                                                  !o->contains(std::string(f.key()))));
@@ -320,6 +330,11 @@ json experiment_to_json(const Experiment& e) {
         if (m.physics.actuation_model == engine::ActuationModel::Sine) {
             mj.erase("actuation_model");
             mj.erase("muscle");
+        } else if (const engine::Muscle& u = m.physics.muscle;
+                   u.fatigue_s == 0.0 && u.recovery_s == 0.0 && u.fatigue_floor == 0.0) {
+            // Fatigue's keys only when set: muscle experiments without it stay byte for byte.
+            for (const char* key : kFatigueKeys)
+                mj["muscle"].erase(key);
         }
         if (m.has_color) mj["color"] = m.color;
         if (!m.library.empty()) mj["library"] = m.library;

@@ -119,6 +119,9 @@ std::string describe_physics_change(const Experiment& before, const PhysicsRules
         note(out, "relaxation time" + n, a.muscle.decay_s, b.muscle.decay_s, "s");
         note(out, "pulse rate" + n, a.muscle.frequency_hz, b.muscle.frequency_hz, "Hz");
         note(out, "pulse width" + n, a.muscle.pulse_width_s, b.muscle.pulse_width_s, "s");
+        note(out, "fatigue time" + n, a.muscle.fatigue_s, b.muscle.fatigue_s, "s");
+        note(out, "recovery time" + n, a.muscle.recovery_s, b.muscle.recovery_s, "s");
+        note(out, "fatigue floor" + n, a.muscle.fatigue_floor, b.muscle.fatigue_floor, "");
     }
     note(out, "amplitude", before.actuation.temperature_amplitude_c, after.temperature_amplitude_c,
          "C");

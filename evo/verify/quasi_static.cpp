@@ -40,6 +40,7 @@ QuasiStaticResult engine_quasi_static(const engine::BodySpec& body, double tempe
             m.muscle.pulse_width_s = 1.0;
             m.muscle.train_on_s = m.muscle.train_off_s = 0.0;
             m.muscle.rise_s = m.muscle.decay_s = kHoldRiseS;
+            m.muscle.fatigue_s = 0.0;  // peak activation is the fresh muscle's
         }
         spec.actuation.start_s = temperature_c == 1.0 ? 0.0 : options.max_time_s + 1.0;
     }

@@ -155,6 +155,10 @@ TEST_CASE("every field of the table is written at its path and read back unchang
             const bool beating_next = std::string_view(f.path) == "muscle.stimulus";
             m.muscle.train_on_s = beating_next ? 0.0 : 0.3;
             m.muscle.train_off_s = beating_next ? 0.0 : 0.2;
+            // Fatigue on, so that its fields are written (and a recovery is due).
+            m.muscle.fatigue_s = 10.0;
+            m.muscle.recovery_s = 30.0;
+            m.muscle.fatigue_floor = 0.5;
         }
         Experiment e = from;
         const json value = change(f, e.materials[1].physics);  // the active one

@@ -96,3 +96,39 @@ TEST_CASE("a muscle slot without a sourced contraction strain must give one") {
     CHECK(e.materials[1].physics.muscle.frequency_hz == 2.0);  // the library's
     CHECK(e.materials[1].physics.cte_per_c == 0.0);
 }
+
+TEST_CASE("muscle fatigue: off unless given, its fields round-trip and bad values name the field") {
+    // Off by default: the preset has no fatigue keys and writes none.
+    const Experiment e = load_experiment(kPreset);
+    CHECK(e.materials[1].physics.muscle.fatigue_s == 0.0);
+    CHECK_FALSE(preset_json()["materials"][1]["muscle"].contains("fatigue_s"));
+    // Given: read, written and read back the same.
+    json j = preset_json();
+    j["materials"][1]["muscle"]["fatigue_s"] = 20.0;
+    j["materials"][1]["muscle"]["recovery_s"] = 60.0;
+    j["materials"][1]["muscle"]["fatigue_floor"] = 0.3;
+    CHECK(problems_of(j).empty());
+    const Experiment tired = parse_experiment(j, "e.json");
+    const auto& u = tired.materials[1].physics.muscle;
+    CHECK(u.fatigue_s == 20.0);
+    CHECK(u.recovery_s == 60.0);
+    CHECK(u.fatigue_floor == 0.3);
+    const json written = experiment_to_json(tired);
+    CHECK(written["materials"][1]["muscle"]["fatigue_s"] == 20.0);
+    CHECK(parse_experiment(written, "again.json") == tired);
+    // Bad values: one line naming the field.
+    json bad = j;
+    bad["materials"][1]["muscle"]["fatigue_s"] = -1.0;
+    CHECK(has(problems_of(bad), "e.json:materials[1].muscle.fatigue_s: must be in [0, 3600]"));
+    bad = j;
+    bad["materials"][1]["muscle"]["fatigue_floor"] = 1.5;
+    CHECK(has(problems_of(bad), "e.json:materials[1].muscle.fatigue_floor: must be in [0, 1]"));
+    bad = j;
+    bad["materials"][1]["muscle"].erase("recovery_s");
+    CHECK(has(problems_of(bad), "e.json:materials[1].muscle.recovery_s: must be > 0 when "
+                                "muscle.fatigue_s is"));
+    bad = j;
+    bad["materials"][1]["muscle"]["fatigue_s"] = 1e-6;
+    CHECK(has(problems_of(bad), "e.json:materials[1].muscle.fatigue_s: must be 0 (no fatigue) or "
+                                "in [0.0001, 3600] s"));
+}

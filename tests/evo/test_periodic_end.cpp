@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/model.hpp"
+#include "engine/muscle.hpp"
 #include "engine/world.hpp"
 #include "evo/evaluate/fitness.hpp"
 #include "evo/evaluate/fitness_json.hpp"
@@ -301,6 +302,29 @@ TEST_CASE("a muscle body's period is its stimulus's, not the sine's frequency") 
     // The sine model keeps its own.
     CHECK(drive_period_s(paper_schedule()) ==
           doctest::Approx(1.0 / paper_schedule().actuation.frequency_hz));
+}
+
+TEST_CASE("a fatiguing muscle is never called periodic: its force fades over the stimulus") {
+    auto e =
+        load_experiment(std::string(BHM_SOURCE_DIR) + "/assets/experiments/muscle-catheter.json");
+    e.simulation.settle_s = 0.5;
+    e.simulation.evaluate_s = 2.0;
+    REQUIRE(PeriodicEnd(e, 1e-4, unit_mass()).enabled());  // fresh: its 0.5 s burst repeats
+    bhm::engine::Muscle& u = e.materials[1].physics.muscle;
+    u.fatigue_s = 5.0;
+    u.recovery_s = 20.0;
+    u.fatigue_floor = 0.5;
+    CHECK(drive_period_s(e) == 0.0);
+    CHECK_FALSE(PeriodicEnd(e, 1e-4, unit_mass()).enabled());
+    // The force left after each burst falls: the motion does not repeat at the burst's period.
+    const double burst = u.train_on_s + u.train_off_s;
+    const double f1 = bhm::engine::muscle::activation(u, burst).fatigue;
+    const double f2 = bhm::engine::muscle::activation(u, 2.0 * burst).fatigue;
+    CHECK(f2 < f1);
+    CHECK(f1 < 1.0);
+    // Fatigue fields without a fatigue time do nothing: the period stays.
+    u.fatigue_s = 0.0;
+    CHECK(drive_period_s(e) == doctest::Approx(0.5));
 }
 
 TEST_CASE("the option is read, written and checked with the experiment") {
