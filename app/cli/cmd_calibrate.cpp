@@ -307,11 +307,11 @@ int cmd_calibrate(const Args& args) {
         .option("--fit", "NAMES", "comma-separated parameters to fit: " + evo::fit_names_help())
         .option("--out", "DIR", "output directory, replaced whole (default: ./calibrate-out)",
                 PathRole::OutputDir)
-        .option("--threads", "N", "simulations at once in the scan and the uncertainty (default: all cores)")
+        .option("--threads", "N",
+                "simulations at once in the scan and the uncertainty (default: all cores)")
         .option("--max-simulations", "N",
                 "budget of the scan's, the optimiser's and the Gauss-Newton polish's "
-                "simulations (default 200; a tenth, at most 4p + 12 for p parameters, is kept "
-                "for the polish)")
+                "simulations (default 200; the polish gets what the optimiser leaves)")
         .flag("--simulate-only", "only simulate the experiment as given at the track's times");
     // Under mpirun every rank but 0 only simulates what rank 0 sends (docs/cluster.md).
     std::unique_ptr<EvolveCluster> cluster;
