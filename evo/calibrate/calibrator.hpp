@@ -25,9 +25,8 @@ bool calibration_available();
 
 struct CalibrationOptions {
     int threads = 0;             //!< worker threads for the Jacobian (0 = all)
-    //! Budget of the scan's, BOBYQA's and the Gauss-Newton polish's simulations; BOBYQA leaves
-    //! the polish a tenth of it (at most two steps' worth, 4p + 12), and the polish also gets
-    //! what BOBYQA leaves unused.
+    //! Budget of the scan's, BOBYQA's and the Gauss-Newton polish's simulations; the polish gets
+    //! what BOBYQA leaves unused (no reserve: calibrator.cpp).
     int max_simulations = 200;
     double x_tolerance = 1e-4;   //!< stop once a step changes no x by more (log units)
     double jacobian_step = 0.01; //!< central-difference step in x

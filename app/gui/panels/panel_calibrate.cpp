@@ -185,6 +185,10 @@ void report(Studio& s) {
                 r.misfit_before_m * 1e3, r.misfit_after_m * 1e3, r.motion_rms_m * 1e3,
                 r.optimiser_simulations + r.jacobian_simulations + 2,
                 format_duration(r.wall_s).c_str());
+    if (r.polish_simulations > 0)
+        ImGui::Text("Gauss-Newton polish: %d step%s, misfit %.4g mm -> %.4g mm (%s)",
+                    r.polish_steps, r.polish_steps == 1 ? "" : "s", r.misfit_before_polish_m * 1e3,
+                    r.misfit_after_m * 1e3, r.polish_stop.c_str());
     for (const auto& w : r.warnings) ImGui::TextColored(ImColor(kWarning), "%s", w.c_str());
     const bool applied = s.calibration.applied_job == snap->job;
     ImGui::BeginDisabled(applied);
