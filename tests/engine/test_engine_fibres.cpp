@@ -12,6 +12,7 @@
 #include "engine/muscle.hpp"
 #include "engine/poses.hpp"
 #include "engine_test_bodies.hpp"
+#include "muscle_test_support.hpp"
 #include "support/relative_approx.hpp"
 
 using namespace bhm::engine;
@@ -162,18 +163,10 @@ TEST_CASE(
 
 TEST_CASE("fibres per voxel: bad entries are refused with the field named") {
     BodySpec s = solid_box(2, 1, 1, muscle_material(0, 0.35, 0.1));
-    auto refusal = [](const BodySpec& spec) {
-        try {
-            Model::build(spec);
-        } catch (const std::invalid_argument& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
     s.fibre_axis = {0, 3};
-    CHECK(refusal(s).find("fibre_axis[1]") != std::string::npos);
+    CHECK(build_refusal(s).find("fibre_axis[1]") != std::string::npos);
     s.fibre_axis = {0};
-    CHECK(refusal(s).find("fibre_axis has 1 entries, expected 0 or 2") != std::string::npos);
+    CHECK(build_refusal(s).find("fibre_axis has 1 entries, expected 0 or 2") != std::string::npos);
     s.fibre_axis = {2, kMaterialFibreAxis};
-    CHECK(refusal(s).empty());
+    CHECK(build_refusal(s).empty());
 }

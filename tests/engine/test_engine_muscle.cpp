@@ -14,6 +14,7 @@
 #include "engine/muscle.hpp"
 #include "engine/poses.hpp"
 #include "engine_test_bodies.hpp"
+#include "muscle_test_support.hpp"
 #include "support/relative_approx.hpp"
 
 using namespace bhm::engine;
@@ -21,17 +22,6 @@ using namespace bhm::engine::test;
 using bhm::test::relative;
 
 namespace {
-
-// u(t) of a pulse train, written out directly (not through the engine's affine maps).
-bool pulse_on(const Muscle& m, double t) {
-    if (t < 0.0) return false;
-    if (m.train_on_s > 0.0 && m.train_off_s > 0.0) {
-        const double in_burst = std::fmod(t, m.train_on_s + m.train_off_s);
-        if (in_burst >= m.train_on_s) return false;
-        t = in_burst;
-    }
-    return std::fmod(t, 1.0 / m.frequency_hz) < m.pulse_width_s;
-}
 
 // The activation ODE marched with RK4 at step h (u held over each step, the step a divisor of the
 // pulse width and period so that no step straddles a switch).
@@ -280,20 +270,12 @@ TEST_CASE("muscle: at nu 0.35 the strip bends as Timoshenko's bilayer, and fibre
 
 TEST_CASE("muscle: bad muscle input is refused with the field named") {
     Muscle m = skeletal();
-    auto refusal = [](const BodySpec& s) {
-        try {
-            Model::build(s);
-        } catch (const std::invalid_argument& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
     BodySpec s = solid_box(2, 1, 1, muscle_material(m, 0.35));
     s.materials[0].muscle.rise_s = 0.0;
-    CHECK(refusal(s).find("materials[0].muscle.rise_s must be in") != std::string::npos);
+    CHECK(build_refusal(s).find("materials[0].muscle.rise_s must be in") != std::string::npos);
     s.materials[0].muscle = m;
     s.materials[0].cte_per_c = 0.01;
-    CHECK(refusal(s).find("materials[0].cte_per_c must be 0 under the muscle model") !=
+    CHECK(build_refusal(s).find("materials[0].cte_per_c must be 0 under the muscle model") !=
           std::string::npos);
     // Sine and muscle in one body.
     s = solid_box(2, 1, 1, muscle_material(m, 0.35));
@@ -301,11 +283,11 @@ TEST_CASE("muscle: bad muscle input is refused with the field named") {
     sine.cte_per_c = 0.01;
     s.materials.push_back(sine);
     s.material[1] = 2;
-    CHECK(refusal(s).find("materials[0].actuation_model is muscle but materials[1] is active "
+    CHECK(build_refusal(s).find("materials[0].actuation_model is muscle but materials[1] is active "
                           "under the sine model") != std::string::npos);
     // Unused, it does not matter.
     s.material[1] = 1;
-    CHECK(refusal(s).empty());
+    CHECK(build_refusal(s).empty());
     // A third distinct signal.
     s = solid_box(3, 1, 1, muscle_material(m, 0.35));
     for (int k = 1; k < 3; ++k) {
@@ -314,11 +296,11 @@ TEST_CASE("muscle: bad muscle input is refused with the field named") {
         s.materials.push_back(other);
         s.material[k] = static_cast<std::uint8_t>(k + 1);
     }
-    CHECK(refusal(s).find("materials[2].muscle is a third distinct muscle signal") !=
+    CHECK(build_refusal(s).find("materials[2].muscle is a third distinct muscle signal") !=
           std::string::npos);
     // Two materials of one signal (other fibres, other strain) share it.
     s.materials[2].muscle = m;
     s.materials[2].muscle.fibre_axis = 2;
     s.materials[2].muscle.contraction_strain = 0.05;
-    CHECK(refusal(s).empty());
+    CHECK(build_refusal(s).empty());
 }

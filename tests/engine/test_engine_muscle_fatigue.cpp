@@ -10,22 +10,12 @@
 
 #include "engine/muscle.hpp"
 #include "engine_test_bodies.hpp"
+#include "muscle_test_support.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
 
 namespace {
-
-// u(t) of a pulse train, written out directly (not through the engine's affine maps).
-bool pulse_on(const Muscle& m, double t) {
-    if (t < 0.0) return false;
-    if (m.train_on_s > 0.0 && m.train_off_s > 0.0) {
-        const double in_burst = std::fmod(t, m.train_on_s + m.train_off_s);
-        if (in_burst >= m.train_on_s) return false;
-        t = in_burst;
-    }
-    return std::fmod(t, 1.0 / m.frequency_hz) < m.pulse_width_s;
-}
 
 // a and f marched together with RK4 at step h (u held over each step; the step divides the pulse
 // width, the period and the burst so that no step straddles a switch). Returns a f.
