@@ -2,13 +2,13 @@
 """Champions against the continuum (issue 40): how true the engine is where evolution goes.
 
 For each paper preset, N short runs (a shortened copy of the preset: population 10, G
-generations, 0.25 s settle + 1.25 s evaluation, seeds 1..N) each hand over their champion, and
+generations, 0.25 s settle + 1.25 s evaluation, seeds 1..N, or from --first-seed) each hand over their champion, and
 `bhm verify` compares that body, under the preset's own experiment, with CalculiX at rest and at
 +A and -A (docs/verify.md). One row per champion: the verdict's measure, ours / CalculiX on the
 tip and the centre of mass (vertical component, signed: > 0 is ours moving more) at rest, +A
 and -A, and the verdict's worst relative difference (its own measures, docs/verify.md).
 
-    tests/bench/champions_truth.py [--build build] [--per-preset 10] [--generations 3]
+    tests/bench/champions_truth.py [--build build] [--per-preset 10] [--first-seed 1] [--generations 3]
                                    [--presets paper-exp1,...] [--work DIR] [--csv PATH]
                                    [-- extra bhm verify options, e.g. --no-mesh-error]
 
@@ -65,6 +65,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default="build")
     p.add_argument("--per-preset", type=int, default=10)
+    p.add_argument("--first-seed", type=int, default=1,
+                   help="seeds first-seed .. first-seed + per-preset - 1 (to add champions to a table)")
     p.add_argument("--generations", type=int, default=3)
     p.add_argument("--presets", default=",".join(PRESETS))
     p.add_argument("--work")
@@ -85,7 +87,7 @@ def main():
             sys.exit(f"champions_truth.py: --presets: no preset {preset_path}")
         short = os.path.join(work, preset + "-short.json")
         shortened(preset_path, short, a.generations)
-        for seed in range(1, a.per_preset + 1):
+        for seed in range(a.first_seed, a.first_seed + a.per_preset):
             run_dir = os.path.join(work, f"{preset}-{seed}")
             body = run_dir + ".body.json"
             report_dir = run_dir + "-verify"
