@@ -65,6 +65,13 @@ glm::vec3 hue_wheel(float t) {
     return rgb + glm::vec3(m);
 }
 
+// Categories, not a scale: the three lattice axes as the axes gizmo draws them.
+glm::vec3 axis_colour(float t) {
+    if (!(t >= 1.0f / 3.0f)) return {0.84f, 0.26f, 0.20f};  // x (NaN included)
+    if (t < 2.0f / 3.0f) return {0.24f, 0.64f, 0.30f};      // y
+    return {0.22f, 0.42f, 0.86f};                           // z
+}
+
 }  // namespace
 
 float ScalarRange::normalize(float value) const {
@@ -89,6 +96,8 @@ glm::vec4 sample_color_map(ColorMapName map, float t) {
             return glm::vec4(interpolate(kDiverging, t), 1.0f);
         case ColorMapName::Cyclic:
             return glm::vec4(hue_wheel(t), 1.0f);
+        case ColorMapName::Axes:
+            return glm::vec4(axis_colour(t), 1.0f);
         case ColorMapName::Sequential:
         default:
             return glm::vec4(interpolate(kSequential, t), 1.0f);
@@ -99,6 +108,7 @@ std::optional<ColorMapName> parse_color_map(const std::string& name) {
     if (name == "sequential") return ColorMapName::Sequential;
     if (name == "diverging") return ColorMapName::Diverging;
     if (name == "cyclic") return ColorMapName::Cyclic;
+    if (name == "axes") return ColorMapName::Axes;
     return std::nullopt;
 }
 
@@ -108,6 +118,8 @@ const char* color_map_name(ColorMapName map) {
             return "diverging";
         case ColorMapName::Cyclic:
             return "cyclic";
+        case ColorMapName::Axes:
+            return "axes";
         case ColorMapName::Sequential:
         default:
             return "sequential";

@@ -14,6 +14,7 @@ enum class ColorMapName : std::uint8_t {
     Sequential,  //!< dark blue -> teal -> yellow: magnitudes (displacement)
     Diverging,   //!< blue -> white -> red: signed values around zero (strain)
     Cyclic,      //!< hue wheel that wraps: angles (actuation phase)
+    Axes,        //!< three flat colours, x red, y green, z blue: a lattice axis 0, 1, 2 over [0, 2]
 };
 
 struct ScalarRange {

@@ -110,6 +110,11 @@ void add_body(const Scene& scene, DrawList& list) {
         throw std::invalid_argument("render: voxel_scalar has " +
                                     std::to_string(options.voxel_scalar.size()) +
                                     " values, the body has " + std::to_string(n) + " voxels");
+    if (by_scalar && !options.voxel_without_scalar.empty() &&
+        static_cast<int>(options.voxel_without_scalar.size()) != n)
+        throw std::invalid_argument("render: voxel_without_scalar has " +
+                                    std::to_string(options.voxel_without_scalar.size()) +
+                                    " flags, the body has " + std::to_string(n) + " voxels");
     std::vector<BoxInstance> placed;
     placed.reserve(static_cast<std::size_t>(n));
     for (int v = 0; v < n; ++v) {
@@ -118,7 +123,9 @@ void add_body(const Scene& scene, DrawList& list) {
         const glm::vec4 base =
             material_color(scene, body.voxel_material[static_cast<std::size_t>(v)]);
         box.color = base;
-        if (by_scalar) {
+        const bool has_scalar = options.voxel_without_scalar.empty() ||
+                                !options.voxel_without_scalar[static_cast<std::size_t>(v)];
+        if (by_scalar && has_scalar) {
             box.color = sample_color_map(
                 options.color_map,
                 options.scalar_range.normalize(options.voxel_scalar[static_cast<std::size_t>(v)]));

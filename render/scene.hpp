@@ -46,6 +46,9 @@ enum class ColorMode : std::uint8_t { Material, Scalar };
 struct SceneOptions {
     ColorMode color_mode = ColorMode::Material;
     std::vector<float> voxel_scalar;  //!< (n) one value per voxel, for ColorMode::Scalar
+    //! (n) or empty: 1 = the voxel keeps its material colour under ColorMode::Scalar (a field
+    //! that some voxels do not have, e.g. the fibre axis of a passive voxel)
+    std::vector<std::uint8_t> voxel_without_scalar;
     ScalarRange scalar_range;         //!< values mapped onto the colour map's [0, 1]
     ColorMapName color_map = ColorMapName::Sequential;
 

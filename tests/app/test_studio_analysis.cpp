@@ -103,6 +103,45 @@ TEST_CASE("studio analysis: bend angle, tip and centre of mass of a rotated rod"
     CHECK(settling.values[1] == 0.0f);
 }
 
+TEST_CASE("studio analysis: the fibre axis colour mode shows each muscle voxel's own axis") {
+    // Issue 43: fibres per voxel. A 4 x 1 x 1 rod: passive, muscle with its own axis z, muscle
+    // with the material's (y), muscle with its own axis x.
+    const int n = 4;
+    auto e = testing::tiny_experiment({n, 1, 1});
+    auto& muscle = e.materials[1].physics;
+    muscle.cte_per_c = 0.0;
+    muscle.actuation_model = engine::ActuationModel::Muscle;
+    muscle.muscle.contraction_strain = 0.1;
+    muscle.muscle.fibre_axis = 1;
+    evo::Body body;
+    body.size = {n, 1, 1};
+    body.cells = {1, 2, 2, 2};
+    body.fibre = {engine::kMaterialFibreAxis, 2, engine::kMaterialFibreAxis, 0};
+    auto r = rod_replay(n, 0.01, 0.1);
+    r.voxel_material = {1, 2, 2, 2};
+    r.frames = {rod_frame(n, 0.01, 0.0, 0.0), rod_frame(n, 0.01, 0.1, 0.0)};
+    const VoxelDrive drive = voxel_drive(e, body, r);
+    CHECK(drive.fibre_axis == std::vector<std::int8_t>{-1, 2, 1, 0});
+    const auto s = body_time_series(e, r, std::vector<glm::vec3>(r.frames.size()));
+    const auto field = voxel_scalars(ColorBy::FibreAxis, e, r, 1, s, drive);
+    CHECK(field.without == std::vector<std::uint8_t>{1, 0, 0, 0});
+    CHECK(field.map == render::ColorMapName::Axes);
+    // x, y, z are three different colours, each the axes map's at its place in the range.
+    std::vector<glm::vec4> colours;
+    for (int v = 1; v < n; ++v)
+        colours.push_back(
+            render::sample_color_map(field.map, field.range.normalize(field.values[v])));
+    CHECK(colours[0] == render::sample_color_map(render::ColorMapName::Axes, 1.0f));  // z
+    CHECK(colours[1] == render::sample_color_map(render::ColorMapName::Axes, 0.5f));  // y
+    CHECK(colours[2] == render::sample_color_map(render::ColorMapName::Axes, 0.0f));  // x
+    CHECK(colours[0] != colours[1]);
+    CHECK(colours[1] != colours[2]);
+    CHECK(colours[0] != colours[2]);
+    // A body without its own fibres: every muscle voxel takes its material's axis.
+    body.fibre.clear();
+    CHECK(voxel_drive(e, body, r).fibre_axis == std::vector<std::int8_t>{-1, 1, 1, 1});
+}
+
 TEST_CASE("studio analysis: a replay holding a huge finite value gets a finite colour bar") {
     // Issue 41: 3.4e38 (a float's largest) in a voxel's position and size made the colour ranges
     // +inf and "-inf to inf": they were found in float.

@@ -242,6 +242,17 @@ TEST_CASE("scalar colouring maps each voxel's value through the colour map and a
           sample_color_map(ColorMapName::Sequential, 1.0f));  // clamped
     REQUIRE(list.legend);
     CHECK(list.legend->range.max == 10.0f);
+    // A voxel without the field (a passive voxel's fibre axis) keeps its material colour.
+    scene.options.voxel_without_scalar = {0, 1, 0};
+    const DrawList partial = build_draw_list(scene);
+    CHECK(box_of_voxel(partial, 0).color == sample_color_map(ColorMapName::Sequential, 0.0f));
+    CHECK(box_of_voxel(partial, 1).color == box_of_voxel(build_draw_list(row_scene(3)), 1).color);
+    CHECK(box_of_voxel(partial, 1).color != sample_color_map(ColorMapName::Sequential, 0.5f));
+    scene.options.voxel_without_scalar.pop_back();
+    CHECK_THROWS_WITH_AS(build_draw_list(scene),
+                         doctest::Contains("voxel_without_scalar has 2 flags"),
+                         std::invalid_argument);
+    scene.options.voxel_without_scalar.clear();
     scene.options.voxel_scalar.pop_back();
     CHECK_THROWS_WITH_AS(build_draw_list(scene), doctest::Contains("voxel_scalar has 2 values"),
                          std::invalid_argument);

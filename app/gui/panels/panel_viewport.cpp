@@ -242,9 +242,8 @@ void mouse(Studio& s, glm::vec2 local, bool hovered) {
 
 // The colour map of the scalar field with its range, at the right edge of the view.
 void color_bar(const Studio& s, const SimulatedBody& b, ImVec2 origin, ImVec2 size) {
-    const auto field =
-        voxel_scalars(s.view.color_by, b.experiment, b.replay,
-                      frame_index_at(b.replay, s.clock.time_s), b.series, b.voxel_phase_rad);
+    const auto field = voxel_scalars(s.view.color_by, b.experiment, b.replay,
+                                     frame_index_at(b.replay, s.clock.time_s), b.series, b.drive);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const float w = 14.0f, h = std::min(220.0f, size.y * 0.5f);
     const ImVec2 lo{origin.x + size.x - w - 70.0f, origin.y + 40.0f};
@@ -364,9 +363,13 @@ void overlay(Studio& s, ImVec2 origin, ImVec2 size) {
     if (s.view.mode == ViewMode::Simulation) {
         if (const auto r = inspected_voxel(s)) {
             char first[160], second[160];
-            std::snprintf(first, sizeof first, "voxel (%d, %d, %d): material %d %s%s",
-                          r->cell[0], r->cell[1], r->cell[2], r->material,
-                          r->material_name.c_str(), r->held ? ", held" : "");
+            static constexpr const char* kAxis[3] = {"x", "y", "z"};
+            const std::string fibre = r->fibre_axis >= 0 && r->fibre_axis < 3
+                                          ? std::string(", fibres along ") + kAxis[r->fibre_axis]
+                                          : std::string();
+            std::snprintf(first, sizeof first, "voxel (%d, %d, %d): material %d %s%s%s", r->cell[0],
+                          r->cell[1], r->cell[2], r->material, r->material_name.c_str(),
+                          r->held ? ", held" : "", fibre.c_str());
             std::snprintf(second, sizeof second,
                           "displacement %.3f voxels   strain %+.4f   actuation %+.3f",
                           r->displacement_vox, r->strain, r->actuation);

@@ -105,7 +105,8 @@ BodyTimeSeries body_time_series(const evo::Experiment& e, const engine::Replay& 
 }
 
 VoxelScalars voxel_scalars(ColorBy by, const evo::Experiment& e, const engine::Replay& r, int frame,
-                           const BodyTimeSeries& series, const std::vector<float>& phases) {
+                           const BodyTimeSeries& series, const VoxelDrive& drive) {
+    const std::vector<float>& phases = drive.phase_rad;
     VoxelScalars out;
     const std::size_t n = r.voxel_cell.size();
     out.values.assign(n, 0.0f);
@@ -152,20 +153,41 @@ VoxelScalars voxel_scalars(ColorBy by, const evo::Experiment& e, const engine::R
             out.unit = "signal";
             break;
         }
+        case ColorBy::FibreAxis: {
+            out.without.assign(n, 0);
+            for (std::size_t v = 0; v < n; ++v) {
+                const int axis = v < drive.fibre_axis.size() ? drive.fibre_axis[v] : -1;
+                out.values[v] = axis >= 0 ? static_cast<float>(axis) : 0.0f;
+                out.without[v] = axis >= 0 ? 0 : 1;
+            }
+            out.range = {0.0f, 2.0f};
+            out.map = render::ColorMapName::Axes;
+            out.unit = "x  y  z";
+            break;
+        }
         case ColorBy::Material:
             break;
     }
     return out;
 }
 
-std::vector<float> voxel_phases(const evo::Experiment& e, const evo::Body& framed_body,
-                                const engine::Replay& r) {
+VoxelDrive voxel_drive(const evo::Experiment& e, const evo::Body& framed_body,
+                       const engine::Replay& r) {
     const auto spec = evo::make_body_spec(e, framed_body, e.evolution.seed);
-    std::vector<float> out(r.voxel_cell.size(), 0.0f);
-    if (spec.phase_rad.empty()) return out;
-    for (std::size_t v = 0; v < out.size(); ++v) {
+    VoxelDrive out;
+    out.phase_rad.assign(r.voxel_cell.size(), 0.0f);
+    out.fibre_axis.assign(r.voxel_cell.size(), -1);
+    for (std::size_t v = 0; v < r.voxel_cell.size(); ++v) {
         const auto c = static_cast<std::size_t>(r.voxel_cell[v]);
-        if (c < spec.phase_rad.size()) out[v] = spec.phase_rad[c];
+        if (c < spec.phase_rad.size()) out.phase_rad[v] = spec.phase_rad[c];
+        const int m = c < spec.material.size() ? spec.material[c] : 0;
+        if (m < 1 || m > static_cast<int>(spec.materials.size())) continue;
+        const engine::Material& material = spec.materials[static_cast<std::size_t>(m - 1)];
+        if (material.actuation_model != engine::ActuationModel::Muscle) continue;
+        const bool own =
+            c < spec.fibre_axis.size() && spec.fibre_axis[c] != engine::kMaterialFibreAxis;
+        out.fibre_axis[v] =
+            static_cast<std::int8_t>(own ? spec.fibre_axis[c] : material.muscle.fibre_axis);
     }
     return out;
 }

@@ -4,6 +4,7 @@
 // simulate plots). Computed once per simulated body on the simulator's worker thread (the frames
 // are immutable after that) except the per-frame colours, which are cheap.
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,9 +16,9 @@
 
 namespace bhm::app::gui {
 
-enum class ColorBy { Material, Displacement, Strain, Actuation };
-inline constexpr std::array<const char*, 4> kColorByNames = {"material", "displacement", "strain",
-                                                             "actuation"};
+enum class ColorBy { Material, Displacement, Strain, Actuation, FibreAxis };
+inline constexpr std::array<const char*, 5> kColorByNames = {"material", "displacement", "strain",
+                                                             "actuation", "fibre axis"};
 
 //! Time series over the replay frames, from the end of settling as the fitness measures are:
 //! centre-of-mass displacement per axis and the tip's displacement in voxel lengths, and the
@@ -43,19 +44,29 @@ BodyTimeSeries body_time_series(const evo::Experiment& experiment, const engine:
 //!  - displacement: |p(t) - p(0)| in voxel lengths (sequential, 0 .. the replay's maximum);
 //!  - strain: volumetric strain sx*sy*sz / L^3 - 1 (diverging, symmetric range);
 //!  - actuation: the actuation signal sin(2 pi f (t - settle) + phase) of active voxels, 0 for
-//!    passive ones and while settling (diverging, -1 .. 1).
+//!    passive ones and while settling (diverging, -1 .. 1);
+//!  - fibre axis: 0, 1, 2 (x, y, z) for a muscle voxel, its own axis or its material's (issue 43:
+//!    fibres per voxel); voxels that are not muscle keep their material colour (without).
 struct VoxelScalars {
     std::vector<float> values;
+    std::vector<std::uint8_t> without;  //!< empty, or 1 where a voxel has no value (see above)
     render::ScalarRange range;
     render::ColorMapName map = render::ColorMapName::Sequential;
     const char* unit = "";
 };
+//! What drives each replay voxel, from its body spec (static over the replay).
+struct VoxelDrive {
+    std::vector<float> phase_rad;  //!< actuation phase (0 for uniform phases)
+    //! fibre axis 0..2 of a muscle voxel (its own, else its material's); -1 for any other voxel
+    std::vector<std::int8_t> fibre_axis;
+};
+
 VoxelScalars voxel_scalars(ColorBy by, const evo::Experiment& experiment,
                            const engine::Replay& replay, int frame, const BodyTimeSeries& series,
-                           const std::vector<float>& voxel_phase_rad);
+                           const VoxelDrive& drive);
 
-//! Actuation phase per replay voxel (0 for uniform phases), as evo::make_body_spec draws them.
-std::vector<float> voxel_phases(const evo::Experiment& experiment, const evo::Body& framed_body,
-                                const engine::Replay& replay);
+//! Phase and fibre axis per replay voxel, as evo::make_body_spec draws them.
+VoxelDrive voxel_drive(const evo::Experiment& experiment, const evo::Body& framed_body,
+                       const engine::Replay& replay);
 
 }  // namespace bhm::app::gui

@@ -65,7 +65,7 @@ SimulatedBody simulate_body(const SimulationRequest& request, const std::atomic<
     out.fitness = evo::fitness_under(sim.report, experiment.fitness.measure);
     // Analysis data, once, here on the worker: the UI only reads it.
     out.series = body_time_series(experiment, out.replay, out.com_m);
-    out.voxel_phase_rad = voxel_phases(experiment, *request.framed_body, out.replay);
+    out.drive = voxel_drive(experiment, *request.framed_body, out.replay);
     out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

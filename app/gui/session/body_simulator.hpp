@@ -48,7 +48,7 @@ struct SimulatedBody {
     std::string divergence_reason;
     double wall_s = 0.0;
     BodyTimeSeries series;               //!< per frame: COM, tip, bend angle (Analysis plots)
-    std::vector<float> voxel_phase_rad;  //!< actuation phase per replay voxel (colour mode)
+    VoxelDrive drive;  //!< actuation phase and fibre axis per replay voxel (colour modes)
     double bend_angle_deg() const {
         return measures[static_cast<int>(evo::FitnessMeasure::BendAngleDeg)];
     }

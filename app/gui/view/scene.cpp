@@ -197,12 +197,18 @@ render::Scene simulation_scene(const SimulatedBody& simulated, double t_s, const
     if (view.color_by != ColorBy::Material && !replay.frames.empty()) {
         // A scalar field over the voxels (displacement, strain, actuation), on the drawn ones.
         const auto field = voxel_scalars(view.color_by, e, replay, frame_index_at(replay, t_s),
-                                         simulated.series, simulated.voxel_phase_rad);
+                                         simulated.series, simulated.drive);
         scene.options.color_mode = render::ColorMode::Scalar;
         scene.options.voxel_scalar.reserve(n);
         for (std::size_t k = 0; k < n; ++k)
             scene.options.voxel_scalar.push_back(
                 field.values[all ? k : static_cast<std::size_t>(simulated.surface_voxels[k])]);
+        if (!field.without.empty()) {
+            scene.options.voxel_without_scalar.reserve(n);
+            for (std::size_t k = 0; k < n; ++k)
+                scene.options.voxel_without_scalar.push_back(
+                    field.without[all ? k : static_cast<std::size_t>(simulated.surface_voxels[k])]);
+        }
         scene.options.scalar_range = field.range;
         scene.options.color_map = field.map;
     }

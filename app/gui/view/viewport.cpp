@@ -229,11 +229,12 @@ std::optional<VoxelReading> inspected_voxel(const Studio& s) {
     // The values the colour modes show at this time (one source for both).
     const int frame = frame_index_at(r, s.clock.time_s);
     auto value = [&](ColorBy by) {
-        return voxel_scalars(by, b.experiment, r, frame, b.series, b.voxel_phase_rad).values[v];
+        return voxel_scalars(by, b.experiment, r, frame, b.series, b.drive).values[v];
     };
     out.displacement_vox = value(ColorBy::Displacement);
     out.strain = value(ColorBy::Strain);
     out.actuation = value(ColorBy::Actuation);
+    out.fibre_axis = v < b.drive.fibre_axis.size() ? b.drive.fibre_axis[v] : -1;
     return out;
 }
 

@@ -49,6 +49,7 @@ struct VoxelReading {
     float displacement_vox = 0.0f;  //!< from t = 0, voxel lengths
     float strain = 0.0f;            //!< volumetric
     float actuation = 0.0f;         //!< the signal, -1 .. 1 (0 for passive voxels, settling)
+    int fibre_axis = -1;            //!< 0..2 = x..z for a muscle voxel, -1 otherwise
 };
 //! Empty when no voxel is inspected or the body shown is no longer the one it was picked on.
 std::optional<VoxelReading> inspected_voxel(const Studio& studio);
