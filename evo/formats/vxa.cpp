@@ -164,7 +164,12 @@ std::string vxa_document(const Experiment& e, const Body& body) {
     for (std::size_t at = json.find("]]>"); at != std::string::npos;
          at = json.find("]]>", at + split.size()))
         json.replace(at, 3, split);
-    o << "<BHM_Experiment><![CDATA[" << json << "]]></BHM_Experiment>\n</VXA>\n";
+    o << "<BHM_Experiment><![CDATA[" << json << "]]></BHM_Experiment>\n";
+    // A body's own fibre axes (issue 43), which VXA cannot express: the body file's "fibres"
+    // layers (only 'x', 'y', 'z', '.', so never "]]>").
+    if (const nlohmann::json b = body_to_json(body); b.contains("fibres"))
+        o << "<BHM_Fibres><![CDATA[" << b["fibres"].dump() << "]]></BHM_Fibres>\n";
+    o << "</VXA>\n";
     return o.str();
 }
 

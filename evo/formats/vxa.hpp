@@ -6,7 +6,8 @@
 // locale (engine::format_number). VXA 1.0 cannot express the settle delay before actuation or
 // per-voxel fixed overrides; an XML comment in the file mentions the settle delay, and a
 // <BHM_Experiment> element (ignored by VoxCAD) holds the whole experiment as JSON so that
-// evo/formats/vxa_import.hpp reads our own files back exactly.
+// evo/formats/vxa_import.hpp reads our own files back exactly; a body with its own fibre axes
+// (issue 43; Voxelyze has no muscle model) adds them as <BHM_Fibres>, the body file's "fibres".
 #include <string>
 
 #include "evo/experiment/experiment.hpp"

@@ -469,6 +469,19 @@ VxaImport parse_vxa(const std::string& text, const std::string& label) {
     Experiment& e = out.experiment;
     // Our own export carries the whole experiment; if the rest of the file is exactly what we
     // would write for it, it is the experiment (exact round trip).
+    // A body's own fibre axes from our export (<BHM_Fibres>, the body file's "fibres" layers),
+    // checked as a body file's are.
+    auto with_fibres = [&](Body body) {
+        const XmlNode* fibres = root->child("BHM_Fibres");
+        if (!fibres) return body;
+        nlohmann::json file = body_to_json(body);
+        try {
+            file["fibres"] = nlohmann::json::parse(fibres->text);
+        } catch (const nlohmann::json::exception&) {
+            r.fail("BHM_Fibres", "not a JSON array of fibre layers");
+        }
+        return parse_body(file, label + " <BHM_Fibres>");
+    };
     if (const XmlNode* ours = root->child("BHM_Experiment")) {
         try {
             const Experiment embedded =
@@ -480,7 +493,7 @@ VxaImport parse_vxa(const std::string& text, const std::string& label) {
                 return m;
             }();
             VxaReader quiet(label);
-            const Body body = read_structure(quiet, vxc->child("Structure"), identity);
+            const Body body = with_fibres(read_structure(quiet, vxc->child("Structure"), identity));
             if (without_space(vxa_document(embedded, body)) == without_space(text)) {
                 out.experiment = embedded;
                 out.body = body;
@@ -503,7 +516,7 @@ VxaImport parse_vxa(const std::string& text, const std::string& label) {
 
     read_lattice(r, vxc, e);
     const auto index_of_id = read_palette(r, vxc->child("Palette"), e);
-    out.body = read_structure(r, vxc->child("Structure"), index_of_id);
+    out.body = with_fibres(read_structure(r, vxc->child("Structure"), index_of_id));
     e.workspace_size = out.body.size;
     double stop_s = -1.0, init_cm_s = 0.0;
     if (root->name == "VXA") {

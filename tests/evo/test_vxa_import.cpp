@@ -251,6 +251,40 @@ TEST_CASE("our own export reads back exactly, with any number of materials") {
     }
 }
 
+TEST_CASE("our own export keeps a body's own fibre axes (issue 43)") {
+    auto e = test::tiny_experiment({3, 2, 2});
+    auto& muscle = e.materials[1].physics;
+    muscle.cte_per_c = 0.0;
+    muscle.actuation_model = bhm::engine::ActuationModel::Muscle;
+    muscle.muscle.contraction_strain = 0.1;
+    REQUIRE(validate_experiment(e, "e").empty());
+    Body body;
+    body.size = {3, 2, 2};
+    body.cells = {1, 2, 2, 2, 0, 1, 2, 2, 1, 0, 2, 2};
+    constexpr std::uint8_t m = bhm::engine::kMaterialFibreAxis;
+    body.fibre = {m, 0, 2, 1, m, m, m, m, m, m, 2, 0};
+    const std::string text = vxa_document(e, body);
+    CHECK(text.find("<BHM_Fibres>") != std::string::npos);
+    const VxaImport in = parse_vxa(text, "fibres.vxa");
+    CHECK(in.had_bhm_experiment);
+    CHECK(in.body == body);
+    CHECK(in.body.fibre == body.fibre);
+    // Without the embedded experiment (a VoxCAD user kept our fibres element): still read.
+    std::string plain = text;
+    plain.erase(plain.find("<BHM_Experiment>"),
+                plain.find("</BHM_Experiment>") + 17 - plain.find("<BHM_Experiment>"));
+    CHECK(parse_vxa(plain, "plain.vxa").body.fibre == body.fibre);
+    // A body without its own axes writes no element, as before.
+    body.fibre.clear();
+    CHECK(vxa_document(e, body).find("BHM_Fibres") == std::string::npos);
+    // A broken element is refused with the file and the field.
+    std::string broken = text;
+    const auto at = broken.find("<BHM_Fibres><![CDATA[") + 21;
+    broken.replace(at, 1, "{");
+    CHECK_THROWS_WITH_AS(parse_vxa(broken, "broken.vxa"), doctest::Contains("BHM_Fibres"),
+                         std::runtime_error);
+}
+
 TEST_CASE("broken VXA files fail with the file and the field") {
     const auto fails_with = [](const std::string& text, const std::string& needle) {
         try {
