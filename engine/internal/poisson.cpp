@@ -35,8 +35,11 @@ namespace {
 
 constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half-link
 
-// 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp).
-constexpr float kInverseSaturation = 1.0f / 0.1f;
+// 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp). 0.2, the largest
+// that keeps the envelope's framed and banded bodies stable at cte A = 0.6 (0.3 lets the banded
+// block squeeze a link to L / 10); at 0.1 the saturation already softened the paper's own 14.5 %
+// actuation in a framed body (docs/physics.md).
+constexpr float kInverseSaturation = 1.0f / 0.2f;
 
 // lambda of an octant whose linked axes are flagged hx, hy, hz (each 0 or 1), branch-free.
 inline float octant_lambda(float hx, float hy, float hz, float lambda1, float lambda2,

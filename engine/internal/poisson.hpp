@@ -35,8 +35,8 @@
 // At large strains (an active region held by a passive frame or the clamp, contracted to
 // 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link
 // past zero length; it saturates instead, lambda theta / sqrt(1 + (theta / theta_0)^2) with
-// theta_0 = 0.1 (energy lambda theta_0^2 (sqrt(1 + (theta / theta_0)^2) - 1), still convex;
-// 0.5 % below linear at a volume strain of 0.01).
+// theta_0 = 0.2 (energy lambda theta_0^2 (sqrt(1 + (theta / theta_0)^2) - 1), still convex;
+// 0.5 % below linear at a volume strain of 0.02, 11 % at 0.1).
 //
 // The coupling is applied as a shift of each link's rest length, computed from the current
 // positions before the link passes (no lag: a lagged coupling feeds energy into the volumetric
