@@ -174,7 +174,7 @@ Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count) {
     return genome;
 }
 
-nlohmann::json genome_to_json(const Genome& genome) {
+nlohmann::json genome_to_json(const Genome& genome, int fibre_outputs) {
     nlohmann::json hidden = nlohmann::json::array();
     for (auto f : genome.hidden)
         hidden.push_back(kActivationNames[static_cast<std::size_t>(f)]);
@@ -185,12 +185,17 @@ nlohmann::json genome_to_json(const Genome& genome) {
         else
             edges.push_back({e.from, e.to, e.weight});
     }
+    const int fibres =
+        std::clamp(fibre_outputs, 0, std::max(0, genome.output_count - kOutputCount));
+    const int material_outputs = genome.output_count - fibres;
     nlohmann::json outputs = {"material", "active"};
-    if (genome.output_count != kOutputCount) {
+    if (material_outputs != kOutputCount) {
         outputs = {"material"};
-        for (int k = 1; k < genome.output_count; ++k)
+        for (int k = 1; k < material_outputs; ++k)
             outputs.push_back("material_" + std::to_string(k));
     }
+    for (int k = 0; k < fibres; ++k)
+        outputs.push_back(std::string("fibre_") + "xyz"[k % 3]);
     nlohmann::json out = {{"inputs", {"x", "y", "z", "d", "bias"}},
                           {"outputs", outputs},
                           {"hidden", hidden},

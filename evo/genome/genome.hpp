@@ -98,7 +98,10 @@ std::vector<int> topological_order(const Genome& genome);
 //! construction (edges only go from earlier to later nodes). output_count as Genome's.
 Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count = kOutputCount);
 
-nlohmann::json genome_to_json(const Genome& genome);
+//! fibre_outputs: how many of the last outputs are the fibre axis ones (3 under
+//! evolution.cppn.fibre_outputs, else 0): "outputs" then names them fibre_x, fibre_y, fibre_z
+//! (names are for the reader; genome_from_json takes only their count).
+nlohmann::json genome_to_json(const Genome& genome, int fibre_outputs = 0);
 //! Throws std::invalid_argument naming the field when the JSON is not a well-formed genome.
 Genome genome_from_json(const nlohmann::json& json, double weight_range);
 

@@ -46,7 +46,9 @@ RunState read_run_state(const json& j, const std::string& label, Wanted wanted) 
 }  // namespace
 
 json run_state_to_json(const RunState& s) {
-    return write_fields(run_state_fields(), s, CheckpointContext{});
+    CheckpointContext context;
+    context.fibre_outputs = s.experiment.evolution.cppn.fibre_outputs ? 3 : 0;
+    return write_fields(run_state_fields(), s, context);
 }
 
 RunState run_state_from_json(const json& j, const std::string& label) {

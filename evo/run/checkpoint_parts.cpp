@@ -23,8 +23,8 @@ constexpr const char* kBeforeEarlyEnd =
 
 // --- a member of the population ----------------------------------------------------------------
 
-void write_genome(const Individual& ind, const char* key, json& out, const Context&) {
-    out[key] = genome_to_json(ind.genome);
+void write_genome(const Individual& ind, const char* key, json& out, const Context& context) {
+    out[key] = genome_to_json(ind.genome, context.fibre_outputs);
 }
 //! The genome, and the body it develops into (phenotypes are not stored).
 void read_genome(const Fields& f, const CheckpointFieldOf<Individual>& field, Individual& ind,
@@ -183,8 +183,9 @@ constexpr std::array kNeatState = {
                                  read_species, describe_object<neat_species_fields>},
 };
 
-void write_representative(const NeatSpecies& s, const char* key, json& out, const Context&) {
-    out[key] = genome_to_json(s.representative);
+void write_representative(const NeatSpecies& s, const char* key, json& out,
+                          const Context& context) {
+    out[key] = genome_to_json(s.representative, context.fibre_outputs);
 }
 void read_representative(const Fields& f, const CheckpointFieldOf<NeatSpecies>& field,
                          NeatSpecies& s, Context& context) {

@@ -33,6 +33,7 @@ struct CheckpointContext {
     int version = kCheckpointFormatVersion;  //!< the payload's format_version
     std::optional<Developer> developer;      //!< the experiment's, to develop each genome
     double weight_range = 1.0;               //!< the CPPN's, to read genomes
+    int fibre_outputs = 0;                   //!< the CPPN's fibre outputs, to name them (writing)
     std::size_t population = 0;              //!< members read (NEAT's species index them)
 };
 

@@ -138,8 +138,9 @@ void read_phenotype(const Fields& f, const ChampionField& field, ChampionRecord&
     c.individual.phenotype.body = std::move(body);
 }
 
-void write_genome(const ChampionRecord& c, const char* key, json& out, const Context&) {
-    out[key] = genome_to_json(c.individual.genome);
+void write_genome(const ChampionRecord& c, const char* key, json& out, const Context& context) {
+    const bool fibres = context.experiment && context.experiment->evolution.cppn.fibre_outputs;
+    out[key] = genome_to_json(c.individual.genome, fibres ? 3 : 0);
 }
 void read_genome(const Fields& f, const ChampionField& field, ChampionRecord& c, Context& context) {
     if (!context.experiment) return;  // a summary

@@ -151,6 +151,14 @@ TEST_CASE("fibres: the CPPN's fibre outputs give muscle voxels the axis of their
     CHECK(parse_body(body_to_json(p.body), "p.json") == p.body);
     const Genome back = genome_from_json(genome_to_json(g), e.evolution.cppn.weight_range);
     CHECK(developer.develop(back).body == p.body);
+    // Written with its layout, the outputs say which are the fibres' (read: by count alone).
+    const auto named = genome_to_json(g, 3);
+    const auto& names = named["outputs"];
+    REQUIRE(names.size() == static_cast<std::size_t>(g.output_count));
+    CHECK(names[names.size() - 3] == "fibre_x");
+    CHECK(names[names.size() - 1] == "fibre_z");
+    CHECK(names[0] == "material");
+    CHECK(genome_from_json(named, e.evolution.cppn.weight_range) == g);
     // The engine sees them.
     CHECK(make_body_spec(e, p.body).fibre_axis == p.body.fibre);
     // A genome without the fibre outputs does not fit this experiment, nor this one that.
