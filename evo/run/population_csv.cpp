@@ -13,7 +13,12 @@ std::string population_csv(const RunState& state) {
                std::to_string(m.parent_id) + "," + engine::format_number(m.report.fitness) + "," +
                std::to_string(m.age) + "," + std::to_string(m.phenotype.voxels) + "," +
                std::to_string(m.phenotype.active_voxels) + "," + std::to_string(rank) + "," +
-               (m.valid ? "1," : "0,") + (m.report.diverged ? "1" : "0") + "\n";
+               (m.valid ? "1," : "0,") + (m.report.diverged ? "1," : "0,");
+        const ExploitReport& x = m.report.exploits;
+        out += std::string(x.checked ? "1," : "0,") + (x.escaped ? "1," : "0,") +
+               engine::format_number(x.unanchored_fraction) + "," +
+               (x.detached_motion ? "1," : "0,") + engine::format_number(x.base_motion_ratio) +
+               "," + (x.tentacle ? "1," : "0,") + engine::format_number(x.thin_share) + "\n";
     }
     return out;
 }

@@ -13,10 +13,14 @@ namespace bhm::evo {
 
 inline constexpr const char* kPopulationCsvFile = "population.csv";
 inline constexpr const char* kPopulationCsvHeader =
-    "generation,id,parent_id,fitness,age,voxels,active_voxels,pareto_rank,valid,diverged";
+    "generation,id,parent_id,fitness,age,voxels,active_voxels,pareto_rank,valid,diverged,"
+    "exploits_checked,escaped,unanchored_fraction,detached_motion,base_motion_ratio,tentacle,"
+    "thin_share";
 
 //! The file's text for the state's population (state.generation, state.pareto_rank): numbers in
-//! the C locale, fitness in its shortest exact form, valid and diverged as 1 or 0.
+//! the C locale, fitness and measures in their shortest exact form, flags as 1 or 0 (the exploit
+//! flags and their measures: evo/evaluate/exploit_flags.hpp; exploits_checked 0 for a result
+//! from before exploit detection).
 std::string population_csv(const RunState& state);
 
 }  // namespace bhm::evo

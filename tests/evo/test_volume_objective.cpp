@@ -128,6 +128,10 @@ TEST_CASE("a run minimising volume resumes into its uninterrupted twin, populati
         CHECK(row[table.column("voxels")] == m.phenotype.voxels);
         CHECK(row[table.column("active_voxels")] == m.phenotype.active_voxels);
         CHECK(row[table.column("pareto_rank")] == u.pareto_rank[k]);
+        CHECK(row[table.column("valid")] == (m.valid ? 1 : 0));
+        CHECK(row[table.column("exploits_checked")] == (m.report.exploits.checked ? 1 : 0));
+        CHECK(row[table.column("escaped")] == (m.report.exploits.escaped ? 1 : 0));
+        CHECK(row[table.column("thin_share")] == m.report.exploits.thin_share);
         // Its volume is its body's filled cells, counted here again.
         int filled = 0;
         for (auto cell : m.phenotype.body.cells)
