@@ -1,0 +1,126 @@
+// The studio's Pareto plot (Analysis > Volume vs fitness, issue 44): its model against a hand-made
+// population, and headless sessions in which a click on a point shows that body, in a live run
+// and in a watched run directory (whose bodies come from the checkpoint).
+#include <doctest/doctest.h>
+
+#include <map>
+
+#include "app/gui/actions/studio_actions.hpp"
+#include "app/gui/session/pareto_model.hpp"
+#include "app/gui/shell/headless_studio.hpp"
+#include "app/gui/shell/script.hpp"
+#include "evo/run/population_csv.hpp"
+#include "test_studio_fixtures.hpp"
+
+using namespace bhm;
+using namespace bhm::app::gui;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+PopulationMember member(std::int64_t id, double fitness, int voxels, bool valid = true) {
+    PopulationMember m;
+    m.id = id;
+    m.fitness = fitness;
+    m.voxels = voxels;
+    m.valid = valid;
+    return m;
+}
+
+//! A member of the snapshot's population that is not the champion and whose (volume, fitness)
+//! no other member shares, so its point is its own to click; -1 when there is none.
+std::int64_t lone_point(const EvolutionSnapshot& run) {
+    std::map<std::pair<int, double>, int> count;
+    for (const auto& e : pareto_entries(run))
+        ++count[{e.voxels, e.fitness}];
+    for (const auto& e : pareto_entries(run))
+        if (!e.champion && count[{e.voxels, e.fitness}] == 1) return e.id;
+    return -1;
+}
+
+}  // namespace
+
+TEST_CASE("studio Pareto model: the members with a fitness, the volume front marked") {
+    EvolutionSnapshot run;
+    // (id: fitness, voxels) drawn by hand: 1 (5, 30) fittest, 2 (4, 20) smaller, 3 (4, 25)
+    // beaten by 2, 4 (2, 10) smallest, 5 invalid, 6 diverged (negative fitness): not placed.
+    run.population = {member(1, 5, 30), member(2, 4, 20),       member(3, 4, 25),
+                      member(4, 2, 10), member(5, 9, 5, false), member(6, -1, 3)};
+    run.has_champion = true;
+    run.champion = run.population[0];
+    auto entries = pareto_entries(run);
+    REQUIRE(entries.size() == 4);
+    std::vector<std::int64_t> ids;
+    std::vector<bool> front;
+    for (const auto& e : entries) {
+        ids.push_back(e.id);
+        front.push_back(e.on_front);
+    }
+    CHECK(ids == std::vector<std::int64_t>{1, 2, 3, 4});
+    CHECK(front == std::vector<bool>{true, true, false, true});
+    CHECK(entries[0].champion);
+    CHECK_FALSE(entries[1].champion);
+    CHECK_FALSE(entries[0].has_body);
+    // A run maximising volume: only the fittest (also the largest) is on the front.
+    run.experiment.fitness.volume_objective = evo::VolumeObjective::Maximize;
+    entries = pareto_entries(run);
+    front.clear();
+    for (const auto& e : entries)
+        front.push_back(e.on_front);
+    CHECK(front == std::vector<bool>{true, false, false, false});
+}
+
+TEST_CASE("studio Pareto plot: a click on a point shows that body, live and in a run directory") {
+    const auto dir = testing::fresh_dir("pareto");
+    auto e = testing::tiny_experiment();
+    e.fitness.volume_objective = evo::VolumeObjective::Minimize;
+    Studio studio;
+    studio.document.reset(e, "");
+    studio.run.dir_field = (dir / "run").string();
+    HeadlessStudio session(studio, 1280, 800);
+    testing::run_script_patiently(session, json::parse(R"([{"click": "Start"},
+                                 {"wait_run": "finished"},
+                                 {"click": "tab Volume vs fitness"}, {"frames": 3}])"));
+    REQUIRE(studio.run.snapshot);
+    const auto live = studio.run.snapshot;  // keeps the live population's bodies
+    REQUIRE(studio.ui.widgets.count("pareto plot"));
+    CHECK(studio.ui.widgets["pareto plot"].frame >= studio.ui.frame - 1);
+    const std::int64_t id = lone_point(*live);
+    REQUIRE(id >= 0);
+    const std::string point = "pareto point #" + std::to_string(id);
+    REQUIRE(studio.ui.widgets.count(point));
+    testing::run_script_patiently(session,
+                                  json::array({{{"click", point}}, {{"wait_simulation", true}}}));
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->id == id);
+    CHECK(studio.run.selected_id == id);
+
+    // The same run as a watched directory: population.csv's members, bodies from the checkpoint
+    // on the first click, equal to the live run's.
+    REQUIRE(fs::exists(dir / "run" / evo::kPopulationCsvFile));
+    REQUIRE(open_run_directory(studio, (dir / "run").string()));
+    REQUIRE(studio.run.snapshot);
+    CHECK(studio.run.snapshot->population.size() == live->population.size());
+    testing::run_script_patiently(
+        session, json::parse(R"([{"click": "tab Volume vs fitness"}, {"frames": 3}])"));
+    REQUIRE(studio.ui.widgets.count(point));
+    CHECK(studio.ui.widgets[point].frame >= studio.ui.frame - 1);
+    testing::run_script_patiently(session,
+                                  json::array({{{"click", point}}, {{"wait_simulation", true}}}));
+    REQUIRE(studio.bodies.shown);
+    CHECK(studio.bodies.shown->id == id);
+    const PopulationMember* watched = nullptr;
+    for (const auto& m : studio.run.snapshot->population)
+        if (m.id == id) watched = &m;
+    const PopulationMember* original = nullptr;
+    for (const auto& m : live->population)
+        if (m.id == id) original = &m;
+    REQUIRE(watched);
+    REQUIRE(original);
+    REQUIRE(watched->body);
+    REQUIRE(original->body);
+    CHECK(watched->body->cells == original->body->cells);
+    CHECK(watched->voxels == original->voxels);
+    CHECK(watched->fitness == original->fitness);
+}
