@@ -62,6 +62,20 @@ TEST_CASE("studio Pareto model: the members with a fitness, the volume front mar
     CHECK(entries[0].champion);
     CHECK_FALSE(entries[1].champion);
     CHECK_FALSE(entries[0].has_body);
+    // Active voxels on x (always minimised): (id: fitness, active) 1 (5, 9), 2 (4, 2), 3 (4, 1),
+    // 4 (2, 1): 3 now beats 2 (as fit, fewer active) and 4 (fitter, as few).
+    const int active[] = {9, 2, 1, 1, 0, 0};
+    for (std::size_t k = 0; k < run.population.size(); ++k)
+        run.population[k].active_voxels = active[k];
+    entries = pareto_entries(run, ParetoAxis::ActiveVoxels);
+    front.clear();
+    std::vector<int> xs;
+    for (const auto& e : entries) {
+        front.push_back(e.on_front);
+        xs.push_back(e.voxels);
+    }
+    CHECK(xs == std::vector<int>{9, 2, 1, 1});
+    CHECK(front == std::vector<bool>{true, false, true, false});
     // A run maximising volume: only the fittest (also the largest) is on the front.
     run.experiment.fitness.volume_objective = evo::VolumeObjective::Maximize;
     entries = pareto_entries(run);
@@ -95,6 +109,12 @@ TEST_CASE("studio Pareto plot: a click on a point shows that body, live and in a
     REQUIRE(studio.bodies.shown);
     CHECK(studio.bodies.shown->id == id);
     CHECK(studio.run.selected_id == id);
+    // The x axis switched to active voxels and back: every point still drawn and recorded.
+    testing::run_script_patiently(session, json::parse(R"([{"click": "pareto active voxels"},
+                                                           {"frames": 3}])"));
+    CHECK(studio.ui.widgets.at(point).frame >= studio.ui.frame - 1);
+    testing::run_script_patiently(session, json::parse(R"([{"click": "pareto active voxels"},
+                                                           {"frames": 3}])"));
 
     // The same run as a watched directory: population.csv's members, bodies from the checkpoint
     // on the first click, equal to the live run's.

@@ -137,7 +137,16 @@ void pareto_tab(Studio& s) {
         return;
     }
     const auto& run = *s.run.snapshot;
-    const auto entries = pareto_entries(run);
+    // A view option, not studio state: kept in ImGui's storage of this window, like a tab's.
+    bool* active = ImGui::GetStateStorage()->GetBoolRef(ImGui::GetID("pareto active axis"), false);
+    ImGui::Checkbox("active voxels on x", active);
+    record_widget(s, "pareto active voxels");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "plot active voxels (fitness.minimize_active_voxels, always smaller) "
+            "instead of the whole volume");
+    const auto entries =
+        pareto_entries(run, *active ? ParetoAxis::ActiveVoxels : ParetoAxis::Volume);
     std::vector<ScatterPoint> points;
     int front = 0;
     for (const auto& e : entries) {
@@ -151,19 +160,19 @@ void pareto_tab(Studio& s) {
         front += e.on_front;
     }
     const auto objective = run.experiment.fitness.volume_objective;
-    const bool larger = objective == evo::VolumeObjective::Maximize;
+    const bool larger = !*active && objective == evo::VolumeObjective::Maximize;
+    const bool is_objective = *active ? run.experiment.fitness.minimize_active_voxels
+                                      : objective != evo::VolumeObjective::Off;
     ImGui::TextDisabled(
-        "volume (x) vs fitness (y): %d on the front (red; %s volume%s), ring = "
-        "champion; click a point to show it",
-        front, larger ? "larger" : "smaller",
-        objective == evo::VolumeObjective::Off ? ", not an objective of this run"
-                                               : " is an objective");
+        "%d on the front (red; %s %s, %s), ring = champion; click a point to show it", front,
+        larger ? "larger" : "smaller", *active ? "active voxels" : "volume",
+        is_objective ? "an objective of this run" : "not an objective of this run");
     int hovered = -1;
     std::vector<ImVec2> screen;
-    const auto clicked = draw_scatter_plot("volume fitness", points, "volume (voxels)",
-                                           fitness_unit(run.experiment.fitness.measure),
-                                           ImGui::GetContentRegionAvail(), &hovered,
-                                           /*integer_x=*/true, &screen);
+    const auto clicked = draw_scatter_plot(
+        "volume fitness", points, *active ? "active voxels" : "volume (voxels)",
+        fitness_unit(run.experiment.fitness.measure), ImGui::GetContentRegionAvail(), &hovered,
+        /*integer_x=*/true, &screen);
     record_widget(s, "pareto plot");
     for (std::size_t k = 0; k < screen.size(); ++k)
         s.ui.widgets["pareto point #" + std::to_string(entries[k].id)] =
@@ -172,8 +181,9 @@ void pareto_tab(Studio& s) {
                        s.ui.frame};
     if (hovered >= 0) {
         const auto& e = entries[static_cast<std::size_t>(hovered)];
-        ImGui::SetTooltip("#%lld%s\nvolume %d voxels\nfitness %s", static_cast<long long>(e.id),
-                          e.on_front ? " (on the front)" : "", e.voxels,
+        ImGui::SetTooltip("#%lld%s\n%s %d voxels\nfitness %s", static_cast<long long>(e.id),
+                          e.on_front ? " (on the front)" : "", *active ? "active" : "volume",
+                          e.voxels,
                           format_fitness(e.fitness, run.experiment.fitness.measure).c_str());
     }
     if (clicked) select_individual(s, entries[static_cast<std::size_t>(*clicked)].id);
