@@ -3,13 +3,18 @@
 // and in a watched run directory (whose bodies come from the checkpoint).
 #include <doctest/doctest.h>
 
+#include <chrono>
+#include <fstream>
 #include <map>
+#include <thread>
 
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/pareto_model.hpp"
+#include "app/gui/session/run_directory_watch.hpp"
 #include "app/gui/shell/headless_studio.hpp"
 #include "app/gui/shell/script.hpp"
 #include "evo/run/population_csv.hpp"
+#include "evo/run/run_output.hpp"
 #include "test_studio_fixtures.hpp"
 
 using namespace bhm;
@@ -143,4 +148,39 @@ TEST_CASE("studio Pareto plot: a click on a point shows that body, live and in a
     CHECK(watched->body->cells == original->body->cells);
     CHECK(watched->voxels == original->voxels);
     CHECK(watched->fitness == original->fitness);
+}
+
+TEST_CASE("studio run directory: population.csv with fewer columns, or unreadable, still shows") {
+    const auto dir = testing::fresh_dir("pareto-columns");
+    const auto e = testing::tiny_experiment();
+    evo::RunOutput out(dir.string());
+    evo::RunState state;
+    state.experiment = e;
+    out.write_run_info(e, state);
+    evo::HistoryRow row;
+    out.write_fitness_csv({row});
+    // Only the three columns the plot needs, written by hand: the rest take their defaults.
+    std::ofstream(dir / evo::kPopulationCsvFile) << "id,fitness,voxels\n3,1.5,10\n4,2.5,12\n";
+    RunDirectoryWatch watch;
+    watch.open(dir.string());
+    REQUIRE(watch.refresh());
+    auto snap = watch.snapshot();
+    REQUIRE(snap);
+    REQUIRE(snap->population.size() == 2);
+    CHECK(snap->population[0].id == 4);  // best fitness first
+    CHECK(snap->population[0].voxels == 12);
+    CHECK(snap->population[1].fitness == 1.5);
+    CHECK(snap->population[1].valid);
+    CHECK_FALSE(snap->population[1].exploits.checked);
+    CHECK(snap->message.find("read-only view") != std::string::npos);
+    // Without a needed column: the run is still shown, the message names the file and column.
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // a distinct modification time
+    std::ofstream(dir / evo::kPopulationCsvFile) << "id,fitness\n3,1.5\n";
+    REQUIRE(watch.refresh());
+    snap = watch.snapshot();
+    REQUIRE(snap);
+    CHECK(snap->population.empty());  // no champion file in this run
+    CHECK(snap->message.find("population.csv") != std::string::npos);
+    CHECK(snap->message.find("voxels") != std::string::npos);
+    CHECK(watch.error().empty());
 }

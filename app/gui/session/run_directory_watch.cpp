@@ -41,37 +41,46 @@ std::vector<GenerationRecord> history_of(const evo::FitnessTable& table) {
 
 //! The population from population.csv (evo/run/population_csv.hpp), best fitness first as the
 //! live session sorts it; no bodies (the champion's is added by the caller). A bad row ends the
-//! table, as in fitness.csv.
+//! table, as in fitness.csv. id, fitness and voxels are needed (a std::runtime_error names the
+//! file and the column); the other columns take MemberSummary's defaults where a file lacks them.
 std::vector<PopulationMember> population_of(const evo::FitnessTable& table) {
     const std::size_t c_id = table.column("id"), c_fitness = table.column("fitness"),
-                      c_age = table.column("age"), c_voxels = table.column("voxels"),
-                      c_active = table.column("active_voxels"),
-                      c_rank = table.column("pareto_rank"), c_valid = table.column("valid"),
-                      c_diverged = table.column("diverged"),
-                      c_checked = table.column("exploits_checked"),
-                      c_escaped = table.column("escaped"),
-                      c_unanchored = table.column("unanchored_fraction"),
-                      c_detached = table.column("detached_motion"),
-                      c_base = table.column("base_motion_ratio"),
-                      c_tentacle = table.column("tentacle"), c_thin = table.column("thin_share");
+                      c_voxels = table.column("voxels");
+    auto optional_column = [&](const char* name) {
+        const auto it = std::find(table.header.begin(), table.header.end(), name);
+        return static_cast<std::size_t>(it - table.header.begin());  // header.size(): absent
+    };
+    const std::size_t c_age = optional_column("age"), c_active = optional_column("active_voxels"),
+                      c_rank = optional_column("pareto_rank"), c_valid = optional_column("valid"),
+                      c_diverged = optional_column("diverged"),
+                      c_checked = optional_column("exploits_checked"),
+                      c_escaped = optional_column("escaped"),
+                      c_unanchored = optional_column("unanchored_fraction"),
+                      c_detached = optional_column("detached_motion"),
+                      c_base = optional_column("base_motion_ratio"),
+                      c_tentacle = optional_column("tentacle"),
+                      c_thin = optional_column("thin_share");
     std::vector<PopulationMember> members;
     for (const auto& row : table.rows) {
+        auto at = [&](std::size_t c, double fallback) {
+            return c < row.size() ? row[c] : fallback;
+        };
         PopulationMember m;
         m.id = static_cast<std::int64_t>(row[c_id]);
         m.fitness = row[c_fitness];
-        m.age = static_cast<int>(row[c_age]);
         m.voxels = static_cast<int>(row[c_voxels]);
-        m.active_voxels = static_cast<int>(row[c_active]);
-        m.pareto_rank = static_cast<int>(row[c_rank]);
-        m.valid = row[c_valid] != 0.0;
-        m.diverged = row[c_diverged] != 0.0;
-        m.exploits.checked = row[c_checked] != 0.0;
-        m.exploits.escaped = row[c_escaped] != 0.0;
-        m.exploits.unanchored_fraction = row[c_unanchored];
-        m.exploits.detached_motion = row[c_detached] != 0.0;
-        m.exploits.base_motion_ratio = row[c_base];
-        m.exploits.tentacle = row[c_tentacle] != 0.0;
-        m.exploits.thin_share = row[c_thin];
+        m.age = static_cast<int>(at(c_age, m.age));
+        m.active_voxels = static_cast<int>(at(c_active, m.active_voxels));
+        m.pareto_rank = static_cast<int>(at(c_rank, m.pareto_rank));
+        m.valid = at(c_valid, 1.0) != 0.0;
+        m.diverged = at(c_diverged, 0.0) != 0.0;
+        m.exploits.checked = at(c_checked, 0.0) != 0.0;
+        m.exploits.escaped = at(c_escaped, 0.0) != 0.0;
+        m.exploits.unanchored_fraction = at(c_unanchored, 0.0);
+        m.exploits.detached_motion = at(c_detached, 0.0) != 0.0;
+        m.exploits.base_motion_ratio = at(c_base, 1.0);
+        m.exploits.tentacle = at(c_tentacle, 0.0) != 0.0;
+        m.exploits.thin_share = at(c_thin, 0.0);
         members.push_back(std::move(m));
     }
     std::stable_sort(
@@ -106,12 +115,18 @@ void RunDirectoryWatch::open(const std::string& run_dir) {
     fitness_mtime_ = champion_mtime_ = experiment_mtime_ = population_mtime_ = {};
     snapshot_.reset();
     error_.clear();
+    population_problem_.clear();
+    bodies_.clear();  // another run's ids
+    hashes_.clear();
 }
 
 void RunDirectoryWatch::close() {
     dir_.clear();
     snapshot_.reset();
     error_.clear();
+    population_problem_.clear();
+    bodies_.clear();
+    hashes_.clear();
 }
 
 bool RunDirectoryWatch::refresh() {
@@ -174,7 +189,18 @@ bool RunDirectoryWatch::refresh() {
         // population.csv where the run wrote one (runs before it: the champion alone).
         if (population_t != fs::file_time_type{}) {
             if (population_t != population_mtime_ || champion_t != champion_mtime_) {
-                snap->population = population_of(evo::read_population_table(dir_));
+                // A population.csv that cannot be read is said, and the champion stands alone:
+                // the rest of the run is still shown.
+                population_problem_.clear();
+                try {
+                    const evo::FitnessTable table = evo::read_population_table(dir_);
+                    snap->population = population_of(table);
+                    population_problem_ = table.problem;
+                } catch (const std::exception& e) {
+                    population_problem_ = e.what();
+                    snap->population.clear();
+                    if (snap->has_champion) snap->population = {snap->champion};
+                }
                 // Bodies developed earlier (load_bodies) for members still there; the rest go.
                 std::map<std::int64_t, std::shared_ptr<const evo::Body>> kept;
                 for (auto& m : snap->population)
@@ -189,9 +215,11 @@ bool RunDirectoryWatch::refresh() {
         } else if (snap->has_champion) {
             snap->population = {snap->champion};
         }
-        snap->message = fitness_problem_.empty()
-                            ? "run directory " + dir_ + " (read-only view, refreshed as it grows)"
-                            : fitness_problem_;
+        snap->message = !fitness_problem_.empty()      ? fitness_problem_
+                        : !population_problem_.empty() ? population_problem_
+                                                       : "run directory " + dir_ +
+                                                             " (read-only view, refreshed as it "
+                                                             "grows)";
         error_.clear();
     } catch (const std::exception& e) {
         error_ = e.what();  // e.g. a file replaced mid-read: keep the last good view

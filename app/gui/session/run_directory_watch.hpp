@@ -42,7 +42,8 @@ class RunDirectoryWatch {
         population_mtime_{};
     std::shared_ptr<const EvolutionSnapshot> snapshot_;
     std::string error_;
-    std::string fitness_problem_;  //!< a row of fitness.csv that could not be read
+    std::string fitness_problem_;     //!< a row of fitness.csv that could not be read
+    std::string population_problem_;  //!< population.csv, or a row of it, that could not be read
     int reloads_ = 0;
     std::map<std::int64_t, std::shared_ptr<const evo::Body>> bodies_;  //!< by id (load_bodies)
     std::map<std::int64_t, std::uint64_t> hashes_;                     //!< their phenotype hashes
