@@ -37,6 +37,8 @@ const char* const kSummary =
     "                           species, novelty\n"
     "                           search best_novelty, median_novelty, archive_size, archive_added,\n"
     "                           archive_threshold, champion_fitness\n"
+    "  population.csv           the population after the last generation: fitness, age,\n"
+    "                           voxels (volume), active voxels, Pareto rank\n"
     "  champion.json            genome, phenotype layers, fitness, generation found\n"
     "  champions/gen-NNNNN.json every new champion\n"
     "  champion.vxa             the champion for VoxCAD (VXA 1.0)\n"
@@ -162,7 +164,7 @@ int evolve(ArgParser& args) {
         // A run file replaced by a folder would fail only when first rewritten, a whole
         // generation later: refuse it now.
         for (const char* name : {evo::kCheckpointFile, evo::kPreviousCheckpointFile, "fitness.csv",
-                                 "champion.json", "run.json"}) {
+                                 "population.csv", "champion.json", "run.json"}) {
             const auto file = std::filesystem::path(options.out_dir) / name;
             std::error_code ec;
             const auto status = std::filesystem::symlink_status(file, ec);

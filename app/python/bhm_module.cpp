@@ -375,6 +375,9 @@ py::dict load_run(const py::handle& dir_arg) {
     py::dict out;
     out["run_dir"] = dir.string();
     out["fitness"] = fitness_columns(dir / "fitness.csv");
+    // population.csv (the last generation's members with their volume): runs before it lack it.
+    if (fs::exists(dir / "population.csv"))
+        out["population"] = fitness_columns(dir / "population.csv");
     out["experiment"] = to_python(run.value("experiment", json::object()));
     out["rule_changes"] = to_python(run.value("rule_changes", json::array()));
     out["seed"] = to_python(run.value("seed", json()));
@@ -425,6 +428,7 @@ PYBIND11_MODULE(bhm, m) {
           "text, or a champion dict holding 'genome') develops into under the experiment.");
     m.def("load_run", &load_run, py::arg("run_dir"),
           "A run directory of bhm evolve: 'fitness' (fitness.csv as numpy columns), "
+          "'population' (population.csv as numpy columns, where the run wrote one), "
           "'champions' (champions/gen-*.json in generation order), 'champion', 'experiment', "
           "'rule_changes', 'seed', 'bhm_version'.");
 }

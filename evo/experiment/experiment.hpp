@@ -100,10 +100,17 @@ struct Constraints {
     bool operator==(const Constraints&) const = default;
 };
 
+//! The body's volume (its filled voxel count) as an AFPO objective beside fitness and age
+//! (docs/evolution.md, "Volume"): off, fewer voxels better (the trade-off of displacement and
+//! volume: a smaller body that moves as far is better) or more voxels better.
+enum class VolumeObjective { Off, Minimize, Maximize };
+inline constexpr std::array<const char*, 3> kVolumeObjectiveNames = {"off", "minimize", "maximize"};
+
 struct Fitness {
     FitnessMeasure measure = FitnessMeasure::ComFinal3d;
     Constraints constraints;
-    bool minimize_active_voxels = false;  //!< optional third AFPO objective
+    bool minimize_active_voxels = false;                      //!< optional third AFPO objective
+    VolumeObjective volume_objective = VolumeObjective::Off;  //!< optional volume objective
     bool operator==(const Fitness&) const = default;
 };
 

@@ -128,6 +128,10 @@ const ExperimentField kExperimentFields[] = {
      BHM_CHOICE(fitness.measure, FitnessMeasure, kFitnessNames)},
     {.path = "fitness.minimize_active_voxels", .label = "Minimise active voxels", .unit = "",
      .help = "third AFPO objective", BHM_BOOLEAN(fitness.minimize_active_voxels)},
+    {.path = "fitness.volume_objective", .label = "Volume objective", .unit = "",
+     .help = "the body's voxel count as an AFPO objective: off, minimize (a smaller body that "
+             "moves as far is better) or maximize",
+     BHM_CHOICE(fitness.volume_objective, VolumeObjective, kVolumeObjectiveNames)},
     {.path = "fitness.constraints.attached_to_fixed_face", .label = "Attached to fixed face",
      .unit = "", .help = "the body must touch every fixed face (paper section 4.1)",
      BHM_BOOLEAN(fitness.constraints.attached_to_fixed_face)},

@@ -576,6 +576,7 @@ void EvolutionRun::commit_generation(const Experiment& rules, bool rules_changed
 
     if (output_) {
         output_->write_fitness_csv(state_.history);
+        output_->write_population_csv(state_);
         if (new_champion) output_->write_champion(rules, *state_.champion);
         // Resumed from the backup (checkpoint.json was damaged): the backup is the one good
         // checkpoint left, so the damaged file goes aside instead of into its slot.

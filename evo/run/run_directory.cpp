@@ -12,6 +12,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/experiment/json_fields.hpp"
 #include "evo/run/checkpoint.hpp"
+#include "evo/run/population_csv.hpp"
 #include "evo/run/run_file_schema.hpp"
 
 namespace bhm::evo {
@@ -29,8 +30,8 @@ std::string read_whole(const std::string& path, std::uint64_t cap) {
     try {
         return engine::read_text(path, cap);
     } catch (const engine::FileReadError& e) {
-        throw std::runtime_error(e.what() +
-                                 std::string(" (is this a run directory written by 'bhm evolve'?)"));
+        throw std::runtime_error(
+            e.what() + std::string(" (is this a run directory written by 'bhm evolve'?)"));
     }
 }
 
@@ -153,9 +154,11 @@ std::size_t FitnessTable::column(const std::string& name) const {
     throw std::runtime_error(path + ": no '" + name + "' column");
 }
 
-FitnessTable read_fitness_table(const std::string& run_dir) {
+namespace {
+
+FitnessTable read_numeric_csv(const std::string& path) {
     FitnessTable table;
-    table.path = path_in(run_dir, kFitnessCsvFile);
+    table.path = path;
     std::istringstream in(read_whole(table.path, engine::kLargeFileCap));
     std::string line;
     if (!std::getline(in, line) || line.empty())
@@ -193,6 +196,16 @@ FitnessTable read_fitness_table(const std::string& run_dir) {
         table.rows.push_back(std::move(values));
     }
     return table;
+}
+
+}  // namespace
+
+FitnessTable read_fitness_table(const std::string& run_dir) {
+    return read_numeric_csv(path_in(run_dir, kFitnessCsvFile));
+}
+
+FitnessTable read_population_table(const std::string& run_dir) {
+    return read_numeric_csv(path_in(run_dir, kPopulationCsvFile));
 }
 
 }  // namespace bhm::evo

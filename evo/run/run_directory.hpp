@@ -82,5 +82,9 @@ struct FitnessTable {
 };
 //! Throws std::runtime_error when the file cannot be read or has no header.
 FitnessTable read_fitness_table(const std::string& run_dir);
+//! population.csv (population_csv.hpp), read as fitness.csv is: its columns by name, a row that
+//! cannot be read ends the table. Throws std::runtime_error when the file cannot be read or has
+//! no header.
+FitnessTable read_population_table(const std::string& run_dir);
 
 }  // namespace bhm::evo

@@ -13,6 +13,7 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
 #include "evo/run/checkpoint.hpp"
+#include "evo/run/population_csv.hpp"
 #include "evo/run/run_directory.hpp"
 #include "evo/run/run_file_schema.hpp"
 
@@ -48,8 +49,9 @@ std::string fitness_csv(const std::vector<HistoryRow>& history) {
                (h.best_exploits.escaped ? "1," : "0,") +
                (h.best_exploits.detached_motion ? "1," : "0,") +
                (h.best_exploits.tentacle ? "1," : "0,") + std::to_string(h.flagged_members) + "," +
-               std::to_string(h.ended_early) + "," + engine::format_number(h.mean_simulated_s) + "," +
-               engine::format_number(h.best_simulated_s) + "," + engine::format_number(h.best_periodic_residual) +
+               std::to_string(h.ended_early) + "," + engine::format_number(h.mean_simulated_s) +
+               "," + engine::format_number(h.best_simulated_s) + "," +
+               engine::format_number(h.best_periodic_residual) +
                (species ? "," + std::to_string(h.species) : std::string());
         if (novelty) {
             const NoveltyRow n = h.novelty.value_or(NoveltyRow{});
@@ -107,6 +109,10 @@ void RunOutput::write_run_info(const Experiment& original, const RunState& state
 
 void RunOutput::write_fitness_csv(const std::vector<HistoryRow>& history) const {
     write_file_atomically(path(kFitnessCsvFile), fitness_csv(history));
+}
+
+void RunOutput::write_population_csv(const RunState& state) const {
+    write_file_atomically(path(kPopulationCsvFile), population_csv(state));
 }
 
 void RunOutput::write_champion(const Experiment& experiment, const ChampionRecord& champion) const {

@@ -2,6 +2,7 @@
 // The files of an evolution run directory (docs/evolution.md):
 //   run.json              experiment as started, seed, version, rule changes
 //   fitness.csv           one row per generation (HistoryRow), rewritten atomically each time
+//   population.csv        the population after the last generation (population_csv.hpp)
 //   champion.json         the current champion: genome, phenotype layers, fitness, generation found
 //   champions/gen-NNNNN.json  each new champion, by the generation that found it
 //   champion.vxa          the champion for VoxCAD (VXA 1.0)
@@ -39,6 +40,8 @@ class RunOutput {
 
     void write_run_info(const Experiment& original, const RunState& state) const;
     void write_fitness_csv(const std::vector<HistoryRow>& history) const;
+    //! population.csv (population_csv.hpp) for the state's population.
+    void write_population_csv(const RunState& state) const;
     //! champion.json, champion.vxa and champions/gen-NNNNN.json.
     void write_champion(const Experiment& experiment, const ChampionRecord& champion) const;
     //! save_checkpoint (checkpoint.hpp), `current_is_damaged` included.

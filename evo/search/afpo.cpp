@@ -6,14 +6,33 @@
 
 namespace bhm::evo {
 
+namespace {
+
+//! The volume as a minimised quantity: voxels when minimised, -voxels when maximised, 0 when off
+//! (then it never tells two members apart).
+int volume_key(const AfpoObjectives& p, const AfpoOptions& options) {
+    switch (options.volume) {
+        case VolumeObjective::Minimize:
+            return p.voxels;
+        case VolumeObjective::Maximize:
+            return -p.voxels;
+        case VolumeObjective::Off:
+            break;
+    }
+    return 0;
+}
+
+}  // namespace
+
 bool dominates(const AfpoObjectives& a, const AfpoObjectives& b, const AfpoOptions& options) {
     const bool active = options.minimize_active, second = options.second_objective;
+    const int volume_a = volume_key(a, options), volume_b = volume_key(b, options);
     const bool no_worse = a.fitness >= b.fitness && a.age <= b.age &&
                           (!active || a.active_voxels <= b.active_voxels) &&
-                          (!second || a.second >= b.second);
+                          (!second || a.second >= b.second) && volume_a <= volume_b;
     const bool better = a.fitness > b.fitness || a.age < b.age ||
                         (active && a.active_voxels < b.active_voxels) ||
-                        (second && a.second > b.second);
+                        (second && a.second > b.second) || volume_a < volume_b;
     return no_worse && better;
 }
 
@@ -55,7 +74,8 @@ std::vector<int> select_survivors(const std::vector<AfpoObjectives>& pool, int c
         const auto& p = pool[static_cast<std::size_t>(i)];
         return std::make_tuple(rank[static_cast<std::size_t>(i)], -p.fitness,
                                options.second_objective ? -p.second : 0.0, p.age,
-                               options.minimize_active ? p.active_voxels : 0, p.id);
+                               options.minimize_active ? p.active_voxels : 0,
+                               volume_key(p, options), p.id);
     };
     std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
     order.resize(std::min(order.size(), static_cast<std::size_t>(std::max(count, 0))));

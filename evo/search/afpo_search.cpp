@@ -1,6 +1,6 @@
 // AFPO (evolution.algorithm = "afpo"; paper section 3, Schmidt & Lipson 2010): breed as
 // afpo_breed (search_algorithm.hpp), select by Pareto layers on (fitness up, age down[, active
-// voxels down]) back to population-many (evo/search/afpo.hpp).
+// voxels down][, volume down or up]) back to population-many (evo/search/afpo.hpp).
 #include <algorithm>
 
 #include "evo/search/afpo.hpp"
@@ -77,11 +77,13 @@ class AfpoSearch final : public SearchAlgorithm {
         std::vector<AfpoObjectives> objectives;
         objectives.reserve(pool.size());
         for (const auto& m : pool)
-            objectives.push_back({m.report.fitness, m.age, m.phenotype.active_voxels, m.id});
-        const bool third_objective = context.rules.fitness.minimize_active_voxels;
+            objectives.push_back({m.report.fitness, m.age, m.phenotype.active_voxels, m.id, 0.0,
+                                  m.phenotype.voxels});
+        const AfpoOptions options{.minimize_active = context.rules.fitness.minimize_active_voxels,
+                                  .volume = context.rules.fitness.volume_objective};
         const auto survivors =
-            select_survivors(objectives, context.rules.evolution.population, third_objective);
-        const auto ranks = pareto_ranks(objectives, third_objective);
+            select_survivors(objectives, context.rules.evolution.population, options);
+        const auto ranks = pareto_ranks(objectives, options);
         Selection out;
         for (int index : survivors) {
             out.population.push_back(pool[static_cast<std::size_t>(index)]);

@@ -26,10 +26,11 @@ NoveltySelection select_by_novelty(const std::vector<Individual>& pool, std::siz
     objectives.reserve(pool.size());
     for (std::size_t i = 0; i < pool.size(); ++i) {
         const auto& m = pool[i];
-        objectives.push_back(
-            {out.novelty[i], m.age, m.phenotype.active_voxels, m.id, m.report.fitness});
+        objectives.push_back({out.novelty[i], m.age, m.phenotype.active_voxels, m.id,
+                              m.report.fitness, m.phenotype.voxels});
     }
-    const AfpoOptions options{rules.fitness.minimize_active_voxels, settings.with_fitness};
+    const AfpoOptions options{rules.fitness.minimize_active_voxels, settings.with_fitness,
+                              rules.fitness.volume_objective};
     out.survivors = select_survivors(objectives, rules.evolution.population, options);
     out.ranks = pareto_ranks(objectives, options);
 

@@ -5,7 +5,7 @@
 //  1. each member's novelty against the pool and the archive (evo/search/novelty.hpp);
 //  2. Pareto selection (evo/search/afpo.hpp) on (novelty up, age down), plus fitness up as a second
 //     objective when evolution.novelty.with_fitness, plus active voxels down when
-//     fitness.minimize_active_voxels;
+//     fitness.minimize_active_voxels, plus the volume down or up by fitness.volume_objective;
 //  3. the new individuals enter the archive by its rule (evo/search/novelty_archive.hpp).
 // Fitness itself is still computed and kept: the run's champion is the best *fitness* seen.
 #include <cstddef>

@@ -217,6 +217,11 @@ class Runs(Fixture):
             self.assertIsInstance(values, np.ndarray)
             np.testing.assert_array_equal(values, [float(r[column]) for r in rows])
         self.assertEqual(len(run["fitness"]["generation"]), 2)
+        with open(os.path.join(self.run_dir, "population.csv")) as f:
+            members = list(csv.DictReader(f))
+        self.assertEqual(set(run["population"]), set(members[0]))
+        for column, values in run["population"].items():
+            np.testing.assert_array_equal(values, [float(r[column]) for r in members])
         with open(os.path.join(self.run_dir, "champion.json")) as f:
             champion = json.load(f)
         self.assertEqual(run["champion"], champion)

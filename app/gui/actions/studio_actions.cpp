@@ -461,8 +461,8 @@ bool apply_rules_to_run(Studio& studio) {
         try {
             studio.run.evolution.change_verify(doc.evolution.verify);
         } catch (const std::exception& e) {
-            set_status(studio, std::string("the run's continuum checks were not changed: ") +
-                                   e.what(),
+            set_status(studio,
+                       std::string("the run's continuum checks were not changed: ") + e.what(),
                        true);
             return false;
         }
@@ -562,7 +562,24 @@ void request_simulation(Studio& studio, const EvolutionSnapshot& run, const Popu
 bool select_individual(Studio& studio, std::int64_t id) {
     if (!studio.run.snapshot) return false;
     const PopulationMember* m = find_member(*studio.run.snapshot, id);
-    if (!m || !m->body) {
+    // A watched run directory lists its population without bodies (population.csv): they are
+    // developed from its checkpoint on the first click that needs one.
+    if (m && !m->body && studio.run.showing_directory &&
+        studio.run.snapshot == studio.run.directory.snapshot() &&
+        studio.run.directory.load_bodies()) {
+        studio.run.snapshot = studio.run.directory.snapshot();
+        m = find_member(*studio.run.snapshot, id);
+    }
+    if (m && !m->body) {
+        set_status(studio,
+                   "individual #" + std::to_string(id) + ": its body is not at hand (" +
+                       (studio.run.directory.error().empty() ? std::string("no checkpoint")
+                                                             : studio.run.directory.error()) +
+                       ")",
+                   true);
+        return false;
+    }
+    if (!m) {
         set_status(studio, "individual #" + std::to_string(id) + " is not in the population", true);
         return false;
     }

@@ -1,6 +1,7 @@
 // The Analysis tile (bottom right): the population table, every generation's champion (replay
-// any, or beside the one shown), the AFPO age-vs-fitness scatter of the population, and time
-// plots of the body shown (centre of mass, tip, bend angle) whose cursor is the replay clock.
+// any, or beside the one shown), the AFPO age-vs-fitness scatter of the population, its
+// volume-vs-fitness Pareto plot (issue 44; a click shows that body), and time plots of the body
+// shown (centre of mass, tip, bend angle) whose cursor is the replay clock.
 #include <array>
 #include <cstdio>
 #include <string>
@@ -10,6 +11,7 @@
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/panels/panels.hpp"
 #include "app/gui/session/champion_history.hpp"
+#include "app/gui/session/pareto_model.hpp"
 #include "app/gui/widgets/check_badge.hpp"
 #include "app/gui/widgets/mini_plot.hpp"
 #include "app/gui/widgets/ui_widgets.hpp"
@@ -58,9 +60,9 @@ void champions_tab(Studio& s) {
         std::snprintf(label, sizeof label, "%d##champion", e.generation);
         const bool shown = s.bodies.shown && s.bodies.shown->id == e.id;
         // The whole row replays it (only the "gen" cell did); "beside" overlaps it.
-        if (ImGui::Selectable(label, shown,
-                              ImGuiSelectableFlags_SpanAllColumns |
-                                  ImGuiSelectableFlags_AllowItemOverlap))
+        if (ImGui::Selectable(
+                label, shown,
+                ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap))
             replay_champion(s, e, false);
         record_widget(s, "champion gen " + std::to_string(e.generation));
         ImGui::TableNextColumn();
@@ -125,6 +127,66 @@ void scatter_tab(Studio& s) {
                           format_fitness(p.y, run.experiment.fitness.measure).c_str());
     }
     if (clicked) select_individual(s, ids[static_cast<std::size_t>(*clicked)]);
+}
+
+// Volume (x) against fitness (y) of the population: the volume-vs-fitness front in red, the
+// champion ringed; each point is recorded as widget "pareto point #ID" for scripts.
+void pareto_tab(Studio& s) {
+    if (!s.run.snapshot || s.run.snapshot->population.empty()) {
+        ImGui::TextDisabled("The population appears after the first generation.");
+        return;
+    }
+    const auto& run = *s.run.snapshot;
+    // A view option, not studio state: kept in ImGui's storage of this window, like a tab's.
+    bool* active = ImGui::GetStateStorage()->GetBoolRef(ImGui::GetID("pareto active axis"), false);
+    ImGui::Checkbox("active voxels on x", active);
+    record_widget(s, "pareto active voxels");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "plot active voxels (fitness.minimize_active_voxels, always smaller) "
+            "instead of the whole volume");
+    const auto entries =
+        pareto_entries(run, *active ? ParetoAxis::ActiveVoxels : ParetoAxis::Volume);
+    std::vector<ScatterPoint> points;
+    int front = 0;
+    for (const auto& e : entries) {
+        ScatterPoint p;
+        p.x = e.voxels;
+        p.y = e.fitness;
+        p.color = e.on_front ? IM_COL32(214, 69, 56, 255) : IM_COL32(110, 120, 135, 220);
+        p.radius = e.on_front ? 4.0f : 3.0f;
+        p.ring = e.champion;
+        points.push_back(p);
+        front += e.on_front;
+    }
+    const auto objective = run.experiment.fitness.volume_objective;
+    const bool larger = !*active && objective == evo::VolumeObjective::Maximize;
+    const bool is_objective = *active ? run.experiment.fitness.minimize_active_voxels
+                                      : objective != evo::VolumeObjective::Off;
+    ImGui::TextDisabled(
+        "%d on the front (red; %s %s, %s), ring = champion; click a point to show it", front,
+        larger ? "larger" : "smaller", *active ? "active voxels" : "volume",
+        is_objective ? "an objective of this run" : "not an objective of this run");
+    int hovered = -1;
+    std::vector<ImVec2> screen;
+    const auto clicked = draw_scatter_plot(
+        "volume fitness", points, *active ? "active voxels" : "volume (voxels)",
+        fitness_unit(run.experiment.fitness.measure), ImGui::GetContentRegionAvail(), &hovered,
+        /*integer_x=*/true, &screen);
+    record_widget(s, "pareto plot");
+    for (std::size_t k = 0; k < screen.size(); ++k)
+        s.ui.widgets["pareto point #" + std::to_string(entries[k].id)] =
+            WidgetRect{{screen[k].x - 1.0f, screen[k].y - 1.0f},
+                       {screen[k].x + 1.0f, screen[k].y + 1.0f},
+                       s.ui.frame};
+    if (hovered >= 0) {
+        const auto& e = entries[static_cast<std::size_t>(hovered)];
+        ImGui::SetTooltip("#%lld%s\n%s %d voxels\nfitness %s", static_cast<long long>(e.id),
+                          e.on_front ? " (on the front)" : "", *active ? "active" : "volume",
+                          e.voxels,
+                          format_fitness(e.fitness, run.experiment.fitness.measure).c_str());
+    }
+    if (clicked) select_individual(s, entries[static_cast<std::size_t>(*clicked)].id);
 }
 
 void time_plots_tab(Studio& s) {
@@ -203,6 +265,7 @@ void draw_analysis_panel(Studio& s) {
     static constexpr AnalysisTab tabs[] = {{"Population", "Population", draw_population_panel},
                                            {"Champions", "Champs", champions_tab},
                                            {"Age vs fitness", "Ages", scatter_tab},
+                                           {"Volume vs fitness", "Vol.", pareto_tab},
                                            {"Time plots", "Plots", time_plots_tab},
                                            {"Calibrate", "Calib.", draw_calibrate_panel},
                                            {"FEM", "FEM", draw_verify_panel}};

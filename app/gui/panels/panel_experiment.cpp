@@ -140,7 +140,7 @@ void simulation_section(Studio& s) {
 
 void fitness_section(Studio& s) {
     for (const char* path :
-         {"fitness.measure", "fitness.minimize_active_voxels",
+         {"fitness.measure", "fitness.minimize_active_voxels", "fitness.volume_objective",
           "fitness.constraints.attached_to_fixed_face", "fitness.constraints.min_fill_fraction",
           "fitness.constraints.min_active_voxels"})
         experiment_field(s, path);

@@ -52,6 +52,9 @@ std::string describe_fitness_change(const evo::Fitness& before, const evo::Fitne
     if (before.minimize_active_voxels != after.minimize_active_voxels)
         add(after.minimize_active_voxels ? "minimise active voxels"
                                          : "active voxels not minimised");
+    if (before.volume_objective != after.volume_objective)
+        add(std::string("volume objective ") +
+            evo::kVolumeObjectiveNames[static_cast<std::size_t>(after.volume_objective)]);
     const auto reject = [&](bool b, bool a, const char* flag) {
         if (b != a) add(std::string(a ? "reject " : "allow ") + flag);
     };

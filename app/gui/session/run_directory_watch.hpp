@@ -1,8 +1,12 @@
 #pragma once
 // Viewing a run directory written by `bhm evolve` (also one still growing elsewhere): the fitness
-// history and the champion are re-read when their files' modification times change, and turned
-// into the same EvolutionSnapshot the live session publishes, so every panel works on both.
+// history, the champion and the population (population.csv: each member's fitness, age and
+// volume, without its body; the champion's body is champion.json's) are re-read when their files'
+// modification times change, and turned into the same EvolutionSnapshot the live session
+// publishes, so every panel works on both.
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -23,16 +27,26 @@ class RunDirectoryWatch {
     //! good snapshot and set error().
     bool refresh();
     std::shared_ptr<const EvolutionSnapshot> snapshot() const { return snapshot_; }
+    //! Gives the population's members their bodies, developed from the run's checkpoint (the
+    //! genomes are there; population.csv has none), so a click on any of them can show it. Reads
+    //! the whole checkpoint, synchronously: called for a click on a member without a body. The
+    //! bodies are kept for the members that stay in later generations. Returns true when the
+    //! snapshot changed; a checkpoint that cannot be read sets error() and changes nothing.
+    bool load_bodies();
     const std::string& error() const { return error_; }
     int reloads() const { return reloads_; }  //!< how many times files were re-read
 
   private:
     std::string dir_;
-    std::filesystem::file_time_type fitness_mtime_{}, champion_mtime_{}, experiment_mtime_{};
+    std::filesystem::file_time_type fitness_mtime_{}, champion_mtime_{}, experiment_mtime_{},
+        population_mtime_{};
     std::shared_ptr<const EvolutionSnapshot> snapshot_;
     std::string error_;
-    std::string fitness_problem_;  //!< a row of fitness.csv that could not be read
+    std::string fitness_problem_;     //!< a row of fitness.csv that could not be read
+    std::string population_problem_;  //!< population.csv, or a row of it, that could not be read
     int reloads_ = 0;
+    std::map<std::int64_t, std::shared_ptr<const evo::Body>> bodies_;  //!< by id (load_bodies)
+    std::map<std::int64_t, std::uint64_t> hashes_;                     //!< their phenotype hashes
 };
 
 }  // namespace bhm::app::gui

@@ -118,7 +118,7 @@ std::optional<double> draw_time_plot(const char* id, const std::vector<double>& 
 
 std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPoint>& points,
                                      const char* x_label, const char* y_label, ImVec2 size,
-                                     int* hovered, bool integer_x) {
+                                     int* hovered, bool integer_x, std::vector<ImVec2>* screen) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     area_button(id, size);
@@ -134,6 +134,7 @@ std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPo
     const Frame f =
         draw_axes(dl, origin, size, xr, fit_range(ys, 0.08), x_label, y_label, integer_x);
     if (hovered) *hovered = -1;
+    if (screen) screen->clear();
     if (f.hi.x - f.lo.x < 10.0f || f.hi.y - f.lo.y < 10.0f) return std::nullopt;
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     int nearest = -1;
@@ -142,6 +143,7 @@ std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPo
     for (std::size_t k = 0; k < points.size(); ++k) {
         const auto& p = points[k];
         const ImVec2 at{f.px(p.x), f.py(p.y)};
+        if (screen) screen->push_back(at);
         dl->AddCircleFilled(at, p.radius, p.color);
         if (p.ring) dl->AddCircle(at, p.radius + 3.0f, IM_COL32(20, 20, 20, 255), 0, 1.5f);
         const float d2 = (at.x - mouse.x) * (at.x - mouse.x) + (at.y - mouse.y) * (at.y - mouse.y);

@@ -31,9 +31,12 @@ struct ScatterPoint {
 };
 
 //! A scatter plot (integer_x: ticks on whole numbers only); returns the index of the point clicked
-//! (nearest within 8 px), if any, and sets *hovered to the one under the mouse.
+//! (nearest within 8 px), if any, and sets *hovered to the one under the mouse. `screen`, when
+//! given, gets each point's screen position (outside the plot area: a point it clips), so a
+//! caller can record the points as widgets that scripts click.
 std::optional<int> draw_scatter_plot(const char* id, const std::vector<ScatterPoint>& points,
                                      const char* x_label, const char* y_label, ImVec2 size,
-                                     int* hovered, bool integer_x = false);
+                                     int* hovered, bool integer_x = false,
+                                     std::vector<ImVec2>* screen = nullptr);
 
 }  // namespace bhm::app::gui
