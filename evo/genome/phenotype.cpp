@@ -67,6 +67,19 @@ Developer::Developer(const Experiment& experiment)
         body.amplitude.clear();
         fixed_framed_ = apply_frame_and_overrides(experiment, body);
     }
+    // fixed_controllers: a controller file's CPPN is read here, before any simulation, so that
+    // a bad one is one line naming its entry (the experiment reader checks only its envelope).
+    for (std::size_t i = 0; i < c.controllers.size(); ++i) {
+        if (c.controllers[i].genome_json.empty()) continue;
+        try {
+            controller_from_json(nlohmann::json::parse(c.controllers[i].genome_json),
+                                 experiment.evolution.cppn.weight_range);
+        } catch (const std::exception& e) {
+            throw std::invalid_argument("experiment '" + experiment.name +
+                                        "': evolution.controller.controllers[" + std::to_string(i) +
+                                        "] (" + c.controllers[i].name + "): " + e.what());
+        }
+    }
 }
 
 Phenotype Developer::develop(const Genome& genome) const {

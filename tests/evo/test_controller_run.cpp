@@ -184,3 +184,38 @@ TEST_CASE("each controller mode and the GA resume into their uninterrupted twins
         check_twins(e, "ga");
     }
 }
+
+TEST_CASE("NEAT, novelty search and the GA evolve controllers too, in fixed_body and coevolve") {
+    for (Algorithm algorithm : {Algorithm::Neat, Algorithm::Novelty, Algorithm::Ga}) {
+        CAPTURE(kAlgorithmNames[static_cast<std::size_t>(algorithm)]);
+        auto fixed = fixed_body_experiment();
+        fixed.evolution.algorithm = algorithm;
+        fixed.evolution.novelty.k = 2;
+        EvolutionRun run(fixed, test::run_options(3, 2));
+        run.run();
+        const Body framed = apply_frame_and_overrides(fixed, fixed_body());
+        for (const Individual& m : run.state().population) {
+            CHECK(m.genome.output_count == kControllerOutputCount);
+            CHECK(m.phenotype.body.cells == framed.cells);
+            CHECK(m.phenotype.body.has_controller());
+        }
+        auto coevolve = coevolve_experiment();
+        coevolve.evolution.algorithm = algorithm;
+        coevolve.evolution.novelty.k = 2;
+        EvolutionRun co(coevolve, test::run_options(3, 2));
+        co.run();
+        for (const Individual& m : co.state().population) {
+            CHECK(m.controller.output_count == kControllerOutputCount);
+            CHECK(m.phenotype.body.has_controller());
+        }
+    }
+}
+
+TEST_CASE("a controller file with a bad genome is refused before any simulation, naming it") {
+    auto e = fixed_controllers_experiment();
+    nlohmann::json bad = controller_to_json(Genome{});
+    bad["genome"]["edges"] = nlohmann::json::array({nlohmann::json::array({0, 99, 0.5})});
+    e.evolution.controller.controllers.push_back({"bad.json", 1, bad.dump()});
+    CHECK_THROWS_WITH_AS(Developer{e}, doctest::Contains("evolution.controller.controllers[2]"),
+                         std::invalid_argument);
+}
