@@ -15,9 +15,9 @@
 
 namespace bhm::app::gui {
 
-enum class ColorBy { Material, Displacement, Strain, Actuation };
-inline constexpr std::array<const char*, 4> kColorByNames = {"material", "displacement", "strain",
-                                                             "actuation"};
+enum class ColorBy { Material, Displacement, Strain, Actuation, Phase };
+inline constexpr std::array<const char*, 5> kColorByNames = {"material", "displacement", "strain",
+                                                             "actuation", "phase"};
 
 //! Time series over the replay frames, from the end of settling as the fitness measures are:
 //! centre-of-mass displacement per axis and the tip's displacement in voxel lengths, and the
@@ -43,7 +43,10 @@ BodyTimeSeries body_time_series(const evo::Experiment& experiment, const engine:
 //!  - displacement: |p(t) - p(0)| in voxel lengths (sequential, 0 .. the replay's maximum);
 //!  - strain: volumetric strain sx*sy*sz / L^3 - 1 (diverging, symmetric range);
 //!  - actuation: the actuation signal sin(2 pi f (t - settle) + phase) of active voxels, 0 for
-//!    passive ones and while settling (diverging, -1 .. 1).
+//!    passive ones and while settling (diverging, -1 .. 1);
+//!  - phase: each active voxel's actuation phase in radians, the controller drawn over the body
+//!    (an evolved controller's, or the experiment's uniform or random one; issue 44), 0 for
+//!    passive ones (cyclic, -pi .. pi).
 struct VoxelScalars {
     std::vector<float> values;
     render::ScalarRange range;
