@@ -92,6 +92,10 @@ struct BodySpec {
     //! or line, where it turns against a spring to the clamp (engine/model.cpp)
     std::vector<std::uint8_t> fixed;
     std::vector<float> phase_rad;  //!< (nx*ny*nz) or empty; actuation phase per cell
+    //! (nx*ny*nz) or empty (= 1 everywhere); a cell's drive amplitude in [0, 1] (issue 44: an
+    //! evolved controller): multiplies cte A of the sine model and the contraction strain of the
+    //! muscle model. At most 1, so the stable step found for the full drive still holds.
+    std::vector<float> amplitude_scale;
     //! (nx*ny*nz) or empty; a muscle cell's own fibre axis, 0 = x, 1 = y, 2 = z, or
     //! kMaterialFibreAxis for its material's (issue 43: fibres per voxel, e.g. from a CPPN).
     //! Ignored in cells that are not muscle; empty = every cell takes its material's axis.

@@ -125,6 +125,10 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec) {
     if (!spec.phase_rad.empty() && static_cast<long long>(spec.phase_rad.size()) != cells)
         out.push_back({"phase_rad", "has " + count(spec.phase_rad.size()) +
                                         " entries, expected 0 or " + std::to_string(cells)});
+    if (!spec.amplitude_scale.empty() &&
+        static_cast<long long>(spec.amplitude_scale.size()) != cells)
+        out.push_back({"amplitude_scale", "has " + count(spec.amplitude_scale.size()) +
+                                              " entries, expected 0 or " + std::to_string(cells)});
     if (!spec.fibre_axis.empty() && static_cast<long long>(spec.fibre_axis.size()) != cells)
         out.push_back({"fibre_axis", "has " + count(spec.fibre_axis.size()) +
                                          " entries, expected 0 or " + std::to_string(cells)});
@@ -166,6 +170,11 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec) {
     for (float p : spec.phase_rad)
         if (!std::isfinite(p)) {
             out.push_back({"phase_rad", "has a non-finite entry"});
+            break;
+        }
+    for (float a : spec.amplitude_scale)
+        if (!(a >= 0.0f && a <= 1.0f)) {  // NaN fails too
+            out.push_back({"amplitude_scale", "has an entry outside [0, 1]"});
             break;
         }
     return out;

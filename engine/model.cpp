@@ -325,7 +325,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.mu_static[v] = mat.static_friction;
         d.mu_dynamic[v] = mat.dynamic_friction;
         const double phase = spec.phase_rad.empty() ? 0.0 : spec.phase_rad[c];
-        const double amplitude = mat.cte_per_c * spec.actuation.temperature_amplitude_c;
+        double amplitude = mat.cte_per_c * spec.actuation.temperature_amplitude_c;
+        if (!spec.amplitude_scale.empty()) amplitude *= spec.amplitude_scale[c];
         // sin(w tau + phase) = sin(w tau) cos(phase) + cos(w tau) sin(phase)
         d.act_sin[v] = amplitude * std::cos(phase);
         d.act_cos[v] = amplitude * std::sin(phase);

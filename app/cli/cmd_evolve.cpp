@@ -204,6 +204,24 @@ int evolve(ArgParser& args) {
     try {
         experiment = evo::load_experiment(experiment_path);
         say_library_warnings(experiment);
+        // --body B.json: evolve only a controller for that body (evolution.controller fixed_body;
+        // issue 44). The body is kept in the experiment, so run.json and a resume have it.
+        if (args.has("--body")) {
+            if (args.has("--resume"))
+                throw UsageError(
+                    "--body starts a run: a resumed run keeps the body it started with");
+            auto& controller = experiment.evolution.controller;
+            if (controller.mode != evo::ControllerMode::None &&
+                controller.mode != evo::ControllerMode::FixedBody)
+                throw UsageError("--body evolves a controller for a fixed body, but " +
+                                 experiment_path + " sets evolution.controller.mode to \"" +
+                                 evo::kControllerModeNames[static_cast<int>(controller.mode)] +
+                                 "\"");
+            controller.mode = evo::ControllerMode::FixedBody;
+            controller.body = evo::load_body(args.get("--body"));
+            auto problems = evo::validate_experiment(experiment, experiment_path);
+            if (!problems.empty()) throw evo::ValidationError(std::move(problems));
+        }
     } catch (const evo::ValidationError& e) {
         return report_problems(e.problems);
     }
@@ -333,6 +351,9 @@ int cmd_evolve(const Args& args) {
         .option("--runs", "N",
                 "a batch of N independent runs (seeds S..S+N-1) in DIR/run-01.. plus "
                 "DIR/batch.csv: each run's best per generation, mean and 95 % interval")
+        .option("--body", "B.json",
+                "evolve only a controller for this body (evolution.controller fixed_body; "
+                "docs/experiment-format.md)")
         .flag("--resume", "continue the run (or with --runs, the batch) in DIR");
     std::unique_ptr<EvolveCluster> cluster;
     try {

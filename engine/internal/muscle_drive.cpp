@@ -46,6 +46,11 @@ void build_muscle_drive(Model::Data& d) {
             const std::uint8_t own = spec.fibre_axis[static_cast<std::size_t>(d.voxel_cell[v])];
             if (own != kMaterialFibreAxis) m.muscle.fibre_axis = own;
         }
+        // A controller's amplitude scale (issue 44) shortens the free contraction itself, so the
+        // axis strains and the reach stay those of one consistent muscle.
+        if (!spec.amplitude_scale.empty())
+            m.muscle.contraction_strain *=
+                spec.amplitude_scale[static_cast<std::size_t>(d.voxel_cell[v])];
         double mean = 0.0;
         for (int axis = 0; axis < 3; ++axis) {
             const double strain = muscle::axis_strain(m, axis);

@@ -150,10 +150,15 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
     auto phase = [&](int v) {
         return spec.phase_rad.empty() ? 0.0 : spec.phase_rad[d.voxel_cell[v]];
     };
+    // A controller's amplitude scale (issue 44) changes the free strain per unit drive too.
+    auto scale = [&](int v) {
+        return spec.amplitude_scale.empty() ? 1.0f : spec.amplitude_scale[d.voxel_cell[v]];
+    };
     auto same_free_strain = [&](int v, int p) {
         const double cte_v = spec.materials[d.voxel_material[v] - 1].cte_per_c;
         const double cte_p = spec.materials[d.voxel_material[p] - 1].cte_per_c;
-        if (cte_v != cte_p || (cte_v != 0.0 && phase(v) != phase(p))) return false;
+        if (cte_v != cte_p || (cte_v != 0.0 && (phase(v) != phase(p) || scale(v) != scale(p))))
+            return false;
         const MuscleDrive& m = d.muscle;
         for (int a = 0; a < 3; ++a) {
             if (!m.axis_signal0[a].empty() && m.axis_signal0[a][v] != m.axis_signal0[a][p])

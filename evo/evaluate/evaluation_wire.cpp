@@ -156,6 +156,17 @@ std::string encode_job(const JobMessage& message) {
     const std::uint8_t flag = fibres ? 1 : 0;
     out.raw(&flag, 1);
     if (fibres) out.raw(body.fibre.data(), body.fibre.size());
+    // A controller's phase and amplitude (issue 44): a flag, then two floats per cell.
+    const bool controller = body.has_controller();
+    if (controller &&
+        (body.phase.size() != body.cells.size() || body.amplitude.size() != body.cells.size()))
+        throw WireError("job: body controller and cell count disagree");
+    const std::uint8_t controller_flag = controller ? 1 : 0;
+    out.raw(&controller_flag, 1);
+    if (controller) {
+        out.raw(body.phase.data(), body.phase.size() * sizeof(float));
+        out.raw(body.amplitude.data(), body.amplitude.size() * sizeof(float));
+    }
     return out.take();
 }
 
@@ -177,6 +188,15 @@ JobMessage decode_job(const std::string& bytes) {
     if (fibres) {
         m.body.fibre.resize(m.body.cells.size());
         in.raw(m.body.fibre.data(), m.body.fibre.size());
+    }
+    std::uint8_t controller = 0;
+    in.raw(&controller, 1);
+    if (controller > 1) throw WireError(in.what() + ": bad controller flag");
+    if (controller) {
+        m.body.phase.resize(m.body.cells.size());
+        m.body.amplitude.resize(m.body.cells.size());
+        in.raw(m.body.phase.data(), m.body.phase.size() * sizeof(float));
+        in.raw(m.body.amplitude.data(), m.body.amplitude.size() * sizeof(float));
     }
     in.done();
     return m;

@@ -32,6 +32,14 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
     // Per-voxel fibre axes travel with their cells; frame and override cells take the material's.
     const bool fibres = body.fibre.size() == body.cells.size() && !body.fibre.empty();
     if (fibres) out.fibre.assign(out.cells.size(), engine::kMaterialFibreAxis);
+    // A controller's phase and amplitude travel with their cells too; frame and override cells
+    // are not driven by it (phase 0, amplitude 1).
+    const bool controller = body.has_controller() && body.phase.size() == body.cells.size() &&
+                            body.amplitude.size() == body.cells.size();
+    if (controller) {
+        out.phase.assign(out.cells.size(), 0.0f);
+        out.amplitude.assign(out.cells.size(), 1.0f);
+    }
     const bool workspace_sized = body.size == e.workspace_size;
     const auto origin = workspace_sized ? std::array<int, 3>{0, 0, 0} : design_origin(e);
     for (int z = 0; z < body.size[2]; ++z)
@@ -41,6 +49,10 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
                 if (wx >= out.size[0] || wy >= out.size[1] || wz >= out.size[2]) continue;
                 out.cells[out.index(wx, wy, wz)] = body.cells[body.index(x, y, z)];
                 if (fibres) out.fibre[out.index(wx, wy, wz)] = body.fibre[body.index(x, y, z)];
+                if (controller) {
+                    out.phase[out.index(wx, wy, wz)] = body.phase[body.index(x, y, z)];
+                    out.amplitude[out.index(wx, wy, wz)] = body.amplitude[body.index(x, y, z)];
+                }
             }
     const auto& t = e.boundary.enclosure_thickness;
     if (e.boundary.enclosure_material > 0) {
@@ -53,6 +65,10 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
                     out.cells[out.index(x, y, z)] =
                         static_cast<std::uint8_t>(e.boundary.enclosure_material);
                     if (fibres) out.fibre[out.index(x, y, z)] = engine::kMaterialFibreAxis;
+                    if (controller) {
+                        out.phase[out.index(x, y, z)] = 0.0f;
+                        out.amplitude[out.index(x, y, z)] = 1.0f;
+                    }
                 }
     }
     for (const auto& o : e.boundary.voxel_overrides) {
@@ -60,6 +76,10 @@ Body apply_frame_and_overrides(const Experiment& e, const Body& body) {
         if (o.kind == OverrideKind::Empty) out.cells[k] = 0;
         if (o.kind == OverrideKind::Material) out.cells[k] = static_cast<std::uint8_t>(o.material);
         if (fibres && o.kind != OverrideKind::Fixed) out.fibre[k] = engine::kMaterialFibreAxis;
+        if (controller && o.kind != OverrideKind::Fixed) {
+            out.phase[k] = 0.0f;
+            out.amplitude[k] = 1.0f;
+        }
     }
     return out;
 }
@@ -139,7 +159,14 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
                                         " are defined");
 
     spec.fixed = held_cells(e.boundary, framed.size);
-    if (e.actuation.phase == PhaseMode::Random)
+    if (framed.has_controller()) {  // an evolved or given controller (issue 44)
+        if (framed.phase.size() != framed.cells.size() ||
+            framed.amplitude.size() != framed.cells.size())
+            throw std::invalid_argument(
+                "body controller phase and amplitude do not match its cells");
+        spec.phase_rad = framed.phase;
+        spec.amplitude_scale = framed.amplitude;
+    } else if (e.actuation.phase == PhaseMode::Random)
         for (std::size_t k = 0; k < spec.phase_rad.size(); ++k) {
             double u =
                 static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) * 0x1.0p-53;

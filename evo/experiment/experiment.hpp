@@ -134,8 +134,10 @@ struct CppnSettings {
 
 //! The evolutionary method (docs/evolution.md): the paper's AFPO, NEAT (Stanley & Miikkulainen
 //! 2002) or novelty search (Lehman & Stanley 2011). EvolutionRun::run_generation dispatches on it.
-enum class Algorithm { Afpo, Neat, Novelty };
-inline constexpr std::array<const char*, 3> kAlgorithmNames = {"afpo", "neat", "novelty"};
+//! "ga" (issue 44) is a plain generational genetic algorithm, the baseline of the controller
+//! studies: tournament selection, elitism 1, mutation only or one-point crossover.
+enum class Algorithm { Afpo, Neat, Novelty, Ga };
+inline constexpr std::array<const char*, 4> kAlgorithmNames = {"afpo", "neat", "novelty", "ga"};
 
 //! NEAT's parameters (evolution.neat; docs/evolution.md#neat). Defaults follow Stanley &
 //! Miikkulainen 2002 where the paper gives one.
@@ -191,6 +193,54 @@ struct LoopVerifySettings {
     bool operator==(const LoopVerifySettings&) const = default;
 };
 
+//! A body: material index per lattice cell, x fastest, then y, then z (VoxCAD's VXC layers).
+struct Body {
+    std::array<int, 3> size{0, 0, 0};
+    std::vector<std::uint8_t> cells;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
+    //! (nx*ny*nz) or empty: a muscle cell's own fibre axis, 0 = x, 1 = y, 2 = z, or
+    //! engine::kMaterialFibreAxis (its material's muscle.fibre_axis); empty = all the material's.
+    //! The body file's "fibres" (docs/experiment-format.md), the CPPN's fibre outputs.
+    std::vector<std::uint8_t> fibre;
+    //! (nx*ny*nz) or empty: a controller's actuation phase per cell in [-pi, pi] (issue 44; the
+    //! body file's "controller"), in place of actuation.phase (phase_offset_rad still added);
+    //! empty = the experiment's uniform or random phase.
+    std::vector<float> phase;
+    //! (nx*ny*nz) or empty: a controller's drive amplitude per cell in [0, 1]; empty = 1. Both are
+    //! filled together (engine BodySpec::phase_rad, amplitude_scale).
+    std::vector<float> amplitude;
+    int cell_count() const { return size[0] * size[1] * size[2]; }
+    int index(int x, int y, int z) const { return x + size[0] * (y + size[1] * z); }
+    bool has_controller() const { return !phase.empty(); }
+    bool operator==(const Body&) const = default;
+};
+
+//! evolution.controller (issue 44; docs/experiment-format.md, "Controllers"): what is evolved.
+//! none: bodies, actuated by actuation.phase (as before); coevolve: each individual carries a body
+//! CPPN and a controller CPPN, both mutate; fixed_body: only a controller, for `body`;
+//! fixed_controllers: bodies, each evaluated under every one of `controllers`, fitness the mean.
+enum class ControllerMode { None, Coevolve, FixedBody, FixedControllers };
+inline constexpr std::array<const char*, 4> kControllerModeNames = {
+    "none", "coevolve", "fixed_body", "fixed_controllers"};
+
+//! One of fixed_controllers' set: a built-in ("uniform": phase 0; "random": phase uniform in
+//! [-pi, pi) drawn from seed per cell; "wave": phase 2 pi x / length along x) at amplitude 1, or a
+//! controller file's CPPN (genome: the file's JSON, checked by the genome reader).
+struct ControllerEntry {
+    std::string name;         //!< "uniform", "random", "wave", or the file it was read from
+    std::uint64_t seed = 1;   //!< "random" only
+    std::string genome_json;  //!< a controller file's genome (compact JSON); "" for a built-in
+    bool operator==(const ControllerEntry&) const = default;
+};
+
+struct ControllerSettings {
+    ControllerMode mode = ControllerMode::None;
+    //! fixed_body: the body (as a body file holds it: the design or the framed workspace), kept
+    //! with the experiment so that a resumed run has it; `bhm evolve E.json --body B.json` sets it.
+    std::optional<Body> body;
+    std::vector<ControllerEntry> controllers;  //!< fixed_controllers: at least one
+    bool operator==(const ControllerSettings&) const = default;
+};
+
 struct Evolution {
     Algorithm algorithm = Algorithm::Afpo;
     int population = 50;
@@ -206,6 +256,7 @@ struct Evolution {
     NeatSettings neat;  //!< used when algorithm is Neat
     NoveltySettings novelty;
     LoopVerifySettings verify;
+    ControllerSettings controller;
     bool operator==(const Evolution&) const = default;
 };
 
@@ -222,19 +273,6 @@ struct Experiment {
     Fitness fitness;
     Evolution evolution;
     bool operator==(const Experiment&) const = default;
-};
-
-//! A body: material index per lattice cell, x fastest, then y, then z (VoxCAD's VXC layers).
-struct Body {
-    std::array<int, 3> size{0, 0, 0};
-    std::vector<std::uint8_t> cells;  //!< (nx*ny*nz) 0 = empty, k = materials[k-1]
-    //! (nx*ny*nz) or empty: a muscle cell's own fibre axis, 0 = x, 1 = y, 2 = z, or
-    //! engine::kMaterialFibreAxis (its material's muscle.fibre_axis); empty = all the material's.
-    //! The body file's "fibres" (docs/experiment-format.md), the CPPN's fibre outputs.
-    std::vector<std::uint8_t> fibre;
-    int cell_count() const { return size[0] * size[1] * size[2]; }
-    int index(int x, int y, int z) const { return x + size[0] * (y + size[1] * z); }
-    bool operator==(const Body&) const = default;
 };
 
 }  // namespace bhm::evo

@@ -155,8 +155,15 @@ const ExperimentField kExperimentFields[] = {
              "motion; scored -2",
      BHM_BOOLEAN(fitness.constraints.reject_tentacle)},
     {.path = "evolution.algorithm", .label = "Algorithm", .unit = "",
-     .help = "AFPO (the paper's), NEAT or novelty search (docs/evolution.md)",
+     .help = "AFPO (the paper's), NEAT, novelty search or a plain generational GA "
+             "(docs/evolution.md)",
      BHM_CHOICE(evolution.algorithm, Algorithm, kAlgorithmNames)},
+    {.path = "evolution.controller.mode", .label = "Controller", .unit = "",
+     .help = "what evolves (docs/experiment-format.md, Controllers): none = bodies under "
+             "actuation.phase; coevolve = body and controller CPPNs; fixed_body = a controller "
+             "for controller.body; fixed_controllers = bodies, fitness the mean over "
+             "controller.controllers",
+     BHM_CHOICE(evolution.controller.mode, ControllerMode, kControllerModeNames)},
     {.path = "evolution.population", .label = "Population", .unit = "",
      .help = "individuals per generation; paper: 50", .range = {2, 100000},
      BHM_INTEGER(evolution.population)},

@@ -18,6 +18,7 @@
 #include "engine/io/text_file.hpp"
 #include "engine/limits.hpp"
 #include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/controller_fields.hpp"
 #include "evo/experiment/experiment_fields.hpp"
 #include "evo/experiment/field_io.hpp"
 #include "evo/experiment/field_rules.hpp"
@@ -237,7 +238,9 @@ Experiment parse_experiment(const json& root, const std::string& file) {
     // Every scalar field from the table first: materials below need the actuation amplitude (a
     // library's active tissue sets cte_per_c from it).
     read_fields(r, root, "", experiment_fields(), e,
-                {{"", {"format_version", "materials"}}, {"boundary", {"voxel_overrides"}}});
+                {{"", {"format_version", "materials"}},
+                 {"boundary", {"voxel_overrides"}},
+                 {"evolution.controller", {"body", "controllers"}}});
     r.integer(root, "format_version", "", 1, 1, 1);
 
     if (auto it = root.find("materials"); it != root.end()) {
@@ -263,6 +266,8 @@ Experiment parse_experiment(const json& root, const std::string& file) {
     // A boundary that is not an object was reported by read_fields.
     if (auto b = root.find("boundary"); b != root.end() && b->is_object())
         parse_voxel_overrides(r, *b, "boundary", e.boundary);
+    if (auto ev = root.find("evolution"); ev != root.end() && ev->is_object())
+        parse_controller_settings(r, *ev, file, e.evolution.controller);
 
     auto more = validate_experiment(e, file);
     problems.insert(problems.end(), more.begin(), more.end());
@@ -311,6 +316,8 @@ std::vector<Problem> validate_experiment(const Experiment& e, const std::string&
 
     // The rules between fields (field_rules.cpp; the studio's tooltips quote them).
     check_rules(e, file, problems);
+    for (Problem& p : controller_problems(e, file))
+        problems.push_back(std::move(p));
     return problems;
 }
 
@@ -358,6 +365,8 @@ json experiment_to_json(const Experiment& e) {
     if (ev.verify == LoopVerifySettings{}) j["evolution"].erase("verify");
     // Fibre outputs only when on: experiments without them stay byte for byte as they were.
     if (!ev.cppn.fibre_outputs) j["evolution"]["cppn"].erase("fibre_outputs");
+    // The controller block only where it says something (issue 44).
+    write_controller_settings(ev.controller, j["evolution"]);
     return j;
 }
 
@@ -406,13 +415,46 @@ void read_fibres(const json& fibres, Body& body, JsonReader& r) {
     }
 }
 
+// The body file's "controller" (issue 44): {"phase_rad": [...], "amplitude": [...]}, one number
+// per cell in the order of "layers" (x fastest), phase in [-pi, pi], amplitude in [0, 1].
+void read_controller(const json& controller, Body& body, JsonReader& r) {
+    if (!controller.is_object()) {
+        r.problem("controller", "expected an object with \"phase_rad\" and \"amplitude\"");
+        return;
+    }
+    r.check_keys(controller, "controller", {"phase_rad", "amplitude"});
+    auto read = [&](const char* key, double lo, double hi, const char* range,
+                    std::vector<float>& out) {
+        const std::string field = std::string("controller.") + key;
+        const auto it = controller.find(key);
+        if (it == controller.end() || !it->is_array() || it->size() != body.cells.size()) {
+            r.problem(field, "expected an array of " + std::to_string(body.cells.size()) +
+                                 " numbers, one per cell (x fastest)");
+            return;
+        }
+        out.resize(body.cells.size());
+        for (std::size_t c = 0; c < it->size(); ++c) {
+            const json& v = (*it)[c];
+            if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi)) {
+                r.problem(field + "[" + std::to_string(c) + "]",
+                          std::string("expected a number in ") + range);
+                return;
+            }
+            out[c] = v.get<float>();
+        }
+    };
+    const double pi = 3.14159266;  // a float's pi rounds above the double's
+    read("phase_rad", -pi, pi, "[-pi, pi]", body.phase);
+    read("amplitude", 0.0, 1.0, "[0, 1]", body.amplitude);
+}
+
 }  // namespace
 
 Body parse_body(const json& root, const std::string& file) {
     std::vector<Problem> problems;
     JsonReader r(file, problems);
     if (!root.is_object()) throw ValidationError({{file, "(root)", "expected a JSON object"}});
-    r.check_keys(root, "", {"size", "layers", "fibres", "format_version", "name"});
+    r.check_keys(root, "", {"size", "layers", "fibres", "controller", "format_version", "name"});
     Body body;
     if (!root.contains("size")) r.problem("size", "is required");
     std::array<int, 3> size{0, 0, 0};
@@ -471,6 +513,8 @@ Body parse_body(const json& root, const std::string& file) {
         }
     }
     if (problems.empty() && root.contains("fibres")) read_fibres(root["fibres"], body, r);
+    if (problems.empty() && root.contains("controller"))
+        read_controller(root["controller"], body, r);
     if (!problems.empty()) throw ValidationError(std::move(problems));
     return body;
 }
@@ -501,6 +545,9 @@ json body_to_json(const Body& body) {
         }
         out["fibres"] = fibres;
     }
+    if (body.has_controller() && body.phase.size() == body.cells.size() &&
+        body.amplitude.size() == body.cells.size())
+        out["controller"] = {{"phase_rad", body.phase}, {"amplitude", body.amplitude}};
     return out;
 }
 

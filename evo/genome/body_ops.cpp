@@ -1,6 +1,7 @@
 #include "evo/genome/body_ops.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace bhm::evo {
 
@@ -54,6 +55,8 @@ Body largest_face_connected_component(const Body& body) {
         if (label[i] != keep) {
             out.cells[i] = 0;
             if (i < out.fibre.size()) out.fibre[i] = engine::kMaterialFibreAxis;
+            if (i < out.phase.size()) out.phase[i] = 0.0f;
+            if (i < out.amplitude.size()) out.amplitude[i] = 1.0f;
         }
     return out;
 }
@@ -76,6 +79,20 @@ std::uint64_t hash_body(const Body& body) {
         mix('f');
         for (auto a : body.fibre)
             mix(a);
+    }
+    // A controller's phase and amplitude per cell (issue 44), only when the body has one.
+    if (body.has_controller()) {
+        mix('c');
+        auto mix_floats = [&](const std::vector<float>& values) {
+            for (float v : values) {
+                std::uint32_t bits = 0;
+                std::memcpy(&bits, &v, sizeof bits);
+                for (int b = 0; b < 4; ++b)
+                    mix(static_cast<std::uint8_t>(bits >> (8 * b)));
+            }
+        };
+        mix_floats(body.phase);
+        mix_floats(body.amplitude);
     }
     return h;
 }

@@ -45,12 +45,10 @@ double axis_coordinate(int i, int n) {
 
 }  // namespace
 
-CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnFibres fibres)
-    : size_(size), materials_(std::move(materials)), fibres_(std::move(fibres)) {
-    if (size[0] <= 0 || size[1] <= 0 || size[2] <= 0)
-        throw std::invalid_argument("CPPN design space must have at least one cell per axis");
+std::array<std::vector<double>, kInputCount> cppn_inputs(std::array<int, 3> size) {
+    std::array<std::vector<double>, kInputCount> inputs;
     const std::size_t cells = static_cast<std::size_t>(size[0]) * size[1] * size[2];
-    for (auto& v : inputs_)
+    for (auto& v : inputs)
         v.resize(cells);
     double largest_norm = 0.0;
     std::size_t c = 0;
@@ -60,24 +58,21 @@ CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnF
                 const double px = axis_coordinate(x, size[0]);
                 const double py = axis_coordinate(y, size[1]);
                 const double pz = axis_coordinate(z, size[2]);
-                inputs_[kInputX][c] = px;
-                inputs_[kInputY][c] = py;
-                inputs_[kInputZ][c] = pz;
-                inputs_[kInputD][c] = std::sqrt(px * px + py * py + pz * pz);
-                inputs_[kInputBias][c] = 1.0;
-                largest_norm = std::max(largest_norm, inputs_[kInputD][c]);
+                inputs[kInputX][c] = px;
+                inputs[kInputY][c] = py;
+                inputs[kInputZ][c] = pz;
+                inputs[kInputD][c] = std::sqrt(px * px + py * py + pz * pz);
+                inputs[kInputBias][c] = 1.0;
+                largest_norm = std::max(largest_norm, inputs[kInputD][c]);
             }
-    for (auto& d : inputs_[kInputD])
+    for (auto& d : inputs[kInputD])
         d = largest_norm > 0.0 ? -1.0 + 2.0 * d / largest_norm : 0.0;
+    return inputs;
 }
 
-Body CppnDecoder::decode(const Genome& genome) const {
-    const std::size_t cells = inputs_[0].size();
-    if (genome.output_count != output_count())
-        throw std::invalid_argument("genome has " + std::to_string(genome.output_count) +
-                                    " outputs, the experiment's CPPN " +
-                                    std::to_string(output_count()) +
-                                    " (evolution.cppn.material_outputs, fibre_outputs)");
+std::vector<std::vector<double>> cppn_node_values(
+    const Genome& genome, const std::array<std::vector<double>, kInputCount>& inputs) {
+    const std::size_t cells = inputs[0].size();
     const auto order = topological_order(genome);
     // Incoming edges grouped per target node, kept in genome order so sums are reproducible.
     std::vector<std::vector<const CppnEdge*>> incoming(
@@ -87,7 +82,7 @@ Body CppnDecoder::decode(const Genome& genome) const {
 
     std::vector<std::vector<double>> value(static_cast<std::size_t>(genome.node_count()));
     for (int i = 0; i < kInputCount; ++i)
-        value[static_cast<std::size_t>(i)] = inputs_[static_cast<std::size_t>(i)];
+        value[static_cast<std::size_t>(i)] = inputs[static_cast<std::size_t>(i)];
     for (int node : order) {
         if (Genome::is_input(node)) continue;
         auto& out = value[static_cast<std::size_t>(node)];
@@ -105,7 +100,24 @@ Body CppnDecoder::decode(const Genome& genome) const {
                 v = activate(f, v);
         }
     }
+    return value;
+}
 
+CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnFibres fibres)
+    : size_(size), materials_(std::move(materials)), fibres_(std::move(fibres)) {
+    if (size[0] <= 0 || size[1] <= 0 || size[2] <= 0)
+        throw std::invalid_argument("CPPN design space must have at least one cell per axis");
+    inputs_ = cppn_inputs(size);
+}
+
+Body CppnDecoder::decode(const Genome& genome) const {
+    const std::size_t cells = inputs_[0].size();
+    if (genome.output_count != output_count())
+        throw std::invalid_argument("genome has " + std::to_string(genome.output_count) +
+                                    " outputs, the experiment's CPPN " +
+                                    std::to_string(output_count()) +
+                                    " (evolution.cppn.material_outputs, fibre_outputs)");
+    const std::vector<std::vector<double>> value = cppn_node_values(genome, inputs_);
     Body body;
     body.size = size_;
     body.cells.assign(cells, 0);

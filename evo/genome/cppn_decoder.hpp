@@ -48,6 +48,13 @@ struct CppnFibres {
 //! Empty unless the experiment sets evolution.cppn.fibre_outputs.
 CppnFibres cppn_fibres(const Experiment& experiment);
 
+//! The CPPN's inputs (x, y, z, d, bias as above) at every cell of a lattice of this size.
+std::array<std::vector<double>, kInputCount> cppn_inputs(std::array<int, 3> size);
+//! Every node's value at every cell (value[node][cell]) for these inputs, nodes in topological
+//! order, each cell's sums in genome edge order (so reproducible). Throws on a cyclic genome.
+std::vector<std::vector<double>> cppn_node_values(
+    const Genome& genome, const std::array<std::vector<double>, kInputCount>& inputs);
+
 class CppnDecoder {
   public:
     CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnFibres fibres = {});

@@ -4,6 +4,7 @@
 
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/genome/body_ops.hpp"
+#include "evo/genome/controller.hpp"
 
 namespace bhm::evo {
 
@@ -24,6 +25,8 @@ namespace {
 CppnMaterials checked_materials(const Experiment& experiment) {
     const auto m = cppn_materials(experiment);
     if (!m.palette.empty()) return m;  // per-material outputs can paint any material
+    // fixed_body: no body CPPN paints anything, so the palette needs neither kind.
+    if (experiment.evolution.controller.mode == ControllerMode::FixedBody) return m;
     if (m.passive == 0)
         throw std::invalid_argument(
             "experiment '" + experiment.name +
@@ -51,12 +54,57 @@ Developer::Developer(const Experiment& experiment)
       space_(design_space(experiment)),
       decoder_(checked_size(space_, experiment.name), checked_materials(experiment),
                cppn_fibres(experiment)),
-      output_count_(decoder_.output_count()) {}
+      output_count_(decoder_.output_count()) {
+    const ControllerSettings& c = experiment.evolution.controller;
+    if (c.mode == ControllerMode::FixedBody) {
+        if (!c.body)
+            throw std::invalid_argument("experiment '" + experiment.name +
+                                        "': evolution.controller.body: is required in mode "
+                                        "fixed_body");
+        output_count_ = kControllerOutputCount;
+        Body body = *c.body;  // the body's own controller, if any, is what gets evolved
+        body.phase.clear();
+        body.amplitude.clear();
+        fixed_framed_ = apply_frame_and_overrides(experiment, body);
+    }
+    // fixed_controllers: a controller file's CPPN is read here, before any simulation, so that
+    // a bad one is one line naming its entry (the experiment reader checks only its envelope).
+    for (std::size_t i = 0; i < c.controllers.size(); ++i) {
+        if (c.controllers[i].genome_json.empty()) continue;
+        try {
+            controller_from_json(nlohmann::json::parse(c.controllers[i].genome_json),
+                                 experiment.evolution.cppn.weight_range);
+        } catch (const std::exception& e) {
+            throw std::invalid_argument("experiment '" + experiment.name +
+                                        "': evolution.controller.controllers[" + std::to_string(i) +
+                                        "] (" + c.controllers[i].name + "): " + e.what());
+        }
+    }
+}
 
 Phenotype Developer::develop(const Genome& genome) const {
-    const Body designed = largest_face_connected_component(decoder_.decode(genome));
     Phenotype p;
-    p.body = apply_frame_and_overrides(experiment_, designed);
+    if (controller_mode() == ControllerMode::FixedBody) {
+        p.body = fixed_framed_;
+        paint_controller(genome, experiment_.materials, p.body);
+    } else {
+        const Body designed = largest_face_connected_component(decoder_.decode(genome));
+        p.body = apply_frame_and_overrides(experiment_, designed);
+    }
+    count(p);
+    return p;
+}
+
+Phenotype Developer::develop(const Genome& genome, const Genome& controller) const {
+    if (controller_mode() != ControllerMode::Coevolve) return develop(genome);
+    Phenotype p = develop(genome);
+    paint_controller(controller, experiment_.materials, p.body);
+    count(p);
+    return p;
+}
+
+void Developer::count(Phenotype& p) const {
+    p.designed_voxels = 0;
     p.hash = hash_body(p.body);
     p.voxels = count_filled(p.body);
     p.active_voxels = count_active(p.body, experiment_.materials);
@@ -66,7 +114,6 @@ Phenotype Developer::develop(const Genome& genome) const {
                 if (space_.contains(x, y, z) &&
                     p.body.cells[static_cast<std::size_t>(p.body.index(x, y, z))])
                     ++p.designed_voxels;
-    return p;
 }
 
 }  // namespace bhm::evo

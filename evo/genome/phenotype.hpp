@@ -33,7 +33,8 @@ struct Phenotype {
     int designed_voxels = 0;  //!< filled cells of body inside the design space
     bool operator==(const Phenotype& other) const {
         return hash == other.hash && body.cells == other.body.cells &&
-               body.fibre == other.body.fibre;
+               body.fibre == other.body.fibre && body.phase == other.body.phase &&
+               body.amplitude == other.body.amplitude;
     }
 };
 
@@ -44,7 +45,12 @@ class Developer {
     //! (the CPPN's two outputs need both) or its design space is empty.
     explicit Developer(const Experiment& experiment);
 
+    //! The genome's phenotype. With evolution.controller fixed_body the genome is a controller
+    //! (evo/genome/controller.hpp) and the phenotype is the fixed body, framed, painted by it.
     Phenotype develop(const Genome& genome) const;
+    //! evolution.controller coevolve: develop(genome) with `controller` painted on the body; in
+    //! any other mode the controller is ignored (develop(genome)).
+    Phenotype develop(const Genome& genome, const Genome& controller) const;
     //! The lattice the CPPN paints, before the connectivity filter (for inspection and tests).
     Body decode_raw(const Genome& genome) const { return decoder_.decode(genome); }
 
@@ -52,12 +58,17 @@ class Developer {
     //! Outputs the experiment's CPPN has (Genome::output_count of every genome it develops).
     int cppn_output_count() const { return output_count_; }
     const Experiment& experiment() const { return experiment_; }
+    ControllerMode controller_mode() const { return experiment_.evolution.controller.mode; }
 
   private:
+    //! hash, voxel counts of p.body
+    void count(Phenotype& p) const;
+
     Experiment experiment_;
     DesignSpace space_;
     CppnDecoder decoder_;
     int output_count_ = kOutputCount;
+    Body fixed_framed_;  //!< fixed_body: the body, framed (apply_frame_and_overrides)
 };
 
 }  // namespace bhm::evo

@@ -1,10 +1,34 @@
 #include "evo/run/cached_evaluation.hpp"
 
+#include <span>
 #include <unordered_map>
 
 #include "evo/evaluate/constraints.hpp"
+#include "evo/genome/controller.hpp"
 
 namespace bhm::evo {
+
+FitnessReport mean_over_controllers(std::span<const FitnessReport> reports, const Fitness& rules) {
+    FitnessReport out = reports.front();
+    out.measures = {};
+    out.simulated_s = 0.0;
+    out.steps = 0;
+    out.sim_wall_s = 0.0;
+    for (const FitnessReport& r : reports) {
+        for (std::size_t m = 0; m < out.measures.size(); ++m)
+            out.measures[m] += r.measures[m] / static_cast<double>(reports.size());
+        if (r.diverged && !out.diverged) {
+            out.diverged = true;
+            out.divergence_reason = r.divergence_reason;
+        }
+        out.ended_early = out.ended_early && r.ended_early;
+        out.simulated_s += r.simulated_s;
+        out.steps += r.steps;
+        out.sim_wall_s += r.sim_wall_s;
+    }
+    out.fitness = fitness_under(out, rules);
+    return out;
+}
 
 CachedEvaluation evaluate_fresh(std::vector<Individual>& fresh, const Experiment& rules,
                                 const FitnessCache& cache, Evaluator& evaluator,
@@ -40,10 +64,43 @@ CachedEvaluation evaluate_fresh(std::vector<Individual>& fresh, const Experiment
     }
     batch.rules = &rules;
     batch.bodies.clear();
-    for (const std::size_t i : jobs)
-        batch.bodies.push_back(&fresh[i].phenotype.body);
-    if (on_total) on_total(static_cast<int>(jobs.size()));
-    evaluator.evaluate(batch, out.simulated_reports);
+    // fixed_controllers (issue 44): every body once under each controller of the set.
+    const auto& controllers = rules.evolution.controller.controllers;
+    const bool per_controller =
+        rules.evolution.controller.mode == ControllerMode::FixedControllers && !controllers.empty();
+    std::vector<Body> painted;
+    if (per_controller) {
+        painted.reserve(jobs.size() * controllers.size());
+        for (const std::size_t i : jobs)
+            for (const ControllerEntry& entry : controllers) {
+                painted.push_back(fresh[i].phenotype.body);
+                paint_controller_entry(entry, rules.evolution.cppn.weight_range, rules.materials,
+                                       painted.back());
+            }
+        for (const Body& body : painted)
+            batch.bodies.push_back(&body);
+    } else {
+        for (const std::size_t i : jobs)
+            batch.bodies.push_back(&fresh[i].phenotype.body);
+    }
+    if (on_total) on_total(static_cast<int>(batch.bodies.size()));
+    if (per_controller) {
+        if (batch.on_result) {  // progress per body, not per controller
+            auto per_body = batch.on_result;
+            const std::size_t n = controllers.size();
+            batch.on_result = [per_body, n](std::size_t index) {
+                if (index % n == n - 1) per_body(index / n);
+            };
+        }
+        std::vector<FitnessReport> each;
+        evaluator.evaluate(batch, each);
+        for (std::size_t j = 0; j < jobs.size(); ++j)
+            out.simulated_reports.push_back(mean_over_controllers(
+                std::span(each).subspan(j * controllers.size(), controllers.size()),
+                rules.fitness));
+    } else {
+        evaluator.evaluate(batch, out.simulated_reports);
+    }
     for (const auto& r : out.simulated_reports)
         out.diverged += r.diverged ? 1 : 0;
     for (std::size_t i = 0; i < fresh.size(); ++i) {

@@ -6,6 +6,7 @@
 // thread count and the evaluator can never change a run.
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "evo/evaluate/evaluator.hpp"
@@ -23,6 +24,14 @@ struct CachedEvaluation {
     int simulations() const { return static_cast<int>(simulated_reports.size()); }
 };
 
+//! evolution.controller fixed_controllers (issue 44): one body's reports, one per controller of
+//! the set, as one: every measure the mean over the controllers (so fitness is the mean of the
+//! controllers' fitness under any measure), diverged when any diverged, ended early when all did,
+//! time and steps summed; exploit flags and behaviour are the first controller's.
+FitnessReport mean_over_controllers(std::span<const FitnessReport> reports, const Fitness& rules);
+
+//! With evolution.controller fixed_controllers each distinct body is simulated once per
+//! controller and its result is mean_over_controllers (on_total counts the simulations).
 //! Gives every member of fresh its result (report, evaluated, valid under rules' constraints).
 //! batch_controls: cancel, pause and on_result as the evaluator should see them (rules and bodies
 //! are filled here); on_total(n) is told how many simulations are about to run. Throws

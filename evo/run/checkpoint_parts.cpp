@@ -34,7 +34,23 @@ void read_genome(const Fields& f, const CheckpointFieldOf<Individual>& field, In
     } catch (const std::invalid_argument& e) {
         throw FieldError(f.join("") + "." + e.what());
     }
-    ind.phenotype = context.developer->develop(ind.genome);
+    ind.phenotype = context.developer->develop(ind.genome, ind.controller);
+}
+
+//! evolution.controller coevolve: the controller CPPN, read before the genome, which develops
+//! with it. Written where the member has one (an empty controller is the same as none).
+void write_controller(const Individual& ind, const char* key, json& out, const Context&) {
+    if (!ind.controller.edges.empty() || !ind.controller.hidden.empty())
+        out[key] = genome_to_json(ind.controller);
+}
+void read_controller(const Fields& f, const CheckpointFieldOf<Individual>& field, Individual& ind,
+                     Context& context) {
+    if (!f.has(field.key)) return;
+    try {
+        ind.controller = genome_from_json(f.at(field.key), context.weight_range);
+    } catch (const std::invalid_argument& e) {
+        throw FieldError(f.join("") + "." + e.what());
+    }
 }
 
 void write_phenotype_hash(const Individual& ind, const char* key, json& out, const Context&) {
@@ -55,6 +71,9 @@ constexpr std::array kIndividual = {
                                                         "the generation it was made"),
     member_field<&Individual::evaluated, Context>("evaluated", 1, "", "it has a result"),
     member_field<&Individual::valid, Context>("valid", 1, "", "it meets the constraints"),
+    CheckpointFieldOf<Individual>{"controller", "genome", 4, "evolution.controller.mode coevolve",
+                                  "the controller CPPN (evo/genome/controller.hpp)",
+                                  write_controller, read_controller},
     CheckpointFieldOf<Individual>{"genome", "genome", 1, "",
                                   "the CPPN (evo/genome/genome.hpp); NEAT's genes carry "
                                   "innovation numbers from format 3",

@@ -344,7 +344,7 @@ bool EvolutionRun::run_generation() {
     std::uint64_t applied_serial = 0;
     Rescored rescored = rescore_for_pending_rules(applied_serial);
     const Experiment& rules = rescored.rules;
-    const auto algorithm = make_search_algorithm(rules.evolution.algorithm);
+    const auto algorithm = make_search_algorithm(rules.evolution);
     const GenerationContext context{rules, developer_, g};
     SearchState search{state_.neat, state_.novelty_archive};
 

@@ -8,6 +8,7 @@
 
 #include "evo/evaluate/fitness_json.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "evo/genome/controller.hpp"
 #include "evo/genome/genome.hpp"
 #include "evo/run/rule_change_json.hpp"
 
@@ -152,6 +153,26 @@ void read_genome(const Fields& f, const ChampionField& field, ChampionRecord& c,
     }
 }
 
+//! The champion's controller CPPN as a controller file (evo/genome/controller.hpp): the genome
+//! itself in a fixed_body run, the individual's controller in a coevolve run; absent otherwise.
+void write_controller(const ChampionRecord& c, const char* key, json& out, const Context& context) {
+    if (!context.experiment) return;
+    const ControllerMode mode = context.experiment->evolution.controller.mode;
+    if (mode == ControllerMode::FixedBody) out[key] = controller_to_json(c.individual.genome);
+    if (mode == ControllerMode::Coevolve) out[key] = controller_to_json(c.individual.controller);
+}
+void read_controller(const Fields& f, const ChampionField& field, ChampionRecord& c,
+                     Context& context) {
+    if (!context.experiment || !f.has(field.key)) return;
+    if (context.experiment->evolution.controller.mode != ControllerMode::Coevolve) return;
+    try {
+        c.individual.controller =
+            controller_from_json(f.at(field.key), context.experiment->evolution.cppn.weight_range);
+    } catch (const std::invalid_argument& e) {
+        throw FieldError(e.what());
+    }
+}
+
 // The body first: a champion of another experiment is refused as such before anything else.
 constexpr std::array kChampionFields = {
     ChampionField{"phenotype", "body", 1, "",
@@ -173,8 +194,13 @@ constexpr std::array kChampionFields = {
     part_field<&Individual::phenotype, &Phenotype::voxels>("voxels", "filled cells of its body"),
     part_field<&Individual::phenotype, &Phenotype::active_voxels>("active_voxels",
                                                                   "cells with an active material"),
-    ChampionField{"genome", "genome", 1, "", "the CPPN (evo/genome/genome.hpp)", write_genome,
-                  read_genome},
+    ChampionField{"genome", "genome", 1, "",
+                  "the CPPN (evo/genome/genome.hpp); the controller's in a fixed_body run",
+                  write_genome, read_genome},
+    ChampionField{
+        "controller", "controller", 1, "evolution.controller fixed_body or coevolve",
+        "its controller as a controller file (controller.json; evo/genome/controller.hpp)",
+        write_controller, read_controller},
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "engine/io/text_file.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/formats/vxa.hpp"
+#include "evo/genome/controller.hpp"
 #include "evo/run/checkpoint.hpp"
 #include "evo/run/population_csv.hpp"
 #include "evo/run/run_directory.hpp"
@@ -116,12 +117,16 @@ void RunOutput::write_population_csv(const RunState& state) const {
 }
 
 void RunOutput::write_champion(const Experiment& experiment, const ChampionRecord& champion) const {
-    const std::string text = champion_to_json(experiment, champion).dump(2) + "\n";
+    const json record = champion_to_json(experiment, champion);
+    const std::string text = record.dump(2) + "\n";
     char name[48];
     std::snprintf(name, sizeof name, "champions/gen-%05d.json", champion.generation_found);
     write_file_atomically(path(name), text);
     write_file_atomically(path(kChampionFile), text);
     save_vxa(path("champion.vxa"), experiment, champion.individual.phenotype.body);
+    // The champion's controller on its own, reusable on another body (issue 44).
+    if (record.contains("controller"))
+        write_file_atomically(path(kControllerFile), record["controller"].dump(2) + "\n");
 }
 
 void RunOutput::write_checkpoint(const RunState& state, bool current_is_damaged) const {

@@ -13,7 +13,10 @@ struct Individual {
     std::int64_t parent_id = -1;  //!< -1 for a random newcomer
     int age = 0;                  //!< AFPO age: generations since its lineage was a random newcomer
     int born_generation = 0;
-    Genome genome;
+    Genome genome;  //!< the body's CPPN; with evolution.controller fixed_body, the controller's
+    //! evolution.controller coevolve only: the controller's CPPN (evo/genome/controller.hpp);
+    //! empty (no outputs) otherwise
+    Genome controller;
     Phenotype phenotype;   //!< developer.develop(genome); not stored in checkpoints
     FitnessReport report;  //!< report.fitness follows the current rules
     bool evaluated = false;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "evo/evaluate/constraints.hpp"
+#include "evo/search/coevolve_search.hpp"
 
 namespace bhm::evo {
 
@@ -16,9 +17,18 @@ std::unique_ptr<SearchAlgorithm> make_search_algorithm(Algorithm algorithm) {
             return make_neat_search();
         case Algorithm::Novelty:
             return make_novelty_search();
+        case Algorithm::Ga:
+            return make_ga_search();
     }
     throw std::invalid_argument("evolution.algorithm " +
                                 std::to_string(static_cast<int>(algorithm)) + " is not built");
+}
+
+std::unique_ptr<SearchAlgorithm> make_search_algorithm(const Evolution& evolution) {
+    auto algorithm = make_search_algorithm(evolution.algorithm);
+    if (evolution.controller.mode == ControllerMode::Coevolve)
+        return make_coevolve_search(std::move(algorithm));
+    return algorithm;
 }
 
 bool draw_random_individual(const GenerationContext& context, Rng& rng, std::int64_t id,

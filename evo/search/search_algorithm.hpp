@@ -73,10 +73,14 @@ class SearchAlgorithm {
 //! Throws std::invalid_argument for an algorithm that is not built.
 std::unique_ptr<SearchAlgorithm> make_search_algorithm(Algorithm algorithm);
 // One per algorithm, each defined in its own file (afpo_search.cpp, neat_search.cpp,
-// novelty_search.cpp).
+// novelty_search.cpp, ga_search.cpp).
 std::unique_ptr<SearchAlgorithm> make_afpo_search();
 std::unique_ptr<SearchAlgorithm> make_neat_search();
 std::unique_ptr<SearchAlgorithm> make_novelty_search();
+std::unique_ptr<SearchAlgorithm> make_ga_search();  // ga_search.cpp
+//! The experiment's algorithm, wrapped for evolution.controller = "coevolve"
+//! (evo/search/coevolve_search.hpp).
+std::unique_ptr<SearchAlgorithm> make_search_algorithm(const Evolution& evolution);
 
 //! AFPO's breeding (paper section 3), which novelty search shares: generation 0 is
 //! random_population; after it every member ages by one and makes one child (a mutant, or with

@@ -101,6 +101,16 @@ TEST_CASE("studio analysis: bend angle, tip and centre of mass of a rotated rod"
     CHECK(act.values[2] == 0.0f);
     const auto settling = voxel_scalars(ColorBy::Actuation, e, r, 0, s, {});
     CHECK(settling.values[1] == 0.0f);
+    // Phase (issue 44): the controller's phase on active voxels, the same at every frame.
+    std::vector<float> phases(r.voxel_cell.size());
+    for (std::size_t v = 0; v < phases.size(); ++v)
+        phases[v] = 0.5f * static_cast<float>(v) - 1.0f;
+    for (int frame : {0, 2}) {
+        const auto ph = voxel_scalars(ColorBy::Phase, e, r, frame, s, VoxelDrive{phases, {}});
+        CHECK(ph.values[1] == -0.5f);
+        CHECK(ph.values[2] == 0.0f);  // passive
+        CHECK(ph.range.max == doctest::Approx(std::numbers::pi));
+    }
 }
 
 TEST_CASE("studio analysis: the fibre axis colour mode shows each muscle voxel's own axis") {

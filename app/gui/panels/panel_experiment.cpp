@@ -164,8 +164,12 @@ void fields_under(Studio& s, std::string_view prefix) {
 void evolution_section(Studio& s) {
     const auto& ev = s.draft.evolution;
     experiment_field(s, "evolution.algorithm");
-    if (ev.algorithm == evo::Algorithm::Afpo || ev.algorithm == evo::Algorithm::Novelty)
+    if (ev.algorithm == evo::Algorithm::Afpo || ev.algorithm == evo::Algorithm::Novelty ||
+        ev.algorithm == evo::Algorithm::Ga)
         experiment_field(s, "evolution.crossover_rate");
+    // What evolves (issue 44): the body and controller list are set in the file or by
+    // bhm evolve --body (docs/experiment-format.md, "Controllers").
+    experiment_field(s, "evolution.controller.mode");
     // NEAT's and novelty's parameters (docs/evolution.md) when their algorithm is chosen.
     if (ev.algorithm == evo::Algorithm::Neat) fields_under(s, "evolution.neat.");
     if (ev.algorithm == evo::Algorithm::Novelty) fields_under(s, "evolution.novelty.");

@@ -153,6 +153,18 @@ VoxelScalars voxel_scalars(ColorBy by, const evo::Experiment& e, const engine::R
             out.unit = "signal";
             break;
         }
+        case ColorBy::Phase:
+            for (std::size_t v = 0; v < n; ++v) {
+                const int m = r.voxel_material[v];
+                const bool active = m >= 1 && m <= static_cast<int>(e.materials.size()) &&
+                                    e.materials[static_cast<std::size_t>(m - 1)].active();
+                out.values[v] = active && v < phases.size() ? phases[v] : 0.0f;
+            }
+            out.range = {-static_cast<float>(std::numbers::pi),
+                         static_cast<float>(std::numbers::pi)};
+            out.map = render::ColorMapName::Cyclic;  // -pi and pi are one phase
+            out.unit = "rad";
+            break;
         case ColorBy::FibreAxis: {
             out.without.assign(n, 0);
             for (std::size_t v = 0; v < n; ++v) {

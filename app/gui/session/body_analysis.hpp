@@ -16,9 +16,9 @@
 
 namespace bhm::app::gui {
 
-enum class ColorBy { Material, Displacement, Strain, Actuation, FibreAxis };
-inline constexpr std::array<const char*, 5> kColorByNames = {"material", "displacement", "strain",
-                                                             "actuation", "fibre axis"};
+enum class ColorBy { Material, Displacement, Strain, Actuation, Phase, FibreAxis };
+inline constexpr std::array<const char*, 6> kColorByNames = {
+    "material", "displacement", "strain", "actuation", "phase", "fibre axis"};
 
 //! Time series over the replay frames, from the end of settling as the fitness measures are:
 //! centre-of-mass displacement per axis and the tip's displacement in voxel lengths, and the
@@ -45,6 +45,9 @@ BodyTimeSeries body_time_series(const evo::Experiment& experiment, const engine:
 //!  - strain: volumetric strain sx*sy*sz / L^3 - 1 (diverging, symmetric range);
 //!  - actuation: the actuation signal sin(2 pi f (t - settle) + phase) of active voxels, 0 for
 //!    passive ones and while settling (diverging, -1 .. 1);
+//!  - phase: each active voxel's actuation phase in radians, the controller drawn over the body
+//!    (an evolved controller's, or the experiment's uniform or random one; issue 44), 0 for
+//!    passive ones (cyclic, -pi .. pi);
 //!  - fibre axis: 0, 1, 2 (x, y, z) for a muscle voxel, its own axis or its material's (issue 43:
 //!    fibres per voxel); voxels that are not muscle keep their material colour (without).
 struct VoxelScalars {
