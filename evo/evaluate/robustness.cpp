@@ -67,7 +67,8 @@ std::vector<std::string> csv_record(const std::string& text, std::size_t& pos, i
 RobustnessController resolve_robustness_controller(const std::string& item, double weight_range) {
     RobustnessController out;
     out.label = item;
-    if (item.empty()) throw std::invalid_argument("an empty controller name in --controllers");
+    if (item.empty())
+        throw std::invalid_argument("an empty controller name (two commas, or one at an end)");
     if (item == "uniform" || item == "wave" || item == "random") {
         out.entry.name = item;
         return out;

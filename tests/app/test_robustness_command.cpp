@@ -1,0 +1,115 @@
+// `bhm robustness` end to end on tiny bodies: the CSV's shape and its agreement with a plain
+// evaluation, the heatmap's size, and one clear line and exit 1 for bad input.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli/commands.hpp"
+#include "app/cli/png_encode.hpp"
+#include "evo/evaluate/robustness.hpp"
+#include "evo/experiment/body_spec_of.hpp"
+#include "evo/experiment/experiment_io.hpp"
+#include "support/captured_command.hpp"
+#include "support/scratch.hpp"
+
+namespace fs = std::filesystem;
+using namespace bhm;
+
+namespace {
+
+// Paper Table 1 materials on a 3x2x2 workspace held at x-, 0.02 s settle + 0.03 s evaluation.
+evo::Experiment tiny_experiment() {
+    evo::Experiment e;
+    e.name = "tiny";
+    e.workspace_size = {3, 2, 2};
+    evo::MaterialEntry passive;
+    passive.name = "passive";
+    evo::MaterialEntry active = passive;
+    active.name = "active";
+    active.physics.cte_per_c = 0.01;
+    e.materials = {passive, active};
+    e.boundary.faces[static_cast<int>(evo::Face::XMin)] = evo::BoundaryKind::Fixed;
+    e.actuation.frequency_hz = 25.0;
+    e.simulation.settle_s = 0.02;
+    e.simulation.evaluate_s = 0.03;
+    e.simulation.record_fps = 100.0;
+    e.fitness.measure = evo::FitnessMeasure::ComMax3d;
+    return e;
+}
+
+// x = 0 passive (held), the rest active; `length` cells along x.
+evo::Body bar(int length) {
+    evo::Body b;
+    b.size = {3, 2, 2};
+    b.cells.assign(12, 0);
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < length; ++x)
+                b.cells[b.index(x, y, z)] = x == 0 ? 1 : 2;
+    return b;
+}
+
+test::CapturedRun run(const std::vector<std::string>& args) {
+    return test::run_captured(app::cmd_robustness, args);
+}
+
+}  // namespace
+
+TEST_CASE("bhm robustness writes a bodies x controllers CSV equal to plain evaluations") {
+    const fs::path dir = test::scratch_dir("robustness-cli");
+    const std::string experiment = (dir / "e.json").string();
+    evo::save_experiment(experiment, tiny_experiment());
+    evo::save_body((dir / "a.json").string(), bar(3));
+    evo::save_body((dir / "b.json").string(), bar(2));
+    const std::string out = (dir / "out").string();
+    const auto r = run({experiment, (dir / "a.json").string(), (dir / "b.json").string(),
+                        "--controllers", "uniform,wave,random:5", "--out", out, "--threads", "2"});
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("6/6 evaluated") != std::string::npos);
+    const auto table = evo::parse_robustness_csv(test::read_file(fs::path(out) / "robustness.csv"));
+    CHECK(table.controllers == std::vector<std::string>{"uniform", "wave", "random:5"});
+    REQUIRE(table.bodies.size() == 2);
+    CHECK(table.bodies[1] == (dir / "b.json").string());
+    // Cell (a, wave) against the evaluation of the same pair, from the files.
+    const evo::Experiment e = evo::load_experiment(experiment);
+    const evo::Body painted = evo::robustness_cell_body(
+        e, evo::load_body((dir / "a.json").string()),
+        evo::resolve_robustness_controller("wave", e.evolution.cppn.weight_range).entry);
+    CHECK(table.at(0, 1) == evo::fitness_under(evo::evaluate_body(e, painted), e.fitness));
+    if (app::png_available()) {
+        CHECK(fs::file_size(fs::path(out) / "robustness.png") > 0);
+    }
+}
+
+TEST_CASE("bhm robustness refuses bad input with one line naming the file or item") {
+    const fs::path dir = test::scratch_dir("robustness-cli-errors");
+    const std::string experiment = (dir / "e.json").string();
+    evo::save_experiment(experiment, tiny_experiment());
+    evo::save_body((dir / "a.json").string(), bar(3));
+    const std::string body = (dir / "a.json").string();
+    const std::string out = (dir / "out").string();
+
+    auto r = run({experiment, body, "--controllers", "uniform,unifrom", "--out", out});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("--controllers: unifrom: neither a built-in controller") != std::string::npos);
+    CHECK_FALSE(fs::exists(fs::path(out) / "robustness.csv"));
+
+    r = run(
+        {experiment, (dir / "missing.json").string(), "--controllers", "uniform", "--out", out});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("missing.json") != std::string::npos);
+
+    r = run({experiment, body, "--controllers", (dir / "nope").string(), "--out", out});
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("nope: neither") != std::string::npos);
+
+    r = run({experiment, body, "--out", out});  // no --controllers: a usage error
+    CHECK(r.exit_code == 2);
+    r = run({experiment, "--controllers", "uniform", "--out", out});  // no body
+    CHECK(r.exit_code == 2);
+}
