@@ -11,6 +11,7 @@
 
 #include "app/cli/arg_parser.hpp"
 #include "app/cli/commands.hpp"
+#include "app/cli/png_encode.hpp"
 #include "app/cli/problem_report.hpp"
 #include "app/cli/robustness_plot.hpp"
 #include "evo/evaluate/robustness.hpp"
@@ -111,6 +112,14 @@ int robustness(ArgParser& args) {
     const std::string csv_path = (std::filesystem::path(out_dir) / "robustness.csv").string();
     const std::string png_path = (std::filesystem::path(out_dir) / "robustness.png").string();
     evo::write_file_atomically(csv_path, evo::robustness_csv(table));
+    if (!png_available()) {
+        // The table is still worth having; an earlier run's heatmap would not match it.
+        std::filesystem::remove(png_path);
+        std::cerr << "bhm robustness: warning: bhm was built without libpng, so " << png_path
+                  << " is not written\n";
+        std::cout << "wrote " << csv_path << std::endl;
+        return 0;
+    }
     const HeatmapScale scale = write_robustness_heatmap(png_path, table);
     char line[200];
     std::snprintf(line, sizeof line, "fitness %.4g .. %.4g; wrote ", scale.lo, scale.hi);
