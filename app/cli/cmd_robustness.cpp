@@ -26,7 +26,7 @@ const char* const kSummary =
     "under EXPERIMENT's fitness (the evaluation of `bhm simulate` and of a run: settle_s +\n"
     "evaluate_s, fitness.measure, the exploit constraints), and writes into DIR:\n"
     "  robustness.csv  a header \"body,C1,...,Cm\", then one row per body: its fitness under each\n"
-    "                  controller (-1 diverged, -2 rejected by a constraint)\n"
+    "                  controller (-1 diverged, -2 rejected by a reject_* exploit constraint)\n"
     "  robustness.png  the same table as a heatmap (rows bodies, columns controllers; dark blue\n"
     "                  the lowest fitness, yellow the highest, grey crossed cells diverged or\n"
     "                  rejected)\n"
