@@ -1,7 +1,9 @@
 // `bhm robustness` end to end on tiny bodies: the CSV's shape and its agreement with a plain
-// evaluation, the heatmap's size, and one clear line and exit 1 for bad input.
+// evaluation and to bhm simulate, the heatmap's layout and colours, and one clear line and exit 1
+// for bad input.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -15,6 +17,11 @@
 #include "evo/experiment/experiment_io.hpp"
 #include "support/captured_command.hpp"
 #include "support/scratch.hpp"
+
+#ifdef BHM_WITH_GUI  // render::read_png, to look at the heatmap
+#include "app/cli/robustness_plot.hpp"
+#include "render/image.hpp"
+#endif
 
 namespace fs = std::filesystem;
 using namespace bhm;
@@ -113,3 +120,30 @@ TEST_CASE("bhm robustness refuses bad input with one line naming the file or ite
     r = run({experiment, "--controllers", "uniform", "--out", out});  // no body
     CHECK(r.exit_code == 2);
 }
+
+#ifdef BHM_WITH_GUI
+TEST_CASE("the robustness heatmap puts each cell where the CSV has it, coloured by fitness") {
+    if (!app::png_available()) return;
+    const fs::path dir = test::scratch_dir("robustness-heatmap");
+    evo::RobustnessTable t;
+    t.bodies = {"a", "b"};
+    t.controllers = {"c1", "c2", "c3"};
+    t.fitness = {0.0, 2.0, 1.0, -1.0, 0.5, -2.0};
+    const auto scale = app::write_robustness_heatmap((dir / "h.png").string(), t);
+    CHECK(scale.lo == 0.0);
+    CHECK(scale.hi == 2.0);
+    const render::Image image = render::read_png((dir / "h.png").string());
+    // 10-pixel margin, 40-pixel cells, then a 12-pixel gap and a 16-pixel colour bar.
+    CHECK(image.width == 2 * 10 + 3 * 40 + 12 + 16);
+    CHECK(image.height == 2 * 10 + 2 * 40);
+    auto centre = [&](int row, int col) {
+        const std::uint8_t* p = image.pixel(10 + col * 40 + 12, 10 + row * 40 + 20);
+        return std::array<int, 3>{p[0], p[1], p[2]};
+    };
+    CHECK(centre(0, 1)[0] > 200);  // the highest fitness: yellow
+    CHECK(centre(0, 1)[1] > 200);
+    CHECK(centre(0, 0)[2] > centre(0, 0)[0]);                  // the lowest: dark blue
+    CHECK(centre(1, 0) == std::array<int, 3>{150, 150, 150});  // diverged: grey
+    CHECK(centre(1, 2) == std::array<int, 3>{150, 150, 150});  // rejected: grey
+}
+#endif
