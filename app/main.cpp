@@ -29,12 +29,14 @@ constexpr Subcommand kSubcommands[] = {
     {"calibrate", bhm::app::cmd_calibrate, "fit simulation parameters to a measured track"},
     {"verify", bhm::app::cmd_verify,
      "check a body or a run's top designs in a continuum FEM (CalculiX)"},
+    {"robustness", bhm::app::cmd_robustness,
+     "a table and heatmap of bodies x controllers, each cell one evaluation"},
 };
 
 void print_usage(std::ostream& out) {
     out << "usage: bhm [SUBCOMMAND] [ARGS...]\n       bhm --version\n\nsubcommands:\n";
     for (const auto& s : kSubcommands)
-        out << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << "\n";
+        out << "  " << s.name << std::string(11 - std::strlen(s.name), ' ') << s.summary << "\n";
     out << "\n'bhm SUBCOMMAND --help' describes each one.\n";
 }
 

@@ -17,5 +17,6 @@ int cmd_export(const Args& args);
 int cmd_import(const Args& args);
 int cmd_verify(const Args& args);
 int cmd_calibrate(const Args& args);
+int cmd_robustness(const Args& args);
 
 }  // namespace bhm::app

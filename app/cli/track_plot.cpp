@@ -8,11 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/cli/png_encode.hpp"
 #include "evo/experiment/experiment_io.hpp"
-
-#ifdef BHM_WITH_PNG
-#include <png.h>
-#endif
 
 namespace bhm::app {
 
@@ -51,53 +48,15 @@ struct Canvas {
     }
 };
 
-#ifdef BHM_WITH_PNG
-std::string encode_png(const Canvas& canvas) {
-    std::string out;
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    if (!png || !info) {
-        png_destroy_write_struct(&png, nullptr);
-        throw std::runtime_error("cannot start the PNG encoder");
-    }
-    if (setjmp(png_jmpbuf(png))) {
-        png_destroy_write_struct(&png, &info);
-        throw std::runtime_error("cannot encode the PNG");
-    }
-    png_set_write_fn(
-        png, &out,
-        [](png_structp p, png_bytep data, png_size_t n) {
-            static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(data), n);
-        },
-        nullptr);
-    png_set_IHDR(png, info, static_cast<png_uint_32>(canvas.width),
-                 static_cast<png_uint_32>(canvas.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_write_info(png, info);
-    for (int y = 0; y < canvas.height; ++y)
-        png_write_row(png, const_cast<png_bytep>(&canvas.rgb[static_cast<std::size_t>(y) * canvas.width * 3]));
-    png_write_end(png, nullptr);
-    png_destroy_write_struct(&png, &info);
-    return out;
-}
-#endif
 
 }  // namespace
 
-bool track_plot_available() {
-#ifdef BHM_WITH_PNG
-    return true;
-#else
-    return false;
-#endif
-}
+bool track_plot_available() { return png_available(); }
 
 void write_track_plot(const std::string& path, const evo::MeasuredTrack& track,
                       const evo::SimulatedTrack& before, const evo::SimulatedTrack& after) {
-#ifndef BHM_WITH_PNG
-    (void)track, (void)before, (void)after;
-    throw std::runtime_error(path + ": bhm was built without libpng, so it cannot plot");
-#else
+    if (!png_available())
+        throw std::runtime_error(path + ": bhm was built without libpng, so it cannot plot");
     struct Panel {
         std::size_t point, axis;
     };
@@ -152,12 +111,11 @@ void write_track_plot(const std::string& path, const evo::MeasuredTrack& track,
     }
     std::string png;
     try {
-        png = encode_png(canvas);
+        png = encode_rgb_png(canvas.width, canvas.height, canvas.rgb);
     } catch (const std::runtime_error& e) {
         throw std::runtime_error(path + ": " + e.what());
     }
     evo::write_file_atomically(path, png);
-#endif
 }
 
 }  // namespace bhm::app

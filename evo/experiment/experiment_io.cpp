@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -443,7 +444,9 @@ void read_controller(const json& controller, Body& body, JsonReader& r) {
             out[c] = v.get<float>();
         }
     };
-    const double pi = 3.14159266;  // a float's pi rounds above the double's
+    // A float's pi (3.14159274...) rounds above the double's: a controller painted at -pi or pi
+    // (wave, a CPPN phase output of +-1) is written as it, and must read back.
+    const double pi = static_cast<double>(std::numbers::pi_v<float>);
     read("phase_rad", -pi, pi, "[-pi, pi]", body.phase);
     read("amplitude", 0.0, 1.0, "[0, 1]", body.amplitude);
 }

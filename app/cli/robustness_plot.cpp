@@ -1,0 +1,99 @@
+// bhm robustness's heatmap (robustness_plot.hpp), rasterised here and encoded by png_encode.
+#include "app/cli/robustness_plot.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "app/cli/png_encode.hpp"
+#include "evo/experiment/experiment_io.hpp"
+
+namespace bhm::app {
+
+namespace {
+
+using Rgb = std::array<std::uint8_t, 3>;
+constexpr int kCell = 40, kMargin = 10, kBarWidth = 16, kBarGap = 12;
+constexpr Rgb kInvalid{150, 150, 150}, kCross{60, 60, 60}, kBackground{255, 255, 255};
+
+// Dark blue -> teal -> yellow (the studio's sequential map's ends), linear between stops.
+Rgb sequential(double t) {
+    constexpr std::array<std::array<double, 3>, 3> stops{
+        {{0.10, 0.12, 0.45}, {0.10, 0.60, 0.60}, {0.98, 0.90, 0.15}}};
+    t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0);
+    const double s = t * 2.0;
+    const int i = std::min(1, static_cast<int>(s));
+    const double f = s - i;
+    Rgb out{};
+    for (int c = 0; c < 3; ++c)
+        out[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(
+            255.0 * (stops[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] * (1.0 - f) +
+                     stops[static_cast<std::size_t>(i) + 1][static_cast<std::size_t>(c)] * f)));
+    return out;
+}
+
+struct Canvas {
+    int width, height;
+    std::vector<std::uint8_t> rgb;
+    Canvas(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 255) {}
+    void put(int x, int y, Rgb c) {
+        if (x < 0 || y < 0 || x >= width || y >= height) return;
+        auto* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+        p[0] = c[0], p[1] = c[1], p[2] = c[2];
+    }
+    void fill(int x0, int y0, int w, int h, Rgb c) {
+        for (int y = y0; y < y0 + h; ++y)
+            for (int x = x0; x < x0 + w; ++x)
+                put(x, y, c);
+    }
+};
+
+}  // namespace
+
+HeatmapScale write_robustness_heatmap(const std::string& path, const evo::RobustnessTable& table) {
+    const int rows = static_cast<int>(table.bodies.size());
+    const int cols = static_cast<int>(table.controllers.size());
+    if (rows == 0 || cols == 0) throw std::runtime_error(path + ": an empty table has no heatmap");
+    HeatmapScale scale{INFINITY, -INFINITY};
+    for (const double f : table.fitness)
+        if (std::isfinite(f) && f >= 0.0)
+            scale.lo = std::min(scale.lo, f), scale.hi = std::max(scale.hi, f);
+    if (!(scale.lo <= scale.hi)) scale = {0.0, 0.0};
+    const double span = scale.hi - scale.lo;
+    auto position = [&](double f) { return span > 0.0 ? (f - scale.lo) / span : 0.5; };
+
+    const int grid_h = rows * kCell;
+    Canvas canvas(2 * kMargin + cols * kCell + kBarGap + kBarWidth, 2 * kMargin + grid_h);
+    canvas.fill(0, 0, canvas.width, canvas.height, kBackground);
+    for (int b = 0; b < rows; ++b)
+        for (int c = 0; c < cols; ++c) {
+            const double f = table.at(static_cast<std::size_t>(b), static_cast<std::size_t>(c));
+            const int x0 = kMargin + c * kCell, y0 = kMargin + b * kCell;
+            const bool valid = std::isfinite(f) && f >= 0.0;
+            // One pixel of white between cells.
+            canvas.fill(x0 + 1, y0 + 1, kCell - 2, kCell - 2,
+                        valid ? sequential(position(f)) : kInvalid);
+            if (!valid)
+                for (int k = 4; k < kCell - 4; ++k)
+                    canvas.put(x0 + k, y0 + k, kCross),
+                        canvas.put(x0 + kCell - 1 - k, y0 + k, kCross);
+        }
+    // The colour bar: the table's highest fitness at the top.
+    const int bar_x = kMargin + cols * kCell + kBarGap;
+    for (int y = 0; y < grid_h; ++y)
+        canvas.fill(bar_x, kMargin + y, kBarWidth, 1,
+                    sequential(1.0 - static_cast<double>(y) / std::max(1, grid_h - 1)));
+    std::string png;
+    try {
+        png = encode_rgb_png(canvas.width, canvas.height, canvas.rgb);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
+    evo::write_file_atomically(path, png);
+    return scale;
+}
+
+}  // namespace bhm::app
