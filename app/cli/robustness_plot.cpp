@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "app/cli/png_encode.hpp"
+#include "app/cli/rgb_canvas.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app {
 
 namespace {
 
-using Rgb = std::array<std::uint8_t, 3>;
 constexpr int kCell = 40, kMargin = 10, kBarWidth = 16, kBarGap = 12;
 constexpr Rgb kInvalid{150, 150, 150}, kCross{60, 60, 60}, kBackground{255, 255, 255};
 
@@ -35,22 +35,6 @@ Rgb sequential(double t) {
     return out;
 }
 
-struct Canvas {
-    int width, height;
-    std::vector<std::uint8_t> rgb;
-    Canvas(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 255) {}
-    void put(int x, int y, Rgb c) {
-        if (x < 0 || y < 0 || x >= width || y >= height) return;
-        auto* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-        p[0] = c[0], p[1] = c[1], p[2] = c[2];
-    }
-    void fill(int x0, int y0, int w, int h, Rgb c) {
-        for (int y = y0; y < y0 + h; ++y)
-            for (int x = x0; x < x0 + w; ++x)
-                put(x, y, c);
-    }
-};
-
 }  // namespace
 
 HeatmapScale write_robustness_heatmap(const std::string& path, const evo::RobustnessTable& table) {
@@ -66,7 +50,7 @@ HeatmapScale write_robustness_heatmap(const std::string& path, const evo::Robust
     auto position = [&](double f) { return span > 0.0 ? (f - scale.lo) / span : 0.5; };
 
     const int grid_h = rows * kCell;
-    Canvas canvas(2 * kMargin + cols * kCell + kBarGap + kBarWidth, 2 * kMargin + grid_h);
+    RgbCanvas canvas(2 * kMargin + cols * kCell + kBarGap + kBarWidth, 2 * kMargin + grid_h);
     canvas.fill(0, 0, canvas.width, canvas.height, kBackground);
     for (int b = 0; b < rows; ++b)
         for (int c = 0; c < cols; ++c) {

@@ -9,45 +9,16 @@
 #include <vector>
 
 #include "app/cli/png_encode.hpp"
+#include "app/cli/rgb_canvas.hpp"
 #include "evo/experiment/experiment_io.hpp"
 
 namespace bhm::app {
 
 namespace {
 
-using Rgb = std::array<std::uint8_t, 3>;
 constexpr Rgb kMeasured{0, 0, 0}, kBefore{230, 120, 20}, kAfter{30, 90, 220}, kGrid{200, 200, 200},
     kFrame{120, 120, 120};
 constexpr int kWidth = 900, kPanelHeight = 200, kMargin = 12;
-
-struct Canvas {
-    int width, height;
-    std::vector<std::uint8_t> rgb;
-    Canvas(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 255) {}
-    void put(int x, int y, Rgb c) {
-        if (x < 0 || y < 0 || x >= width || y >= height) return;
-        auto* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-        p[0] = c[0], p[1] = c[1], p[2] = c[2];
-    }
-    // Bresenham, 2 pixels thick.
-    void line(int x0, int y0, int x1, int y1, Rgb c) {
-        const int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
-        const int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1;
-        int err = dx + dy;
-        for (;;) {
-            put(x0, y0, c), put(x0, y0 + 1, c);
-            if (x0 == x1 && y0 == y1) break;
-            const int e2 = 2 * err;
-            if (e2 >= dy) err += dy, x0 += sx;
-            if (e2 <= dx) err += dx, y0 += sy;
-        }
-    }
-    void dot(int x, int y, Rgb c) {
-        for (int j = -2; j <= 2; ++j)
-            for (int i = -2; i <= 2; ++i) put(x + i, y + j, c);
-    }
-};
-
 
 }  // namespace
 
@@ -64,7 +35,7 @@ void write_track_plot(const std::string& path, const evo::MeasuredTrack& track,
     for (std::size_t i = 0; i < track.points.size(); ++i)
         for (std::size_t a = 0; a < 3; ++a)
             if (track.points[i].axes[a]) panels.push_back({i, a});
-    Canvas canvas(kWidth, static_cast<int>(panels.size()) * kPanelHeight);
+    RgbCanvas canvas(kWidth, static_cast<int>(panels.size()) * kPanelHeight);
     const double t0 = track.t_s.front(), t1 = track.t_s.back();
     const std::size_t rows = track.t_s.size();
     for (std::size_t k = 0; k < panels.size(); ++k) {
