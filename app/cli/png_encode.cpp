@@ -3,6 +3,8 @@
 
 #include <stdexcept>
 
+#include "evo/experiment/experiment_io.hpp"
+
 #ifdef BHM_WITH_PNG
 #include <png.h>
 #endif
@@ -51,6 +53,17 @@ std::string encode_rgb_png(int width, int height, const std::vector<std::uint8_t
     png_destroy_write_struct(&png, &info);
     return out;
 #endif
+}
+
+void write_rgb_png(const std::string& path, int width, int height,
+                   const std::vector<std::uint8_t>& rgb) {
+    std::string png;
+    try {
+        png = encode_rgb_png(width, height, rgb);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
+    evo::write_file_atomically(path, png);
 }
 
 }  // namespace bhm::app

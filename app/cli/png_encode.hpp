@@ -15,4 +15,8 @@ bool png_available();
 //! path: the caller names the file).
 std::string encode_rgb_png(int width, int height, const std::vector<std::uint8_t>& rgb);
 
+//! Encodes and writes `path` atomically; errors name the path.
+void write_rgb_png(const std::string& path, int width, int height,
+                   const std::vector<std::uint8_t>& rgb);
+
 }  // namespace bhm::app

@@ -70,13 +70,7 @@ HeatmapScale write_robustness_heatmap(const std::string& path, const evo::Robust
     for (int y = 0; y < grid_h; ++y)
         canvas.fill(bar_x, kMargin + y, kBarWidth, 1,
                     sequential(1.0 - static_cast<double>(y) / std::max(1, grid_h - 1)));
-    std::string png;
-    try {
-        png = encode_rgb_png(canvas.width, canvas.height, canvas.rgb);
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
-    }
-    evo::write_file_atomically(path, png);
+    write_rgb_png(path, canvas.width, canvas.height, canvas.rgb);
     return scale;
 }
 

@@ -80,13 +80,7 @@ void write_track_plot(const std::string& path, const evo::MeasuredTrack& track,
         }
         for (std::size_t r = 0; r < rows; ++r) canvas.dot(px(track.t_s[r]), py(disp(measured, r)), kMeasured);
     }
-    std::string png;
-    try {
-        png = encode_rgb_png(canvas.width, canvas.height, canvas.rgb);
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error(path + ": " + e.what());
-    }
-    evo::write_file_atomically(path, png);
+    write_rgb_png(path, canvas.width, canvas.height, canvas.rgb);
 }
 
 }  // namespace bhm::app
