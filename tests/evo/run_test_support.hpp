@@ -71,6 +71,23 @@ inline std::unique_ptr<EvolutionRun> stopped_then_resumed(const Experiment& expe
     return EvolutionRun::resume(run_options(generations, threads, dir));
 }
 
+//! One experiment run twice to `generations` on `threads`: uninterrupted in `whole_dir`, and in
+//! `parts_dir` stopped after generation `stop_at` and resumed (stopped_then_resumed), both run to
+//! the end. `resumed` is null if the first part did not stop on request.
+struct RunTwins {
+    std::unique_ptr<EvolutionRun> whole, resumed;
+};
+inline RunTwins run_twins(const Experiment& experiment, const std::string& whole_dir,
+                          const std::string& parts_dir, int generations, int threads, int stop_at) {
+    RunTwins t;
+    t.whole =
+        std::make_unique<EvolutionRun>(experiment, run_options(generations, threads, whole_dir));
+    t.whole->run();
+    t.resumed = stopped_then_resumed(experiment, parts_dir, generations, threads, stop_at);
+    if (t.resumed) t.resumed->run();
+    return t;
+}
+
 //! A checkpoint payload as a build before format 4 wrote it: `version` (1 to 3) and each cache
 //! entry {hash, report} as the positional array [hash, diverged, steps, simulated_s, measures,
 //! divergence_reason, exploits, behaviour, {ended_early, periodic_residual}] (no fitness, no

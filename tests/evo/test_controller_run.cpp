@@ -57,14 +57,11 @@ Experiment fixed_controllers_experiment() {
 void check_twins(const Experiment& e, const std::string& name) {
     const fs::path whole = test::fresh_dir("controller", name + "-whole"),
                    parts = test::fresh_dir("controller", name + "-parts");
-    EvolutionRun uninterrupted(e, test::run_options(3, 2, whole.string()));
-    uninterrupted.run();
-    auto resumed = test::stopped_then_resumed(e, parts.string(), 3, 2, 1);
-    REQUIRE(resumed);
-    CHECK(resumed->resume_warnings().empty());
-    resumed->run();
-    const auto& u = uninterrupted.state();
-    const auto& r = resumed->state();
+    const auto twins = test::run_twins(e, whole.string(), parts.string(), 3, 2, 1);
+    REQUIRE(twins.resumed);
+    CHECK(twins.resumed->resume_warnings().empty());
+    const auto& u = twins.whole->state();
+    const auto& r = twins.resumed->state();
     CHECK(test::without_wall(r.history) == test::without_wall(u.history));
     CHECK(r.rng == u.rng);
     REQUIRE(r.champion);

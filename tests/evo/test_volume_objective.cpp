@@ -99,14 +99,11 @@ TEST_CASE("a run minimising volume resumes into its uninterrupted twin, populati
     e.fitness.volume_objective = VolumeObjective::Minimize;
     const fs::path whole = test::fresh_dir("volume", "whole"),
                    parts = test::fresh_dir("volume", "parts");
-    EvolutionRun uninterrupted(e, test::run_options(4, 2, whole.string()));
-    uninterrupted.run();
-    auto resumed = test::stopped_then_resumed(e, parts.string(), 4, 2, 1);
-    REQUIRE(resumed);
-    CHECK(resumed->resume_warnings().empty());
-    resumed->run();
-    const auto& u = uninterrupted.state();
-    const auto& r = resumed->state();
+    auto twins = test::run_twins(e, whole.string(), parts.string(), 4, 2, 1);
+    REQUIRE(twins.resumed);
+    CHECK(twins.resumed->resume_warnings().empty());
+    const auto& u = twins.whole->state();
+    const auto& r = twins.resumed->state();
     CHECK(test::without_wall(r.history) == test::without_wall(u.history));
     CHECK(r.rng == u.rng);
     REQUIRE(r.population.size() == u.population.size());
@@ -151,7 +148,7 @@ TEST_CASE("a run minimising volume resumes into its uninterrupted twin, populati
             CHECK_FALSE((no_worse && better));
         }
     }
-    resumed.reset();
+    twins = {};  // releases both runs' locks before their folders go
     fs::remove_all(whole);
     fs::remove_all(parts);
 }
