@@ -113,6 +113,7 @@ int verify_one(ArgParser& parser, const std::string& experiment_path) {
     if (v.status == evo::VerifyStatus::Compared) {
         std::cout << "  beside it: " << v.beside() << "\n";
         std::cout << "  FEM steps " << v.geometry_reason << "\n";
+        if (!v.laws().empty()) std::cout << "  FEM law " << v.laws() << "\n";
         std::printf("  FEM %d nodes, %.1f s CPU; engine %.1f s CPU; report %s\n", v.fem_nodes,
                     v.fem_cpu_s, v.engine_cpu_s, (out / "report.json").string().c_str());
     }
@@ -190,7 +191,8 @@ int verify_run(ArgParser& parser, const std::string& run_dir) {
                   << c->fitness << "): " << v.verdict() << "\n";
         if (v.status == evo::VerifyStatus::Compared)
             std::cout << "  beside it: " << v.beside() << "\n  FEM steps " << v.geometry_reason
-                      << "\n  FEM mesh " << v.mesh.reason << "\n";
+                      << (v.laws().empty() ? "" : "\n  FEM law " + v.laws()) << "\n  FEM mesh "
+                      << v.mesh.reason << "\n";
         if (v.status != evo::VerifyStatus::Compared) continue;
         recorded.push_back(c->fitness);
         fem.push_back(v.fem_score);
@@ -247,7 +249,9 @@ int cmd_verify(const Args& args) {
         "deformed mesh (legacy VTK) to DIR. With a RUN_DIR, the K best distinct champions of\n"
         "the run's history and the Spearman rank correlation of our fitness and the FEM's.\n"
         "The FEM's steps are geometrically nonlinear when our engine's answer turns a voxel\n"
-        "or bends more than 10 degrees (--nlgeom, --linear force either). Its mesh is refined\n"
+        "or bends more than 10 degrees, or the actuation's free strain exceeds 5 %, each\n"
+        "under two laws, Saint Venant-Kirchhoff and Neo-Hookean, judged on the nearer\n"
+        "(--nlgeom, --linear force either). Its mesh is refined\n"
         "where the body is narrow: C3D20R, 2 per voxel edge, where a section is 1 voxel\n"
         "across (a single held voxel, a 1x1 neck), else C3D8I, 2 per edge (--element and\n"
         "--subdivision choose another).\n"

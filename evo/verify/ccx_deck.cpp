@@ -40,8 +40,12 @@ bool muscle_driven(const engine::BodySpec& spec) {
     return false;
 }
 
+const char* fem_material_law_name(FemMaterialLaw law) {
+    return law == FemMaterialLaw::NeoHookean ? "Neo-Hookean" : "Saint Venant-Kirchhoff";
+}
+
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
-                     const std::vector<FemLoad>& loads, bool nlgeom) {
+                     const std::vector<FemLoad>& loads, bool nlgeom, FemMaterialLaw law) {
     std::ostringstream out;
     char line[256];
     out << "** bhm verify: " << model.elements.size() << " "
@@ -77,9 +81,19 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
     for (const Group& group : used) {
         engine::Material m = spec.materials.at(static_cast<std::size_t>(group.material - 1));
         if (group.fibre >= 0) m.muscle.fibre_axis = group.fibre;
-        std::snprintf(line, sizeof line,
-                      "*MATERIAL, NAME=MAT%s\n*ELASTIC\n%.10g, %.10g\n*DENSITY\n%.10g\n",
-                      group.name().c_str(), m.youngs_modulus_pa, m.poisson_ratio, m.density_kg_m3);
+        if (nlgeom && law == FemMaterialLaw::NeoHookean) {
+            // W = C10 (I1bar - 3) + (J - 1)^2 / D1: initial shear modulus 2 C10, bulk 2 / D1.
+            const double shear = m.youngs_modulus_pa / (2.0 * (1.0 + m.poisson_ratio));
+            const double bulk = m.youngs_modulus_pa / (3.0 * (1.0 - 2.0 * m.poisson_ratio));
+            std::snprintf(line, sizeof line,
+                          "*MATERIAL, NAME=MAT%s\n*HYPERELASTIC, NEO HOOKE\n%.10g, %.10g\n",
+                          group.name().c_str(), shear / 2.0, 2.0 / bulk);
+        } else {
+            std::snprintf(line, sizeof line, "*MATERIAL, NAME=MAT%s\n*ELASTIC\n%.10g, %.10g\n",
+                          group.name().c_str(), m.youngs_modulus_pa, m.poisson_ratio);
+        }
+        out << line;
+        std::snprintf(line, sizeof line, "*DENSITY\n%.10g\n", m.density_kg_m3);
         out << line;
         if (m.actuation_model == engine::ActuationModel::Muscle && engine::is_active(m)) {
             // The free strain per unit activation along x, y, z (no *ORIENTATION: global axes).

@@ -28,8 +28,23 @@ struct FemLoad {
 //! muscle::palette_problems): its loads are then rest and peak activation.
 bool muscle_driven(const engine::BodySpec& spec);
 
-//! The deck; `nlgeom` solves each step geometrically nonlinear (large rotations), in increments.
+//! The material law of the nonlinear steps. A material in Table 1 is only E and nu, so its
+//! large-strain law is unknown; these are the two standard hyperelastic laws with those small-
+//! strain moduli, which `bhm verify` solves side by side (docs/verify.md, "Two continuum laws").
+//! - Hooke: *ELASTIC, which under NLGEOM is Hooke's law on the Green-Lagrange strain (Saint
+//!   Venant-Kirchhoff): it softens in compression.
+//! - NeoHookean: *HYPERELASTIC, NEO HOOKE with C10 = G / 2 and D1 = 2 / K (ccx's compressible
+//!   form, K = E / (3 (1 - 2 nu))): the usual law of soft tissue and gels.
+//! Both take the thermal strain off the deformation gradient (ccx's calcmechstrain: F - eth I).
+//! Linear steps are Hooke's either way.
+enum class FemMaterialLaw { Hooke, NeoHookean };
+//! "Saint Venant-Kirchhoff" or "Neo-Hookean" (the report's and the verdict's name).
+const char* fem_material_law_name(FemMaterialLaw law);
+
+//! The deck; `nlgeom` solves each step geometrically nonlinear (large rotations), in increments,
+//! with `law`'s material (ignored for linear steps).
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
-                     const std::vector<FemLoad>& loads, bool nlgeom);
+                     const std::vector<FemLoad>& loads, bool nlgeom,
+                     FemMaterialLaw law = FemMaterialLaw::Hooke);
 
 }  // namespace bhm::evo

@@ -59,6 +59,12 @@ bool above_floor(const LoadComparison& c, VerifyMeasure m, const MeasureFloors& 
     return value > 0.0 && value >= floors.displacement_fraction * c.fem_largest_m;
 }
 
+std::string percent(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f %%", 100.0 * v);
+    return text;
+}
+
 namespace {
 
 MeasureSummary summarise(const std::vector<LoadComparison>& loads, VerifyMeasure m,
@@ -74,12 +80,6 @@ MeasureSummary summarise(const std::vector<LoadComparison>& loads, VerifyMeasure
         if (above_floor(c, m, floors)) raise(s.judged, *d);
     }
     return s;
-}
-
-std::string percent(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f %%", 100.0 * v);
-    return text;
 }
 
 std::string floor_text(VerifyMeasure m, const MeasureFloors& floors) {

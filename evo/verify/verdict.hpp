@@ -48,6 +48,9 @@ struct VerdictDecision {
     std::vector<MeasureSummary> measures;  //!< the experiment's first, then kVerifyMeasures' order
 };
 
+//! A relative difference as a verdict prints it: 0.2271 -> "22.7 %".
+std::string percent(double v);
+
 //! The FEM's value of a measure at one load (m, or degrees for the bend angle).
 double fem_magnitude(const LoadComparison& c, VerifyMeasure m);
 //! Whether that value clears its floor (at least the floor; the largest displacement is the

@@ -7,6 +7,7 @@
 #include <queue>
 #include <stdexcept>
 
+#include "engine/muscle.hpp"
 #include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/coarse_nonlinearity.hpp"
 #include "evo/verify/fem_shape.hpp"
@@ -151,10 +152,11 @@ std::vector<FemLoad> loads_of(const engine::BodySpec& spec) {
 
 // One ccx solve of every load, reporting its progress; throws on a missing block.
 CcxResult run_fem(const FemModel& model, const engine::BodySpec& spec,
-                  const std::vector<FemLoad>& loads, bool nlgeom, const VerifyOptions& options) {
+                  const std::vector<FemLoad>& loads, bool nlgeom, const VerifyOptions& options,
+                  FemMaterialLaw law = FemMaterialLaw::Hooke) {
     const VerifyControl& control = options.control;
     const int load_count = static_cast<int>(loads.size());
-    const std::string deck = ccx_deck(model, spec, loads, nlgeom);
+    const std::string deck = ccx_deck(model, spec, loads, nlgeom, law);
     control.report({VerifyPhase::Solving, 1, load_count});
     CcxWatch watch;
     watch.cancel = control.cancel;
@@ -182,6 +184,40 @@ std::vector<Vec> fem_side(const engine::BodySpec& spec, const Geometry& g, const
     }
     c.fem_rms_m = std::sqrt(f2 / static_cast<double>(theirs.size()));
     return theirs;
+}
+
+// One load compared: the FEM's side from `block`, ours from `displacement_m` (our engine's, or,
+// for the spread of the two continuum laws, the other law's voxel displacements).
+LoadComparison compare_load(const engine::BodySpec& spec, const Geometry& g, const FemModel& model,
+                            const NodalDisplacements& block, const std::vector<Vec>& displacement_m,
+                            const FemLoad& load) {
+    const double smallest_m = 1e-4 * spec.voxel_size_m;
+    LoadComparison c;
+    c.load = load.name;
+    c.temperature_c = load.temperature_c;
+    const auto theirs = fem_side(spec, g, model, block, c);
+    c.engine = measure(spec, g, displacement_m);
+    Vec tip_difference{};
+    for (int a = 0; a < 3; ++a)
+        tip_difference[a] = c.engine.tip_m[a] - c.fem.tip_m[a];
+    c.differences.tip = relative(norm(tip_difference), norm(c.fem.tip_m), smallest_m);
+    c.differences.bend = relative(c.engine.bend_deg - c.fem.bend_deg, c.fem.bend_deg, 0.05);
+    c.differences.com_yz = relative(std::hypot(c.engine.com_yz_m[0] - c.fem.com_yz_m[0],
+                                               c.engine.com_yz_m[1] - c.fem.com_yz_m[1]),
+                                    std::hypot(c.fem.com_yz_m[0], c.fem.com_yz_m[1]), smallest_m);
+    c.differences.com =
+        relative(std::hypot(c.engine.com_m[0] - c.fem.com_m[0], c.engine.com_m[1] - c.fem.com_m[1],
+                            c.engine.com_m[2] - c.fem.com_m[2]),
+                 std::hypot(c.fem.com_m[0], c.fem.com_m[1], c.fem.com_m[2]), smallest_m);
+    double d2 = 0.0;
+    for (std::size_t v = 0; v < theirs.size(); ++v)
+        for (int a = 0; a < 3; ++a) {
+            const double d = displacement_m[v][a] - theirs[v][a];
+            d2 += d * d;
+        }
+    const double n = static_cast<double>(theirs.size());
+    c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
+    return c;
 }
 
 }  // namespace
@@ -224,6 +260,30 @@ std::optional<double> Differences::of(VerifyMeasure m) const {
 std::string BodyVerification::verdict() const {
     if (status == VerifyStatus::OutOfReach) return "outside the continuum's reach: " + reason;
     return verdict_line(decision, measure, tolerance, floors) + (muscle ? kMuscleLoadsNote : "");
+}
+
+std::string BodyVerification::laws() const {
+    if (status == VerifyStatus::OutOfReach || material_law.empty() || other_law.empty()) return "";
+    std::string line = "judged against the " + material_law + " continuum, the nearer of two laws";
+    if (other_law_worst) line += " (" + other_law + ": " + percent(*other_law_worst) + ")";
+    if (law_spread && decision.decided_by)
+        line += "; the two laws' answers differ by " + percent(*law_spread) + " on " +
+                verify_measure_label(*decision.decided_by);
+    return line;
+}
+
+double actuation_free_strain(const engine::BodySpec& spec) {
+    double largest = 0.0;
+    for (int m : spec.material) {
+        if (m == 0) continue;
+        const engine::Material& material = spec.materials.at(static_cast<std::size_t>(m - 1));
+        if (!engine::is_active(material)) continue;
+        largest = std::max(
+            largest, material.actuation_model == engine::ActuationModel::Muscle
+                         ? engine::muscle::largest_scale(material) - 1.0
+                         : std::fabs(material.cte_per_c * spec.actuation.temperature_amplitude_c));
+    }
+    return largest;
 }
 
 std::string BodyVerification::beside() const {
@@ -324,8 +384,8 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     out.fem_elements = static_cast<int>(out.fem_model.elements.size());
     const std::vector<FemLoad> loads = loads_of(spec);
     const int load_count = static_cast<int>(loads.size());
-    auto solve = [&](bool nlgeom) {
-        CcxResult fem = run_fem(out.fem_model, spec, loads, nlgeom, options);
+    auto solve = [&](bool nlgeom, FemMaterialLaw law) {
+        CcxResult fem = run_fem(out.fem_model, spec, loads, nlgeom, options, law);
         out.fem_cpu_s += fem.cpu_s;  // both solves when the automatic choice needs the second
         out.fem_wall_s += fem.wall_s;
         return fem;
@@ -333,9 +393,12 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     // The nonlinear part from a coarse mesh needs this mesh's linear answer first.
     const bool from_coarse = options.nonlinear_from_coarse_mesh && out.mesh.mesh.subdivision > 1;
     out.nlgeom = options.geometry == FemGeometry::Nonlinear;
-    CcxResult fem = solve(out.nlgeom && !from_coarse);
-    // The nonlinear answer: solved on this mesh, or its linear one plus the coarse mesh's
-    // nonlinear part.
+    const bool solved_nonlinear = out.nlgeom && !from_coarse;
+    CcxResult fem = solve(solved_nonlinear, FemMaterialLaw::Hooke);
+    // The nonlinear answers under each continuum law (ccx_deck.hpp): solved on this mesh, or its
+    // linear one plus the coarse mesh's nonlinear part. The Neo-Hookean answer is empty where
+    // its solve failed (geometry_reason says why); the Hooke one is `fem`.
+    std::vector<NodalDisplacements> neo_hookean;
     auto solve_nonlinear = [&]() {
         const double turned = std::max(out.engine_rotation_deg, out.engine_bend_deg);
         if (from_coarse && turned >= options.coarse_nonlinearity_below_deg) {
@@ -346,32 +409,47 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                           turned, options.coarse_nonlinearity_below_deg);
             out.geometry_reason += why;
         }
+        auto in_full = [&]() {
+            if (!solved_nonlinear) fem = solve(true, FemMaterialLaw::Hooke);
+            try {
+                neo_hookean = solve(true, FemMaterialLaw::NeoHookean).blocks;
+            } catch (const std::runtime_error& e) {
+                if (options.control.cancelled()) throw;
+                out.geometry_reason += "; the Neo-Hookean solve failed (" + std::string(e.what()) +
+                                       "), Saint Venant-Kirchhoff alone";
+            }
+        };
         if (!from_coarse || turned >= options.coarse_nonlinearity_below_deg) {
-            fem = solve(true);
+            in_full();
             return;
         }
         const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
         const CcxResult linear = run_fem(coarse, spec, loads, false, options);
         out.fem_cpu_s += linear.cpu_s;
         out.fem_wall_s += linear.wall_s;
-        CcxResult nonlinear;
+        CcxResult nonlinear, nonlinear_nh;
         try {
             nonlinear = run_fem(coarse, spec, loads, true, options);
+            nonlinear_nh = run_fem(coarse, spec, loads, true, options, FemMaterialLaw::NeoHookean);
         } catch (const std::runtime_error& e) {
             // One element per voxel edge can fail where the mesh converges (a 1x1 neck under
             // large rotations, measured: "too many cutbacks"): solve in full instead.
+            if (options.control.cancelled()) throw;
             out.geometry_reason +=
                 "; solved in full on this mesh, as the coarse mesh's nonlinear "
                 "solve failed (" +
                 std::string(e.what()) + ")";
-            fem = solve(true);
+            in_full();
             return;
         }
-        out.fem_cpu_s += nonlinear.cpu_s;
-        out.fem_wall_s += nonlinear.wall_s;
-        for (std::size_t k = 0; k < fem.blocks.size(); ++k)
+        out.fem_cpu_s += nonlinear.cpu_s + nonlinear_nh.cpu_s;
+        out.fem_wall_s += nonlinear.wall_s + nonlinear_nh.wall_s;
+        for (std::size_t k = 0; k < fem.blocks.size(); ++k) {
+            neo_hookean.push_back(with_coarse_nonlinearity(
+                out.fem_model, fem.blocks[k], coarse, linear.blocks[k], nonlinear_nh.blocks[k]));
             fem.blocks[k] = with_coarse_nonlinearity(out.fem_model, fem.blocks[k], coarse,
                                                      linear.blocks[k], nonlinear.blocks[k]);
+        }
         out.nlgeom_from_coarse_mesh = true;
         out.geometry_reason += "; its nonlinear part from " +
                                fem_element_name(out.mesh.mesh.element) +
@@ -380,7 +458,6 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
 
     const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
     out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
-    const double smallest_m = 1e-4 * spec.voxel_size_m;
     QuasiStaticOptions engine_options = options.engine;
     if (!engine_options.cancel) engine_options.cancel = control.cancel;
     std::vector<QuasiStaticResult> answers;
@@ -405,12 +482,13 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         answers.push_back(std::move(ours));
     }
 
-    // Linear or nonlinear: from how far our engine's answer turns (docs/verify.md).
+    // Linear or nonlinear: from how far our engine's answer turns, then from the actuation's free
+    // strain (docs/verify.md).
     char reason[256];
     const double limit = options.nlgeom_above_deg;
     if (options.geometry == FemGeometry::Nonlinear) {
         out.geometry_reason = "nonlinear (--nlgeom)";
-        if (from_coarse) solve_nonlinear();
+        solve_nonlinear();
     } else if (options.geometry == FemGeometry::Linear) {
         out.geometry_reason = "linear (--linear)";
     } else if (out.engine_rotation_deg > limit || out.engine_bend_deg > limit) {
@@ -423,50 +501,71 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         out.geometry_reason = reason;
         out.nlgeom = true;
         solve_nonlinear();
+    } else if (const double strain = actuation_free_strain(spec);
+               strain > options.nlgeom_above_strain) {
+        std::snprintf(reason, sizeof reason,
+                      "nonlinear: the actuation's free strain is %.1f %%, over the %g %% up to "
+                      "which linear steps hold",
+                      100.0 * strain, 100.0 * options.nlgeom_above_strain);
+        out.geometry_reason = reason;
+        out.nlgeom = true;
+        solve_nonlinear();
     } else {
         std::snprintf(reason, sizeof reason,
                       "linear: our engine turns no voxel more than %.1f deg and bends at most "
-                      "%.1f deg, under the %g deg threshold",
-                      out.engine_rotation_deg, out.engine_bend_deg, limit);
+                      "%.1f deg, under the %g deg threshold, and the actuation's free strain is "
+                      "at most %g %%",
+                      out.engine_rotation_deg, out.engine_bend_deg, limit,
+                      100.0 * options.nlgeom_above_strain);
         out.geometry_reason = reason;
     }
+    // Each law's comparison; the verdict is the nearer law's (docs/verify.md, "Two continuum
+    // laws"), the other's and the laws' own spread reported beside it.
+    auto compare_all = [&](const std::vector<NodalDisplacements>& blocks) {
+        std::vector<LoadComparison> all;
+        for (std::size_t k = 0; k < loads.size(); ++k) {
+            LoadComparison c = compare_load(spec, g, out.fem_model, blocks[k],
+                                            answers[k].displacement_m, loads[k]);
+            c.engine_shape = answers[k].shape;
+            c.fem_shape = fem_voxel_shape(out.fem_model, blocks[k], answers[k].rest_position_m);
+            all.push_back(std::move(c));
+        }
+        return all;
+    };
     out.fem_displacements = fem.blocks;
-
-    for (std::size_t k = 0; k < loads.size(); ++k) {
-        const QuasiStaticResult& ours = answers[k];
-        LoadComparison c;
-        c.load = loads[k].name;
-        c.temperature_c = loads[k].temperature_c;
-        const auto theirs = fem_side(spec, g, out.fem_model, fem.blocks[k], c);
-        c.engine = measure(spec, g, ours.displacement_m);
-        Vec tip_difference{};
-        for (int a = 0; a < 3; ++a)
-            tip_difference[a] = c.engine.tip_m[a] - c.fem.tip_m[a];
-        c.differences.tip = relative(norm(tip_difference), norm(c.fem.tip_m), smallest_m);
-        c.differences.bend = relative(c.engine.bend_deg - c.fem.bend_deg, c.fem.bend_deg, 0.05);
-        c.differences.com_yz = relative(
-            std::hypot(c.engine.com_yz_m[0] - c.fem.com_yz_m[0],
-                       c.engine.com_yz_m[1] - c.fem.com_yz_m[1]),
-            std::hypot(c.fem.com_yz_m[0], c.fem.com_yz_m[1]), smallest_m);
-        c.differences.com = relative(
-            std::hypot(c.engine.com_m[0] - c.fem.com_m[0], c.engine.com_m[1] - c.fem.com_m[1],
-                       c.engine.com_m[2] - c.fem.com_m[2]),
-            std::hypot(c.fem.com_m[0], c.fem.com_m[1], c.fem.com_m[2]), smallest_m);
-        double d2 = 0.0;
-        for (std::size_t v = 0; v < theirs.size(); ++v)
-            for (int a = 0; a < 3; ++a) {
-                const double d = ours.displacement_m[v][a] - theirs[v][a];
-                d2 += d * d;
-            }
-        const double n = static_cast<double>(theirs.size());
-        c.differences.rms = relative(std::sqrt(d2 / n), c.fem_rms_m, smallest_m);
-        out.worst_any = std::max(out.worst_any, c.differences.worst());
-        c.engine_shape = ours.shape;
-        c.fem_shape = fem_voxel_shape(out.fem_model, fem.blocks[k], ours.rest_position_m);
-        out.loads.push_back(std::move(c));
-    }
+    out.loads = compare_all(fem.blocks);
     control.report({VerifyPhase::Comparing, 0, load_count});
     out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+    out.material_law = out.nlgeom ? fem_material_law_name(FemMaterialLaw::Hooke) : "";
+    if (!neo_hookean.empty()) {
+        std::vector<LoadComparison> nh = compare_all(neo_hookean);
+        VerdictDecision nh_decision =
+            decide_verdict(nh, out.measure, options.tolerance, options.floors);
+        // The laws' spread: the Neo-Hookean answer judged against the Saint Venant-Kirchhoff one.
+        std::vector<LoadComparison> spread;
+        for (std::size_t k = 0; k < loads.size(); ++k) {
+            const auto other = fem_voxel_displacements(out.fem_model, neo_hookean[k]);
+            spread.push_back(compare_load(spec, g, out.fem_model, fem.blocks[k], other, loads[k]));
+        }
+        const VerdictDecision laws =
+            decide_verdict(spread, out.measure, options.tolerance, options.floors);
+        if (laws.decided_by) out.law_spread = laws.worst;
+        const bool nh_nearer = nh_decision.decided_by &&
+                               (!out.decision.decided_by || nh_decision.worst < out.decision.worst);
+        if (nh_nearer) {
+            if (out.decision.decided_by) out.other_law_worst = out.decision.worst;
+            out.other_law = fem_material_law_name(FemMaterialLaw::Hooke);
+            out.material_law = fem_material_law_name(FemMaterialLaw::NeoHookean);
+            out.decision = std::move(nh_decision);
+            out.loads = std::move(nh);
+            out.fem_displacements = neo_hookean;
+        } else {
+            if (nh_decision.decided_by) out.other_law_worst = nh_decision.worst;
+            out.other_law = fem_material_law_name(FemMaterialLaw::NeoHookean);
+        }
+    }
+    for (const LoadComparison& c : out.loads)
+        out.worst_any = std::max(out.worst_any, c.differences.worst());
     out.worst = out.decision.worst;
     out.agrees = out.decision.agrees;
 

@@ -32,6 +32,10 @@ struct VerifyOptions {
     //! Automatic: nonlinear when our engine turns a voxel, or bends the root-to-tip line, by more
     //! than this at some load (docs/verify.md, "Linear or nonlinear").
     double nlgeom_above_deg = 10.0;
+    //! ... or when the actuation's free strain (cte A, or a muscle's contraction) exceeds this:
+    //! a linear step cannot tell +A from -A, and at the paper's 14.5 % the engine's and the
+    //! continuum's answers are not antisymmetric (docs/verify.md, "Two continuum laws").
+    double nlgeom_above_strain = 0.05;
     //! Nonlinear steps solved on a mesh of one element per voxel and their nonlinear part added
     //! to this mesh's linear answer (coarse_nonlinearity.hpp): what the evolution loop's checks
     //! do, several times quicker; bhm verify solves in full.
@@ -109,6 +113,12 @@ struct BodyVerification {
     //! ... their nonlinear part from the coarse mesh (VerifyOptions::nonlinear_from_coarse_mesh)
     bool nlgeom_from_coarse_mesh = false;
     std::string geometry_reason;  //!< why: "--linear", or our engine's largest rotation
+    //! Nonlinear steps only: the continuum law the verdict was judged against, the nearer of two
+    //! (ccx_deck.hpp, FemMaterialLaw), the other one and its verdict value (none where it has no
+    //! verdict or its solve failed), and how far the two laws' own answers differ on the
+    //! verdict's measure (the reference's uncertainty from its unknown large-strain law).
+    std::string material_law, other_law;
+    std::optional<double> other_law_worst, law_spread;
     double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
     double engine_bend_deg = 0.0;      //!< ... and largest bend angle
     FemModel fem_model;
@@ -118,7 +128,14 @@ struct BodyVerification {
     std::string verdict() const;
     //! Every other measure's largest difference, one phrase each (verdict.hpp).
     std::string beside() const;
+    //! Nonlinear steps: "judged against the Neo-Hookean continuum, the nearer of two laws
+    //! (Saint Venant-Kirchhoff: 22.7 %); the two laws' answers differ by 14 % on ..."; else "".
+    std::string laws() const;
 };
+
+//! The largest free strain of the body's active voxels at the actuation's extremes (|cte A|, or
+//! a muscle's largest scale - 1); 0 without active voxels.
+double actuation_free_strain(const engine::BodySpec& spec);
 
 //! Why a body cannot be compared (no held voxel, voxels not attached to a held one), or "".
 std::string continuum_reach_problem(const engine::BodySpec& spec);

@@ -117,10 +117,19 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                 {"geometry_reason", v.geometry_reason},
                 {"nlgeom_from_coarse_mesh", v.nlgeom_from_coarse_mesh},
                 {"nlgeom_above_deg", options.nlgeom_above_deg},
+                {"nlgeom_above_strain", options.nlgeom_above_strain},
                 {"nodes", v.fem_nodes},
                 {"elements", v.fem_elements},
                 {"cpu_s", v.fem_cpu_s},
                 {"wall_s", v.fem_wall_s}};
+    if (!v.material_law.empty()) {
+        j["fem"]["material_law"] = v.material_law;
+        if (!v.other_law.empty()) {
+            j["fem"]["other_law"] = {{"law", v.other_law}, {"worst", nullptr}};
+            if (v.other_law_worst) j["fem"]["other_law"]["worst"] = *v.other_law_worst;
+            j["fem"]["law_spread"] = v.law_spread ? nlohmann::json(*v.law_spread) : nullptr;
+        }
+    }
     if (v.mesh.automatic)
         j["fem"]["narrowest_section"] = {{"voxels", v.mesh.narrowest.width_voxels},
                                          {"at_voxel", v.mesh.narrowest.at},
