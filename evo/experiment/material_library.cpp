@@ -113,6 +113,8 @@ const PropertyRule kRise{"rise_s", engine::muscle::kMinTimeConstantS,
                          engine::muscle::kMaxTimeConstantS, false, "[1e-4, 100] s"};
 const PropertyRule kDecay{"decay_s", engine::muscle::kMinTimeConstantS,
                           engine::muscle::kMaxTimeConstantS, false, "[1e-4, 100] s"};
+const PropertyRule kActiveStress{"active_stress_pa", 0.0, 1e9, true, "(0, 1e9] Pa"};
+const PropertyRule kTwitchRatio{"twitch_tetanus_ratio", 0.0, 1.0, true, "(0, 1]"};
 
 }  // namespace
 
@@ -189,11 +191,15 @@ LibraryMaterial parse_library_material(const json& root, const std::string& file
         r.problem("dynamic_friction.value", "must not exceed static_friction.value");
     if (const json* a = r.object(root, "active", "")) {
         m.active = true;
-        r.check_keys(*a, "active", {"contraction_strain", "frequency_hz", "rise_s", "decay_s"});
+        r.check_keys(*a, "active",
+                     {"contraction_strain", "frequency_hz", "rise_s", "decay_s", "active_stress_pa",
+                      "twitch_tetanus_ratio"});
         m.contraction_strain = read_value(r, *a, kStrain, "active", false);
         m.frequency_hz = read_value(r, *a, kFrequency, "active", false);
         m.rise_s = read_value(r, *a, kRise, "active", false);
         m.decay_s = read_value(r, *a, kDecay, "active", false);
+        m.active_stress_pa = read_value(r, *a, kActiveStress, "active", false);
+        m.twitch_tetanus_ratio = read_value(r, *a, kTwitchRatio, "active", false);
     }
     if (auto it = root.find("color"); it != root.end()) {
         std::array<float, 3> c{};
@@ -351,6 +357,11 @@ std::string describe_library_material(const LibraryMaterial& m) {
         line("frequency", m.frequency_hz, " Hz");
         line("twitch rise time constant", m.rise_s, " s");
         line("twitch decay time constant", m.decay_s, " s");
+        // Measured for judging a slot's values, not engine inputs: listed only where sourced.
+        if (m.active_stress_pa)
+            line("active stress (measured, not an engine input)", m.active_stress_pa, " Pa");
+        if (m.twitch_tetanus_ratio)
+            line("twitch-to-tetanus force ratio", m.twitch_tetanus_ratio, "");
     }
     out += "  engine: " + m.engine_note + "\n";
     return out;

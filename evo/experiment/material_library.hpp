@@ -41,6 +41,10 @@ struct LibraryMaterial {
     //! Active tissue's twitch: the activation's rise and decay time constants (s) of the muscle
     //! model (engine/muscle.hpp), where a source gives them (issue 43).
     std::optional<SourcedValue> rise_s, decay_s;
+    //! Measured quantities the engine does not take as input but a slot's values are judged or
+    //! derived by (docs/materials-format.md): the active stress (Pa) a tissue developed, and the
+    //! twitch-to-tetanus force ratio that, with a time to peak, gives rise_s.
+    std::optional<SourcedValue> active_stress_pa, twitch_tetanus_ratio;
     std::optional<std::array<float, 3>> color;
     bool operator==(const LibraryMaterial&) const = default;
 };

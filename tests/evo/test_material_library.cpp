@@ -139,6 +139,21 @@ TEST_CASE("the tissue and hydrogel entries of issue 43 hold their sources' numbe
         CHECK_FALSE(m.rise_s.has_value());
         CHECK_FALSE(m.decay_s.has_value());
     }
+    // What was sourced instead: engineered skeletal muscle's active stress, Neal et al. 2015's
+    // 1.28 kPa twitch peak within the 0.56 kPa (Raman et al. 2016) to 1.28 kPa of the two papers,
+    // and the twitch-to-tetanus ratio of Huang et al. 2005's mean forces, 329 uN over 805.8 uN.
+    const LibraryMaterial& skeletal = *library.find("skeletal-muscle-engineered");
+    REQUIRE(skeletal.active_stress_pa.has_value());
+    CHECK(skeletal.active_stress_pa->value == doctest::Approx(1280.0));
+    REQUIRE(skeletal.active_stress_pa->range.has_value());
+    CHECK((*skeletal.active_stress_pa->range)[0] == doctest::Approx(560.0));
+    CHECK((*skeletal.active_stress_pa->range)[1] == doctest::Approx(1280.0));
+    REQUIRE(skeletal.twitch_tetanus_ratio.has_value());
+    CHECK(skeletal.twitch_tetanus_ratio->value == doctest::Approx(329.0 / 805.8).epsilon(1e-3));
+    CHECK_FALSE(skeletal.twitch_tetanus_ratio->range.has_value());
+    // Cardiomyocyte tissue: the 4 mN/mm^2 muscular thin films reached (Feinberg et al. 2007).
+    REQUIRE(heart.active_stress_pa.has_value());
+    CHECK(heart.active_stress_pa->value == doctest::Approx(4e-3 / 1e-6));
 }
 
 TEST_CASE("the documented twitch-time conversion reproduces the measured twitch in the engine") {
@@ -200,6 +215,17 @@ TEST_CASE("a broken library file is one line naming the file and the field") {
     CHECK(has_line_starting(lines, file + "youngs_modulus_pa.note: is required"));
     CHECK(has_line_starting(lines,
                             file + "densty_kg_m3: unknown key (did you mean 'density_kg_m3'?)"));
+    // A twitch-to-tetanus ratio above 1 (the twitch is never stronger than the fused contraction)
+    // and a stress of 0 are refused, each naming its field.
+    lines = problems_of(R"({"format_version": 1, "name": "x", "category": "tissue",
+        "engine": "e", "youngs_modulus_pa": {"value": 1e4, "source": "s"},
+        "active": {"twitch_tetanus_ratio": {"value": 1.5, "source": "s"},
+                   "active_stress_pa": {"value": 0, "source": "s"}}})");
+    CHECK(lines.size() == 2);
+    CHECK(has_line_starting(lines,
+                            file + "active.twitch_tetanus_ratio.value: 1.5 is outside (0, 1]"));
+    CHECK(
+        has_line_starting(lines, file + "active.active_stress_pa.value: 0 is outside (0, 1e9] Pa"));
     // No engine note, unknown category, not JSON.
     lines = problems_of(R"({"format_version": 1, "name": "x", "category": "metal",
         "youngs_modulus_pa": {"value": 1e5, "source": "s"}})");
