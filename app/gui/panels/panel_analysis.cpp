@@ -263,14 +263,14 @@ std::array<bool, N> short_labels(const AnalysisTab (&tabs)[N], float available) 
 }  // namespace
 
 void draw_analysis_panel(Studio& s) {
-    static constexpr AnalysisTab tabs[] = {{"Population", "Population", draw_population_panel},
+    static constexpr AnalysisTab tabs[] = {{"Population", "Pop.", draw_population_panel},
                                            {"Champions", "Champs", champions_tab},
                                            {"Age vs fitness", "Ages", scatter_tab},
                                            {"Volume vs fitness", "Vol.", pareto_tab},
                                            {"Time plots", "Plots", time_plots_tab},
                                            {"Calibrate", "Calib.", draw_calibrate_panel},
                                            {"FEM", "FEM", draw_verify_panel},
-                                           {"Robustness", "Robust.", draw_robustness_panel}};
+                                           {"Robustness", "Rob.", draw_robustness_panel}};
     const auto shortened = short_labels(tabs, ImGui::GetContentRegionAvail().x);
     if (!ImGui::BeginTabBar("analysis tabs")) return;
     for (std::size_t k = 0; k < std::size(tabs); ++k) {
