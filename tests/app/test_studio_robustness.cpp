@@ -6,8 +6,10 @@
 // pair.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -157,7 +159,9 @@ TEST_CASE("studio robustness runner: Cancel stops the cells and keeps no table")
     REQUIRE(runner.start(request));
     CHECK_FALSE(runner.start(request));  // one table at a time
     runner.cancel();
-    REQUIRE(bhm::test::wait_until([&] { return !runner.running(); }, [] {}));
+    REQUIRE(
+        bhm::test::wait_until([&] { return !runner.running(); },
+                              [] { std::this_thread::sleep_for(std::chrono::milliseconds(1)); }));
     const auto state = runner.state();
     REQUIRE(state);
     CHECK(state->phase == RobustnessPhase::Cancelled);
