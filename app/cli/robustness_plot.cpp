@@ -37,17 +37,34 @@ Rgb sequential(double t) {
 
 }  // namespace
 
+bool robustness_cell_valid(double fitness) {
+    return std::isfinite(fitness) && fitness >= 0.0;
+}
+
+HeatmapScale robustness_scale(const evo::RobustnessTable& table) {
+    HeatmapScale scale{INFINITY, -INFINITY};
+    for (const double f : table.fitness)
+        if (robustness_cell_valid(f))
+            scale.lo = std::min(scale.lo, f), scale.hi = std::max(scale.hi, f);
+    if (!(scale.lo <= scale.hi)) scale = {0.0, 0.0};
+    return scale;
+}
+
+Rgb robustness_color(double fitness, const HeatmapScale& scale) {
+    if (!robustness_cell_valid(fitness)) return kInvalid;
+    const double span = scale.hi - scale.lo;
+    return sequential(span > 0.0 ? (fitness - scale.lo) / span : 0.5);
+}
+
+Rgb robustness_bar_color(double t) {
+    return sequential(t);
+}
+
 HeatmapScale write_robustness_heatmap(const std::string& path, const evo::RobustnessTable& table) {
     const int rows = static_cast<int>(table.bodies.size());
     const int cols = static_cast<int>(table.controllers.size());
     if (rows == 0 || cols == 0) throw std::runtime_error(path + ": an empty table has no heatmap");
-    HeatmapScale scale{INFINITY, -INFINITY};
-    for (const double f : table.fitness)
-        if (std::isfinite(f) && f >= 0.0)
-            scale.lo = std::min(scale.lo, f), scale.hi = std::max(scale.hi, f);
-    if (!(scale.lo <= scale.hi)) scale = {0.0, 0.0};
-    const double span = scale.hi - scale.lo;
-    auto position = [&](double f) { return span > 0.0 ? (f - scale.lo) / span : 0.5; };
+    const HeatmapScale scale = robustness_scale(table);
 
     const int grid_h = rows * kCell;
     RgbCanvas canvas(2 * kMargin + cols * kCell + kBarGap + kBarWidth, 2 * kMargin + grid_h);
@@ -56,10 +73,9 @@ HeatmapScale write_robustness_heatmap(const std::string& path, const evo::Robust
         for (int c = 0; c < cols; ++c) {
             const double f = table.at(static_cast<std::size_t>(b), static_cast<std::size_t>(c));
             const int x0 = kMargin + c * kCell, y0 = kMargin + b * kCell;
-            const bool valid = std::isfinite(f) && f >= 0.0;
+            const bool valid = robustness_cell_valid(f);
             // One pixel of white between cells.
-            canvas.fill(x0 + 1, y0 + 1, kCell - 2, kCell - 2,
-                        valid ? sequential(position(f)) : kInvalid);
+            canvas.fill(x0 + 1, y0 + 1, kCell - 2, kCell - 2, robustness_color(f, scale));
             if (!valid)
                 for (int k = 4; k < kCell - 4; ++k)
                     canvas.put(x0 + k, y0 + k, kCross),

@@ -6,6 +6,7 @@
 // labels are in robustness.csv beside it.
 #include <string>
 
+#include "app/cli/rgb_canvas.hpp"
 #include "evo/evaluate/robustness.hpp"
 
 namespace bhm::app {
@@ -13,6 +14,16 @@ namespace bhm::app {
 struct HeatmapScale {
     double lo = 0.0, hi = 0.0;  //!< the fitness at the bottom and top of the colour bar
 };
+
+//! A cell with a fitness to colour (not diverged, not rejected: finite and >= 0).
+bool robustness_cell_valid(double fitness);
+//! The colour bar's ends: the table's lowest and highest valid fitness (0, 0 when none is).
+HeatmapScale robustness_scale(const evo::RobustnessTable& table);
+//! A cell's colour in the heatmap (grey when not valid): the studio's Robustness tab draws the
+//! same colours as the PNG.
+Rgb robustness_color(double fitness, const HeatmapScale& scale);
+//! The colour bar at t in [0, 1] (0 the lowest fitness).
+Rgb robustness_bar_color(double t);
 
 //! Writes PATH atomically. Throws std::runtime_error naming the path (also where bhm was built
 //! without libpng).

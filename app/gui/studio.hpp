@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "app/gui/session/evolution_snapshot.hpp"
 #include "app/gui/session/fem_verifier.hpp"
 #include "app/gui/session/replay_player.hpp"
+#include "app/gui/session/robustness_runner.hpp"
 #include "app/gui/session/run_directory_watch.hpp"
 #include "app/gui/settings/key_chord.hpp"
 #include "app/gui/settings/studio_paths.hpp"
@@ -114,9 +116,13 @@ struct ExportState {
     bool caption = true;
     std::string champion_vxa_path = default_export_path("champion.vxa");
     std::string champion_json_path = default_export_path("champion.json");
+    //! The shown champion's controller CPPN (issue 44), and the controller to drive the body
+    //! shown with (a controller file, a run directory, uniform, wave, random[:SEED]).
+    std::string controller_path = default_export_path("controller.json");
+    std::string controller_item;
     //! .stl or .obj (+ .mtl beside it)
     std::string mesh_path = default_export_path("champion.stl");
-    bool mesh_deformed = false;              //!< at the replay time instead of at rest
+    bool mesh_deformed = false;  //!< at the replay time instead of at rest
     std::string vtk_folder = default_export_path("bhm-paraview");
     //! .mp4 (H.264) or .gif, through ffmpeg
     std::string video_path = default_export_path("bhm-replay.mp4");
@@ -193,10 +199,10 @@ struct CalibrationState {
     int max_simulations = 200;
     int threads = 0;  //!< 0: all cores
     CalibrationSession session;
-    std::shared_ptr<const CalibrationSnapshot> snapshot;  //!< taken at the start of a frame
+    std::shared_ptr<const CalibrationSnapshot> snapshot;   //!< taken at the start of a frame
     CalibrationPhase seen_phase = CalibrationPhase::Idle;  //!< of the last snapshot's job
     std::uint64_t seen_job = 0;
-    std::uint64_t applied_job = 0;  //!< the job whose values Apply last wrote (0: none)
+    std::uint64_t applied_job = 0;      //!< the job whose values Apply last wrote (0: none)
     std::uint64_t applied_run_job = 0;  //!< the job last sent to the live run (0: none)
 };
 
@@ -217,6 +223,10 @@ struct ShownBodies {
     //! replay time while that body is the one shown.
     int inspected_voxel = -1;
     std::shared_ptr<const SimulatedBody> inspected_body;
+    //! The last body the studio drove with another controller (controller_actions.hpp): its
+    //! label, and the controller file's object it was painted with ("" for a built-in).
+    std::string driven_label;
+    std::string driven_controller;
 };
 
 //! "Verify in FEM" (Analysis > FEM; verify_actions.cpp and panel_verify.cpp): the worker, its
@@ -236,6 +246,25 @@ struct VerifyState {
     std::vector<std::int64_t> kept_reports;
     std::string kept_reports_key;  //!< "<run dir>#<job>" they were listed for
     bool ghost = true;             //!< draw the FEM's shape over our static one
+};
+
+//! Analysis > Robustness (issue 44; robustness_actions.hpp, panel_robustness.cpp): the bodies
+//! and controllers picked, the table being evaluated or shown, its export paths and the cell
+//! shown in the 3D view. The table's experiment is the shown run's, else the editor's.
+struct RobustnessView {
+    std::set<int> champions;  //!< the shown run's champions picked, by generation found
+    //! Body files, comma-separated (as `bhm robustness`'s BODY.json arguments).
+    std::string body_files;
+    //! The columns, comma-separated, as `bhm robustness --controllers`: uniform, wave, random,
+    //! random:SEED, a controller file or a run directory (its champion's controller.json).
+    std::string controllers = "uniform,wave,random";
+    std::string csv_path = default_export_path("robustness.csv");
+    std::string png_path = default_export_path("robustness.png");
+    RobustnessRunner runner;
+    std::shared_ptr<const RobustnessState> state;  //!< taken at the start of a frame
+    std::uint64_t state_version = 0;
+    std::uint64_t job_reported = 0;              //!< the last ended job the status line has told of
+    int shown_body = -1, shown_controller = -1;  //!< the cell last sent to the 3D view
 };
 
 //! The run the Run panel, the population table and the fitness plots show (studio_actions.cpp's
@@ -347,6 +376,7 @@ struct Studio {
     CalibrationState calibration;
     ShownBodies bodies;
     VerifyState verify;
+    RobustnessView robustness;
     UiState ui;
 };
 

@@ -128,7 +128,8 @@ Body robustness_cell_body(const Experiment& experiment, const Body& body,
 RobustnessTable evaluate_robustness(const Experiment& experiment, const std::vector<Body>& bodies,
                                     const std::vector<std::string>& body_labels,
                                     const std::vector<RobustnessController>& controllers,
-                                    int threads, const std::function<void(int, int)>& on_cell) {
+                                    int threads, const std::function<void(int, int)>& on_cell,
+                                    const std::atomic<bool>* cancel) {
     if (body_labels.size() != bodies.size())
         throw std::invalid_argument("evaluate_robustness: one label per body");
     RobustnessTable table;
@@ -144,7 +145,7 @@ RobustnessTable evaluate_robustness(const Experiment& experiment, const std::vec
         const auto k = static_cast<std::size_t>(cell);
         const Body painted = robustness_cell_body(experiment, bodies[k / controllers.size()],
                                                   controllers[k % controllers.size()].entry);
-        table.reports[k] = evaluate_body(experiment, painted);
+        table.reports[k] = evaluate_body(experiment, painted, cancel);
         table.fitness[k] = fitness_under(table.reports[k], experiment.fitness);
         const int finished = ++done;
         if (on_cell) on_cell(finished, total);

@@ -6,6 +6,7 @@
 // controller studies, arXiv 2408.09107). A cell is exactly what `bhm simulate` evaluates for the
 // body file of robustness_cell_body: the body framed, then painted by the controller, as the
 // fixed_controllers mode of a run paints its bodies (evo/run/cached_evaluation.cpp).
+#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
@@ -46,11 +47,13 @@ struct RobustnessTable {
 
 //! Evaluates every cell on `threads` worker threads (evo/evaluate/worker_pool.hpp; 0 = all
 //! hardware threads). The result does not depend on the thread count. on_cell(done, total) is
-//! called after each cell, from any worker thread (serialise it yourself).
+//! called after each cell, from any worker thread (serialise it yourself). A raised `cancel`
+//! (the studio's Cancel) stops every cell within milliseconds and throws EvaluationCancelled.
 RobustnessTable evaluate_robustness(const Experiment& experiment, const std::vector<Body>& bodies,
                                     const std::vector<std::string>& body_labels,
                                     const std::vector<RobustnessController>& controllers,
-                                    int threads, const std::function<void(int, int)>& on_cell = {});
+                                    int threads, const std::function<void(int, int)>& on_cell = {},
+                                    const std::atomic<bool>* cancel = nullptr);
 
 //! robustness.csv: a header "body,C1,...,Cm", then one row per body "B,f11,...,f1m"; numbers
 //! with 17 significant digits (they read back bit-identical), labels quoted as RFC 4180 when

@@ -1,5 +1,6 @@
 #include "evo/run/cached_evaluation.hpp"
 
+#include <algorithm>
 #include <span>
 #include <unordered_map>
 
@@ -7,6 +8,50 @@
 #include "evo/genome/controller.hpp"
 
 namespace bhm::evo {
+
+namespace {
+
+// Each flag raised when any controller's run raised it, with the measure of the first run that
+// raised it (the first run's where none did), so that the measure shown explains the flag.
+ExploitReport union_of_exploits(std::span<const FitnessReport> reports) {
+    ExploitReport out = reports.front().exploits;
+    bool detached = out.detached_motion, tentacle = out.tentacle, escaped = out.escaped;
+    for (const FitnessReport& r : reports) {
+        const ExploitReport& e = r.exploits;
+        out.checked = out.checked && e.checked;
+        out.motion_voxels = std::max(out.motion_voxels, e.motion_voxels);
+        if (e.escaped && !escaped) {
+            escaped = out.escaped = true;
+            out.unanchored_fraction = e.unanchored_fraction;
+            out.held_voxels = e.held_voxels;
+        }
+        if (e.detached_motion && !detached) {
+            detached = out.detached_motion = true;
+            out.base_motion_ratio = e.base_motion_ratio;
+        }
+        if (e.tentacle && !tentacle) {
+            tentacle = out.tentacle = true;
+            out.thin_share = e.thin_share;
+            out.thin_voxels = e.thin_voxels;
+        }
+    }
+    return out;
+}
+
+// The element-wise mean of the descriptors (one length, the same sample times); empty when any
+// run has none (it diverged or never reached the end, as a single diverged run's is empty).
+std::vector<double> mean_behaviour(std::span<const FitnessReport> reports) {
+    const std::size_t length = reports.front().behaviour.size();
+    for (const FitnessReport& r : reports)
+        if (r.behaviour.empty() || r.behaviour.size() != length) return {};
+    std::vector<double> out(length, 0.0);
+    for (const FitnessReport& r : reports)
+        for (std::size_t k = 0; k < length; ++k)
+            out[k] += r.behaviour[k] / static_cast<double>(reports.size());
+    return out;
+}
+
+}  // namespace
 
 FitnessReport mean_over_controllers(std::span<const FitnessReport> reports, const Fitness& rules) {
     FitnessReport out = reports.front();
@@ -26,6 +71,8 @@ FitnessReport mean_over_controllers(std::span<const FitnessReport> reports, cons
         out.steps += r.steps;
         out.sim_wall_s += r.sim_wall_s;
     }
+    out.exploits = union_of_exploits(reports);
+    out.behaviour = mean_behaviour(reports);
     out.fitness = fitness_under(out, rules);
     return out;
 }

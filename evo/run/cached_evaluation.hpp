@@ -27,7 +27,10 @@ struct CachedEvaluation {
 //! evolution.controller fixed_controllers (issue 44): one body's reports, one per controller of
 //! the set, as one: every measure the mean over the controllers (so fitness is the mean of the
 //! controllers' fitness under any measure), diverged when any diverged, ended early when all did,
-//! time and steps summed; exploit flags and behaviour are the first controller's.
+//! time and steps summed. Exploit flags: each raised when any controller's run raised it (a body
+//! that exploits under one controller of the set is suspect), with the measure of the first run
+//! that raised it, motion_voxels the largest; behaviour (novelty search): the element-wise mean
+//! of the descriptors, empty when any run has none. With one controller: that run's report.
 FitnessReport mean_over_controllers(std::span<const FitnessReport> reports, const Fitness& rules);
 
 //! With evolution.controller fixed_controllers each distinct body is simulated once per

@@ -42,7 +42,7 @@ const ImGuiTabBar& analysis_tab_bar() {
 void check_tabs_whole(const Studio& studio) {
     const ImGuiTabBar& bar = analysis_tab_bar();
     const ImGuiWindow& window = tile("Analysis");
-    CHECK(bar.Tabs.Size == 7);
+    CHECK(bar.Tabs.Size == 8);
     for (const ImGuiTabItem& tab : bar.Tabs) {
         INFO("tab \"" << std::string(bar.GetTabName(&tab)) << "\": " << tab.Width
                       << " px for a label of " << tab.ContentWidth << " px");
@@ -50,7 +50,7 @@ void check_tabs_whole(const Studio& studio) {
         CHECK(bar.BarRect.Min.x + tab.Offset + tab.Width <= window.Pos.x + window.Size.x);
     }
     for (const char* name : {"Population", "Champions", "Age vs fitness", "Volume vs fitness",
-                             "Time plots", "Calibrate", "FEM"}) {
+                             "Time plots", "Calibrate", "FEM", "Robustness"}) {
         const WidgetRect r = studio.ui.widgets.at(std::string("tab ") + name);
         INFO("tab " << std::string(name) << " from x " << r.min.x << " to " << r.max.x);
         CHECK(r.min.x >= window.Pos.x);
@@ -79,7 +79,7 @@ TEST_CASE("studio clipped text: every Analysis tab shows its whole label, with a
         // A tab whose content scrolls narrows the bar by the scrollbar: still whole, and each
         // tab (FEM and Calibrate among them, which the other studio tests click) opens.
         for (const char* name : {"Population", "Champions", "Age vs fitness", "Volume vs fitness",
-                                 "Time plots", "Calibrate", "FEM"}) {
+                                 "Time plots", "Calibrate", "FEM", "Robustness"}) {
             INFO("after clicking " << std::string(name));
             run_script(session, json{{{"click", std::string("tab ") + name}}, {{"frames", 2}}});
             const ImGuiTabBar& bar = analysis_tab_bar();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "evo/evaluate/behaviour.hpp"
 #include "evo/evaluate/evaluation_wire.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -189,6 +190,51 @@ TEST_CASE("fixed_controllers' result is the mean over the controllers") {
     b.diverged = true;
     const FitnessReport with_diverged[] = {a, b};
     CHECK(mean_over_controllers(with_diverged, rules).fitness == kDivergedFitness);
+}
+
+TEST_CASE("fixed_controllers: exploit flags are the union, behaviour the mean over controllers") {
+    FitnessReport a, b, c;
+    for (FitnessReport* r : {&a, &b, &c}) {
+        r->exploits.checked = true;
+        r->behaviour.assign(kBehaviourLength, 0.0);
+    }
+    // a: clean; b: detached motion (ratio 0.1); c: a tentacle (share 0.8) and the most motion.
+    a.exploits.base_motion_ratio = 0.9, a.exploits.thin_share = 0.1, a.exploits.motion_voxels = 1;
+    b.exploits.detached_motion = true, b.exploits.base_motion_ratio = 0.1;
+    b.exploits.motion_voxels = 2;
+    c.exploits.tentacle = true, c.exploits.thin_share = 0.8, c.exploits.thin_voxels = 3;
+    c.exploits.motion_voxels = 4;
+    a.behaviour[0] = 1.0, b.behaviour[0] = 2.0, c.behaviour[0] = 6.0;
+    c.behaviour[5] = -3.0;
+    Fitness rules;
+    const FitnessReport reports[] = {a, b, c};
+    const FitnessReport mean = mean_over_controllers(reports, rules);
+    CHECK(mean.exploits.checked);
+    CHECK_FALSE(mean.exploits.escaped);
+    CHECK(mean.exploits.detached_motion);
+    CHECK(mean.exploits.base_motion_ratio == 0.1);  // the measure of the run that raised it
+    CHECK(mean.exploits.tentacle);
+    CHECK(mean.exploits.thin_share == 0.8);
+    CHECK(mean.exploits.thin_voxels == 3);
+    CHECK(mean.exploits.motion_voxels == 4.0);
+    REQUIRE(mean.behaviour.size() == static_cast<std::size_t>(kBehaviourLength));
+    CHECK(mean.behaviour[0] == doctest::Approx(3.0));
+    CHECK(mean.behaviour[5] == doctest::Approx(-1.0));
+    CHECK(mean.behaviour[1] == 0.0);
+    // A reject_* constraint sees the union: the body is invalid though the first run was clean.
+    rules.constraints.reject_tentacle = true;
+    CHECK(mean_over_controllers(reports, rules).fitness == kInvalidFitness);
+    // A run without a descriptor (diverged): none for the body, as for one diverged run.
+    c.behaviour.clear();
+    const FitnessReport without[] = {a, b, c};
+    CHECK(mean_over_controllers(without, rules).behaviour.empty());
+    // One controller: its own report, bit for bit (the mode with a single controller unchanged).
+    b.behaviour[3] = 0.1 + 0.2;
+    const FitnessReport one[] = {b};
+    const FitnessReport alone = mean_over_controllers(one, Fitness{});
+    CHECK(alone.exploits == b.exploits);
+    CHECK(alone.behaviour == b.behaviour);
+    CHECK(alone.measures == b.measures);
 }
 
 TEST_CASE("evolution.controller in the experiment file: round trip and one line per bad field") {

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "app/gui/actions/calibration_actions.hpp"
+#include "app/gui/actions/robustness_actions.hpp"
 #include "app/gui/settings/studio_paths.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
@@ -828,6 +829,7 @@ void update_studio(Studio& studio) {
     take_simulated_bodies(studio);
     update_calibration(studio);
     update_verification(studio);
+    update_robustness(studio);
     advance_replay_clock(studio);
 }
 

@@ -1,7 +1,8 @@
 // The Analysis tile (bottom right): the population table, every generation's champion (replay
 // any, or beside the one shown), the AFPO age-vs-fitness scatter of the population, its
-// volume-vs-fitness Pareto plot (issue 44; a click shows that body), and time plots of the body
-// shown (centre of mass, tip, bend angle) whose cursor is the replay clock.
+// volume-vs-fitness Pareto plot (issue 44; a click shows that body), time plots of the body
+// shown (centre of mass, tip, bend angle) whose cursor is the replay clock, and the robustness
+// table of bodies against controllers (panel_robustness.cpp).
 #include <array>
 #include <cstdio>
 #include <string>
@@ -262,13 +263,14 @@ std::array<bool, N> short_labels(const AnalysisTab (&tabs)[N], float available) 
 }  // namespace
 
 void draw_analysis_panel(Studio& s) {
-    static constexpr AnalysisTab tabs[] = {{"Population", "Population", draw_population_panel},
+    static constexpr AnalysisTab tabs[] = {{"Population", "Pop.", draw_population_panel},
                                            {"Champions", "Champs", champions_tab},
                                            {"Age vs fitness", "Ages", scatter_tab},
                                            {"Volume vs fitness", "Vol.", pareto_tab},
                                            {"Time plots", "Plots", time_plots_tab},
                                            {"Calibrate", "Calib.", draw_calibrate_panel},
-                                           {"FEM", "FEM", draw_verify_panel}};
+                                           {"FEM", "FEM", draw_verify_panel},
+                                           {"Robustness", "Rob.", draw_robustness_panel}};
     const auto shortened = short_labels(tabs, ImGui::GetContentRegionAvail().x);
     if (!ImGui::BeginTabBar("analysis tabs")) return;
     for (std::size_t k = 0; k < std::size(tabs); ++k) {

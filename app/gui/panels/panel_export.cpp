@@ -1,11 +1,13 @@
 // The Export panel: screenshot of the 3D view at any size, a replay as a PNG sequence, the
-// champion (or the body shown) as VXA and body JSON, its surface mesh (STL/OBJ, at rest or
-// deformed at the replay time) and its replay as a ParaView series, as `bhm export` writes them.
+// champion (or the body shown) as VXA and body JSON, its controller (saved, or another one
+// driving the body shown), its surface mesh (STL/OBJ, at rest or deformed at the replay time)
+// and its replay as a ParaView series, as `bhm export` writes them.
 #include <cstdio>
 #include <string>
 
 #include <imgui.h>
 
+#include "app/gui/actions/controller_actions.hpp"
 #include "app/gui/actions/export_actions.hpp"
 #include "app/gui/actions/export_geometry.hpp"
 #include "app/gui/panels/panels.hpp"
@@ -77,8 +79,9 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     ImGui::Checkbox("caption", &x.caption);
     record_widget(s, "caption");
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("burn the experiment, the body and its generation, its fitness and the "
-                          "time into every frame (and video)");
+        ImGui::SetTooltip(
+            "burn the experiment, the body and its generation, its fitness and the "
+            "time into every frame (and video)");
     hint("frame_00000.png ... over the whole simulated time");
     path_field(s, "##video path", x.video_path);
     ImGui::BeginDisabled(!s.bodies.shown || x.frame_job.active);
@@ -96,6 +99,21 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     if (tracked_button(s, "Save body JSON")) export_champion_json(s, x.champion_json_path);
     ImGui::SameLine();
     ImGui::TextDisabled("bhm body file");
+
+    section_title("Controller (issue 44)");
+    path_field(s, "##controller path", x.controller_path);
+    ImGui::BeginDisabled(!s.bodies.shown);
+    if (tracked_button(s, "Save controller JSON")) export_shown_controller(s, x.controller_path);
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::TextDisabled("the shown champion's controller CPPN");
+    path_field(s, "##controller item", x.controller_item);
+    ImGui::BeginDisabled(!s.bodies.shown || x.controller_item.empty());
+    if (tracked_button(s, "Drive the body shown")) drive_shown_body(s, x.controller_item);
+    ImGui::EndDisabled();
+    hint(
+        "replay the body shown under a controller file, a run folder's champion controller, or "
+        "uniform, wave, random[:SEED]");
 
     section_title("Surface mesh and ParaView");
     path_field(s, "##mesh path", x.mesh_path);

@@ -4,6 +4,7 @@
 
 #include <imgui.h>
 
+#include "app/gui/actions/controller_actions.hpp"
 #include "app/gui/actions/key_bindings.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/actions/unsaved_guard.hpp"
@@ -31,6 +32,10 @@ void draw_menu_bar(Studio& s) {
                 }
             ImGui::EndMenu();
         }
+        ImGui::Separator();
+        // The shown champion's controller to the Export panel's path (issue 44).
+        if (ImGui::MenuItem("Export controller.json", nullptr, false, s.bodies.shown != nullptr))
+            export_shown_controller(s, s.exports.controller_path);
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_quit(s);
         ImGui::EndMenu();

@@ -20,6 +20,8 @@ void draw_analysis_panel(Studio& studio);
 void draw_calibrate_panel(Studio& studio);
 //! Analysis > FEM: Verify in FEM for the body shown, its progress and result (panel_verify.cpp).
 void draw_verify_panel(Studio& studio);
+//! Analysis > Robustness: bodies against controllers, as bhm robustness (panel_robustness.cpp).
+void draw_robustness_panel(Studio& studio);
 void draw_replay_panel(Studio& studio);
 void draw_viewport_panel(Studio& studio, ViewRenderer& renderer);
 void draw_help_window(Studio& studio);
@@ -27,8 +29,8 @@ void draw_help_window(Studio& studio);
 //! and the 3D view's legend. Renders missing thumbnails (UI thread).
 void draw_welcome_window(Studio& studio, ViewRenderer& renderer, WelcomeThumbnails& thumbnails);
 void draw_status_bar(Studio& studio);
-//! The modal dialogs of the questions of actions/unsaved_guard.hpp (buttons recorded for scripts: "Save changes",
-//! "Discard changes", "Cancel", "Finish generation, then quit", "Quit now").
+//! The modal dialogs of the questions of actions/unsaved_guard.hpp (buttons recorded for scripts:
+//! "Save changes", "Discard changes", "Cancel", "Finish generation, then quit", "Quit now").
 void draw_confirm_dialogs(Studio& studio);
 
 //! A table cell with the exploit flags' letters in red (E escaped, D detached motion, T

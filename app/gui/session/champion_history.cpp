@@ -90,4 +90,10 @@ std::shared_ptr<const evo::Body> load_champion_body(const std::string& path) {
     }
 }
 
+std::optional<json> load_champion_controller(const std::string& path) {
+    json j = read_json(path);
+    if (!j.is_object() || !j.contains("controller")) return std::nullopt;
+    return std::move(j["controller"]);
+}
+
 }  // namespace bhm::app::gui

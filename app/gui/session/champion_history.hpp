@@ -5,10 +5,13 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <filesystem>
+
+#include <nlohmann/json.hpp>
 
 #include "evo/evaluate/exploit_flags.hpp"
 #include "evo/experiment/experiment.hpp"
@@ -43,5 +46,9 @@ class ChampionHistory {
 
 //! The framed body of a champion file (its phenotype). Throws std::runtime_error naming the file.
 std::shared_ptr<const evo::Body> load_champion_body(const std::string& path);
+//! The champion's controller as a controller file's object (its "controller": a run of
+//! evolution.controller coevolve or fixed_body writes one; issue 44); nullopt when it has none.
+//! Throws std::runtime_error naming the file when it cannot be read.
+std::optional<nlohmann::json> load_champion_controller(const std::string& path);
 
 }  // namespace bhm::app::gui
