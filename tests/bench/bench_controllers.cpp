@@ -18,9 +18,9 @@
 // and paper-exp1-attached-champions.json: 50 random generation-0 bodies and 2 short-run champions,
 // all attached to the fixed face, so that what moves them is their actuation) with at least
 // --min-active active voxels (default 20: a controller needs voxels to drive) and at most
-// --max-voxels voxels (default 130: the simulations' cost) are simulated once under the
+// --max-voxels voxels (default 100: the simulations' cost) are simulated once under the
 // experiment's own uniform actuation (the screen); the "high" body is the one that moves
-// furthest, the "low" one the one that moves least. Defaults: 40 simulations, population 8, seeds
+// furthest, the "low" one the one that moves least. Defaults: 30 simulations, population 8, seeds
 // 1..5, 2 threads, assets/experiments/paper-exp1-attached.json with its evaluation shortened to
 // 0.25 s settle + 1 s (two 2 Hz cycles). CSV on stdout (one row per body, algorithm and seed);
 // the screen and the Markdown tables on stderr.
@@ -118,7 +118,7 @@ int run(int argc, char** argv) {
     std::string experiment_path = "assets/experiments/paper-exp1-attached.json";
     std::vector<std::string> corpus = {"tests/bench/corpus/paper-exp1-attached.json",
                                        "tests/bench/corpus/paper-exp1-attached-champions.json"};
-    int budget = 40, seeds = 5, threads = 2, population = 8, min_active = 20, max_voxels = 130;
+    int budget = 30, seeds = 5, threads = 2, population = 8, min_active = 20, max_voxels = 100;
     double settle_s = 0.25, evaluate_s = 1.0;
     std::uint64_t first_seed = 1;
     std::vector<std::string> wanted = {"neat", "hyperneat", "ga"};
