@@ -134,6 +134,10 @@ Genome controller_from_json(const nlohmann::json& json, double weight_range) {
             throw std::invalid_argument("controller.format_version: expected 1");
     }
     Genome genome = genome_from_json(wrapped ? json["genome"] : json, weight_range);
+    if (genome.input_count != kInputCount)
+        throw std::invalid_argument(
+            "controller.genome.inputs: expected the five lattice inputs (x, y, z, d, bias); a "
+            "HyperNEAT CPPN paints a substrate (docs/hyperneat.md), not a controller");
     if (genome.output_count != kControllerOutputCount)
         throw std::invalid_argument("controller.genome.outputs: expected 2 (phase, amplitude)");
     return genome;

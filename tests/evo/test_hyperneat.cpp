@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "evo/experiment/body_spec_of.hpp"
@@ -121,6 +122,9 @@ TEST_CASE("a HyperNEAT CPPN round-trips through JSON with its eight inputs") {
     bad["inputs"] = {"x", "y"};
     CHECK_THROWS_WITH_AS(genome_from_json(bad, 1.0), doctest::Contains("genome.inputs"),
                          std::invalid_argument);
+    // It paints a substrate, not a lattice: not a controller file.
+    CHECK_THROWS_WITH_AS(controller_from_json(genome_to_json(hand_cppn(2, {})), 1.0),
+                         doctest::Contains("controller.genome.inputs"), std::invalid_argument);
 }
 
 TEST_CASE("HyperNEAT evolves controllers for a fixed body and bodies, through its substrate") {
@@ -166,6 +170,9 @@ TEST_CASE("HyperNEAT runs resume into their uninterrupted twins (controller and 
             test::run_twins(hyperneat_experiment(mode), whole.string(), parts.string(), 3, 2, 1);
         REQUIRE(twins.resumed);
         CHECK(twins.resumed->resume_warnings().empty());
+        // No controller.json: a HyperNEAT CPPN paints a substrate, which that file cannot hold.
+        CHECK_FALSE(std::filesystem::exists(whole / kControllerFile));
+        CHECK(std::filesystem::exists(whole / "champion.json"));
         const auto& u = twins.whole->state();
         const auto& r = twins.resumed->state();
         CHECK(test::without_wall(r.history) == test::without_wall(u.history));
