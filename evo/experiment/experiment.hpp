@@ -92,8 +92,9 @@ struct Constraints {
     bool attached_to_fixed_face = false;
     double min_fill_fraction = 0.0;
     int min_active_voxels = 0;
-    //! Reject (fitness kInvalidFitness) bodies that raise an exploit flag (evo/evaluate/exploit_flags.hpp).
-    //! escaped is known before simulating, so such bodies are never simulated.
+    //! Reject (fitness kInvalidFitness) bodies that raise an exploit flag
+    //! (evo/evaluate/exploit_flags.hpp). escaped is known before simulating, so such bodies are
+    //! never simulated.
     bool reject_escaped = false;
     bool reject_detached_motion = false;
     bool reject_tentacle = false;
@@ -118,7 +119,7 @@ struct Fitness {
 //! the first material of each kind) or presence plus one output per material (argmax).
 enum class MaterialOutputs { ActivePassive, PerMaterial };
 inline constexpr std::array<const char*, 2> kMaterialOutputsNames = {"active_passive",
-                                                                       "per_material"};
+                                                                     "per_material"};
 
 struct CppnSettings {
     int min_hidden_nodes = 4;  //!< paper Table 2: initial hidden nodes in [4, 10]
@@ -136,8 +137,29 @@ struct CppnSettings {
 //! 2002) or novelty search (Lehman & Stanley 2011). EvolutionRun::run_generation dispatches on it.
 //! "ga" (issue 44) is a plain generational genetic algorithm, the baseline of the controller
 //! studies: tournament selection, elitism 1, mutation only or one-point crossover.
-enum class Algorithm { Afpo, Neat, Novelty, Ga };
-inline constexpr std::array<const char*, 4> kAlgorithmNames = {"afpo", "neat", "novelty", "ga"};
+//! "hyperneat" (issue 44; docs/hyperneat.md): NEAT evolving a CPPN that paints the connection
+//! weights of a substrate network over the voxel lattice, whose outputs paint the body or the
+//! controller (evo/genome/hyperneat_substrate.hpp).
+enum class Algorithm { Afpo, Neat, Novelty, Ga, HyperNeat };
+inline constexpr std::array<const char*, 5> kAlgorithmNames = {"afpo", "neat", "novelty", "ga",
+                                                               "hyperneat"};
+//! NEAT's species and innovation history (evolution.neat) drive this algorithm.
+inline bool uses_neat(Algorithm a) {
+    return a == Algorithm::Neat || a == Algorithm::HyperNeat;
+}
+
+//! HyperNEAT's substrate (evolution.hyperneat; docs/hyperneat.md).
+struct HyperNeatSettings {
+    //! Local receptive field: node b receives from the nodes a with max(|dx|, |dy|, |dz|) <=
+    //! radius lattice cells (itself included), so cells x (2 radius + 1)^3 connections at most.
+    int radius = 1;
+    int steps = 3;                  //!< activations of the hidden sheet before it is read
+    double weight_threshold = 0.2;  //!< |CPPN output| below it: no connection (Stanley 2009)
+    bool operator==(const HyperNeatSettings&) const = default;
+};
+//! The most substrate connections one sheet may have (cells x (2 radius + 1)^3): a CPPN query
+//! each, per development.
+inline constexpr double kMaxHyperNeatConnections = 2.0e6;
 
 //! NEAT's parameters (evolution.neat; docs/evolution.md#neat). Defaults follow Stanley &
 //! Miikkulainen 2002 where the paper gives one.
@@ -154,11 +176,11 @@ struct NeatSettings {
     //! 20 genes or more, N normalises E and D, and the paper's fixed 3 soon puts everyone in one
     //! species.
     int target_species = 5;
-    double threshold_step = 0.3;   //!< how far the threshold moves per generation
-    double survival_fraction = 0.2;  //!< best fraction of each species that may parent
-    int elitism = 1;               //!< best members of each species copied unchanged
+    double threshold_step = 0.3;      //!< how far the threshold moves per generation
+    double survival_fraction = 0.2;   //!< best fraction of each species that may parent
+    int elitism = 1;                  //!< best members of each species copied unchanged
     int stagnation_generations = 15;  //!< no improvement for this long: the species breeds no more
-    double crossover_rate = 0.75;  //!< share of offspring made by crossover (then mutation)
+    double crossover_rate = 0.75;     //!< share of offspring made by crossover (then mutation)
     bool operator==(const NeatSettings&) const = default;
 };
 
@@ -249,11 +271,12 @@ struct Evolution {
     int max_neutral_retries = 1500;
     std::uint64_t seed = 1;
     int threads = 0;  //!< 0 = all hardware threads
-    //! Probability that a member's child is the crossover of it and a random mate (evo/search/crossover.hpp)
-    //! before mutation is tried; 0 = the paper's mutation-only AFPO.
+    //! Probability that a member's child is the crossover of it and a random mate
+    //! (evo/search/crossover.hpp) before mutation is tried; 0 = the paper's mutation-only AFPO.
     double crossover_rate = 0.0;
     CppnSettings cppn;
-    NeatSettings neat;  //!< used when algorithm is Neat
+    NeatSettings neat;            //!< used when algorithm is Neat or HyperNeat
+    HyperNeatSettings hyperneat;  //!< used when algorithm is HyperNeat
     NoveltySettings novelty;
     LoopVerifySettings verify;
     ControllerSettings controller;

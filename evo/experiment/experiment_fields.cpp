@@ -155,8 +155,8 @@ const ExperimentField kExperimentFields[] = {
              "motion; scored -2",
      BHM_BOOLEAN(fitness.constraints.reject_tentacle)},
     {.path = "evolution.algorithm", .label = "Algorithm", .unit = "",
-     .help = "AFPO (the paper's), NEAT, novelty search or a plain generational GA "
-             "(docs/evolution.md)",
+     .help = "AFPO (the paper's), NEAT, novelty search, a plain generational GA "
+             "(docs/evolution.md) or HyperNEAT (docs/hyperneat.md)",
      BHM_CHOICE(evolution.algorithm, Algorithm, kAlgorithmNames)},
     {.path = "evolution.controller.mode", .label = "Controller", .unit = "",
      .help = "what evolves (docs/experiment-format.md, Controllers): none = bodies under "
@@ -205,6 +205,16 @@ const ExperimentField kExperimentFields[] = {
      .help = "three more CPPN outputs choose each muscle voxel's fibre axis (the largest of "
              "x, y, z); off: every voxel has its material's fibre axis",
      BHM_BOOLEAN(evolution.cppn.fibre_outputs)},
+    {.path = "evolution.hyperneat.radius", .label = "Receptive field", .unit = "voxels",
+     .help = "HyperNEAT: a substrate node receives from the nodes within this many voxels on "
+             "every axis (itself included; docs/hyperneat.md)",
+     .range = {1, 4}, BHM_INTEGER(evolution.hyperneat.radius)},
+    {.path = "evolution.hyperneat.steps", .label = "Substrate steps", .unit = "",
+     .help = "HyperNEAT: activations of the substrate's hidden sheet before the outputs read it",
+     .range = {1, 50}, BHM_INTEGER(evolution.hyperneat.steps)},
+    {.path = "evolution.hyperneat.weight_threshold", .label = "Weight threshold", .unit = "",
+     .help = "HyperNEAT: a CPPN output of smaller magnitude expresses no connection",
+     .range = {0, 100}, .format = "%.3g", BHM_NUMBER(evolution.hyperneat.weight_threshold)},
     {.path = "evolution.neat.c1", .label = "NEAT c1", .unit = "",
      .help = "compatibility distance: weight of excess genes", .range = {0, 100},
      .format = "%.3g", BHM_NUMBER(evolution.neat.c1)},

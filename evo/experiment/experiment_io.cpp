@@ -360,7 +360,9 @@ json experiment_to_json(const Experiment& e) {
     if (e.actuation.phase_offset_rad == 0.0) j["actuation"].erase("phase_offset_rad");
     // NEAT's and novelty's blocks only where they say something: AFPO files stay as they were.
     const auto& ev = e.evolution;
-    if (ev.algorithm != Algorithm::Neat && ev.neat == NeatSettings{}) j["evolution"].erase("neat");
+    if (!uses_neat(ev.algorithm) && ev.neat == NeatSettings{}) j["evolution"].erase("neat");
+    if (ev.algorithm != Algorithm::HyperNeat && ev.hyperneat == HyperNeatSettings{})
+        j["evolution"].erase("hyperneat");
     if (ev.algorithm != Algorithm::Novelty && ev.novelty == NoveltySettings{})
         j["evolution"].erase("novelty");
     if (ev.verify == LoopVerifySettings{}) j["evolution"].erase("verify");

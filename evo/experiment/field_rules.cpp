@@ -191,6 +191,23 @@ void elitism_rule(const RuleCheck& c) {
         c.bad("evolution.neat.elitism", "must not exceed evolution.population");
 }
 
+// HyperNEAT queries its CPPN once per substrate connection per development: cells x (2 radius +
+// 1)^3 over the workspace (the controller's lattice, the larger of the two) must stay within
+// kMaxHyperNeatConnections.
+void hyperneat_size_rule(const RuleCheck& c) {
+    const auto& e = c.experiment;
+    if (e.evolution.algorithm != Algorithm::HyperNeat) return;
+    const double cells =
+        static_cast<double>(e.workspace_size[0]) * e.workspace_size[1] * e.workspace_size[2];
+    const double field = 2.0 * e.evolution.hyperneat.radius + 1.0;
+    const double connections = cells * field * field * field;
+    if (connections > kMaxHyperNeatConnections)
+        c.bad("evolution.hyperneat.radius",
+              "the substrate would have " + short_number(connections) +
+                  " connections per sheet (workspace cells x (2 radius + 1)^3), more than " +
+                  short_number(kMaxHyperNeatConnections) + ": use a smaller radius");
+}
+
 // Only once every input it depends on is valid (else it would mislead): fitness and evolution
 // settings do not enter it.
 void step_budget_rule(const RuleCheck& c) {
@@ -265,6 +282,11 @@ const FieldRule kRules[] = {
     {.fields = {"evolution.neat.elitism", "evolution.population"},
      .text = [] { return std::string("neat.elitism <= population"); },
      .check = elitism_rule},
+    {.fields = {"evolution.hyperneat.radius", "workspace.size"},
+     .text = [] {
+         return "workspace cells x (2 radius + 1)^3 <= " + short_number(kMaxHyperNeatConnections);
+     },
+     .check = hyperneat_size_rule},
     {.fields = {"simulation.settle_s", "simulation.evaluate_s"},
      .text = [] {
          return std::string("settle_s + evaluate_s within the step budget (docs/physics.md)");

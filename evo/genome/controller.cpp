@@ -54,8 +54,15 @@ void paint_controller(const Genome& controller, const std::vector<MaterialEntry>
                                     std::to_string(controller.output_count) +
                                     " outputs, expected 2 (phase, amplitude)");
     const auto value = cppn_node_values(controller, cppn_inputs(body.size));
-    const auto& phase = value[kInputCount];
-    const auto& amplitude = value[kInputCount + 1];
+    const auto first = static_cast<std::size_t>(controller.input_count);
+    paint_controller_outputs(value[first], value[first + 1], materials, body);
+}
+
+void paint_controller_outputs(const std::vector<double>& phase,
+                              const std::vector<double>& amplitude,
+                              const std::vector<MaterialEntry>& materials, Body& body) {
+    if (phase.size() != body.cells.size() || amplitude.size() != body.cells.size())
+        throw std::invalid_argument("controller outputs: one value per cell of the body expected");
     reset(body);
     for (std::size_t c = 0; c < body.cells.size(); ++c)
         if (active_cell(body, c, materials)) {
@@ -127,6 +134,10 @@ Genome controller_from_json(const nlohmann::json& json, double weight_range) {
             throw std::invalid_argument("controller.format_version: expected 1");
     }
     Genome genome = genome_from_json(wrapped ? json["genome"] : json, weight_range);
+    if (genome.input_count != kInputCount)
+        throw std::invalid_argument(
+            "controller.genome.inputs: expected the five lattice inputs (x, y, z, d, bias); a "
+            "HyperNEAT CPPN paints a substrate (docs/hyperneat.md), not a controller");
     if (genome.output_count != kControllerOutputCount)
         throw std::invalid_argument("controller.genome.outputs: expected 2 (phase, amplitude)");
     return genome;

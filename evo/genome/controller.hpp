@@ -35,6 +35,10 @@ Genome random_controller(const CppnSettings& settings, Rng& rng);
 //! Throws std::invalid_argument when the genome does not have two outputs.
 void paint_controller(const Genome& controller, const std::vector<MaterialEntry>& materials,
                       Body& body);
+//! The same from the two outputs' values per cell of body (HyperNEAT's substrate gives them).
+void paint_controller_outputs(const std::vector<double>& phase,
+                              const std::vector<double>& amplitude,
+                              const std::vector<MaterialEntry>& materials, Body& body);
 
 //! A built-in controller by name (ControllerEntry): "uniform", "random" (seeded) or "wave".
 //! Throws std::invalid_argument for another name.

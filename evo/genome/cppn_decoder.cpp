@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace bhm::evo {
@@ -70,9 +71,12 @@ std::array<std::vector<double>, kInputCount> cppn_inputs(std::array<int, 3> size
     return inputs;
 }
 
-std::vector<std::vector<double>> cppn_node_values(
-    const Genome& genome, const std::array<std::vector<double>, kInputCount>& inputs) {
-    const std::size_t cells = inputs[0].size();
+std::vector<std::vector<double>> cppn_node_values(const Genome& genome,
+                                                  std::span<const std::vector<double>> inputs) {
+    if (static_cast<int>(inputs.size()) != genome.input_count)
+        throw std::invalid_argument("CPPN genome has " + std::to_string(genome.input_count) +
+                                    " inputs, the query " + std::to_string(inputs.size()));
+    const std::size_t cells = inputs.empty() ? 0 : inputs[0].size();
     const auto order = topological_order(genome);
     // Incoming edges grouped per target node, kept in genome order so sums are reproducible.
     std::vector<std::vector<const CppnEdge*>> incoming(
@@ -81,10 +85,10 @@ std::vector<std::vector<double>> cppn_node_values(
         incoming[static_cast<std::size_t>(e.to)].push_back(&e);
 
     std::vector<std::vector<double>> value(static_cast<std::size_t>(genome.node_count()));
-    for (int i = 0; i < kInputCount; ++i)
+    for (int i = 0; i < genome.input_count; ++i)
         value[static_cast<std::size_t>(i)] = inputs[static_cast<std::size_t>(i)];
     for (int node : order) {
-        if (Genome::is_input(node)) continue;
+        if (genome.is_input(node)) continue;
         auto& out = value[static_cast<std::size_t>(node)];
         out.assign(cells, 0.0);
         for (const CppnEdge* e : incoming[static_cast<std::size_t>(node)]) {
@@ -111,13 +115,27 @@ CppnDecoder::CppnDecoder(std::array<int, 3> size, CppnMaterials materials, CppnF
 }
 
 Body CppnDecoder::decode(const Genome& genome) const {
-    const std::size_t cells = inputs_[0].size();
     if (genome.output_count != output_count())
         throw std::invalid_argument("genome has " + std::to_string(genome.output_count) +
                                     " outputs, the experiment's CPPN " +
                                     std::to_string(output_count()) +
                                     " (evolution.cppn.material_outputs, fibre_outputs)");
-    const std::vector<std::vector<double>> value = cppn_node_values(genome, inputs_);
+    return paint_values(cppn_node_values(genome, inputs_));
+}
+
+Body CppnDecoder::paint(const std::vector<std::vector<double>>& outputs) const {
+    if (static_cast<int>(outputs.size()) != output_count())
+        throw std::invalid_argument("substrate gives " + std::to_string(outputs.size()) +
+                                    " outputs, the experiment's lattice needs " +
+                                    std::to_string(output_count()));
+    // The node layout paint_values reads: outputs after kInputCount (unused) input slots.
+    std::vector<std::vector<double>> value(kInputCount);
+    value.insert(value.end(), outputs.begin(), outputs.end());
+    return paint_values(value);
+}
+
+Body CppnDecoder::paint_values(const std::vector<std::vector<double>>& value) const {
+    const std::size_t cells = inputs_[0].size();
     Body body;
     body.size = size_;
     body.cells.assign(cells, 0);

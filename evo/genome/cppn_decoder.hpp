@@ -18,6 +18,7 @@
 // regions of one output would order the axes x < y < z along it and favour the middle one).
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "evo/experiment/experiment.hpp"
@@ -51,9 +52,11 @@ CppnFibres cppn_fibres(const Experiment& experiment);
 //! The CPPN's inputs (x, y, z, d, bias as above) at every cell of a lattice of this size.
 std::array<std::vector<double>, kInputCount> cppn_inputs(std::array<int, 3> size);
 //! Every node's value at every cell (value[node][cell]) for these inputs, nodes in topological
-//! order, each cell's sums in genome edge order (so reproducible). Throws on a cyclic genome.
-std::vector<std::vector<double>> cppn_node_values(
-    const Genome& genome, const std::array<std::vector<double>, kInputCount>& inputs);
+//! order, each cell's sums in genome edge order (so reproducible). Throws on a cyclic genome or
+//! when inputs.size() is not genome.input_count. A "cell" is any query point: a lattice cell, or a
+//! pair of substrate nodes for HyperNEAT (evo/genome/hyperneat_substrate.hpp).
+std::vector<std::vector<double>> cppn_node_values(const Genome& genome,
+                                                  std::span<const std::vector<double>> inputs);
 
 class CppnDecoder {
   public:
@@ -65,13 +68,18 @@ class CppnDecoder {
     //! material the experiment lacks (e.g. an active cell and no material with cte > 0) or the
     //! genome's output count is not the decoder's.
     Body decode(const Genome& genome) const;
+    //! The raw lattice from output values given directly (outputs[k][cell], output_count() of
+    //! them): what decode does after evaluating the CPPN; HyperNEAT's substrate supplies them.
+    Body paint(const std::vector<std::vector<double>>& outputs) const;
 
     const std::array<int, 3>& size() const { return size_; }
     //! Input values per cell, (cells) each, for inspection and tests.
     const std::array<std::vector<double>, kInputCount>& inputs() const { return inputs_; }
 
   private:
-    //! body.cells from the material outputs (value: every node's value per cell).
+    //! body.cells and body.fibre from output values (output k at value[kInputCount + k]).
+    Body paint_values(const std::vector<std::vector<double>>& value) const;
+    //! body.cells from the material outputs (value as paint_values').
     void paint_materials(const std::vector<std::vector<double>>& value, Body& body) const;
 
     std::array<int, 3> size_;

@@ -95,7 +95,7 @@ std::string genome_problem(const Genome& genome, double weight_range) {
         if (e.from < 0 || e.from >= n || e.to < 0 || e.to >= n)
             return where + "node index out of range";
         if (genome.is_output(e.from)) return where + "edge leaves an output node";
-        if (Genome::is_input(e.to)) return where + "edge enters an input node";
+        if (genome.is_input(e.to)) return where + "edge enters an input node";
         if (e.from == e.to) return where + "self loop";
         if (!std::isfinite(e.weight) || std::fabs(e.weight) > weight_range)
             return where + "weight outside [-range, range]";
@@ -111,7 +111,8 @@ std::string genome_problem(const Genome& genome, double weight_range) {
             return "hidden_ids: one id per hidden node expected";
         for (std::size_t h = 0; h < genome.hidden_ids.size(); ++h) {
             if (genome.hidden_ids[h] < genome.first_hidden())
-                return "hidden_ids[" + std::to_string(h) + "]: ids of hidden nodes follow the outputs";
+                return "hidden_ids[" + std::to_string(h) +
+                       "]: ids of hidden nodes follow the outputs";
             for (std::size_t k = 0; k < h; ++k)
                 if (genome.hidden_ids[k] == genome.hidden_ids[h])
                     return "hidden_ids[" + std::to_string(h) + "]: duplicate id";
@@ -132,9 +133,11 @@ std::string genome_problem(const Genome& genome, double weight_range) {
     return {};
 }
 
-Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count) {
+Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count, int input_count) {
     Genome genome;
     genome.output_count = output_count;
+    genome.input_count = input_count;
+    const int inputs = input_count;
     const int first_hidden = genome.first_hidden();
     const int hidden = rng.uniform_int(
         settings.min_hidden_nodes, std::max(settings.min_hidden_nodes, settings.max_hidden_nodes));
@@ -148,15 +151,15 @@ Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count) {
     for (int h = 0; h < hidden; ++h) {
         genome.hidden.push_back(random_function());
         const int node = first_hidden + h;
-        const int source_count = kInputCount + h;
+        const int source_count = inputs + h;
         for (int k = 0; k < 2; ++k) {
             const int pick = rng.index(source_count);
-            add_edge(pick < kInputCount ? pick : first_hidden + (pick - kInputCount), node);
+            add_edge(pick < inputs ? pick : first_hidden + (pick - inputs), node);
         }
     }
-    for (int output = kInputCount; output < first_hidden; ++output) {
+    for (int output = inputs; output < first_hidden; ++output) {
         if (hidden == 0) {
-            for (int i = 0; i < kInputCount; ++i)
+            for (int i = 0; i < inputs; ++i)
                 add_edge(i, output);
             continue;
         }
@@ -169,7 +172,7 @@ Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count) {
         const int node = first_hidden + h;
         const bool consumed = std::any_of(genome.edges.begin(), genome.edges.end(),
                                           [&](const CppnEdge& e) { return e.from == node; });
-        if (!consumed) add_edge(node, kInputCount + rng.index(output_count));
+        if (!consumed) add_edge(node, inputs + rng.index(output_count));
     }
     return genome;
 }
@@ -196,10 +199,18 @@ nlohmann::json genome_to_json(const Genome& genome, int fibre_outputs) {
     }
     for (int k = 0; k < fibres; ++k)
         outputs.push_back(std::string("fibre_") + "xyz"[k % 3]);
-    nlohmann::json out = {{"inputs", {"x", "y", "z", "d", "bias"}},
-                          {"outputs", outputs},
-                          {"hidden", hidden},
-                          {"edges", edges}};
+    if (genome.input_count ==
+        kHyperNeatInputCount) {  // substrate weights (hyperneat_substrate.hpp)
+        outputs = {"w_input_hidden", "w_hidden_hidden"};
+        for (int k = 2; k < genome.output_count; ++k)
+            outputs.push_back("w_hidden_output_" + std::to_string(k - 2));
+    }
+    const nlohmann::json inputs =
+        genome.input_count == kHyperNeatInputCount
+            ? nlohmann::json{"xa", "ya", "za", "xb", "yb", "zb", "d", "bias"}
+            : nlohmann::json{"x", "y", "z", "d", "bias"};
+    nlohmann::json out = {
+        {"inputs", inputs}, {"outputs", outputs}, {"hidden", hidden}, {"edges", edges}};
     if (!genome.hidden_ids.empty()) out["hidden_ids"] = genome.hidden_ids;
     return out;
 }
@@ -210,6 +221,14 @@ Genome genome_from_json(const nlohmann::json& json, double weight_range) {
     };
     if (!json.is_object()) fail("", "expected an object");
     Genome genome;
+    if (json.contains("inputs")) {  // absent: the lattice CPPN's five
+        if (!json["inputs"].is_array() ||
+            (json["inputs"].size() != kInputCount && json["inputs"].size() != kHyperNeatInputCount))
+            fail("inputs",
+                 "expected an array of 5 (x, y, z, d, bias) or 8 (HyperNEAT's xa, ya, "
+                 "za, xb, yb, zb, d, bias) input names");
+        genome.input_count = static_cast<int>(json["inputs"].size());
+    }
     if (json.contains("outputs")) {  // absent: the paper's two outputs
         if (!json["outputs"].is_array() || json["outputs"].size() < 2 ||
             json["outputs"].size() > 256)

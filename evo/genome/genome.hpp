@@ -34,13 +34,16 @@ enum OutputNode : int { kOutputMaterial = 5, kOutputActive = 6 };
 inline constexpr int kInputCount = 5;
 inline constexpr int kOutputCount = 2;
 inline constexpr int kFirstHidden = kInputCount + kOutputCount;
+//! HyperNEAT's CPPN (evolution.algorithm = "hyperneat", evo/genome/hyperneat_substrate.hpp) is
+//! queried with a pair of substrate nodes: xa, ya, za, xb, yb, zb, d = |b - a|, bias.
+inline constexpr int kHyperNeatInputCount = 8;
 
 struct CppnEdge {
     int from = 0;  //!< node index (an input or a hidden node)
     int to = 0;    //!< node index (a hidden or an output node)
     double weight = 0.0;
-    //! NEAT's historical marking of this connection gene (evo/genome/neat_innovation.hpp); -1 in genomes
-    //! that carry no history (AFPO's, novelty's).
+    //! NEAT's historical marking of this connection gene (evo/genome/neat_innovation.hpp); -1 in
+    //! genomes that carry no history (AFPO's, novelty's).
     std::int64_t innovation = -1;
     bool operator==(const CppnEdge&) const = default;
 };
@@ -51,16 +54,19 @@ struct Genome {
     std::vector<CppnEdge> edges;
     //! 2 (the paper's) or 1 + materials (per_material), plus 3 with fibre_outputs
     int output_count = kOutputCount;
+    //! 5 (x, y, z, d, bias: a CPPN painting the lattice directly) or kHyperNeatInputCount (a
+    //! HyperNEAT CPPN painting a substrate's connections); the inputs are nodes 0 .. input_count-1.
+    int input_count = kInputCount;
     //! NEAT only: the run-wide id of each hidden node (hidden_ids[h] for node first_hidden() + h),
     //! so genes of two genomes can be aligned; inputs and outputs are their own ids. Empty in
     //! genomes without history.
     std::vector<std::int64_t> hidden_ids;
 
-    int first_hidden() const { return kInputCount + output_count; }
+    int first_hidden() const { return input_count + output_count; }
     int node_count() const { return first_hidden() + static_cast<int>(hidden.size()); }
     int hidden_count() const { return static_cast<int>(hidden.size()); }
-    static bool is_input(int node) { return node < kInputCount; }
-    bool is_output(int node) const { return node >= kInputCount && node < first_hidden(); }
+    bool is_input(int node) const { return node < input_count; }
+    bool is_output(int node) const { return node >= input_count && node < first_hidden(); }
     bool is_hidden(int node) const { return node >= first_hidden(); }
     //! True for a NEAT genome: hidden node ids or innovation numbers present.
     bool has_history() const {
@@ -95,8 +101,9 @@ std::vector<int> topological_order(const Genome& genome);
 //! A new random genome (paper Table 2): hidden node count uniform in [min, max]; each hidden node
 //! takes two edges from inputs or earlier hidden nodes; each output takes edges from up to three
 //! hidden nodes; every hidden node left without a consumer feeds a random output. Acyclic by
-//! construction (edges only go from earlier to later nodes). output_count as Genome's.
-Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count = kOutputCount);
+//! construction (edges only go from earlier to later nodes). output_count, input_count as Genome's.
+Genome random_genome(const CppnSettings& settings, Rng& rng, int output_count = kOutputCount,
+                     int input_count = kInputCount);
 
 //! fibre_outputs: how many of the last outputs are the fibre axis ones (3 under
 //! evolution.cppn.fibre_outputs, else 0): "outputs" then names them fibre_x, fibre_y, fibre_z

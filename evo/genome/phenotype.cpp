@@ -67,6 +67,15 @@ Developer::Developer(const Experiment& experiment)
         body.amplitude.clear();
         fixed_framed_ = apply_frame_and_overrides(experiment, body);
     }
+    if (experiment.evolution.algorithm == Algorithm::HyperNeat) {
+        // The substrate lies over the lattice the direct CPPN would paint: the design space for a
+        // body, the framed workspace for a controller; its output sheets are that CPPN's outputs.
+        const auto lattice = c.mode == ControllerMode::FixedBody ? fixed_framed_.size : space_.size;
+        substrate_ = std::make_shared<const HyperNeatSubstrate>(lattice, output_count_,
+                                                                experiment.evolution.hyperneat);
+        output_count_ = substrate_->cppn_output_count();
+        input_count_ = kHyperNeatInputCount;
+    }
     // fixed_controllers: a controller file's CPPN is read here, before any simulation, so that
     // a bad one is one line naming its entry (the experiment reader checks only its envelope).
     for (std::size_t i = 0; i < c.controllers.size(); ++i) {
@@ -82,13 +91,22 @@ Developer::Developer(const Experiment& experiment)
     }
 }
 
+Body Developer::decode_raw(const Genome& genome) const {
+    return substrate_ ? decoder_.paint(substrate_->activate(genome)) : decoder_.decode(genome);
+}
+
 Phenotype Developer::develop(const Genome& genome) const {
     Phenotype p;
     if (controller_mode() == ControllerMode::FixedBody) {
         p.body = fixed_framed_;
-        paint_controller(genome, experiment_.materials, p.body);
+        if (substrate_) {
+            const auto out = substrate_->activate(genome);
+            paint_controller_outputs(out[0], out[1], experiment_.materials, p.body);
+        } else {
+            paint_controller(genome, experiment_.materials, p.body);
+        }
     } else {
-        const Body designed = largest_face_connected_component(decoder_.decode(genome));
+        const Body designed = largest_face_connected_component(decode_raw(genome));
         p.body = apply_frame_and_overrides(experiment_, designed);
     }
     count(p);

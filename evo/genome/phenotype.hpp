@@ -5,11 +5,13 @@
 // workspace, is what gets simulated and what identifies an individual.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "evo/experiment/experiment.hpp"
 #include "evo/genome/cppn_decoder.hpp"
 #include "evo/genome/genome.hpp"
+#include "evo/genome/hyperneat_substrate.hpp"
 
 namespace bhm::evo {
 
@@ -47,16 +49,23 @@ class Developer {
 
     //! The genome's phenotype. With evolution.controller fixed_body the genome is a controller
     //! (evo/genome/controller.hpp) and the phenotype is the fixed body, framed, painted by it.
+    //! With evolution.algorithm hyperneat the genome is a HyperNEAT CPPN and the substrate's
+    //! outputs (hyperneat_substrate.hpp) take the place of a direct CPPN's, for the body or, in
+    //! fixed_body, for the controller.
     Phenotype develop(const Genome& genome) const;
     //! evolution.controller coevolve: develop(genome) with `controller` painted on the body; in
     //! any other mode the controller is ignored (develop(genome)).
     Phenotype develop(const Genome& genome, const Genome& controller) const;
     //! The lattice the CPPN paints, before the connectivity filter (for inspection and tests).
-    Body decode_raw(const Genome& genome) const { return decoder_.decode(genome); }
+    Body decode_raw(const Genome& genome) const;
 
     const DesignSpace& space() const { return space_; }
     //! Outputs the experiment's CPPN has (Genome::output_count of every genome it develops).
     int cppn_output_count() const { return output_count_; }
+    //! Inputs it has: kInputCount, or kHyperNeatInputCount under HyperNEAT.
+    int cppn_input_count() const { return input_count_; }
+    //! HyperNEAT's substrate; null for the other algorithms.
+    const HyperNeatSubstrate* substrate() const { return substrate_.get(); }
     const Experiment& experiment() const { return experiment_; }
     ControllerMode controller_mode() const { return experiment_.evolution.controller.mode; }
 
@@ -68,6 +77,9 @@ class Developer {
     DesignSpace space_;
     CppnDecoder decoder_;
     int output_count_ = kOutputCount;
+    int input_count_ = kInputCount;
+    //! Shared by copies: its precomputed queries are the large part (connections x 8 values).
+    std::shared_ptr<const HyperNeatSubstrate> substrate_;
     Body fixed_framed_;  //!< fixed_body: the body, framed (apply_frame_and_overrides)
 };
 

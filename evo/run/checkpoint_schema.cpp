@@ -143,7 +143,7 @@ void read_cache_entries(const Fields& f, const Field& field, RunState& s, Contex
 }
 
 bool neat(const RunState& s) {
-    return s.experiment.evolution.algorithm == Algorithm::Neat;
+    return uses_neat(s.experiment.evolution.algorithm);
 }
 void write_neat(const RunState& s, const char* key, json& out, const Context& context) {
     if (neat(s)) out[key] = write_fields(neat_state_fields(), s.neat, context);

@@ -9,8 +9,9 @@ namespace bhm::evo {
 Genome crossover(const Genome& primary, const Genome& mate, Rng& rng) {
     Genome child;
     child.output_count = primary.output_count;
-    if (mate.output_count != primary.output_count)
-        throw std::invalid_argument("crossover of genomes with different output counts");
+    child.input_count = primary.input_count;
+    if (mate.output_count != primary.output_count || mate.input_count != primary.input_count)
+        throw std::invalid_argument("crossover of genomes with different input or output counts");
     child.hidden = primary.hidden;
     for (std::size_t h = 0; h < child.hidden.size() && h < mate.hidden.size(); ++h)
         if (rng.uniform() < 0.5) child.hidden[h] = mate.hidden[h];

@@ -61,7 +61,7 @@ bool add_edge(Genome& g, const CppnSettings& s, Rng& rng) {
     std::vector<std::pair<int, int>> candidates;
     std::vector<char> reachable(static_cast<std::size_t>(n));
     std::vector<int> stack;
-    for (int to = kInputCount; to < n; ++to) {
+    for (int to = g.input_count; to < n; ++to) {
         // Nodes reachable from `to`: an edge from any of them into `to` would close a cycle.
         std::fill(reachable.begin(), reachable.end(), 0);
         reachable[static_cast<std::size_t>(to)] = 1;

@@ -13,7 +13,10 @@ namespace {
 //! Builds the child gene by gene in id space (node ids, innovation numbers) over positional nodes.
 class ChildBuilder {
   public:
-    explicit ChildBuilder(int output_count) { child_.output_count = output_count; }
+    ChildBuilder(int input_count, int output_count) {
+        child_.input_count = input_count;
+        child_.output_count = output_count;
+    }
 
     //! Index of node `id` in the child, adding hidden node (id, function) when absent.
     int node(std::int64_t id, Activation function) {
@@ -51,8 +54,8 @@ Activation function_of(const Genome& g, int node) {
 }  // namespace
 
 Genome neat_crossover(const Genome& primary, const Genome& mate, Fitter fitter, Rng& rng) {
-    if (mate.output_count != primary.output_count)
-        throw std::invalid_argument("crossover of genomes with different output counts");
+    if (mate.output_count != primary.output_count || mate.input_count != primary.input_count)
+        throw std::invalid_argument("crossover of genomes with different input or output counts");
     // The structure comes from the fitter parent ("base"); with equal fitness from the primary,
     // plus the mate's unmatched genes with probability 1/2.
     const bool mate_fitter = fitter == Fitter::Mate;
@@ -60,7 +63,7 @@ Genome neat_crossover(const Genome& primary, const Genome& mate, Fitter fitter, 
     const Genome& other = mate_fitter ? primary : mate;
     const auto al = mate_fitter ? align_genes(mate, primary) : align_genes(primary, mate);
 
-    ChildBuilder child(primary.output_count);
+    ChildBuilder child(primary.input_count, primary.output_count);
     // Every node of the base parent, in its order; matching node genes take either function.
     std::unordered_map<std::int64_t, int> other_index;
     for (int h = 0; h < other.hidden_count(); ++h)

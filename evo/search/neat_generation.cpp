@@ -21,7 +21,8 @@ void breed_initial(const Experiment& rules, const Developer& developer, int g,
     for (int i = 0; i < rules.evolution.population; ++i) {
         bool found = false;
         for (int attempt = 0; attempt < attempts && !found; ++attempt) {
-            Genome genome = neat_minimal_genome(developer.cppn_output_count(), cppn, rng, table);
+            Genome genome = neat_minimal_genome(developer.cppn_output_count(), cppn, rng, table,
+                                                developer.cppn_input_count());
             const int splits = rng.uniform_int(
                 cppn.min_hidden_nodes, std::max(cppn.min_hidden_nodes, cppn.max_hidden_nodes));
             for (int k = 0; k < splits; ++k)
@@ -60,7 +61,7 @@ void neat_breed(const Experiment& rules, const Developer& developer, int g,
     if (g == 0) {
         state = NeatState{};
         state.threshold = settings.compatibility_threshold;
-        state.next_node_id = kInputCount + developer.cppn_output_count();
+        state.next_node_id = developer.cppn_input_count() + developer.cppn_output_count();
     }
     // A new table every generation: the same mutation is the same gene within one generation.
     InnovationTable table(state.next_innovation, state.next_node_id);

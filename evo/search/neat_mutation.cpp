@@ -33,7 +33,7 @@ bool add_node(Genome& g, const CppnSettings& s, Rng& rng, InnovationTable& table
 bool add_edge(Genome& g, const CppnSettings& s, Rng& rng, InnovationTable& table) {
     const int n = g.node_count();
     std::vector<std::pair<int, int>> candidates;
-    for (int to = kInputCount; to < n; ++to)
+    for (int to = g.input_count; to < n; ++to)
         for (int from = 0; from < n; ++from) {
             if (g.is_output(from) || from == to || has_edge(g, from, to)) continue;
             if (edge_keeps_acyclic(g, from, to)) candidates.emplace_back(from, to);
@@ -49,11 +49,12 @@ bool add_edge(Genome& g, const CppnSettings& s, Rng& rng, InnovationTable& table
 }  // namespace
 
 Genome neat_minimal_genome(int output_count, const CppnSettings& settings, Rng& rng,
-                           InnovationTable& table) {
+                           InnovationTable& table, int input_count) {
     Genome g;
     g.output_count = output_count;
-    for (int out = kInputCount; out < g.first_hidden(); ++out)
-        for (int in = 0; in < kInputCount; ++in)
+    g.input_count = input_count;
+    for (int out = input_count; out < g.first_hidden(); ++out)
+        for (int in = 0; in < input_count; ++in)
             g.edges.push_back({in, out, rng.uniform(-settings.weight_range, settings.weight_range),
                                table.connection(in, out)});
     return g;

@@ -19,6 +19,8 @@ std::unique_ptr<SearchAlgorithm> make_search_algorithm(Algorithm algorithm) {
             return make_novelty_search();
         case Algorithm::Ga:
             return make_ga_search();
+        case Algorithm::HyperNeat:
+            return make_hyperneat_search();
     }
     throw std::invalid_argument("evolution.algorithm " +
                                 std::to_string(static_cast<int>(algorithm)) + " is not built");
@@ -37,7 +39,8 @@ bool draw_random_individual(const GenerationContext& context, Rng& rng, std::int
     const Developer& developer = context.developer;
     const int attempts = std::max(100, e.evolution.max_neutral_retries);
     for (int attempt = 0; attempt < attempts; ++attempt) {
-        Genome genome = random_genome(e.evolution.cppn, rng, developer.cppn_output_count());
+        Genome genome = random_genome(e.evolution.cppn, rng, developer.cppn_output_count(),
+                                      developer.cppn_input_count());
         Phenotype phenotype = developer.develop(genome);
         if (!constraint_violation(e.fitness.constraints, e.boundary, developer.space(), phenotype)
                  .empty())

@@ -77,7 +77,8 @@ std::unique_ptr<SearchAlgorithm> make_search_algorithm(Algorithm algorithm);
 std::unique_ptr<SearchAlgorithm> make_afpo_search();
 std::unique_ptr<SearchAlgorithm> make_neat_search();
 std::unique_ptr<SearchAlgorithm> make_novelty_search();
-std::unique_ptr<SearchAlgorithm> make_ga_search();  // ga_search.cpp
+std::unique_ptr<SearchAlgorithm> make_ga_search();         // ga_search.cpp
+std::unique_ptr<SearchAlgorithm> make_hyperneat_search();  // hyperneat_search.cpp
 //! The experiment's algorithm, wrapped for evolution.controller = "coevolve"
 //! (evo/search/coevolve_search.hpp).
 std::unique_ptr<SearchAlgorithm> make_search_algorithm(const Evolution& evolution);

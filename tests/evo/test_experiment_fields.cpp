@@ -111,9 +111,9 @@ TEST_CASE("every field of the table is written at its path and read back unchang
     base.boundary.enclosure_material = 1;
     base.fitness.constraints.attached_to_fixed_face = false;
     // The boundary's faces and frame are rows too (issue 22): the loop below covers them.
-    for (const char* path : {"boundary.faces.x-", "boundary.faces.z+",
-                             "boundary.enclosure.thickness_voxels.y+",
-                             "boundary.enclosure.material"})
+    for (const char* path :
+         {"boundary.faces.x-", "boundary.faces.z+", "boundary.enclosure.thickness_voxels.y+",
+          "boundary.enclosure.material"})
         CHECK(find_experiment_field(path) != nullptr);
     const auto dir = bhm::test::scratch_dir("experiment-fields");
     int checked = 0;
@@ -322,7 +322,10 @@ TEST_CASE("each rule between fields is declared once: validated, and in its fiel
         void (*apply)(Experiment&);
     };
     const Break breaks[] = {
-        {"workspace.size", [](Experiment& e) { e.workspace_size = {200, 200, 200}; }},
+        {"workspace.size",
+         [](Experiment& e) {
+             e.workspace_size = {200, 200, 200};
+         }},
         {"actuation.temperature_amplitude_c",
          [](Experiment& e) { e.materials[1].physics.cte_per_c = 0.5; }},
         {"materials[0].dynamic_friction",
@@ -362,8 +365,8 @@ TEST_CASE("each rule between fields is declared once: validated, and in its fiel
          }},
         {"fitness.constraints.min_active_voxels",
          [](Experiment& e) {
-             e.fitness.constraints.min_active_voxels = e.workspace_size[0] * e.workspace_size[1] *
-                                                           e.workspace_size[2] + 1;
+             e.fitness.constraints.min_active_voxels =
+                 e.workspace_size[0] * e.workspace_size[1] * e.workspace_size[2] + 1;
          }},
         {"evolution.cppn.max_hidden_nodes",
          [](Experiment& e) {
@@ -380,6 +383,13 @@ TEST_CASE("each rule between fields is declared once: validated, and in its fiel
          [](Experiment& e) { e.evolution.cppn.fibre_outputs = true; }},
         {"evolution.neat.elitism",
          [](Experiment& e) { e.evolution.neat.elitism = e.evolution.population + 1; }},
+        // HyperNEAT's substrate: 15^3 cells x 9^3 = 2.46e6 connections, over its 2e6 (issue 44).
+        {"evolution.hyperneat.radius",
+         [](Experiment& e) {
+             e.evolution.algorithm = Algorithm::HyperNeat;
+             e.workspace_size = {15, 15, 15};
+             e.evolution.hyperneat.radius = 4;
+         }},
         {"simulation", [](Experiment& e) { e.simulation.evaluate_s = 9e4; }},
     };
     REQUIRE(std::size(breaks) == field_rules().size());
