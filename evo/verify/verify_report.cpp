@@ -79,6 +79,7 @@ double spearman(const std::vector<double>& a, const std::vector<double>& b) {
 nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptions& options) {
     nlohmann::json j;
     j["verdict"] = v.verdict();
+    if (!v.laws().empty()) j["law"] = v.laws();
     j["status"] = v.status == VerifyStatus::Compared ? "compared" : "out_of_reach";
     j["voxels"] = v.voxels;
     j["held_voxels"] = v.held_voxels;

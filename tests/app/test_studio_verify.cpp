@@ -726,3 +726,32 @@ TEST_CASE(
     // A FIFO report is not listed as a kept one (a FIFO shapes.json is, and refused when read).
     CHECK(kept_verifications(dir.string()) == std::vector<std::int64_t>{2});
 }
+
+TEST_CASE("studio verify: the FEM tab names the continuum law a nonlinear verdict was judged on") {
+    // Issue 40: at large strain the verdict is judged on the nearer of two continuum laws
+    // (evo/verify/verify_body, BodyVerification::laws); report.json's "law" is that line, shown
+    // under the verdict. Older reports and linear steps have none, and show none.
+    const fs::path kept = fs::path(BHM_SOURCE_DIR) / "tests" / "data" / "verify" / "individual-7";
+    auto plain = read_verification(kept.string(), 7);
+    REQUIRE(plain);
+    CHECK(plain->law.empty());
+    const auto dir = testing::fresh_dir("verify-law") / "individual-7";
+    fs::create_directories(dir);
+    json report = json::parse(std::ifstream(kept / "report.json"));
+    const std::string line =
+        "judged against the Neo-Hookean continuum, the nearer of two laws (Saint Venant-Kirchhoff: "
+        "22.7 %); the two laws' answers differ by 44.9 % on the centre of mass's YZ displacement";
+    report["law"] = line;
+    std::ofstream(dir / "report.json") << report.dump(1);
+    fs::copy_file(kept / "shapes.json", dir / "shapes.json");
+    auto with_law = read_verification(dir.string(), 7);
+    REQUIRE(with_law);
+    CHECK(with_law->law == line);
+
+    Studio studio;
+    studio.verify.result = std::make_shared<const FemVerification>(std::move(*with_law));
+    HeadlessStudio session(studio, 1280, 900);
+    run_script(session, json::parse(R"([{"click": "tab FEM"}, {"frames": 3}])"));
+    const auto it = studio.ui.widgets.find("fem law");
+    CHECK((it != studio.ui.widgets.end() && it->second.frame == studio.ui.frame));
+}

@@ -194,6 +194,16 @@ void result_section(Studio& s) {
         }
         ImGui::EndTable();
     }
+    // Under the table, so that the ghost and the loads stay in a short tile.
+    if (!v->law.empty()) {
+        hint_wrapped("%s", v->law.c_str());
+        record_widget(s, "fem law");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "a material is only E and nu, so at large strain CalculiX is solved with two laws\n"
+                "of those moduli and the verdict judged on the nearer; their spread is how much\n"
+                "the answer depends on the tissue's unknown large-strain law (docs/verify.md)");
+    }
 }
 
 // Every report kept in the run directory: a member's too, which a reopened run does not list.

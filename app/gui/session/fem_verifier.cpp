@@ -160,6 +160,7 @@ std::optional<FemVerification> read_verification(const std::string& dir, std::in
         v.verdict = f.string("verdict");
         v.compared = f.string("status") == "compared";
         if (!v.compared) return v;
+        if (r.contains("law")) v.law = f.string("law");
         v.agrees = f.boolean("agrees");
         v.worst = f.number("worst_relative_difference");
         v.tolerance = f.number("tolerance");

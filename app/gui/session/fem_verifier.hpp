@@ -49,6 +49,9 @@ struct FemVerification {
     //! The FEM's own mesh error (report.json's fem_mesh_error): "FEM mesh error ~5.2 % (2 vs 4
     //! per edge)", "FEM mesh error not estimated: ...", or "" where the report has none.
     std::string mesh_error;
+    //! Nonlinear steps: the continuum law judged against and the other's difference (report.json's
+    //! "law", BodyVerification::laws); "" for linear steps and older reports.
+    std::string law;
     std::vector<FemLoadRow> rows;
     std::vector<int> voxel_cells;                  //!< lattice cell per voxel of the shapes
     std::vector<engine::VoxelPoses> fem_shape;     //!< per row: the FEM's deformed voxels
