@@ -350,3 +350,23 @@ TEST_CASE("studio session: F12 numbers its screenshots in the data folder and na
     else
         unsetenv("XDG_DATA_HOME");
 }
+
+TEST_CASE("studio session: picking HyperNEAT shows NEAT's and its substrate's fields") {
+    // Issue 44: the experiment editor showed NEAT's fields for "neat" only, so a HyperNEAT
+    // experiment (NEAT evolving the substrate's CPPN) could not set its species or its substrate.
+    Studio studio;
+    studio.document.reset(testing::tiny_experiment(), "");
+    HeadlessStudio session(studio, 1024, 1400);
+    auto shown = [&](const char* widget) {
+        const auto it = studio.ui.widgets.find(widget);
+        return it != studio.ui.widgets.end() && it->second.frame == studio.ui.frame;
+    };
+    run_script(session, json::parse(R"([{"click": "header Evolution"}, {"frames": 2}])"));
+    CHECK_FALSE(shown("evolution.hyperneat.radius"));
+    run_script(session, json::parse(R"([
+        {"click": "Algorithm"}, {"frames": 2},
+        {"click": "algorithm hyperneat"}, {"frames": 2}])"));
+    CHECK(studio.document.experiment().evolution.algorithm == evo::Algorithm::HyperNeat);
+    CHECK(shown("evolution.hyperneat.radius"));
+    CHECK(shown("evolution.neat.target_species"));
+}

@@ -170,8 +170,10 @@ void evolution_section(Studio& s) {
     // What evolves (issue 44): the body and controller list are set in the file or by
     // bhm evolve --body (docs/experiment-format.md, "Controllers").
     experiment_field(s, "evolution.controller.mode");
-    // NEAT's and novelty's parameters (docs/evolution.md) when their algorithm is chosen.
-    if (ev.algorithm == evo::Algorithm::Neat) fields_under(s, "evolution.neat.");
+    // The parameters of the chosen algorithm: NEAT's (HyperNEAT's too), the HyperNEAT
+    // substrate's and novelty's (docs/evolution.md, docs/hyperneat.md).
+    if (evo::uses_neat(ev.algorithm)) fields_under(s, "evolution.neat.");
+    if (ev.algorithm == evo::Algorithm::HyperNeat) fields_under(s, "evolution.hyperneat.");
     if (ev.algorithm == evo::Algorithm::Novelty) fields_under(s, "evolution.novelty.");
     for (const char* path :
          {"evolution.population", "evolution.generations", "evolution.wall_budget_h",

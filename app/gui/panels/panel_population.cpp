@@ -120,7 +120,7 @@ void draw_population_panel(Studio& s) {
     ImGui::EndDisabled();
     ImGui::SameLine();
     // NEAT has species instead of a Pareto front: that column shows each member's species.
-    const bool neat = run.experiment.evolution.algorithm == evo::Algorithm::Neat;
+    const bool neat = evo::uses_neat(run.experiment.evolution.algorithm);
     int front = 0;
     for (const auto& m : run.population)
         front += m.pareto_rank == 0;
