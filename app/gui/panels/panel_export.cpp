@@ -100,6 +100,20 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     ImGui::SameLine();
     ImGui::TextDisabled("bhm body file");
 
+    section_title("Surface mesh and ParaView");
+    path_field(s, "##mesh path", x.mesh_path);
+    if (tracked_button(s, "Save mesh")) export_mesh(s, x.mesh_path, x.mesh_deformed);
+    ImGui::SameLine();
+    ImGui::Checkbox("deformed at the replay time", &x.mesh_deformed);
+    record_widget(s, "mesh deformed");
+    hint("closed surface in metres: .stl, or .obj with a .mtl (a group per material)");
+    path_field(s, "##vtk folder", x.vtk_folder);
+    ImGui::BeginDisabled(!s.bodies.shown);
+    if (tracked_button(s, "Write ParaView series")) export_vtk_series(s, x.vtk_folder);
+    ImGui::EndDisabled();
+    hint("series.pvd, one .vtu per replay frame and the centre of mass path (.vtp)");
+
+    // Last, so the geometry exports above keep their place in a short tile.
     section_title("Controller (issue 44)");
     path_field(s, "##controller path", x.controller_path);
     ImGui::BeginDisabled(!s.bodies.shown);
@@ -114,19 +128,6 @@ void draw_export_panel(Studio& s, ViewRenderer& renderer) {
     hint(
         "replay the body shown under a controller file, a run folder's champion controller, or "
         "uniform, wave, random[:SEED]");
-
-    section_title("Surface mesh and ParaView");
-    path_field(s, "##mesh path", x.mesh_path);
-    if (tracked_button(s, "Save mesh")) export_mesh(s, x.mesh_path, x.mesh_deformed);
-    ImGui::SameLine();
-    ImGui::Checkbox("deformed at the replay time", &x.mesh_deformed);
-    record_widget(s, "mesh deformed");
-    hint("closed surface in metres: .stl, or .obj with a .mtl (a group per material)");
-    path_field(s, "##vtk folder", x.vtk_folder);
-    ImGui::BeginDisabled(!s.bodies.shown);
-    if (tracked_button(s, "Write ParaView series")) export_vtk_series(s, x.vtk_folder);
-    ImGui::EndDisabled();
-    hint("series.pvd, one .vtu per replay frame and the centre of mass path (.vtp)");
 }
 
 }  // namespace bhm::app::gui
