@@ -409,27 +409,22 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                           turned, options.coarse_nonlinearity_below_deg);
             out.geometry_reason += why;
         }
-        // Solved in full, the second law's nonlinear part still comes from the coarse mesh (added
-        // to this mesh's linear answer): a Neo-Hookean full solve cuts its increments much more
-        // (measured: a 4976-element C3D20R champion still at 0.19 of its first step after 5 min
-        // of CPU), and the second law is there for the spread, which the coarse part gives.
-        auto in_full = [&]() {
-            const CcxResult fine_linear =
-                solved_nonlinear ? solve(false, FemMaterialLaw::Hooke) : fem;
-            if (!solved_nonlinear) fem = solve(true, FemMaterialLaw::Hooke);
+        // The second law's answer: its nonlinear part on the coarse mesh added to this mesh's
+        // linear answer, also where the first law is solved in full, since a Neo-Hookean full
+        // solve cuts its increments much more (measured: a 4976-element C3D20R champion still at
+        // 0.19 of its first step after 5 min of CPU) and the second law is there for the spread.
+        // Where it fails, the first law alone, and the reason says so.
+        auto second_law = [&](const std::vector<NodalDisplacements>& fine_linear,
+                              const FemModel& coarse, const CcxResult& coarse_linear) {
             try {
-                const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
-                const CcxResult linear = run_fem(coarse, spec, loads, false, options);
                 const CcxResult nh =
                     run_fem(coarse, spec, loads, true, options, FemMaterialLaw::NeoHookean);
-                out.fem_cpu_s += linear.cpu_s + nh.cpu_s;
-                out.fem_wall_s += linear.wall_s + nh.wall_s;
-                for (std::size_t k = 0; k < fine_linear.blocks.size(); ++k)
-                    neo_hookean.push_back(with_coarse_nonlinearity(out.fem_model,
-                                                                   fine_linear.blocks[k], coarse,
-                                                                   linear.blocks[k], nh.blocks[k]));
-                out.geometry_reason +=
-                    "; the Neo-Hookean answer's nonlinear part from 1 element per voxel edge";
+                out.fem_cpu_s += nh.cpu_s;
+                out.fem_wall_s += nh.wall_s;
+                for (std::size_t k = 0; k < fine_linear.size(); ++k)
+                    neo_hookean.push_back(with_coarse_nonlinearity(out.fem_model, fine_linear[k],
+                                                                   coarse, coarse_linear.blocks[k],
+                                                                   nh.blocks[k]));
             } catch (const std::runtime_error& e) {
                 if (options.control.cancelled()) throw;
                 neo_hookean.clear();
@@ -437,18 +432,31 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                                        "), Saint Venant-Kirchhoff alone";
             }
         };
+        auto coarse_linear_of = [&](const FemModel& coarse) {
+            const CcxResult linear = run_fem(coarse, spec, loads, false, options);
+            out.fem_cpu_s += linear.cpu_s;
+            out.fem_wall_s += linear.wall_s;
+            return linear;
+        };
+        auto in_full = [&]() {
+            const CcxResult fine_linear =
+                solved_nonlinear ? solve(false, FemMaterialLaw::Hooke) : fem;
+            if (!solved_nonlinear) fem = solve(true, FemMaterialLaw::Hooke);
+            const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
+            second_law(fine_linear.blocks, coarse, coarse_linear_of(coarse));
+            if (!neo_hookean.empty())
+                out.geometry_reason +=
+                    "; the Neo-Hookean answer's nonlinear part from 1 element per voxel edge";
+        };
         if (!from_coarse || turned >= options.coarse_nonlinearity_below_deg) {
             in_full();
             return;
         }
         const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
-        const CcxResult linear = run_fem(coarse, spec, loads, false, options);
-        out.fem_cpu_s += linear.cpu_s;
-        out.fem_wall_s += linear.wall_s;
-        CcxResult nonlinear, nonlinear_nh;
+        const CcxResult linear = coarse_linear_of(coarse);
+        CcxResult nonlinear;
         try {
             nonlinear = run_fem(coarse, spec, loads, true, options);
-            nonlinear_nh = run_fem(coarse, spec, loads, true, options, FemMaterialLaw::NeoHookean);
         } catch (const std::runtime_error& e) {
             // One element per voxel edge can fail where the mesh converges (a 1x1 neck under
             // large rotations, measured: "too many cutbacks"): solve in full instead.
@@ -460,14 +468,12 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             in_full();
             return;
         }
-        out.fem_cpu_s += nonlinear.cpu_s + nonlinear_nh.cpu_s;
-        out.fem_wall_s += nonlinear.wall_s + nonlinear_nh.wall_s;
-        for (std::size_t k = 0; k < fem.blocks.size(); ++k) {
-            neo_hookean.push_back(with_coarse_nonlinearity(
-                out.fem_model, fem.blocks[k], coarse, linear.blocks[k], nonlinear_nh.blocks[k]));
+        out.fem_cpu_s += nonlinear.cpu_s;
+        out.fem_wall_s += nonlinear.wall_s;
+        second_law(fem.blocks, coarse, linear);
+        for (std::size_t k = 0; k < fem.blocks.size(); ++k)
             fem.blocks[k] = with_coarse_nonlinearity(out.fem_model, fem.blocks[k], coarse,
                                                      linear.blocks[k], nonlinear.blocks[k]);
-        }
         out.nlgeom_from_coarse_mesh = true;
         out.geometry_reason += "; its nonlinear part from " +
                                fem_element_name(out.mesh.mesh.element) +
