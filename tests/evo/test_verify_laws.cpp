@@ -15,37 +15,18 @@
 #include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/verify_body.hpp"
+#include "verify_test_bodies.hpp"
 
 using namespace bhm;
 using bhm::test::skip_without_ccx;
 
 namespace {
 
-// A 6 x 2 x 2 bilayer of 5 MPa (nu 0.35) held at x = 0, no gravity: the top layer active
-// (cte 0.01 / degC), the bottom passive, driven at `amplitude_c`.
+// The shared 6 x 2 x 2 bilayer (5 MPa, nu 0.35, its bottom layer active at cte 0.01 / degC),
+// without gravity, driven at `amplitude_c`.
 engine::BodySpec bilayer(double amplitude_c) {
-    engine::BodySpec s;
-    s.nx = 6;
-    s.ny = 2;
-    s.nz = 2;
-    s.voxel_size_m = 0.01;
-    engine::Material passive;
-    passive.youngs_modulus_pa = 5e6;
-    passive.poisson_ratio = 0.35;
-    engine::Material active = passive;
-    active.cte_per_c = 0.01;
-    s.materials = {passive, active};
-    s.material.assign(static_cast<std::size_t>(s.cell_count()), 1);
-    s.fixed.assign(static_cast<std::size_t>(s.cell_count()), 0);
-    for (int z = 0; z < s.nz; ++z)
-        for (int y = 0; y < s.ny; ++y)
-            for (int x = 0; x < s.nx; ++x) {
-                const auto c = static_cast<std::size_t>(s.cell_index(x, y, z));
-                if (z == 1) s.material[c] = 2;
-                if (x == 0) s.fixed[c] = 1;
-            }
+    engine::BodySpec s = bhm::test::verify_bilayer(amplitude_c, 6, 2);
     s.environment.gravity_m_s2 = 0.0;
-    s.actuation.temperature_amplitude_c = amplitude_c;
     return s;
 }
 
