@@ -163,7 +163,12 @@ bool show_robustness_cell(Studio& s, std::size_t body, std::size_t controller) {
     }
 }
 
-bool export_robustness_csv(Studio& s, const std::string& path) {
+namespace {
+
+// One export of the finished table: `write` makes the file (atomically, naming the path when it
+// fails), then the status names it.
+template <class Write>
+bool export_robustness(Studio& s, const std::string& path, const char* what, Write write) {
     const evo::RobustnessTable* table = robustness_table(s);
     if (!table) {
         set_status(s, "robustness: no finished table to export", true);
@@ -171,8 +176,8 @@ bool export_robustness_csv(Studio& s, const std::string& path) {
     }
     try {
         make_parent(path);
-        evo::write_file_atomically(path, evo::robustness_csv(*table));
-        set_status(s, "robustness table written: " + path);
+        write(*table);
+        set_status(s, std::string("robustness ") + what + " written: " + path);
         return true;
     } catch (const std::exception& e) {
         set_status(s, e.what(), true);
@@ -180,21 +185,18 @@ bool export_robustness_csv(Studio& s, const std::string& path) {
     }
 }
 
+}  // namespace
+
+bool export_robustness_csv(Studio& s, const std::string& path) {
+    return export_robustness(s, path, "table", [&](const evo::RobustnessTable& table) {
+        evo::write_file_atomically(path, evo::robustness_csv(table));
+    });
+}
+
 bool export_robustness_png(Studio& s, const std::string& path) {
-    const evo::RobustnessTable* table = robustness_table(s);
-    if (!table) {
-        set_status(s, "robustness: no finished table to export", true);
-        return false;
-    }
-    try {
-        make_parent(path);
-        write_robustness_heatmap(path, *table);  // throws naming the path (also without libpng)
-        set_status(s, "robustness heatmap written: " + path);
-        return true;
-    } catch (const std::exception& e) {
-        set_status(s, e.what(), true);
-        return false;
-    }
+    return export_robustness(s, path, "heatmap", [&](const evo::RobustnessTable& table) {
+        write_robustness_heatmap(path, table);  // throws naming the path (also without libpng)
+    });
 }
 
 }  // namespace bhm::app::gui
