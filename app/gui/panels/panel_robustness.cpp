@@ -20,14 +20,6 @@ namespace bhm::app::gui {
 
 namespace {
 
-void text_field(Studio& s, const char* id, const char* hint, std::string& value) {
-    char buffer[2048];
-    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
-    ImGui::SetNextItemWidth(-1.0f);
-    if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
-    record_widget(s, id + 2);
-}
-
 ImU32 im_color(const Rgb& c) {
     return IM_COL32(c[0], c[1], c[2], 255);
 }
@@ -185,18 +177,19 @@ void draw_robustness_panel(Studio& s) {
     if (table) heatmap(s, *table, measure);
     section_title("Bodies (rows)");
     champion_picks(s);
-    text_field(s, "##robustness body files", "body files, comma-separated (a.json,b.json)",
-               r.body_files);
+    hinted_text_field(s, "##robustness body files", "body files, comma-separated (a.json,b.json)",
+                      r.body_files);
     section_title("Controllers (columns)");
-    text_field(s, "##robustness controllers",
-               "uniform, wave, random, random:SEED, controller.json, a run folder", r.controllers);
+    hinted_text_field(s, "##robustness controllers",
+                      "uniform, wave, random, random:SEED, controller.json, a run folder",
+                      r.controllers);
     if (!table) return;
     section_title("Table (click a heatmap cell to show that body with that controller)");
     number_table(*table, measure);
     section_title("Export (as bhm robustness writes them)");
-    text_field(s, "##robustness csv path", "robustness.csv", r.csv_path);
+    hinted_text_field(s, "##robustness csv path", "robustness.csv", r.csv_path);
     if (tracked_button(s, "Export robustness CSV")) export_robustness_csv(s, r.csv_path);
-    text_field(s, "##robustness png path", "robustness.png", r.png_path);
+    hinted_text_field(s, "##robustness png path", "robustness.png", r.png_path);
     if (tracked_button(s, "Export robustness PNG")) export_robustness_png(s, r.png_path);
 }
 

@@ -17,14 +17,6 @@ namespace bhm::app::gui {
 
 namespace {
 
-void text_field(Studio& s, const char* id, const char* hint, std::string& value) {
-    char buffer[1024];
-    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
-    ImGui::SetNextItemWidth(-1.0f);
-    if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
-    record_widget(s, id + 2);
-}
-
 void controls(Studio& s) {
     const RunPhase phase = s.run.evolution.phase();
     const bool live = run_is_live(phase);
@@ -79,8 +71,8 @@ void controls(Studio& s) {
         ImGui::InputDouble("h budget", &ev.wall_budget_h, 0.0, 0.0, "%.3g");
         if (!live && ImGui::IsItemDeactivatedAfterEdit()) commit_draft(s, "wall budget");
         ImGui::PopItemWidth();
-        text_field(s, "##run dir", "run directory (empty: a new folder in the data folder)",
-                   live ? run_dir : s.run.dir_field);
+        hinted_text_field(s, "##run dir", "run directory (empty: a new folder in the data folder)",
+                          live ? run_dir : s.run.dir_field);
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("empty: %s/<name>-<time>", default_runs_root().c_str());
     }
@@ -284,7 +276,7 @@ void status(Studio& s) {
 
 void run_directory(Studio& s) {
     if (!ImGui::TreeNode("Run directory (bhm evolve)")) return;
-    text_field(s, "##open run", "run directory", s.run.open_field);
+    hinted_text_field(s, "##open run", "run directory", s.run.open_field);
     if (tracked_button(s, "Open run...")) show_file_dialog(s, FileDialogPurpose::OpenRun);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("browse for a run directory to view");
     ImGui::SameLine();

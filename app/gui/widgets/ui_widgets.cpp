@@ -37,6 +37,14 @@ void record_widget(Studio& studio, const std::string& name) {
     studio.ui.widgets[name] = WidgetRect{{lo.x, lo.y}, {hi.x, hi.y}, studio.ui.frame};
 }
 
+void hinted_text_field(Studio& studio, const char* id, const char* hint, std::string& value) {
+    char buffer[2048];
+    std::snprintf(buffer, sizeof buffer, "%s", value.c_str());
+    ImGui::SetNextItemWidth(-1.0f);
+    if (ImGui::InputTextWithHint(id, hint, buffer, sizeof buffer)) value = buffer;
+    record_widget(studio, id + 2);
+}
+
 bool tracked_button(Studio& studio, const char* label, ImVec2 size) {
     const bool pressed = ImGui::Button(label, size);
     record_widget(studio, visible_label(label));

@@ -11,6 +11,9 @@ namespace bhm::app::gui {
 
 //! Records the last item's rectangle under `name` (scripts click it by that name).
 void record_widget(Studio& studio, const std::string& name);
+//! A full-width one-line text box with a grey hint while empty, recorded under `id` without its
+//! leading "##" (ids are "##name"); `value` changes as it is typed.
+void hinted_text_field(Studio& studio, const char* id, const char* hint, std::string& value);
 //! A button recorded under its label (without the "##id" part).
 bool tracked_button(Studio& studio, const char* label, ImVec2 size = ImVec2(0, 0));
 //! ImGui::InvisibleButton with each side at least one pixel: in a tiny window the space left for a
