@@ -6,7 +6,8 @@ generations, 0.25 s settle + 1.25 s evaluation, seeds 1..N, or from --first-seed
 `bhm verify` compares that body, under the preset's own experiment, with CalculiX at rest and at
 +A and -A (docs/verify.md). One row per champion: the verdict's measure, ours / CalculiX on the
 tip and the centre of mass (vertical component, signed: > 0 is ours moving more) at rest, +A
-and -A, and the verdict's worst relative difference (its own measures, docs/verify.md).
+and -A, the verdict's worst relative difference (its own measures, docs/verify.md), and for
+nonlinear steps the continuum law it was judged on, the other law's difference and the laws' spread.
 
     tests/bench/champions_truth.py [--build build] [--per-preset 10] [--first-seed 1] [--generations 3]
                                    [--presets paper-exp1,...] [--work DIR] [--csv PATH]
@@ -27,7 +28,7 @@ import time
 PRESETS = ["paper-exp1", "paper-exp1-attached", "paper-exp2", "paper-exp3"]
 COLUMNS = ["preset", "seed", "voxels", "held", "agrees", "verdict", "worst_pct", "rest_tip_pct",
            "rest_com_pct", "plusA_tip_pct", "plusA_com_pct", "minusA_tip_pct", "minusA_com_pct",
-           "fem_element", "fem_nodes", "wall_s"]
+           "law", "other_law", "other_law_pct", "law_spread_pct", "fem_element", "fem_nodes", "wall_s"]
 
 
 def shortened(preset_path, out_path, generations):
@@ -47,6 +48,11 @@ def signed_pct(load, measure):
     if abs(fem) < 1e-12:
         return None
     return 100.0 * (ours - fem) / abs(fem)
+
+
+def pct(fraction):
+    """A relative difference as a percentage with one decimal, or empty when there is none."""
+    return "" if fraction is None else f"{100.0 * fraction:.1f}"
 
 
 def run(cmd, log):
@@ -108,11 +114,16 @@ def main():
                 continue
             r = json.load(open(report_path))
             loads = {load["load"]: load for load in r.get("loads", [])}
+            fem = r.get("fem", {})
             row = {"preset": preset, "seed": seed, "voxels": r.get("voxels"),
                    "held": r.get("held_voxels"), "agrees": r.get("agrees"),
                    "verdict": r.get("verdict", r.get("status")),
                    "worst_pct": "" if r.get("worst_relative_difference") is None
                    else f"{100.0 * r['worst_relative_difference']:.1f}",
+                   "law": fem.get("material_law", ""),
+                   "other_law": (fem.get("other_law") or {}).get("law", ""),
+                   "other_law_pct": pct((fem.get("other_law") or {}).get("worst")),
+                   "law_spread_pct": pct(fem.get("law_spread")),
                    "fem_element": r.get("fem", {}).get("element"),
                    "fem_nodes": r.get("fem", {}).get("nodes"),
                    "wall_s": round(time.time() - started, 1)}
