@@ -108,7 +108,8 @@ RobustnessController resolve_robustness_controller(const std::string& item, doub
                                     ": not a controller file: " + without_json_tags(e.what()));
     }
     try {
-        (void)controller_from_json(json, weight_range);  // checked now, painted per cell later
+        (void)controller_program_from_json(json,
+                                           weight_range);  // checked now, painted per cell later
     } catch (const std::exception& e) {
         throw std::invalid_argument(file.string() + ": " + without_json_tags(e.what()));
     }

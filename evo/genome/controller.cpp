@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "evo/genome/cppn_decoder.hpp"
+#include "evo/genome/hyperneat_substrate.hpp"
 
 namespace bhm::evo {
 
@@ -109,8 +110,9 @@ void paint_controller_entry(const ControllerEntry& entry, double weight_range,
         paint_builtin_controller(entry.name, entry.seed, materials, body);
         return;
     }
-    paint_controller(controller_from_json(nlohmann::json::parse(entry.genome_json), weight_range),
-                     materials, body);
+    paint_controller_program(
+        controller_program_from_json(nlohmann::json::parse(entry.genome_json), weight_range),
+        materials, body);
 }
 
 nlohmann::json controller_to_json(const Genome& controller) {
@@ -123,16 +125,48 @@ nlohmann::json controller_to_json(const Genome& controller) {
             {"genome", genome}};
 }
 
+namespace {
+
+//! The wrapper's format fields, when the object is a controller file rather than a bare genome.
+void check_controller_format(const nlohmann::json& json) {
+    if (!json.contains("format") || json["format"] != kControllerFileFormat)
+        throw std::invalid_argument(std::string("controller.format: expected \"") +
+                                    kControllerFileFormat + "\"");
+    if (!json.contains("format_version") || json["format_version"] != 1)
+        throw std::invalid_argument("controller.format_version: expected 1");
+}
+
+//! controller.substrate: the HyperNEAT settings a HyperNEAT CPPN paints with.
+HyperNeatSettings substrate_from_json(const nlohmann::json& json) {
+    if (!json.is_object()) throw std::invalid_argument("controller.substrate: expected an object");
+    HyperNeatSettings s;
+    auto integer = [&](const char* key, int& out) {
+        if (!json.contains(key) || !json[key].is_number_integer())
+            throw std::invalid_argument(std::string("controller.substrate.") + key +
+                                        ": expected an integer >= 1");
+        const auto v = json[key].get<long long>();
+        if (v < 1 || v > 1000)
+            throw std::invalid_argument(std::string("controller.substrate.") + key +
+                                        ": expected an integer in [1, 1000]");
+        out = static_cast<int>(v);
+    };
+    integer("radius", s.radius);
+    integer("steps", s.steps);
+    if (!json.contains("weight_threshold") || !json["weight_threshold"].is_number() ||
+        !(json["weight_threshold"].get<double>() >= 0.0) ||
+        !std::isfinite(json["weight_threshold"].get<double>()))
+        throw std::invalid_argument(
+            "controller.substrate.weight_threshold: expected a finite number >= 0");
+    s.weight_threshold = json["weight_threshold"].get<double>();
+    return s;
+}
+
+}  // namespace
+
 Genome controller_from_json(const nlohmann::json& json, double weight_range) {
     if (!json.is_object()) throw std::invalid_argument("controller: expected an object");
     const bool wrapped = json.contains("genome");
-    if (wrapped) {
-        if (!json.contains("format") || json["format"] != kControllerFileFormat)
-            throw std::invalid_argument(std::string("controller.format: expected \"") +
-                                        kControllerFileFormat + "\"");
-        if (!json.contains("format_version") || json["format_version"] != 1)
-            throw std::invalid_argument("controller.format_version: expected 1");
-    }
+    if (wrapped) check_controller_format(json);
     Genome genome = genome_from_json(wrapped ? json["genome"] : json, weight_range);
     if (genome.input_count != kInputCount)
         throw std::invalid_argument(
@@ -141,6 +175,58 @@ Genome controller_from_json(const nlohmann::json& json, double weight_range) {
     if (genome.output_count != kControllerOutputCount)
         throw std::invalid_argument("controller.genome.outputs: expected 2 (phase, amplitude)");
     return genome;
+}
+
+nlohmann::json controller_to_json(const Genome& hyperneat_cppn,
+                                  const HyperNeatSettings& substrate) {
+    nlohmann::json genome = genome_to_json(hyperneat_cppn);
+    genome["outputs"] = {"w_input_hidden", "w_hidden_hidden", "w_hidden_phase",
+                         "w_hidden_amplitude"};
+    return {{"format", kControllerFileFormat},
+            {"format_version", 1},
+            {"phase", "pi * the substrate's phase sheet, wrapped onto [-pi, pi]"},
+            {"amplitude", "clamp((1 + the substrate's amplitude sheet) / 2, 0, 1)"},
+            {"substrate",
+             {{"radius", substrate.radius},
+              {"steps", substrate.steps},
+              {"weight_threshold", substrate.weight_threshold}}},
+            {"genome", genome}};
+}
+
+ControllerProgram controller_program_from_json(const nlohmann::json& json, double weight_range) {
+    if (!json.is_object() || !json.contains("substrate"))
+        return {controller_from_json(json, weight_range), std::nullopt};
+    check_controller_format(json);
+    if (!json.contains("genome")) throw std::invalid_argument("controller.genome: missing");
+    ControllerProgram program{genome_from_json(json["genome"], weight_range),
+                              substrate_from_json(json["substrate"])};
+    if (program.genome.input_count != kHyperNeatInputCount)
+        throw std::invalid_argument(
+            "controller.genome.inputs: a controller with a substrate needs a HyperNEAT CPPN's " +
+            std::to_string(kHyperNeatInputCount) + " inputs (docs/hyperneat.md)");
+    if (program.genome.output_count != kSubstrateHiddenOutputs + kControllerOutputCount)
+        throw std::invalid_argument(
+            "controller.genome.outputs: expected 4 (input -> hidden, hidden -> hidden, hidden -> "
+            "phase, hidden -> amplitude)");
+    return program;
+}
+
+void paint_controller_program(const ControllerProgram& program,
+                              const std::vector<MaterialEntry>& materials, Body& body) {
+    if (!program.substrate) {
+        paint_controller(program.genome, materials, body);
+        return;
+    }
+    const double field = 2.0 * program.substrate->radius + 1.0;
+    const double connections = static_cast<double>(body.cells.size()) * field * field * field;
+    if (connections > kMaxHyperNeatConnections)
+        throw std::invalid_argument(
+            "controller.substrate.radius: over a " + std::to_string(body.size[0]) + "x" +
+            std::to_string(body.size[1]) + "x" + std::to_string(body.size[2]) +
+            " lattice the substrate would have more than 2e6 connections per sheet");
+    const HyperNeatSubstrate substrate(body.size, kControllerOutputCount, *program.substrate);
+    const auto out = substrate.activate(program.genome);
+    paint_controller_outputs(out[0], out[1], materials, body);
 }
 
 }  // namespace bhm::evo

@@ -9,7 +9,11 @@
 // mapped as the body CPPN's (evo/genome/cppn_decoder.hpp), so one controller paints any body.
 // Passive cells keep phase 0 and amplitude 1 (they are not driven). The engine takes the result
 // as BodySpec::phase_rad and amplitude_scale.
+// A controller file may instead hold a HyperNEAT CPPN with its substrate (a HyperNEAT fixed_body
+// run's champion): the substrate is laid over the lattice of whichever body it drives, so it too
+// drives any body (docs/hyperneat.md, "Controller files").
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -51,8 +55,26 @@ void paint_controller_entry(const ControllerEntry& entry, double weight_range,
 //! controller.json: {"format": "bhm-controller", "format_version": 1, "phase": "...",
 //! "amplitude": "...", "genome": {genome_to_json, outputs ["phase", "amplitude"]}}.
 nlohmann::json controller_to_json(const Genome& controller);
-//! Reads controller_to_json's object (or a bare genome object with two outputs). Throws
-//! std::invalid_argument naming the field.
+//! Reads controller_to_json's object (or a bare genome object with two outputs): a lattice CPPN
+//! only (a coevolved controller is one). Throws std::invalid_argument naming the field.
 Genome controller_from_json(const nlohmann::json& json, double weight_range);
+
+//! What a controller file holds: a lattice CPPN (five inputs, two outputs), or a HyperNEAT CPPN
+//! (eight inputs, 2 + 2 outputs) and the substrate settings it paints.
+struct ControllerProgram {
+    Genome genome;
+    std::optional<HyperNeatSettings> substrate;  //!< set for a HyperNEAT CPPN
+};
+//! controller_to_json's object for a HyperNEAT CPPN, with "substrate": {"radius", "steps",
+//! "weight_threshold"} and the outputs named by the weights they paint.
+nlohmann::json controller_to_json(const Genome& hyperneat_cppn, const HyperNeatSettings& substrate);
+//! Reads either kind of controller file. Throws std::invalid_argument naming the field
+//! ("controller.substrate.radius: ...").
+ControllerProgram controller_program_from_json(const nlohmann::json& json, double weight_range);
+//! Sets body.phase and body.amplitude from either kind: a HyperNEAT CPPN through its substrate
+//! over body's lattice. Throws std::invalid_argument when that substrate would exceed
+//! kMaxHyperNeatConnections (naming the body's lattice).
+void paint_controller_program(const ControllerProgram& program,
+                              const std::vector<MaterialEntry>& materials, Body& body);
 
 }  // namespace bhm::evo

@@ -81,8 +81,8 @@ Developer::Developer(const Experiment& experiment)
     for (std::size_t i = 0; i < c.controllers.size(); ++i) {
         if (c.controllers[i].genome_json.empty()) continue;
         try {
-            controller_from_json(nlohmann::json::parse(c.controllers[i].genome_json),
-                                 experiment.evolution.cppn.weight_range);
+            controller_program_from_json(nlohmann::json::parse(c.controllers[i].genome_json),
+                                         experiment.evolution.cppn.weight_range);
         } catch (const std::exception& e) {
             throw std::invalid_argument("experiment '" + experiment.name +
                                         "': evolution.controller.controllers[" + std::to_string(i) +

@@ -154,15 +154,16 @@ void read_genome(const Fields& f, const ChampionField& field, ChampionRecord& c,
 }
 
 //! The champion's controller CPPN as a controller file (evo/genome/controller.hpp): the genome
-//! itself in a fixed_body run, the individual's controller in a coevolve run; absent otherwise,
-//! and absent for a HyperNEAT fixed_body run, whose genome paints a substrate (docs/hyperneat.md),
-//! which a controller file cannot hold.
+//! itself in a fixed_body run (with its substrate's settings in a HyperNEAT run,
+//! docs/hyperneat.md), the individual's controller in a coevolve run; absent otherwise.
 void write_controller(const ChampionRecord& c, const char* key, json& out, const Context& context) {
     if (!context.experiment) return;
     const ControllerMode mode = context.experiment->evolution.controller.mode;
-    if (mode == ControllerMode::FixedBody &&
-        context.experiment->evolution.algorithm != Algorithm::HyperNeat)
-        out[key] = controller_to_json(c.individual.genome);
+    if (mode == ControllerMode::FixedBody)
+        out[key] =
+            context.experiment->evolution.algorithm == Algorithm::HyperNeat
+                ? controller_to_json(c.individual.genome, context.experiment->evolution.hyperneat)
+                : controller_to_json(c.individual.genome);
     if (mode == ControllerMode::Coevolve) out[key] = controller_to_json(c.individual.controller);
 }
 void read_controller(const Fields& f, const ChampionField& field, ChampionRecord& c,

@@ -1,13 +1,16 @@
 // HyperNEAT (evolution.algorithm = "hyperneat", issue 44): the substrate's weights are exactly its
 // CPPN's outputs at each connection's two ends, thresholded; its activation is the documented one
 // (docs/hyperneat.md), checked against values worked out by hand; runs evolve controllers and
-// bodies through it and resume into their uninterrupted twins; bad fields are named.
+// bodies through it and resume into their uninterrupted twins; a controller run's controller.json
+// drives its body as the run did and other bodies through their own substrate; bad fields are
+// named.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <string>
 
+#include "evo/evaluate/robustness.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
 #include "evo/genome/body_ops.hpp"
@@ -170,8 +173,10 @@ TEST_CASE("HyperNEAT runs resume into their uninterrupted twins (controller and 
             test::run_twins(hyperneat_experiment(mode), whole.string(), parts.string(), 3, 2, 1);
         REQUIRE(twins.resumed);
         CHECK(twins.resumed->resume_warnings().empty());
-        // No controller.json: a HyperNEAT CPPN paints a substrate, which that file cannot hold.
-        CHECK_FALSE(std::filesystem::exists(whole / kControllerFile));
+        // controller.json holds the champion's HyperNEAT CPPN and its substrate, for a controller
+        // run only ("a HyperNEAT controller file drives ..." below).
+        CHECK(std::filesystem::exists(whole / kControllerFile) ==
+              (mode == ControllerMode::FixedBody));
         CHECK(std::filesystem::exists(whole / "champion.json"));
         const auto& u = twins.whole->state();
         const auto& r = twins.resumed->state();
@@ -187,6 +192,65 @@ TEST_CASE("HyperNEAT runs resume into their uninterrupted twins (controller and 
             CHECK(r.population[i].report.fitness == u.population[i].report.fitness);
         }
     }
+}
+
+TEST_CASE("a HyperNEAT controller file drives its run's body as the run did, and other bodies") {
+    const auto e = hyperneat_experiment(ControllerMode::FixedBody);
+    const auto dir = test::fresh_dir("hyperneat", "controller-file");
+    RunOptions options = test::run_options(3, 2);
+    options.out_dir = dir.string();
+    EvolutionRun run(e, options);
+    run.run();
+    REQUIRE(run.state().champion);
+    const auto& champion = run.state().champion->individual;
+
+    // The run directory is a controller item of `bhm robustness`, read from its controller.json.
+    const RobustnessController item =
+        resolve_robustness_controller(dir.string(), e.evolution.cppn.weight_range);
+    const auto program = controller_program_from_json(nlohmann::json::parse(item.entry.genome_json),
+                                                      e.evolution.cppn.weight_range);
+    REQUIRE(program.substrate);
+    CHECK(*program.substrate == e.evolution.hyperneat);
+    CHECK(program.genome == champion.genome);
+    // On the run's own body: the champion's phases and amplitudes, bit for bit.
+    const Body cell = robustness_cell_body(e, *e.evolution.controller.body, item.entry);
+    CHECK(cell.phase == champion.phenotype.body.phase);
+    CHECK(cell.amplitude == champion.phenotype.body.amplitude);
+
+    // On a body of another size: the substrate laid over that body's lattice.
+    Body other;
+    other.size = {4, 2, 2};
+    other.cells = {2, 2, 1, 1, 2, 2, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+    Body painted = apply_frame_and_overrides(e, other);
+    Body expected = painted;
+    paint_controller_program(program, e.materials, painted);
+    const HyperNeatSubstrate substrate(expected.size, kControllerOutputCount,
+                                       e.evolution.hyperneat);
+    const auto out = substrate.activate(program.genome);
+    paint_controller_outputs(out[0], out[1], e.materials, expected);
+    CHECK(painted.phase == expected.phase);
+    CHECK(painted.amplitude == expected.amplitude);
+
+    // A coevolved controller is a lattice CPPN: its reader refuses a substrate's CPPN.
+    const auto json = nlohmann::json::parse(item.entry.genome_json);
+    CHECK_THROWS_WITH_AS(controller_from_json(json, 1.0),
+                         doctest::Contains("controller.genome.inputs"), std::invalid_argument);
+    // Bad substrate fields are named.
+    const auto refused = [&](const char* field, nlohmann::json value) {
+        auto j = json;
+        j["substrate"][field] = value;
+        const std::string named = std::string("controller.substrate.") + field;
+        CHECK_THROWS_WITH_AS(controller_program_from_json(j, 1.0),
+                             doctest::Contains(named.c_str()), std::invalid_argument);
+    };
+    refused("radius", 0);
+    refused("steps", "three");
+    refused("weight_threshold", -1.0);
+    auto lattice_cppn = json;
+    Rng rng(3);
+    lattice_cppn["genome"] = genome_to_json(random_controller(e.evolution.cppn, rng));
+    CHECK_THROWS_WITH_AS(controller_program_from_json(lattice_cppn, 1.0),
+                         doctest::Contains("controller.genome.inputs"), std::invalid_argument);
 }
 
 TEST_CASE("evolution.hyperneat round-trips and its bad fields are named") {
