@@ -266,9 +266,18 @@ CcxResult run_ccx(const std::string& name, const std::string& deck, int threads,
     result.cpu_s = children_cpu_s() - cpu_before;
     result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::string where = keep_dir.empty() ? "" : " (see " + (dir / "ccx.log").string() + ")";
-    if (rc != 0)
-        throw std::runtime_error("ccx failed to solve " + name + ": " +
-                                 first_error(dir / "ccx.log") + where);
+    if (rc != 0) {
+        // Without an *ERROR line ccx did not stop on its own (a crash, or killed): say how it
+        // ended, since its last line ("Using up to 1 cpu(s) for spooles.") says nothing.
+        std::string why = first_error(dir / "ccx.log");
+        if (why.find("*ERROR") == std::string::npos)
+            why =
+                (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status)) +
+                                           (WTERMSIG(status) == SIGKILL ? " (out of memory?)" : "")
+                                     : "exited with status " + std::to_string(rc)) +
+                " after \"" + why + "\"";
+        throw std::runtime_error("ccx failed to solve " + name + ": " + why + where);
+    }
     const std::string log = read_text(dir / "ccx.log");
     if (log.find("*ERROR") != std::string::npos)
         throw std::runtime_error("ccx failed to solve " + name + ": " +

@@ -141,3 +141,28 @@ TEST_CASE("verify: ccx dies with the process that started it, and its folder is 
     CHECK(fs::is_empty(temp));
     fs::remove_all(scratch);
 }
+
+TEST_CASE("verify: a ccx that crashes without an *ERROR line is reported by how it ended") {
+    // Measured on a champion's Neo-Hookean solve: ccx ended without an *ERROR line and the report
+    // read "ccx failed to solve body: Using up to 1 cpu(s) for spooles.", its last line.
+    const fs::path scratch = test::scratch_dir("ccx-crash");
+    const fs::path bin = scratch / "bin";
+    fs::create_directories(bin);
+    {
+        std::ofstream script(bin / "ccx");
+        script << "#!/bin/sh\necho 'Using up to 1 cpu(s) for spooles.'\nkill -SEGV $$\n";
+    }
+    fs::permissions(bin / "ccx", fs::perms::owner_all);
+    const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+    ::setenv("PATH", (bin.string() + ":" + old_path).c_str(), 1);
+    std::string what;
+    try {
+        evo::run_ccx("crash", "*NODE\n1, 0, 0, 0\n");
+    } catch (const std::runtime_error& e) {
+        what = e.what();
+    }
+    ::setenv("PATH", old_path.c_str(), 1);
+    MESSAGE(what);
+    CHECK(what.rfind("ccx failed to solve crash: killed by signal 11 after \"Using up to", 0) == 0);
+    CHECK(what.find('\n') == std::string::npos);
+}
