@@ -8,7 +8,8 @@
 // Inputs: x, y, z, d, bias over the lattice of the body it drives (the framed workspace),
 // mapped as the body CPPN's (evo/genome/cppn_decoder.hpp), so one controller paints any body.
 // Passive cells keep phase 0 and amplitude 1 (they are not driven). The engine takes the result
-// as BodySpec::phase_rad and amplitude_scale.
+// as BodySpec::phase_rad and amplitude_scale; on a muscle voxel the phase delays its stimulus by
+// phase / (2 pi) of the stimulus period (engine/muscle.hpp, delay_bin).
 #include <cstdint>
 #include <string>
 
