@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 namespace bhm::engine::muscle {
 namespace {
@@ -231,6 +232,22 @@ std::vector<Problem> material_problems(const Material& m) {
         out.push_back({"muscle.fatigue_floor", "must be in [0, 1] (the fraction of the force a "
                                                "long stimulus leaves)"});
     return out;
+}
+
+double stimulus_period_s(const Muscle& m) {
+    const Train t = train_of(m);
+    return std::isfinite(t.on) ? t.on + t.off : t.period;
+}
+
+int delay_bin(double phase_rad) {
+    const double turns = phase_rad / (2.0 * std::numbers::pi);
+    const double bins = std::round((turns - std::floor(turns)) * kDelayBins);
+    const int bin = static_cast<int>(bins) % kDelayBins;  // a phase just under 2 pi rounds to 0
+    return bin < 0 ? 0 : bin;
+}
+
+double bin_delay_s(const Muscle& m, int bin) {
+    return stimulus_period_s(m) * bin / kDelayBins;
 }
 
 bool same_signal(const Muscle& a, const Muscle& b) {

@@ -68,9 +68,23 @@ struct Problem {
 };
 std::vector<Problem> material_problems(const Material& m);
 
-//! The engine drives at most this many distinct activation signals in one body: each muscle
-//! material with its own stimulus and time constants is one; the sine model takes both.
+//! The engine drives at most this many distinct stimuli in one body: each muscle material with
+//! its own stimulus and time constants is one; the sine model takes both.
 inline constexpr int kMaxSignals = 2;
+
+//! The period the stimulus repeats with (s): a burst and its rest for a scheduled pulse train,
+//! one pulse period (1 / frequency_hz) for an endless train or beating. A voxel's controller
+//! phase delays its stimulus by a fraction of it (issue 44).
+double stimulus_period_s(const Muscle& m);
+//! A muscle voxel's controller phase (BodySpec::phase_rad) delays its stimulus by
+//! bin / kDelayBins of the stimulus period, bin = the phase's nearest 2 pi / kDelayBins step
+//! (wrapped onto [0, kDelayBins)): phase 0 (and 2 pi) is bin 0, no delay, today's timing. The
+//! quantisation keeps the signals a step evaluates to at most kMaxSignals x kDelayBins; its error
+//! is at most half a bin, period / (2 kDelayBins), in time (docs/physics.md, "Muscle actuation").
+inline constexpr int kDelayBins = 16;
+int delay_bin(double phase_rad);
+//! The delay of bin `bin` (s): bin / kDelayBins x stimulus_period_s(m).
+double bin_delay_s(const Muscle& m, int bin);
 //! Whether two muscle materials share one activation signal (the same stimulus and dynamics).
 bool same_signal(const Muscle& a, const Muscle& b);
 //! Problems of a palette: a body may not mix sine-active and muscle materials, nor hold more than

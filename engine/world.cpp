@@ -87,6 +87,9 @@ struct Phase {
 };
 
 Phase actuation_phase(const Model::Data& d, double t) {
+    // A delayed muscle body's coefficients already hold each voxel's activation at t
+    // (refresh_delayed_drive): rest = base + 1 x rest_sin, its rate 1 x rest_cos.
+    if (d.muscle.delayed) return {1.0, 0.0, 0.0, 1.0};
     if (d.muscle.signals > 0) {
         const DriveSignals s = muscle_signals(d.muscle, t);
         return {s.c0, s.c1, s.rate0, s.rate1};
@@ -100,6 +103,11 @@ Phase actuation_phase(const Model::Data& d, double t) {
     return {sin_t, cos_t, omega * cos_t, -omega * sin_t};
 }
 
+// A delayed muscle body: its World's copy of the model data at time t (muscle_drive.hpp).
+void refresh_delayed_drive(World::State& s, double t) {
+    if (s.delayed_data) write_delayed_drive(s.model->data(), *s.delayed_data, t);
+}
+
 const char* kAxisNames[3] = {"x", "y", "z"};
 
 }  // namespace
@@ -108,6 +116,11 @@ World::World(std::shared_ptr<const Model> model) : state_(std::make_unique<State
     if (!model) throw std::invalid_argument("World: null model");
     state_->model = std::move(model);
     state_->data = &state_->model->data();
+    if (state_->data->muscle.delayed) {
+        state_->delayed_data = std::make_unique<Model::Data>(*state_->data);
+        state_->data = state_->delayed_data.get();
+        refresh_delayed_drive(*state_, 0.0);
+    }
     const Model::Data& d = *state_->data;
     init_voxels(d, state_->voxels);
     if (d.poisson.active) prepare_poisson_scratch(d, state_->poisson);
@@ -144,6 +157,7 @@ void World::step() {
     if (s.diverged) return;
     const Model::Data& d = *s.data;
     const double t = time_s();
+    refresh_delayed_drive(s, t);
     const Phase phase = actuation_phase(d, t);
     const float sin_t = static_cast<float>(phase.sin_t), cos_t = static_cast<float>(phase.cos_t);
 
@@ -277,6 +291,8 @@ void World::read_poses(VoxelPoses& out) const {
     out.orientation.resize(4 * static_cast<std::size_t>(n));
     out.size_m.resize(3 * static_cast<std::size_t>(n));
     const Phase phase = actuation_phase(d, out.time_s);
+    const DelayedActivations delayed =
+        d.muscle.delayed ? delayed_activations(d.muscle, out.time_s) : DelayedActivations{};
     for (int v = 0; v < n; ++v) {
         for (int i = 0; i < 3; ++i)
             out.position_m[3 * v + i] = static_cast<float>(s.pos[i][v] + d.origin_m[i]);
@@ -290,7 +306,9 @@ void World::read_poses(VoxelPoses& out) const {
         // A muscle voxel is shorter along its fibre than across it (muscle_drive.hpp).
         for (int i = 0; i < 3; ++i)
             out.size_m[3 * v + i] = static_cast<float>(
-                d.voxel_size_m * muscle_axis_scale(d, v, i, phase.sin_t, phase.cos_t));
+                d.voxel_size_m * (d.muscle.delayed
+                                      ? delayed_axis_scale(d, v, i, delayed)
+                                      : muscle_axis_scale(d, v, i, phase.sin_t, phase.cos_t)));
     }
 }
 
@@ -345,6 +363,7 @@ std::array<double, 3> World::angular_momentum() const {
 }
 
 double World::potential_energy_j() const {
+    refresh_delayed_drive(*state_, time_s());
     const Model::Data& d = *state_->data;
     const VoxelState& s = state_->voxels;
     const Phase phase = actuation_phase(d, time_s());

@@ -166,6 +166,9 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
             if (!m.axis_signal1[a].empty() && m.axis_signal1[a][v] != m.axis_signal1[a][p])
                 return false;
         }
+        // Two muscle voxels whose stimuli a controller delays differently (issue 44) strain
+        // apart in time: a relaxed split, as for two sine phases.
+        if (m.delayed && m.voxel_signal[v] != m.voxel_signal[p]) return false;
         return true;
     };
     auto same_material = [&](int v, int p) {

@@ -99,7 +99,11 @@ struct EdgeScratch {
 
 struct World::State {
     std::shared_ptr<const Model> model;
-    const Model::Data* data = nullptr;
+    const Model::Data* data = nullptr;  //!< the model's data, or delayed_data
+    //! A body with delayed muscle stimuli (MuscleDrive::delayed): the World's own copy of the
+    //! model data, whose actuated coefficients write_delayed_drive rewrites at each step's time
+    //! (mutable: the const readers, poses and energy, rewrite it at the time they report).
+    std::unique_ptr<Model::Data> delayed_data;
     VoxelState voxels;
     std::array<LinkScratch, 3> links;
     PoissonScratch poisson;

@@ -50,10 +50,9 @@ double drive_period_s(const Experiment& experiment) {
         // A fatiguing muscle's force fades over the stimulus and never repeats (engine/muscle.hpp).
         if (engine::muscle::fatigues(u)) return 0.0;
         // The stimulus restarts its pulses at each burst (engine/muscle.hpp), so a scheduled
-        // train repeats with its burst, an endless one with its pulses.
-        const bool bursts = u.stimulus == engine::MuscleStimulus::PulseTrain &&
-                            u.train_on_s > 0.0 && u.train_off_s > 0.0;
-        const double period = bursts ? u.train_on_s + u.train_off_s : 1.0 / u.frequency_hz;
+        // train repeats with its burst, an endless one with its pulses; a controller's delay
+        // (less than a period, issue 44) shifts a voxel's train without changing its period.
+        const double period = engine::muscle::stimulus_period_s(u);
         if (muscles && std::abs(period - muscle_period) > 1e-9 * period) return 0.0;
         muscles = true;
         muscle_period = period;

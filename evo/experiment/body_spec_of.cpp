@@ -172,9 +172,23 @@ engine::BodySpec make_body_spec(const Experiment& e, const Body& framed, std::ui
                 static_cast<double>(splitmix64(phase_seed ^ splitmix64(k)) >> 11) * 0x1.0p-53;
             spec.phase_rad[k] = static_cast<float>(2.0 * std::numbers::pi * u);
         }
-    if (e.actuation.phase_offset_rad != 0.0)
-        for (auto& phase : spec.phase_rad)
-            phase = static_cast<float>(phase + e.actuation.phase_offset_rad);
+    // A muscle voxel's phase delays its stimulus (engine/muscle.hpp); only a controller sets it
+    // (issue 44). actuation.phase and phase_offset_rad stay the sine model's, so a muscle body
+    // without a controller keeps the timing it had before delays existed, bit for bit.
+    auto muscle = [&](std::size_t k) {
+        const auto cell = spec.material[k];
+        return cell > 0 &&
+               spec.materials[cell - 1].actuation_model == engine::ActuationModel::Muscle;
+    };
+    for (std::size_t k = 0; k < spec.phase_rad.size(); ++k) {
+        if (muscle(k)) {
+            if (!framed.has_controller()) spec.phase_rad[k] = 0.0f;
+            continue;
+        }
+        if (e.actuation.phase_offset_rad != 0.0)
+            spec.phase_rad[k] =
+                static_cast<float>(spec.phase_rad[k] + e.actuation.phase_offset_rad);
+    }
     return spec;
 }
 

@@ -5,6 +5,8 @@
 //                                      no output value is saturated, o and o + 2 are one phase);
 //   output 1 (node kInputCount + 1) -> amplitude scale = clamp((1 + o) / 2, 0, 1) (0 at o <= -1,
 //                                      full drive at o >= 1, one half at o = 0).
+// On a muscle voxel the phase is its stimulus timing: a delay of phase / (2 pi) of the stimulus
+// period (engine/muscle.hpp, delay_bin).
 // Inputs: x, y, z, d, bias over the lattice of the body it drives (the framed workspace),
 // mapped as the body CPPN's (evo/genome/cppn_decoder.hpp), so one controller paints any body.
 // Passive cells keep phase 0 and amplitude 1 (they are not driven). The engine takes the result

@@ -43,6 +43,9 @@ QuasiStaticResult engine_quasi_static(const engine::BodySpec& body, double tempe
             m.muscle.fatigue_s = 0.0;  // peak activation is the fresh muscle's
         }
         spec.actuation.start_s = temperature_c == 1.0 ? 0.0 : options.max_time_s + 1.0;
+        // A static load has no timing: every muscle voxel stimulated at once (a phase would
+        // delay its stimulus, engine/muscle.hpp).
+        spec.phase_rad.assign(spec.material.size(), 0.0f);
     }
     auto model = engine::Model::build(spec);
     engine::World world(model);

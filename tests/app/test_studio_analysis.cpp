@@ -152,6 +152,37 @@ TEST_CASE("studio analysis: the fibre axis colour mode shows each muscle voxel's
     CHECK(voxel_drive(e, body, r).fibre_axis == std::vector<std::int8_t>{-1, 1, 1, 1});
 }
 
+TEST_CASE("studio analysis: a muscle voxel's actuation colour is its delayed activation") {
+    // Issue 44: a controller's phase delays a muscle voxel's stimulus; the actuation colour is
+    // -a(tau - delay) (it contracts), the twitch's closed form. A 3 x 1 x 1 rod: passive, muscle
+    // at phase 0, muscle at phase pi / 2 (a quarter of its 1 s period: 0.25 s later).
+    auto e = testing::tiny_experiment({3, 1, 1});
+    auto& muscle = e.materials[1].physics;
+    muscle.cte_per_c = 0.0;
+    muscle.actuation_model = engine::ActuationModel::Muscle;
+    muscle.muscle.contraction_strain = 0.1;
+    muscle.muscle.frequency_hz = 1.0;
+    muscle.muscle.pulse_width_s = 0.01;
+    muscle.muscle.rise_s = 0.02;
+    muscle.muscle.decay_s = 0.06;
+    auto r = rod_replay(3, 0.01, 0.1);
+    r.voxel_material = {1, 2, 2};
+    r.frames = {rod_frame(3, 0.01, 0.0, 0.0), rod_frame(3, 0.01, 0.1 + 0.26, 0.0)};
+    const auto s = body_time_series(e, r, std::vector<glm::vec3>(r.frames.size()));
+    const VoxelDrive drive{{0.0f, 0.0f, static_cast<float>(std::numbers::pi / 2.0)}, {}};
+    const auto act = voxel_scalars(ColorBy::Actuation, e, r, 1, s, drive);
+    // One twitch: rises for the 10 ms pulse, then decays with 60 ms.
+    auto twitch = [](double t) {
+        if (t <= 0.0) return 0.0;
+        if (t <= 0.01) return 1.0 - std::exp(-t / 0.02);
+        return (1.0 - std::exp(-0.5)) * std::exp(-(t - 0.01) / 0.06);
+    };
+    CHECK(act.values[0] == 0.0f);
+    CHECK(std::fabs(act.values[1] + twitch(0.26)) < 1e-6);
+    CHECK(std::fabs(act.values[2] + twitch(0.01)) < 1e-6);
+    CHECK(act.values[2] < -0.3f);  // 10 ms into its own twitch: near its peak
+}
+
 TEST_CASE("studio analysis: a replay holding a huge finite value gets a finite colour bar") {
     // Issue 41: 3.4e38 (a float's largest) in a voxel's position and size made the colour ranges
     // +inf and "-inf to inf": they were found in float.

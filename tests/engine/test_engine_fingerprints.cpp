@@ -124,3 +124,51 @@ TEST_CASE("engine fingerprints: corpus bodies end bit for bit as stored") {
     check_fingerprints("kCorpusBodies", {std::begin(kCorpusBodies), std::end(kCorpusBodies)},
                        measured);
 }
+
+namespace {
+
+// A muscle body whose controller delays its stimuli (issue 44; engine/internal/muscle_drive.hpp):
+// a held 10 x 2 x 2 strip, its bottom layer muscle (10 Hz twitches, nu 0.35, gravity and floor)
+// at phases 0.7 c (several delay bins), 3000 steps (0.2 s, two stimulus periods). It runs the
+// delayed path, which no scene above takes. Stored from a Release build only.
+engine::BodySpec delayed_muscle_strip() {
+    engine::Material passive;
+    passive.youngs_modulus_pa = 1e6;
+    passive.poisson_ratio = 0.35;
+    engine::Material muscle = passive;
+    muscle.actuation_model = engine::ActuationModel::Muscle;
+    muscle.muscle.contraction_strain = 0.1;
+    muscle.muscle.frequency_hz = 10.0;
+    muscle.muscle.pulse_width_s = 0.01;
+    muscle.muscle.rise_s = 0.02;
+    muscle.muscle.decay_s = 0.06;
+    engine::BodySpec s;
+    s.nx = 10;
+    s.ny = 2;
+    s.nz = 2;
+    s.materials = {passive, muscle};
+    s.material.assign(40, 1);
+    s.fixed.assign(40, 0);
+    s.phase_rad.assign(40, 0.0f);
+    for (int c = 0; c < 40; ++c) {
+        if (c < 20) s.material[c] = 2;
+        if (c % 10 == 0) s.fixed[c] = 1;
+        s.phase_rad[c] = static_cast<float>(0.7 * c);
+    }
+    s.actuation.start_s = 0.0;
+    return s;
+}
+
+constexpr Stored kDelayedMuscle[] = {
+    {"delayed_muscle_strip", 0xdff1c354dfbb94a2ull},
+};
+
+}  // namespace
+
+TEST_CASE("engine fingerprints: a muscle body with delayed stimuli ends bit for bit as stored") {
+    const std::map<std::string, std::uint64_t> measured = {
+        {"delayed_muscle_strip",
+         fingerprint_after(delayed_muscle_strip(), 3000, "delayed_muscle_strip")}};
+    check_fingerprints("kDelayedMuscle", {std::begin(kDelayedMuscle), std::end(kDelayedMuscle)},
+                       measured);
+}

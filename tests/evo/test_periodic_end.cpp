@@ -304,6 +304,53 @@ TEST_CASE("a muscle body's period is its stimulus's, not the sine's frequency") 
           doctest::Approx(1.0 / paper_schedule().actuation.frequency_hz));
 }
 
+TEST_CASE("a muscle body whose controller delays its stimuli ends early within the gate") {
+    // Issue 44: a controller's phase delays a muscle voxel's train by less than its period, so
+    // the body still repeats with the stimulus period; the early end must give the full run's
+    // measures. A held 4 x 3 x 2 body, half muscle (10 Hz twitches), under one wave of delays
+    // along x.
+    Experiment on = test::tiny_experiment();
+    bhm::engine::Material& muscle = on.materials[1].physics;
+    muscle.cte_per_c = 0.0;
+    muscle.actuation_model = bhm::engine::ActuationModel::Muscle;
+    muscle.muscle.contraction_strain = 0.05;
+    muscle.muscle.frequency_hz = 10.0;
+    muscle.muscle.pulse_width_s = 0.02;
+    muscle.muscle.rise_s = 0.01;
+    muscle.muscle.decay_s = 0.02;
+    on.simulation.settle_s = 0.05;
+    on.simulation.evaluate_s = 1.95;  // 2 s: 400 samples, 20 a period
+    on.fitness.measure = FitnessMeasure::ComMax3d;
+    Experiment off = on;
+    off.simulation.end_when_periodic = false;
+    Body body;
+    body.size = {4, 3, 2};
+    body.cells.assign(24, 1);
+    for (std::size_t c = 12; c < 24; ++c)
+        body.cells[c] = 2;  // the top layer is muscle
+    body = apply_frame_and_overrides(on, body);
+    body.phase.assign(body.cells.size(), 0.0f);
+    body.amplitude.assign(body.cells.size(), 1.0f);
+    for (int z = 0; z < body.size[2]; ++z)
+        for (int y = 0; y < body.size[1]; ++y)
+            for (int x = 0; x < body.size[0]; ++x)
+                body.phase[static_cast<std::size_t>(body.index(x, y, z))] =
+                    static_cast<float>(std::remainder(2.0 * std::numbers::pi * x / body.size[0],
+                                                      2.0 * std::numbers::pi));
+    const FitnessReport e = evaluate_body(on, body);
+    const FitnessReport f = evaluate_body(off, body);
+    Body plain = body;
+    plain.phase.assign(plain.cells.size(), 0.0f);
+    CHECK(evaluate_body(off, plain).fitness != f.fitness);  // the delays do act
+    MESSAGE("delayed muscle body: "
+            << std::string(e.ended_early ? "ended early" : "ran the full time") << " at "
+            << e.simulated_s << " s, gate error "
+            << (e.ended_early ? periodic_end_error(e, f) : 0.0));
+    CHECK(e.ended_early);
+    CHECK(e.steps < f.steps);
+    CHECK(periodic_end_error(e, f) <= 1.0);
+}
+
 TEST_CASE("a fatiguing muscle is never called periodic: its force fades over the stimulus") {
     auto e =
         load_experiment(std::string(BHM_SOURCE_DIR) + "/assets/experiments/muscle-catheter.json");

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "engine/muscle.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 
 namespace bhm::app::gui {
@@ -135,13 +136,25 @@ VoxelScalars voxel_scalars(ColorBy by, const evo::Experiment& e, const engine::R
             break;
         }
         case ColorBy::Actuation: {
-            // dT = A sin(2 pi f tau + phase), tau = t - settle (engine/world.cpp).
+            // dT = A sin(2 pi f tau + phase), tau = t - settle (engine/world.cpp); a muscle
+            // voxel's -a(tau - delay), its activation under its phase's stimulus delay
+            // (engine/muscle.hpp; negative: it contracts).
             const double tau = f.time_s - r.settle_s;
             for (std::size_t v = 0; v < n; ++v) {
                 const int m = r.voxel_material[v];
                 const bool active = m >= 1 && m <= static_cast<int>(e.materials.size()) &&
                                     e.materials[static_cast<std::size_t>(m - 1)].active();
                 const float phase = v < phases.size() ? phases[v] : 0.0f;
+                const engine::Material* material =
+                    active ? &e.materials[static_cast<std::size_t>(m - 1)].physics : nullptr;
+                if (material && material->actuation_model == engine::ActuationModel::Muscle) {
+                    const engine::Muscle& u = material->muscle;
+                    const double delay =
+                        engine::muscle::bin_delay_s(u, engine::muscle::delay_bin(phase));
+                    out.values[v] =
+                        -static_cast<float>(engine::muscle::activation(u, tau - delay).a);
+                    continue;
+                }
                 out.values[v] =
                     active && tau >= 0.0
                         ? static_cast<float>(std::sin(
