@@ -145,6 +145,7 @@ struct LinearisedBody::Impl {
     std::string reason;
     int force_evaluations = 0, relaxations = 0;
     double margin = 0.0, leak = 0.0, beta_max = 0.0, c_min = 0.0;
+    std::array<double, 4> block_margin{};  //!< margin_s2 of the blocks (move, turn) x (move, turn)
     Sparse K;                     //!< symmetrised, lower and upper
     std::vector<double> mass;     //!< per dof (kg; kg m^2)
     std::vector<double> damping;  //!< per dof, c_i / m_i (1/s)
@@ -353,12 +354,27 @@ LinearisedBody::LinearisedBody(const World& world, const Options& options)
     // absolute values are symmetric, ||S||_2 <= its largest absolute row sum.
     Sparse skew = 0.5 * (K - Kt);
     std::vector<double> rows(static_cast<std::size_t>(count), 0.0);
+    // The same sums per block (turns or not, of the row and of the column): where it comes from.
+    std::vector<std::array<double, 4>> block_rows(static_cast<std::size_t>(count),
+                                                  std::array<double, 4>{});
+    std::vector<int> turn(static_cast<std::size_t>(count), 0);
+    for (int v = 0; v < n; ++v)
+        for (std::size_t i = 3; i < 6; ++i) {
+            const int j = dof[static_cast<std::size_t>(v)][i];
+            if (j >= 0) turn[static_cast<std::size_t>(j)] = 1;
+        }
     for (int k = 0; k < skew.outerSize(); ++k)
-        for (Sparse::InnerIterator it(skew, k); it; ++it)
-            rows[static_cast<std::size_t>(it.row())] +=
-                std::fabs(it.value()) / std::sqrt(m.mass[static_cast<std::size_t>(it.row())] *
-                                                  m.mass[static_cast<std::size_t>(it.col())]);
+        for (Sparse::InnerIterator it(skew, k); it; ++it) {
+            const auto r = static_cast<std::size_t>(it.row());
+            const auto c = static_cast<std::size_t>(it.col());
+            const double a = std::fabs(it.value()) / std::sqrt(m.mass[r] * m.mass[c]);
+            rows[r] += a;
+            block_rows[r][static_cast<std::size_t>(2 * turn[r] + turn[c])] += a;
+        }
     m.margin = *std::max_element(rows.begin(), rows.end());
+    for (const auto& r : block_rows)
+        for (std::size_t b = 0; b < 4; ++b)
+            m.block_margin[b] = std::max(m.block_margin[b], r[b]);
     m.ok = true;
 }
 
@@ -379,6 +395,9 @@ int LinearisedBody::relaxations() const {
 }
 double LinearisedBody::margin_s2() const {
     return impl_->margin;
+}
+double LinearisedBody::block_margin_s2(bool row_turns, bool column_turns) const {
+    return impl_->block_margin[static_cast<std::size_t>(2 * row_turns + column_turns)];
 }
 double LinearisedBody::leak() const {
     return impl_->leak;

@@ -3,7 +3,8 @@
 // "A proven decay bound of a held body").
 //
 // From a World at rest before actuation starts: the stiffness K = -dF/dx of the engine's own
-// elastic forces (links, Poisson coupling with its relaxed splits d converged, edge springs,
+// elastic forces (links, Poisson coupling with its relaxed splits d relaxed until a pass moves
+// none by 1e-9, which on Poisson bodies stops short of converged: docs/physics.md; edge springs,
 // gravity's prestress, a held voxel's clamp spring) by central differences, every voxel of one
 // colour of a (2 reach + 1)^3 lattice colouring moved at once (6 x 125 pairs of force evaluations
 // at reach 2, not 6 N), the floor's penalty spring under the voxels that touch it added as built
@@ -64,6 +65,9 @@ class LinearisedBody {
     int relaxations() const;        //!< the most Poisson passes one pose needed
     //! Bound of the norm of M^-1/2 (K - K^T) / 2 M^-1/2 (s^-2).
     double margin_s2() const;
+    //! The same bound over one block of rows and columns (a voxel's move or its turn): which
+    //! couplings the antisymmetric part sits in.
+    double block_margin_s2(bool row_turns, bool column_turns) const;
     //! The largest force change seen farther than `reach` from every moved voxel, over the
     //! largest seen within it: the colouring's check (0 when the reach holds everything).
     double leak() const;
