@@ -57,6 +57,7 @@ public:
     struct State;
 
 private:
+    friend class LinearisedBody;  //!< reads the state to linearise it (engine/linearised_body.hpp)
     std::unique_ptr<State> state_;
 };
 

@@ -14,6 +14,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   ffmpeg
   libnlopt-cxx-dev libpng-dev
+  libeigen3-dev
   pybind11-dev python3-pybind11 python3-numpy python3-dev
 )
 
