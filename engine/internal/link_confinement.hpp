@@ -16,13 +16,15 @@
 // n the count of its voxel's lateral neighbours (0..4) without a link on that side, g a function
 // of the P-wave modulus over E, M / E = (1 - nu) / ((1 + nu) (1 - 2 nu)): sqrt(M / E) for bending,
 // torsion and shear (the spreading is a laterally constrained strain, stiffer with nu as a bonded
-// layer is), 1 / sqrt(M / E) for the axial mode (its normal stress already carries the Poisson
-// coupling's volumetric term, which grows with nu: with sqrt(M / E) there too, 2 x 2 stalks came
-// out 13-15 % stiff at nu 0.49). The link's stiffness in each mode becomes
+// layer is), 1 for the axial mode (its normal stress already carries the Poisson coupling's
+// volumetric term). The link's stiffness in each mode becomes
 // 2 / (1 / kappa_a + 1 / kappa_b) of the plain link's (kappa = 1 at an end that is not confined),
 // capped at twice it so that the stable step, which knows only the plain link, still bounds it.
-// c = 1/3 and the two exponents are fitted on the fitting half of the continuum suite
-// (tests/engine/test_engine_continuum.cpp), which also lists the held-out half they are judged on.
+// c = 1/3, the two exponents (1/2 and 0) and the penalty on the split of links of one material
+// (poisson.cpp, kSameMaterialSplitPenalty) are fitted together on the fitting half of the
+// continuum suite (tests/engine/test_engine_continuum.cpp), which also lists the held-out half
+// they are judged on. (With the equal split, which locked 2-voxel-tall sections at nu 0.49, the
+// axial exponent was -1/2; docs/physics.md, "The relaxed split on every link".)
 #include "engine/internal/model_data.hpp"
 
 namespace bhm::engine {

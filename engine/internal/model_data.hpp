@@ -115,6 +115,12 @@ struct PoissonParams {
     std::array<std::array<std::vector<float>, 2>, 3> far_pair;
     std::array<std::vector<float>, 3> rest_scale;  //!< link slot: -L / M_link, 0 if absent
     std::array<std::vector<float>, 3> pair_step;   //!< link slot: relaxation step of d, 0 if none
+    //! link slot: x E of a link of one material whose d is held by the penalty x E d^2 / 2 per
+    //! volume (poisson.hpp), 0 for a mixed or isolated link and where there is no d
+    std::array<std::vector<float>, 3> pair_penalty;
+    //! link slot: 1 - pair_step * pair_penalty, the share of d a relaxation step keeps before
+    //! the gradient of the octants' energy (1 where there is no penalty)
+    std::array<std::vector<float>, 3> pair_keep;
     //! voxels at either end of a link with a relaxed d (isolated or mixed)
     std::vector<std::int32_t> pair_voxels;
     bool mixed = false;  //!< some link joins two materials and carries a relaxed split d

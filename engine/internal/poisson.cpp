@@ -35,6 +35,13 @@ namespace {
 
 constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half-link
 
+// x of the penalty x E d^2 / 2 per volume on the split d of a link of one material (poisson.hpp):
+// fitted with the confinement of narrow ends (link_confinement.hpp) on the fitting half of the
+// continuum suite (tests/engine/test_engine_continuum.cpp; docs/physics.md, "The relaxed split on
+// every link"). x = infinity is the equal split, which locked 2-voxel-tall sections at nu 0.49
+// (14-19 % stiff); x = 0 lets every link's halves part (a 2-voxel stalk 36 % soft at nu 0.49).
+constexpr double kSameMaterialSplitPenalty = 10.0;
+
 // 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp). 0.2, the largest
 // that keeps the envelope's framed and banded bodies stable at cte A = 0.6 (0.3 lets the banded
 // block squeeze a link to L / 10); at 0.1 the saturation already softened the paper's own 14.5 %
@@ -92,6 +99,8 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
         pp.has_minus[a].assign(d.stored, 0.0f);
         pp.rest_scale[a].assign(d.stored, 0.0f);
         pp.pair_step[a].assign(d.stored, 0.0f);
+        pp.pair_penalty[a].assign(d.stored, 0.0f);
+        pp.pair_keep[a].assign(d.stored, 1.0f);
         for (int s = 0; s < kSides; ++s) {
             for (auto* v : {&pp.mu_own[a][s], &pp.mu_other[a][s], &pp.mu_far[a][s],
                             &pp.mu_pair[a][s], &pp.dev_scale[a][s]})
@@ -201,6 +210,19 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
             bool mixed[kSides] = {false, false};
             for (int s = 0; s < kSides; ++s)
                 mixed[s] = h[s] != 0.0f && relaxed[partner[s]] && !same_material(v, partner[s]);
+            // A link of one material takes a d too, held by the penalty x E d^2 / 2 per volume
+            // (kSameMaterialSplitPenalty; poisson.hpp): `split` marks a side with a d, `mixed`
+            // keeps choosing the centre's interpolation weights (so x = infinity is the equal
+            // split exactly).
+            bool split[kSides] = {false, false};
+            for (int s = 0; s < kSides; ++s) {
+                split[s] = h[s] != 0.0f && relaxed[partner[s]];
+                if (split[s] && !mixed[s]) {
+                    const int slot = s == 1 ? v : partner[s];
+                    pp.pair_penalty[a][slot] =
+                        static_cast<float>(kSameMaterialSplitPenalty * young(v));
+                }
+            }
             const int count = links_on_axis(pp, a, v);
             if (count == 2) {
                 // Interior: the centre strain interpolated between the two half-links' own
@@ -215,8 +237,8 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                     const float weight = one_mixed ? (mixed[s] ? 2.0f / 3.0f : 1.0f / 3.0f) : 0.5f;
                     pp.mu_own[a][s][v] = weight * w[s];
                     pp.mu_other[a][s][v] = (1.0f - weight) * w[1 - s];
-                    pp.mixed = pp.mixed || mixed[s];
-                    if (mixed[s]) {
+                    pp.mixed = pp.mixed || split[s];
+                    if (split[s]) {
                         pp.mu_pair[a][s][v] = s == 1 ? -weight : weight;
                         pair_voxel[v] = 1;
                     }
@@ -242,20 +264,22 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
                 pp.mu_far[a][s][v] =
                     static_cast<float>(-0.5 * (2.0 * ep * en / (ep + en)) / young(v));
                 pp.far_slot[a][s][v] = s == 1 ? p : d.minus[a][p];
-                pp.mixed = pp.mixed || mixed[s];
-                if (mixed[s]) {
+                pp.mixed = pp.mixed || split[s];
+                if (split[s]) {
                     pp.mu_pair[a][s][v] = s == 1 ? -1.5f : 1.5f;
                     pair_voxel[v] = 1;
                 }
             } else if (!column && relaxed[p]) {
-                // An isolated link (a column of two): the two centres are e_link -+ d, d relaxed.
+                // An isolated link (a column of two): the two centres are e_link -+ d, d relaxed
+                // freely (no penalty: nothing locks a column of two).
                 pp.mu_own[a][s][v] = w[s];
                 pp.mu_pair[a][s][v] = s == 1 ? -1.0f : 1.0f;
+                pp.pair_penalty[a][s == 1 ? v : p] = 0.0f;
                 pair_voxel[v] = 1;
             } else {
                 pp.mu_own[a][s][v] = w[s];
-                pp.mixed = pp.mixed || mixed[s];
-                if (mixed[s]) {
+                pp.mixed = pp.mixed || split[s];
+                if (split[s]) {
                     pp.mu_pair[a][s][v] = s == 1 ? -1.0f : 1.0f;
                     pair_voxel[v] = 1;
                 }
@@ -387,13 +411,16 @@ void finish_poisson_params(Model::Data& d) {
                 if (pp.mu_pair[a][1][c] == 0.0f) continue;
                 const int b = d.plus[a][c];
                 const int kc = 2 * a + 1, kb = 2 * a;
-                double h = hess[c][kc][kc] + hess[b][kb][kb] + extra_h[a][c],
+                const double penalty = pp.pair_penalty[a][c];
+                double h = hess[c][kc][kc] + hess[b][kb][kb] + extra_h[a][c] + penalty,
                        off = extra_off[a][c];
                 for (int l = 0; l < 6; ++l) {
                     if (l != kc) off += std::fabs(hess[c][kc][l]);
                     if (l != kb) off += std::fabs(hess[b][kb][l]);
                 }
-                pp.pair_step[a][c] = static_cast<float>(kMixedStepFactor / (h + off));
+                const double step = kMixedStepFactor / (h + off);
+                pp.pair_step[a][c] = static_cast<float>(step);
+                pp.pair_keep[a][c] = static_cast<float>(1.0 - step * penalty);
             }
         return;
     }
@@ -735,6 +762,7 @@ template <bool kGather>
 BHM_ENGINE_INLINE void pair_loop(const Model::Data& d, PoissonScratch& p, int a,
                                  const LinkRun& run) {
     const float* __restrict step = d.poisson.pair_step[a].data();
+    const float* __restrict keep = d.poisson.pair_keep[a].data();
     const int* __restrict plus = d.plus[a].data();
     const float* __restrict dgrad_pos = p.dgrad_pos[a];
     const float* __restrict dgrad_neg = p.dgrad_neg[a];
@@ -744,7 +772,7 @@ BHM_ENGINE_INLINE void pair_loop(const Model::Data& d, PoissonScratch& p, int a,
 #pragma GCC ivdep
     for (int c = run.begin; c < run.end; ++c) {
         const int b = kGather ? plus[c] : c + delta;
-        const float relaxed = pair_d[c] - step[c] * (dgrad_pos[c] + dgrad_neg[b]);
+        const float relaxed = keep[c] * pair_d[c] - step[c] * (dgrad_pos[c] + dgrad_neg[b]);
         pair_d[c] = 2.0f * relaxed - pair_last[c];
         pair_last[c] = relaxed;
     }
@@ -822,11 +850,13 @@ double poisson_cross_energy(const Model::Data& d, const VoxelState& s, const Poi
                         (w.shear[v] * (hx * gx * gx + hy * gy * gy + hz * gz * gz) + volumetric);
                 }
     }
-    // ... less the links' own 1/2 M_link V e^2, which link_elastic_energy counts.
+    // ... less the links' own 1/2 M_link V e^2, which link_elastic_energy counts; plus the
+    // penalty x E V d^2 / 2 on the d of links of one material.
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < d.voxels; ++c) {
-            const double e = p.strain[a][c];
+            const double e = p.strain[a][c], dd = p.pair_d[a][c];
             energy -= 0.5 * d.links[a].k_axial[c] * d.voxel_size_m * d.voxel_size_m * e * e;
+            energy += 0.5 * volume * d.poisson.pair_penalty[a][c] * dd * dd;
         }
     return energy;
 }

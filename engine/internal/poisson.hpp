@@ -32,6 +32,14 @@
 // the damping cap still hold; d enters a column's centre strain with the half-link's weight in the
 // mean (1/2 inside a column, 3/2 in an end's extrapolation).
 //
+// A link of one material (both ends coupled, inside a column) takes such a d too, held by a
+// penalty x E d^2 / 2 per volume (x = 10, poisson.cpp): with the equal split (x = infinity) a
+// section two voxels tall locked near nu = 0.5 (in bending its voxels' lateral strains alternate,
+// which the mean of two half-links cannot), and such stalks and necks were 14-19 % too stiff at
+// nu 0.49; a free split (x = 0) lets every link's halves part and a uniform block went too soft.
+// Every body with nu > 0 therefore runs the mixed kernels (docs/physics.md, "The relaxed split on
+// every link").
+//
 // At large strains (an active region held by a passive frame or the clamp, contracted to
 // 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link
 // past zero length; it saturates instead, lambda theta / sqrt(1 + (theta / theta_0)^2) with

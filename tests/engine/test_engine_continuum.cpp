@@ -248,9 +248,11 @@ std::optional<double> richardson_limit(double f2, double f4, double f6) {
 }
 
 // Prints "case nu ours / CalculiX (uncertainty) difference" and returns the worst difference.
-double compare(const std::string& name, double nu) {
+// `actuated_body`: the engine solves the actuated variant (active upper half, same E and nu) at
+// rest, against the one-material body's reference: the two are one body in the continuum.
+double compare(const std::string& name, double nu, bool actuated_body = false) {
     const Reference& r = reference(name, nu);
-    const Measures ours = engine_measures(continuum_body(name, nu));
+    const Measures ours = engine_measures(continuum_body(name, nu, actuated_body));
     const double tip = ours.tip * 1e3 / r.tip4 - 1.0, com = ours.com * 1e3 / r.com4 - 1.0;
     std::printf(
         "%-9s nu %.2f  tip %8.4f / %8.4f mm (+-%4.1f %%) %+6.1f %%   com %8.4f / %8.4f mm "
@@ -311,14 +313,15 @@ TEST_CASE("continuum: the halves are disjoint and every case has its references"
 
 // Before issue 40 (db6afc9) these were +12..+100 % (the engine sagged far more than the FEM).
 // The issue's target is 5 % at any nu; what holds today is the envelope below, which the test
-// keeps (docs/physics.md lists the open cases: 2-voxel-tall stalks and necks at nu 0.49 are
-// stiff, 1x2 necks at nu 0.35 soft).
+// keeps: worst 8.6 / 14.1 / 9.9 % at nu 0 / 0.35 / 0.49 (docs/physics.md lists the open cases:
+// 1x2 necks at nu 0.35 soft, held patches at nu 0 stiff; 2-voxel-tall stalks at nu 0.49 were
+// -19 % with the equal split of links of one material).
 TEST_CASE("continuum: held-out attachments and necks against CalculiX at nu 0, 0.35, 0.49") {
     for (const std::string& name : kHeldOutHalf)
         for (double nu : {0.0, 0.35, 0.49}) {
             CAPTURE(name);
             CAPTURE(nu);
-            const double tolerance = nu < 0.4 ? 0.15 : 0.20;
+            const double tolerance = nu == 0.0 ? 0.10 : nu < 0.4 ? 0.15 : 0.11;
             CHECK(compare(name, nu) <= tolerance);
         }
 }
@@ -335,8 +338,11 @@ TEST_CASE("continuum: the stored references are CalculiX's (one case re-solved)"
 // with BHM_CONTINUUM_RESOLVE=1 the references themselves re-solved at 2 and 4 elements per voxel
 // edge (about an hour on one core), printed as rows of continuum_references.inc:
 //   build/bin/test_engine -tc="continuum: every case*" --no-skip
+// With BHM_CONTINUUM_ACTUATED_REST=1 the engine solves each case's actuated variant at rest (its
+// active and passive halves are one material at rest), against the same references.
 TEST_CASE("continuum: every case of both halves" * doctest::skip()) {
     const bool resolve = std::getenv("BHM_CONTINUUM_RESOLVE") != nullptr;
+    const bool actuated_body = std::getenv("BHM_CONTINUUM_ACTUATED_REST") != nullptr;
     std::vector<std::string> all = kFittingHalf;
     all.insert(all.end(), kHeldOutHalf.begin(), kHeldOutHalf.end());
     double worst_fitting = 0.0, worst_held_out = 0.0;
@@ -349,7 +355,7 @@ TEST_CASE("continuum: every case of both halves" * doctest::skip()) {
                             two.tip * 1e3, two.com * 1e3, four.tip * 1e3, four.com * 1e3);
                 continue;
             }
-            const double worst = compare(name, nu);
+            const double worst = compare(name, nu, actuated_body);
             const bool fitting =
                 std::find(kFittingHalf.begin(), kFittingHalf.end(), name) != kFittingHalf.end();
             (fitting ? worst_fitting : worst_held_out) =
