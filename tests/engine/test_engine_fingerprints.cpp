@@ -160,7 +160,7 @@ engine::BodySpec delayed_muscle_strip() {
 }
 
 constexpr Stored kDelayedMuscle[] = {
-    {"delayed_muscle_strip", 0xdff1c354dfbb94a2ull},
+    {"delayed_muscle_strip", 0x0953d2bfa3d28698ull},
 };
 
 }  // namespace
