@@ -57,11 +57,17 @@ TEST_CASE("linearised cantilever: the lowest frequency it proves against Euler-B
         // (measured 0.991 and 0.993 of it).
         CHECK(bound <= 1.02 * theory);
         CHECK(bound >= 0.95 * theory);
-        // The colouring's reach holds every force a voxel's move changes.
-        CHECK(body.leak() < 1e-9);
+        // The colouring's reach holds every force a voxel's move changes, without the Poisson
+        // coupling. With it, every link of one material carries a relaxed split d (since the
+        // merge of 1240cae, docs/physics.md "The relaxed split on every link, refitted"), and
+        // the splits relax over the whole body, so some change reaches beyond any finite reach:
+        // measured 5.0e-4 of the largest at reach 2 (0 before), one more reason no Poisson body
+        // is proven.
+        CHECK(body.leak() < (nu == 0.0 ? 1e-9 : 2e-3));
         // Without the Poisson coupling the finite differences' asymmetry is small against the
-        // squared frequency (112 s^-2 against 1400); with it (nu = 0.35) it is 9x that, which is
-        // why no Poisson body is proven (docs/physics.md, "A proven decay bound of a held body").
+        // squared frequency (112 s^-2 against 1400); with it (nu = 0.35) it is 160x that (9x
+        // before the relaxed split on every link), which is why no Poisson body is proven
+        // (docs/physics.md, "A proven decay bound of a held body").
         if (nu == 0.0) CHECK(body.margin_s2() < 0.1 * theory * theory);
     }
 }
