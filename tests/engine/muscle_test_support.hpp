@@ -1,6 +1,7 @@
 #pragma once
-// What the muscle tests share (issue 43): the stimulus written out directly, the independent truth
-// the engine's affine maps are checked against, and the refusal a bad body gets from Model::build.
+// What the muscle tests share (issue 43): a skeletal twitch and its material, the stimulus written
+// out directly, the independent truth the engine's affine maps are checked against, and the
+// refusal a bad body gets from Model::build.
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,26 @@
 #include "engine/model.hpp"
 
 namespace bhm::engine::test {
+
+// A skeletal muscle's twitch: 10 % contraction, 20 ms rise, 60 ms decay, 10 ms pulses at 1 Hz.
+inline Muscle skeletal() {
+    Muscle m;
+    m.contraction_strain = 0.1;
+    m.rise_s = 0.02;
+    m.decay_s = 0.06;
+    m.frequency_hz = 1.0;
+    m.pulse_width_s = 0.01;
+    return m;
+}
+
+// A muscle material of that twitch (or another) at Poisson's ratio nu, E and density the defaults.
+inline Material muscle_material(const Muscle& m, double nu) {
+    Material mat;
+    mat.poisson_ratio = nu;
+    mat.actuation_model = ActuationModel::Muscle;
+    mat.muscle = m;
+    return mat;
+}
 
 // u(t) of a pulse train, written out directly (not through the engine's affine maps).
 inline bool pulse_on(const Muscle& m, double t) {

@@ -46,24 +46,6 @@ double twitch(const Muscle& m, double t) {
     return (1.0 - std::exp(-w / m.rise_s)) * std::exp(-(t - w) / m.decay_s);
 }
 
-Muscle skeletal() {
-    Muscle m;
-    m.contraction_strain = 0.1;
-    m.rise_s = 0.02;
-    m.decay_s = 0.06;
-    m.frequency_hz = 1.0;
-    m.pulse_width_s = 0.01;
-    return m;
-}
-
-Material muscle_material(const Muscle& m, double nu) {
-    Material mat;
-    mat.poisson_ratio = nu;
-    mat.actuation_model = ActuationModel::Muscle;
-    mat.muscle = m;
-    return mat;
-}
-
 }  // namespace
 
 TEST_CASE("muscle activation: one twitch follows the ODE's closed form") {

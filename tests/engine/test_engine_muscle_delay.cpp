@@ -13,6 +13,7 @@
 #include "engine/muscle.hpp"
 #include "engine/poses.hpp"
 #include "engine_test_bodies.hpp"
+#include "muscle_test_support.hpp"
 #include "free_body_checks.hpp"
 
 using namespace bhm::engine;
@@ -21,24 +22,6 @@ using namespace bhm::engine::test;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-Muscle skeletal() {
-    Muscle m;
-    m.contraction_strain = 0.1;
-    m.rise_s = 0.02;
-    m.decay_s = 0.06;
-    m.frequency_hz = 1.0;
-    m.pulse_width_s = 0.01;
-    return m;
-}
-
-Material muscle_material(const Muscle& m, double nu) {
-    Material mat;
-    mat.poisson_ratio = nu;
-    mat.actuation_model = ActuationModel::Muscle;
-    mat.muscle = m;
-    return mat;
-}
 
 // One twitch (a pulse of width w at t = 0), solved by hand; 0 before it.
 double twitch(const Muscle& m, double t) {
