@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
 #include "evo/evaluate/evaluator.hpp"
@@ -86,6 +87,32 @@ inline RunTwins run_twins(const Experiment& experiment, const std::string& whole
     t.resumed = stopped_then_resumed(experiment, parts_dir, generations, threads, stop_at);
     if (t.resumed) t.resumed->run();
     return t;
+}
+
+//! The twins above are one run: the resumed one stopped on request, took no warning, and ends
+//! with the uninterrupted one's history (wall clock aside), generator, champion (genome,
+//! controller, body, fitness) and population member by member.
+inline void check_twins_equal(const RunTwins& t) {
+    REQUIRE(t.resumed);
+    CHECK(t.resumed->resume_warnings().empty());
+    const RunState& u = t.whole->state();
+    const RunState& r = t.resumed->state();
+    CHECK(without_wall(r.history) == without_wall(u.history));
+    CHECK(r.rng == u.rng);
+    REQUIRE(r.champion);
+    REQUIRE(u.champion);
+    CHECK(r.champion->individual.genome == u.champion->individual.genome);
+    CHECK(r.champion->individual.controller == u.champion->individual.controller);
+    CHECK(r.champion->individual.phenotype.body == u.champion->individual.phenotype.body);
+    CHECK(r.champion->individual.report.fitness == u.champion->individual.report.fitness);
+    REQUIRE(r.population.size() == u.population.size());
+    for (std::size_t i = 0; i < u.population.size(); ++i) {
+        CHECK(r.population[i].id == u.population[i].id);
+        CHECK(r.population[i].genome == u.population[i].genome);
+        CHECK(r.population[i].controller == u.population[i].controller);
+        CHECK(r.population[i].phenotype.body == u.population[i].phenotype.body);
+        CHECK(r.population[i].report.fitness == u.population[i].report.fitness);
+    }
 }
 
 //! A checkpoint payload as a build before format 4 wrote it: `version` (1 to 3) and each cache

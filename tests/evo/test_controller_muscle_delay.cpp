@@ -91,21 +91,5 @@ TEST_CASE("muscle controller: a fixed-body run resumes into its uninterrupted tw
     const Experiment e = muscle_fixed_body();
     const auto whole = test::fresh_dir("muscle-controller", "whole"),
                parts = test::fresh_dir("muscle-controller", "parts");
-    const auto twins = test::run_twins(e, whole.string(), parts.string(), 3, 2, 1);
-    REQUIRE(twins.resumed);
-    CHECK(twins.resumed->resume_warnings().empty());
-    const auto& u = twins.whole->state();
-    const auto& r = twins.resumed->state();
-    CHECK(test::without_wall(r.history) == test::without_wall(u.history));
-    CHECK(r.rng == u.rng);
-    REQUIRE(r.champion);
-    CHECK(r.champion->individual.genome == u.champion->individual.genome);
-    CHECK(r.champion->individual.phenotype.body == u.champion->individual.phenotype.body);
-    CHECK(r.champion->individual.report.fitness == u.champion->individual.report.fitness);
-    REQUIRE(r.population.size() == u.population.size());
-    for (std::size_t i = 0; i < u.population.size(); ++i) {
-        CHECK(r.population[i].id == u.population[i].id);
-        CHECK(r.population[i].phenotype.body == u.population[i].phenotype.body);
-        CHECK(r.population[i].report.fitness == u.population[i].report.fitness);
-    }
+    test::check_twins_equal(test::run_twins(e, whole.string(), parts.string(), 3, 2, 1));
 }

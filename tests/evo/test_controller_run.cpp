@@ -57,23 +57,7 @@ Experiment fixed_controllers_experiment() {
 void check_twins(const Experiment& e, const std::string& name) {
     const fs::path whole = test::fresh_dir("controller", name + "-whole"),
                    parts = test::fresh_dir("controller", name + "-parts");
-    const auto twins = test::run_twins(e, whole.string(), parts.string(), 3, 2, 1);
-    REQUIRE(twins.resumed);
-    CHECK(twins.resumed->resume_warnings().empty());
-    const auto& u = twins.whole->state();
-    const auto& r = twins.resumed->state();
-    CHECK(test::without_wall(r.history) == test::without_wall(u.history));
-    CHECK(r.rng == u.rng);
-    REQUIRE(r.champion);
-    CHECK(r.champion->individual.genome == u.champion->individual.genome);
-    CHECK(r.champion->individual.controller == u.champion->individual.controller);
-    CHECK(r.champion->individual.phenotype.body == u.champion->individual.phenotype.body);
-    REQUIRE(r.population.size() == u.population.size());
-    for (std::size_t i = 0; i < u.population.size(); ++i) {
-        CHECK(r.population[i].id == u.population[i].id);
-        CHECK(r.population[i].controller == u.population[i].controller);
-        CHECK(r.population[i].report.fitness == u.population[i].report.fitness);
-    }
+    test::check_twins_equal(test::run_twins(e, whole.string(), parts.string(), 3, 2, 1));
 }
 
 }  // namespace
