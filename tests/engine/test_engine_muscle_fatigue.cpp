@@ -41,11 +41,7 @@ double rk4_fatigued(const Muscle& m, double t_end, double* f_out = nullptr, doub
 
 // Stimulated throughout (one pulse as wide as its period), fatiguing to 40 % in 0.5 s.
 Muscle tetanic() {
-    Muscle m;
-    m.contraction_strain = 0.1;
-    m.rise_s = 0.02;
-    m.decay_s = 0.06;
-    m.frequency_hz = 1.0;
+    Muscle m = skeletal();
     m.pulse_width_s = 1.0;
     m.fatigue_s = 0.5;
     m.recovery_s = 1.5;
