@@ -492,3 +492,39 @@ TEST_CASE("calculix profile: strains through the thickness at mid-span" * doctes
         MESSAGE(line);
     }
 }
+
+// The engine alone against the stored references (no CalculiX run): every stored mixture, slice
+// and checkerboard row, or those of BHM_SCENE / BHM_CONTRAST / BHM_NU where set. Seconds:
+//   build/bin/test_engine -tc="calculix stored: *" --no-skip -s
+TEST_CASE("calculix stored: the engine against every stored reference" * doctest::skip()) {
+    const char* name = std::getenv("BHM_SCENE");
+    const char* contrast = std::getenv("BHM_CONTRAST");
+    const char* nu = std::getenv("BHM_NU");
+    auto wanted = [&](const char* scene_name, double k, double n) {
+        return (!name || std::string(name) == scene_name) &&
+               (!contrast || std::fabs(std::atof(contrast) - k) < 1e-9) &&
+               (!nu || std::fabs(std::atof(nu) - n) < 1e-9);
+    };
+    double sum2 = 0.0;
+    int rows = 0;
+    auto report = [&](const char* scene_name, double k, double n, double ours, double reference,
+                      const char* half) {
+        const double error = ours / reference - 1.0;
+        sum2 += error * error;
+        ++rows;
+        std::printf("%-12s %-8s k %4g nu %4g: tip %.6g m, reference %.6g m, error %+.2f %%\n",
+                    scene_name, half, k, n, ours, reference, 100.0 * error);
+        std::fflush(stdout);
+    };
+    for (const RefinedTips& t : kCheckerboardTips)
+        if (wanted("checkerboard", t.contrast, t.nu))
+            report("checkerboard", t.contrast, t.nu,
+                   engine_tip(scene("checkerboard"), t.contrast, t.nu), extrapolated_tip(t),
+                   "fitting");
+    for (const MixtureTips& t : kMixtureTips)
+        if (wanted(t.scene, t.contrast, t.nu))
+            report(t.scene, t.contrast, t.nu, engine_tip(scene(t.scene), t.contrast, t.nu),
+                   extrapolated_tip(t.tip[0], t.tip[1], t.tip[2], 1),
+                   t.half == Half::Fitting ? "fitting" : "held-out");
+    if (rows > 0) std::printf("rms over %d rows: %.2f %%\n", rows, 100.0 * std::sqrt(sum2 / rows));
+}
