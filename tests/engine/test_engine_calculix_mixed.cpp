@@ -308,7 +308,10 @@ TEST_CASE("calculix: checkerboards of contrast 3 and 10 within 5% of the converg
 // distance from the finest mesh. The slices (soft/stiff voxel layers across the beam) are the
 // fitting half of mixed_link_stiffening's three constants (engine/internal/link_confinement.hpp);
 // the random mixtures are held out, as are the layered, cored, heated and checkerboard bodies
-// above. Targets: up to 10x within 5 % of the extrapolated tip, 30x within 10 %.
+// above. mixed_link_bending_factor (the bending and shear of a mixed link beside stiffer links)
+// has no constant to fit and leaves the slices and checkerboards bit-identical; every random
+// mixture is held out for it too. Targets: up to 10x within 5 % of the extrapolated tip, 30x
+// within 10 %.
 // Not here: random50 at 30x and nu 0.35, whose three meshes are not monotone (no reference), and
 // 30x at nu 0, whose references are uncertain by 5-12 % (order 0.3: edge contacts, as the
 // checkerboard's).
@@ -341,7 +344,7 @@ constexpr MixtureTips kMixtureTips[] = {
     {"random50", 3, 0, Half::HeldOut, false, {-0.000625476, -0.000627614, -0.000628102}},
     {"random50", 3, 0.35, Half::HeldOut, false, {-0.000615477, -0.000619172, -0.000620215}},
     {"random50", 3, 0.49, Half::HeldOut, true, {-0.000576498, -0.00058559, -0.00058811}},
-    {"random50", 10, 0, Half::HeldOut, false, {-0.00132254, -0.00134564, -0.00135363}},
+    {"random50", 10, 0, Half::HeldOut, true, {-0.00132254, -0.00134564, -0.00135363}},
     {"random50", 10, 0.35, Half::HeldOut, true, {-0.00128197, -0.00130345, -0.00131249}},
     {"random50", 10, 0.49, Half::HeldOut, true, {-0.00111745, -0.00115959, -0.00117351}},
     {"random50", 30, 0.49, Half::HeldOut, false, {-0.00204432, -0.00217568, -0.00223042}},
