@@ -354,6 +354,16 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     d.implicit_sweeps = spec.damping.implicit_sweeps;
     std::vector<double> damping_rate(implicit ? d.stored : 0, 0.0);
     const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
+    // The stiffest mode limits::step_range allows for these materials: a mixed link's bending
+    // factor (mixed_link_bending_factor) is capped so that its modes stay within it, so the step
+    // stays inside the range evo/ predicts (a light soft voxel between heavy stiff ones could
+    // otherwise take the step below it).
+    const double envelope_omega2 = [&] {
+        const double shortest =
+            limits::step_range(spec.materials, L, 1.0, spec.actuation.temperature_amplitude_c, 0)
+                .shortest_s;
+        return 1.0 / (4.0 * std::numbers::pi * std::numbers::pi * shortest * shortest);
+    }();
     const double torsion_over_l = kSquareTorsionFactor * std::pow(L, 4) / L;
     for (int axis = 0; axis < 3; ++axis) {
         LinkParams& p = d.links[axis];
@@ -379,7 +389,15 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
                 confined_link_factors(d, v, b, axis, ma.poisson_ratio, mb.poisson_ratio);
             // A mixed link beside stiffer links bends and shears toward the arithmetic mean
             // (mixed_link_bending_factor); the stable step and the damping cap know it.
-            const double mixed_bending = mixed_link_bending_factor(d, v, b, axis, ma, mb);
+            double mixed_bending = mixed_link_bending_factor(d, v, b, axis, ma, mb);
+            if (mixed_bending > 1.0) {
+                // Past the envelope only the bending and torsion modes can be (the plain link's
+                // are inside it), and they scale with the factor.
+                const double omega2 = limits::link_omega2(
+                    ma, mb, L, spec.actuation.temperature_amplitude_c, mixed_bending);
+                if (omega2 > envelope_omega2)
+                    mixed_bending = std::max(1.0, mixed_bending * envelope_omega2 / omega2);
+            }
             const double bending = confined.bending * mixed_bending;
             const double k_axial =
                 std::min(kConfinedLinkCap,
