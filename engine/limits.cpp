@@ -200,11 +200,12 @@ double voxel_omega2(const Material& m, double L, double temperature_amplitude_c)
 namespace {
 // The stiffest mode of the link between materials a and b on its lighter end, at the largest
 // actuated size of either end; its axial stiffness is E times axial_factor(nu) of each material,
-// in series.
+// in series; its bending and torsion the materials' in series times bending_factor.
 double link_mode_omega2(const Material& a, const Material& b, double L,
-                        double temperature_amplitude_c, double (*axial_factor)(double)) {
-    const double e = series(a.youngs_modulus_pa, b.youngs_modulus_pa);
-    const double g = series(shear_modulus(a), shear_modulus(b));
+                        double temperature_amplitude_c, double (*axial_factor)(double),
+                        double bending_factor) {
+    const double e = bending_factor * series(a.youngs_modulus_pa, b.youngs_modulus_pa);
+    const double g = bending_factor * series(shear_modulus(a), shear_modulus(b));
     const double m_min = std::min(a.density_kg_m3, b.density_kg_m3) * (L * L * L);
     const double inertia = m_min * L * L / 6.0;
     const double k_axial = series(a.youngs_modulus_pa * axial_factor(a.poisson_ratio),
@@ -220,15 +221,17 @@ double link_mode_omega2(const Material& a, const Material& b, double L,
 }
 }  // namespace
 
-double link_omega2(const Material& a, const Material& b, double L, double temperature_amplitude_c) {
+double link_omega2(const Material& a, const Material& b, double L, double temperature_amplitude_c,
+                   double bending_factor) {
     // The Poisson coupling stiffens the axial modes up to the P-wave modulus M = lambda + 2 G.
-    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_wave_factor);
+    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_wave_factor, bending_factor);
 }
 
 double link_damping_omega2(const Material& a, const Material& b, double L,
-                           double temperature_amplitude_c) {
+                           double temperature_amplitude_c, double bending_factor) {
     // With the volumetric 3 K where it is stiffer than M (nu > 0.25).
-    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_stiffness_factor);
+    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_stiffness_factor,
+                            bending_factor);
 }
 
 double stable_step_for(double omega2) {

@@ -63,14 +63,16 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec);
 double voxel_omega2(const Material& m, double voxel_size_m, double temperature_amplitude_c);
 //! Squared angular frequency of the stiffest mode of the link between materials a and b, on the
 //! lighter end: axial (stiffened by the Poisson coupling up to the P-wave modulus M), bending and
-//! torsion, at the largest actuated size of either end. Sets the stable step.
+//! torsion, at the largest actuated size of either end. Sets the stable step. bending_factor: the
+//! link's bending and torsion stiffness over the two materials' in series (a mixed link whose
+//! lateral neighbours are stiffer, engine/internal/link_confinement.hpp), 1 for a plain link.
 double link_omega2(const Material& a, const Material& b, double voxel_size_m,
-                   double temperature_amplitude_c);
+                   double temperature_amplitude_c, double bending_factor = 1.0);
 //! The same with the volumetric modulus 3 K where it is stiffer than M (nu > 0.25): bounds the
 //! modes the explicit bond damping acts on (Model::build's damping cap). Capping with M instead
 //! let bodies of two stiffnesses diverge (docs/physics.md, "Known limits").
 double link_damping_omega2(const Material& a, const Material& b, double voxel_size_m,
-                           double temperature_amplitude_c);
+                           double temperature_amplitude_c, double bending_factor = 1.0);
 //! Voxelyze's recommended step 1 / (2 pi sqrt(omega2)).
 double stable_step_for(double omega2);
 

@@ -354,6 +354,16 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     d.implicit_sweeps = spec.damping.implicit_sweeps;
     std::vector<double> damping_rate(implicit ? d.stored : 0, 0.0);
     const double beam_inertia_over_l = std::pow(L, 4) / 12.0 / L;  // I / L
+    // The stiffest mode limits::step_range allows for these materials: a mixed link's bending
+    // factor (mixed_link_bending_factor) is capped so that its modes stay within it, so the step
+    // stays inside the range evo/ predicts (a light soft voxel between heavy stiff ones could
+    // otherwise take the step below it).
+    const double envelope_omega2 = [&] {
+        const double shortest =
+            limits::step_range(spec.materials, L, 1.0, spec.actuation.temperature_amplitude_c, 0)
+                .shortest_s;
+        return 1.0 / (4.0 * std::numbers::pi * std::numbers::pi * shortest * shortest);
+    }();
     const double torsion_over_l = kSquareTorsionFactor * std::pow(L, 4) / L;
     for (int axis = 0; axis < 3; ++axis) {
         LinkParams& p = d.links[axis];
@@ -377,6 +387,18 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             // cap that keeps the stable step valid.
             const ConfinedLinkFactors confined =
                 confined_link_factors(d, v, b, axis, ma.poisson_ratio, mb.poisson_ratio);
+            // A mixed link beside stiffer links bends and shears toward the arithmetic mean
+            // (mixed_link_bending_factor); the stable step and the damping cap know it.
+            double mixed_bending = mixed_link_bending_factor(d, v, b, axis, ma, mb);
+            if (mixed_bending > 1.0) {
+                // Past the envelope only the bending and torsion modes can be (the plain link's
+                // are inside it), and they scale with the factor.
+                const double omega2 = limits::link_omega2(
+                    ma, mb, L, spec.actuation.temperature_amplitude_c, mixed_bending);
+                if (omega2 > envelope_omega2)
+                    mixed_bending = std::max(1.0, mixed_bending * envelope_omega2 / omega2);
+            }
+            const double bending = confined.bending * mixed_bending;
             const double k_axial =
                 std::min(kConfinedLinkCap,
                          confined.axial * mixed_link_stiffening(d, v, b, axis, ma, mb)) *
@@ -394,23 +416,24 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             const double beta = spec.damping.bond_ratio * std::sqrt(pair_mass / (e * L));
             p.exists[v] = 1.0f;
             p.k_axial[v] = static_cast<float>(k_axial);
-            p.k_bend[v] = static_cast<float>(confined.bending * e * beam_inertia_over_l);
-            p.k_torsion[v] = static_cast<float>(confined.bending * g * torsion_over_l);
+            p.k_bend[v] = static_cast<float>(bending * e * beam_inertia_over_l);
+            p.k_torsion[v] = static_cast<float>(bending * g * torsion_over_l);
             p.damp_steps[v] = static_cast<float>(beta);  // capped and divided by dt below
             p.rest_sin[v] = static_cast<float>(0.5 * L * (d.act_sin[v] + d.act_sin[b]));
             p.rest_cos[v] = static_cast<float>(0.5 * L * (d.act_cos[v] + d.act_cos[b]));
             ++d.link_count;
             if (implicit) {
                 const double lambda = link_damping_rate_bound(
-                    beta, k_axial, confined.bending * e * beam_inertia_over_l,
-                    confined.bending * g * torsion_over_l, m_a, m_b, L,
-                    1.0 + std::max(actuation_reach(d, v), actuation_reach(d, b)));
+                    beta, k_axial, bending * e * beam_inertia_over_l, bending * g * torsion_over_l,
+                    m_a, m_b, L, 1.0 + std::max(actuation_reach(d, v), actuation_reach(d, b)));
                 damping_rate[v] += lambda;
                 damping_rate[b] += lambda;
             }
             const double amplitude_c = spec.actuation.temperature_amplitude_c;
-            link_omega2[axis][v] = limits::link_damping_omega2(ma, mb, L, amplitude_c);
-            max_omega2 = std::max(max_omega2, limits::link_omega2(ma, mb, L, amplitude_c));
+            link_omega2[axis][v] =
+                limits::link_damping_omega2(ma, mb, L, amplitude_c, mixed_bending);
+            max_omega2 =
+                std::max(max_omega2, limits::link_omega2(ma, mb, L, amplitude_c, mixed_bending));
         }
     }
 

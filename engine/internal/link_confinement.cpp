@@ -96,4 +96,33 @@ double mixed_link_stiffening(const Model::Data& d, int v, int b, int axis, const
     return (contrast + 1.0) / (contrast / kappa + 1.0);
 }
 
+int stiff_lateral_links(const Model::Data& d, int v, int b, int axis) {
+    const BodySpec& spec = d.spec;
+    const auto modulus = [&](int material) {
+        return spec.materials[material - 1].youngs_modulus_pa;
+    };
+    const double e_v = modulus(spec.material[d.voxel_cell[v]]);
+    const double e_b = modulus(spec.material[d.voxel_cell[b]]);
+    if (e_v == e_b) return 0;
+    const double e_max = std::max(e_v, e_b);
+    // b's cell is v's one step along axis, so v's lateral cell plus that step is b's.
+    const int step = d.voxel_cell[b] - d.voxel_cell[v];
+    int count = 0;
+    visit_lateral_cells(d, v, axis, [&](int beside_v) {
+        const int mv = spec.material[beside_v], mb = spec.material[beside_v + step];
+        if (mv != 0 && mb != 0 && modulus(mv) >= e_max && modulus(mb) >= e_max) ++count;
+    });
+    return count;
+}
+
+double mixed_link_bending_factor(const Model::Data& d, int v, int b, int axis, const Material& mv,
+                                 const Material& mb) {
+    const int stiff = stiff_lateral_links(d, v, b, axis);
+    if (stiff == 0) return 1.0;
+    const double e_v = mv.youngs_modulus_pa, e_b = mb.youngs_modulus_pa;
+    // The arithmetic mean over the harmonic one (series), a quarter of the way per stiff link.
+    const double voigt_over_series = (e_v + e_b) * (e_v + e_b) / (4.0 * e_v * e_b);
+    return 1.0 + 0.25 * stiff * (voigt_over_series - 1.0);
+}
+
 }  // namespace bhm::engine

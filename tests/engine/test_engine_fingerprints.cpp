@@ -41,8 +41,8 @@ constexpr Stored kAnchorScenes[] = {
 // springs across edges, the biohybrid catheter's 2 mm muscle in Ecoflex, a paper preset's random
 // body and a paper-exp3 champion inside its passive frame.
 constexpr Stored kCorpusBodies[] = {
-    {"multi-material:multi-material/random-14", 0x9168c9b6702b88ffull},
-    {"biohybrid-catheter:biohybrid-catheter/random-26", 0x5f39a42cb3aa26abull},
+    {"multi-material:multi-material/random-14", 0xd0e9a129b8416f8cull},
+    {"biohybrid-catheter:biohybrid-catheter/random-26", 0x6716e376fb8fcc0bull},
     {"paper-exp1:paper-exp1/random-02", 0x39cabec9de9e17aaull},
     {"paper-exp3-champions:paper-exp3/champion-seed1", 0x060e6f9566a900b6ull},
 };
