@@ -175,7 +175,7 @@ double engine_cantilever(int nx, int ny, int nz, double nu) {
 // centres, then the last half voxel in ceil(k / 2) elements; along y and z, k per voxel edge. The
 // centres' displacements are interpolated on the plane's element faces (8-node serendipity; for
 // even k a centre is a corner node). `nodes`: the mean over that plane's nodes, the sampling
-// check_block_cantilever uses on its coarse mesh (2 per edge along x, 2 L x 1.75 L across).
+// calculix_cantilever uses (there on a mesh of 2 per edge along x, 2 L x 1.75 L across).
 struct BlockTip {
     double centres = 0.0, nodes = 0.0;  // m, downward
     int node_count = 0;
@@ -357,20 +357,48 @@ TEST_CASE("calculix: a bar in tension, axial strain within 2% and lateral within
     }
 }
 
-static void check_block_cantilever(double nu) {
-    const double fem = calculix_cantilever(20, 8, 7, nu);
-    const double ours = engine_cantilever(20, 8, 7, nu);
-    MESSAGE("nu " << nu << ": tip " << ours << " m, CalculiX " << fem << " m, error "
-                  << 100.0 * (ours / fem - 1.0) << " %");
-    CHECK(relative_error(ours, fem) < 0.05);
+// The block's reference: CalculiX at 1, 2 and 3 elements per voxel edge (calculix_block_tip: the
+// last layer's voxel centres, as the engine samples), Richardson-extrapolated; solved
+// 2026-12-07 by "calculix: the 20x8x7 block's reference on three meshes" (3 per edge: 29,736
+// C3D20R elements, about 10 minutes of ccx CPU and 7 GB each). Each limit's own uncertainty is
+// its distance from the finest mesh (0.01 / 0.10 / 0.43 % at nu 0 / 0.35 / 0.49; at nu 0 the three
+// meshes agree to the stored digits and the fitted order, 0.3, is their rounding). The one-element
+// tip is solved live (seconds) and must equal the stored one: it ties the stored series to this
+// deck.
+struct BlockReference {
+    double nu;
+    double tip[3];  // m, downward, 1 to 3 elements per voxel edge
+};
+constexpr BlockReference kBlockReferences[] = {
+    {0.0, {0.92726e-3, 0.92728e-3, 0.92729e-3}},
+    {0.35, {0.91543e-3, 0.91766e-3, 0.91830e-3}},
+    {0.49, {0.87686e-3, 0.88373e-3, 0.88588e-3}},
+};
+
+// Where the three meshes agree to the stored digits (nu 0: no lateral constraint to resolve at
+// the clamp's edges) and show no order, the finest mesh is the reference.
+static void check_block_cantilever(const BlockReference& r) {
+    const double h[3] = {1.0, 0.5, 1.0 / 3.0};
+    const auto limit = richardson(h, r.tip);
+    const double reference = limit ? limit->limit : r.tip[2];
+    CHECK(std::fabs(calculix_block_tip(1, r.nu).centres / r.tip[0] - 1.0) < 1e-4);
+    const double ours = engine_cantilever(20, 8, 7, r.nu);
+    MESSAGE("nu " << r.nu << ": tip " << ours << " m, CalculiX extrapolated " << reference
+                  << " m (+-" << 100.0 * std::fabs(reference / r.tip[limit ? 2 : 0] - 1.0)
+                  << " %, order " << (limit ? limit->order : 0.0) << "), error "
+                  << 100.0 * (ours / reference - 1.0) << " %");
+    CHECK(relative_error(ours, reference) < 0.02);
 }
 
 // nu = 0.49 is the case that used to lock (17 % too stiff with half-link lateral strains):
-// engine/internal/poisson.hpp samples the volumetric strain at the voxel centres.
-TEST_CASE("calculix: the 20x8x7 block cantilever under gravity within 5%, nu 0, 0.35, 0.49") {
+// engine/internal/poisson.hpp samples the volumetric strain at the voxel centres. Issue 40's
+// target is 2 % at every nu against the converged continuum: +2.6 % at nu 0.49 until the clamp
+// held a held face laterally (poisson.cpp, kHeldFaceConstraint; docs/physics.md).
+TEST_CASE(
+    "calculix: the 20x8x7 block cantilever under gravity within 2% of the converged continuum") {
     if (skip_without_ccx()) return;
-    for (double nu : {0.0, 0.35, 0.49})
-        check_block_cantilever(nu);
+    for (const BlockReference& r : kBlockReferences)
+        check_block_cantilever(r);
 }
 
 // The reference's convergence (issue 40 asks converged references): the block solved at 1, 2 and
@@ -402,8 +430,9 @@ TEST_CASE("calculix: the 20x8x7 block's reference on three meshes" * doctest::sk
         for (int k : meshes) {
             const BlockTip t = calculix_block_tip(k, nu);
             std::printf(
-                "  %d per edge: %6d nodes, ccx %6.1f s CPU: centres %.5f mm (engine %+.2f %%), "
-                "node mean %.5f mm\n",
+                "  %d per edge: %5d nodes on the tip plane, ccx %6.1f s CPU: centres %.6f mm "
+                "(engine %+.2f %%), "
+                "node mean %.6f mm\n",
                 k, t.node_count, t.cpu_s, t.centres * 1e3, 100.0 * (ours / t.centres - 1.0),
                 t.nodes * 1e3);
             std::fflush(stdout);
