@@ -42,6 +42,14 @@ constexpr int kSides = 2;  // 0: a voxel's - half-link on an axis, 1: its + half
 // (14-19 % stiff); x = 0 lets every link's halves part (a 2-voxel stalk 36 % soft at nu 0.49).
 constexpr double kSameMaterialSplitPenalty = 10.0;
 
+// The clamp's lateral constraint on a held voxel inside a held face (its octants with both
+// lateral half-links), in units of lambda_2 (build_poisson_params): fitted on the fitting half of
+// the continuum suite (tests/engine/test_engine_continuum.cpp: rms of the worst of tip and com
+// 5.61 % without it, 5.41 % at 1, flat within 0.05 points from 0.75 to 1.5; docs/physics.md,
+// "The clamp's lateral constraint"). Without it the uniform 20x8x7 cantilever was 2.6 % soft at
+// nu 0.49 against the mesh-converged continuum (0.7 % with it).
+constexpr double kHeldFaceConstraint = 1.0;
+
 // 1 / theta_0: the volumetric stress saturates at lambda theta_0 (poisson.hpp). 0.2, the largest
 // that keeps the envelope's framed and banded bodies stable at cte A = 0.6 (0.3 lets the banded
 // block squeeze a link to L / 10); at 0.1 the saturation already softened the paper's own 14.5 %
@@ -118,14 +126,40 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
             pp.has_minus[a][v] = d.minus[a][v] != kNoLink ? 1.0f : 0.0f;
         }
         const Material& mat = spec.materials[d.voxel_material[v] - 1];
-        // A held voxel is the clamp plane through its centre: it adds no lateral constraint of
-        // its own (a continuum clamp's constraint fades within a fraction of a voxel; measured
-        // against CalculiX in docs/physics.md), so its octants are uncoupled (nu = 0).
-        const double e = mat.youngs_modulus_pa, nu = d.voxel_fixed[v] ? 0.0 : mat.poisson_ratio;
+        // A held voxel is the clamp plane through its centre. Its octants are uncoupled (nu = 0)
+        // except where the clamp holds the material laterally on both axes across its link, an
+        // octant whose two lateral half-links both exist (inside a held face: they join held
+        // voxels and do not stretch): there the half-link to the free body takes
+        // kHeldFaceConstraint times lambda_2, so its modulus is E + lambda_2 = E (1 + nu / (1 -
+        // nu^2)), bounded as nu -> 1/2 (the continuum clamp's constraint fades within a fraction
+        // of a voxel; the full lambda_3 made the 20x8x7 block 8 % stiff at nu 0.49). A held line
+        // or a lone held voxel can contract across itself and stays uncoupled.
+        const bool held = d.voxel_fixed[v] != 0;
+        const double e = mat.youngs_modulus_pa, nu = held ? 0.0 : mat.poisson_ratio;
         pp.shear[v] = static_cast<float>(e / (2.0 * (1.0 + nu)));
         pp.lambda1[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 1));
         pp.lambda2[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 2));
         pp.lambda3[v] = static_cast<float>(octant_volumetric_modulus(e, nu, 3));
+        // Only where every neighbour of the held voxel, held or free, is of its own E and nu.
+        // Across a mixed link the soft half's lateral restraint is mixed_link_stiffening's
+        // (link_confinement.hpp, fitted on soft/stiff slices whose held layer is soft), which the
+        // constraint doubled (the 10x slices at nu 0.49 went from -0.1 to -6.0 %); and a held
+        // layer one voxel thick between layers of another material is not held across by them
+        // (stiff layers holding 100x softer ones at nu 0.35, -4.7 %, went to -6.1 %).
+        bool held_by_own_material = held && mat.poisson_ratio > 0.0;
+        for (int a = 0; a < 3 && held_by_own_material; ++a)
+            for (int p : {d.minus[a][v], d.plus[a][v]}) {
+                if (p == kNoLink || p == v) continue;
+                const Material& other = spec.materials[d.voxel_material[p] - 1];
+                if (other.youngs_modulus_pa != mat.youngs_modulus_pa ||
+                    other.poisson_ratio != mat.poisson_ratio)
+                    held_by_own_material = false;
+            }
+        const double held_lambda3 =
+            held_by_own_material
+                ? kHeldFaceConstraint * octant_volumetric_modulus(e, mat.poisson_ratio, 2)
+                : 0.0;
+        if (held_lambda3 > 0.0) pp.lambda3[v] = static_cast<float>(held_lambda3);
         pp.active = pp.active || nu != 0.0;
         // Auxetic voxels (lambda < 0) keep the half-link strains: the centre estimates below are
         // not contractions, and only lambda >= 0 keeps their energy positive for any estimate.
@@ -134,8 +168,10 @@ std::array<std::vector<double>, 3> build_poisson_params(Model::Data& d) {
             const int b = (a + 1) % 3, c = (a + 2) % 3;
             double sum = 0.0;
             for (float hb : {pp.has_minus[b][v], pp.has_plus[b][v]})
-                for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]})
-                    sum += poisson_moduli(e, nu, 1 + static_cast<int>(hb) + static_cast<int>(hc)).m;
+                for (float hc : {pp.has_minus[c][v], pp.has_plus[c][v]}) {
+                    const int k = 1 + static_cast<int>(hb) + static_cast<int>(hc);
+                    sum += poisson_moduli(e, nu, k).m + (k == 3 ? held_lambda3 : 0.0);
+                }
             octant_modulus[a][v] = 0.25 * sum / e;  // relative to E
         }
     }

@@ -40,6 +40,12 @@
 // Every body with nu > 0 therefore runs the mixed kernels (docs/physics.md, "The relaxed split on
 // every link").
 //
+// A held voxel is the clamp plane through its centre; its octants are uncoupled (nu = 0) except
+// inside a held face of its own material, where an octant with both lateral half-links takes
+// lambda_2 (poisson.cpp, kHeldFaceConstraint): the clamp holds the material laterally, which a
+// uniform cantilever feels as a stiffer root near nu = 0.5 (docs/physics.md, "The clamp's lateral
+// constraint").
+//
 // At large strains (an active region held by a passive frame or the clamp, contracted to
 // 0.4 L while its lateral links are held near L) the linear volumetric stress would push a link
 // past zero length; it saturates instead, lambda theta / sqrt(1 + (theta / theta_0)^2) with

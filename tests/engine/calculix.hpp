@@ -44,7 +44,11 @@ struct Mesh {
     double grading = 0.0;
     double voxel = 0.0;
     std::array<double, 3> offset{};
+    //! Where set, the element corners along that axis (n[axis] + 1 coordinates, ascending),
+    //! in place of the uniform (or graded) spacing: a mesh refined unevenly along one axis.
+    std::array<std::vector<double>, 3> corners{};
     double corner(int axis, int i) const {
+        if (!corners[axis].empty()) return corners[axis][static_cast<std::size_t>(i / 2)];
         const double u = size[axis] * i / (2.0 * n[axis]);
         if (grading <= 0.0) return u;
         const double shifted = u - offset[axis];
@@ -55,7 +59,7 @@ struct Mesh {
         return offset[axis] + (cell + g) * voxel;
     }
     double coordinate(int axis, int i) const {
-        if (grading <= 0.0 || i % 2 == 0) return corner(axis, i);
+        if ((grading <= 0.0 && corners[axis].empty()) || i % 2 == 0) return corner(axis, i);
         return 0.5 * (corner(axis, i - 1) + corner(axis, i + 1));
     }
     std::array<double, 3> position(int i, int j, int k) const {

@@ -12,12 +12,15 @@
 #include <cstdint>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calculix.hpp"
 #include "engine_test_bodies.hpp"
+#include "evo/verify/ccx_run.hpp"
 
 using namespace bhm::engine;
 using namespace bhm::engine::test;
@@ -164,6 +167,101 @@ double engine_cantilever(int nx, int ny, int nz, double nu) {
     return engine_cantilever(solid_box(nx, ny, nz, mat));
 }
 
+// ---- the 20x8x7 block's reference on refined meshes ------------------------------------------
+
+// The block's tip in the continuum, sampled as the engine samples it: the mean vertical
+// displacement at the 56 voxel centres of the last layer (x = 19 L), on a mesh of k C3D20R
+// elements per voxel edge: along x from the clamp plane (the held voxels' centres) to the last
+// centres, then the last half voxel in ceil(k / 2) elements; along y and z, k per voxel edge. The
+// centres' displacements are interpolated on the plane's element faces (8-node serendipity; for
+// even k a centre is a corner node). `nodes`: the mean over that plane's nodes, the sampling
+// calculix_cantilever uses (there on a mesh of 2 per edge along x, 2 L x 1.75 L across).
+struct BlockTip {
+    double centres = 0.0, nodes = 0.0;  // m, downward
+    int node_count = 0;
+    double cpu_s = 0.0;
+};
+
+BlockTip calculix_block_tip(int k, double nu) {
+    constexpr int nx = 20, ny = 8, nz = 7;
+    ccx::Mesh m;
+    m.size = {(nx - 0.5) * kL, ny * kL, nz * kL};
+    std::vector<double> xs;
+    for (int i = 0; i <= (nx - 1) * k; ++i)
+        xs.push_back(i * kL / k);
+    const int end_elements = (k + 1) / 2;
+    for (int i = 1; i <= end_elements; ++i)
+        xs.push_back((nx - 1) * kL + 0.5 * kL * i / end_elements);
+    m.n = {static_cast<int>(xs.size()) - 1, ny * k, nz * k};
+    m.corners[0] = xs;
+    std::ostringstream inp;
+    ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}}, [](int, int, int) { return 0; });
+    ccx::write_set(inp, "NSET", "CLAMP",
+                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
+    const double probe_x = (nx - 1) * kL;
+    const auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
+           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    const auto result = bhm::evo::run_ccx("block" + std::to_string(k), inp.str());
+    const auto& u = result.blocks.back();
+    BlockTip out;
+    out.nodes = -ccx::mean(u, probe, 2);
+    out.node_count = static_cast<int>(u.size());
+    out.cpu_s = result.cpu_s;
+    // The element face holding a voxel centre and the centre's local coordinate on it.
+    auto locate = [&](int voxel, int elements) {
+        const double s = (voxel + 0.5) * k;
+        const int e = std::min(static_cast<int>(std::floor(s)), elements - 1);
+        return std::pair{e, 2.0 * (s - e) - 1.0};
+    };
+    const int i_probe = 2 * (nx - 1) * k;
+    double sum = 0.0;
+    for (int vz = 0; vz < nz; ++vz)
+        for (int vy = 0; vy < ny; ++vy) {
+            const auto [ey, xi] = locate(vy, m.n[1]);
+            const auto [ez, eta] = locate(vz, m.n[2]);
+            double w = 0.0;
+            for (int a = 0; a <= 2; ++a)
+                for (int b = 0; b <= 2; ++b) {
+                    if (a == 1 && b == 1) continue;  // no face-centre node on a C3D20 face
+                    const double xa = a - 1.0, eb = b - 1.0;
+                    const double n = a != 1 && b != 1 ? 0.25 * (1 + xi * xa) * (1 + eta * eb) *
+                                                            (xi * xa + eta * eb - 1)
+                                     : a == 1 ? 0.5 * (1 - xi * xi) * (1 + eta * eb)
+                                              : 0.5 * (1 + xi * xa) * (1 - eta * eta);
+                    w += n * u.at(m.node_id(i_probe, 2 * ey + a, 2 * ez + b))[2];
+                }
+            sum += w;
+        }
+    out.centres = -sum / (ny * nz);
+    return out;
+}
+
+// Richardson's limit of f(h) = f0 + C h^p through three meshes (h ascending refinement), the
+// order p solved by bisection in [0.1, 8]; nullopt where the three are not monotone.
+struct Extrapolation {
+    double limit = 0.0, order = 0.0;
+};
+std::optional<Extrapolation> richardson(const double h[3], const double f[3]) {
+    if ((f[0] - f[1]) * (f[1] - f[2]) <= 0.0) return std::nullopt;
+    const double ratio = (f[0] - f[1]) / (f[1] - f[2]);
+    auto gap = [&](double p) {
+        return (std::pow(h[0], p) - std::pow(h[1], p)) / (std::pow(h[1], p) - std::pow(h[2], p)) -
+               ratio;
+    };
+    double lo = 0.1, hi = 8.0;
+    if (gap(lo) * gap(hi) > 0.0) return std::nullopt;
+    for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (gap(lo) * gap(mid) <= 0.0 ? hi : lo) = mid;
+    }
+    const double p = 0.5 * (lo + hi);
+    const double c = (f[1] - f[2]) / (std::pow(h[1], p) - std::pow(h[2], p));
+    return Extrapolation{f[2] - c * std::pow(h[2], p), p};
+}
+
 // ---- layered cantilever under gravity -------------------------------------------------------
 
 // A 20x8x7 cantilever whose layers z = 1 and z = 5 are 10x stiffer: every vertical column ends
@@ -259,20 +357,98 @@ TEST_CASE("calculix: a bar in tension, axial strain within 2% and lateral within
     }
 }
 
-static void check_block_cantilever(double nu) {
-    const double fem = calculix_cantilever(20, 8, 7, nu);
-    const double ours = engine_cantilever(20, 8, 7, nu);
-    MESSAGE("nu " << nu << ": tip " << ours << " m, CalculiX " << fem << " m, error "
-                  << 100.0 * (ours / fem - 1.0) << " %");
-    CHECK(relative_error(ours, fem) < 0.05);
+// The block's reference: CalculiX at 1, 2 and 3 elements per voxel edge (calculix_block_tip: the
+// last layer's voxel centres, as the engine samples), Richardson-extrapolated; solved
+// 2026-12-07 by "calculix: the 20x8x7 block's reference on three meshes" (3 per edge: 29,736
+// C3D20R elements, about 10 minutes of ccx CPU and 7 GB each). Each limit's own uncertainty is
+// its distance from the finest mesh (0.01 / 0.10 / 0.43 % at nu 0 / 0.35 / 0.49; at nu 0 the three
+// meshes agree to the stored digits and the fitted order, 0.3, is their rounding). The one-element
+// tip is solved live (seconds) and must equal the stored one: it ties the stored series to this
+// deck.
+struct BlockReference {
+    double nu;
+    double tip[3];  // m, downward, 1 to 3 elements per voxel edge
+};
+constexpr BlockReference kBlockReferences[] = {
+    {0.0, {0.92726e-3, 0.92728e-3, 0.92729e-3}},
+    {0.35, {0.91543e-3, 0.91766e-3, 0.91830e-3}},
+    {0.49, {0.87686e-3, 0.88373e-3, 0.88588e-3}},
+};
+
+// Where the three meshes agree to the stored digits (nu 0: no lateral constraint to resolve at
+// the clamp's edges) and show no order, the finest mesh is the reference.
+static void check_block_cantilever(const BlockReference& r) {
+    const double h[3] = {1.0, 0.5, 1.0 / 3.0};
+    const auto limit = richardson(h, r.tip);
+    const double reference = limit ? limit->limit : r.tip[2];
+    CHECK(std::fabs(calculix_block_tip(1, r.nu).centres / r.tip[0] - 1.0) < 1e-4);
+    const double ours = engine_cantilever(20, 8, 7, r.nu);
+    MESSAGE("nu " << r.nu << ": tip " << ours << " m, CalculiX extrapolated " << reference
+                  << " m (+-" << 100.0 * std::fabs(reference / r.tip[limit ? 2 : 0] - 1.0)
+                  << " %, order " << (limit ? limit->order : 0.0) << "), error "
+                  << 100.0 * (ours / reference - 1.0) << " %");
+    CHECK(relative_error(ours, reference) < 0.02);
 }
 
 // nu = 0.49 is the case that used to lock (17 % too stiff with half-link lateral strains):
-// engine/internal/poisson.hpp samples the volumetric strain at the voxel centres.
-TEST_CASE("calculix: the 20x8x7 block cantilever under gravity within 5%, nu 0, 0.35, 0.49") {
+// engine/internal/poisson.hpp samples the volumetric strain at the voxel centres. Issue 40's
+// target is 2 % at every nu against the converged continuum: +2.6 % at nu 0.49 until the clamp
+// held a held face laterally (poisson.cpp, kHeldFaceConstraint; docs/physics.md).
+TEST_CASE(
+    "calculix: the 20x8x7 block cantilever under gravity within 2% of the converged continuum") {
     if (skip_without_ccx()) return;
-    for (double nu : {0.0, 0.35, 0.49})
-        check_block_cantilever(nu);
+    for (const BlockReference& r : kBlockReferences)
+        check_block_cantilever(r);
+}
+
+// The reference's convergence (issue 40 asks converged references): the block solved at 1, 2 and
+// 3 elements per voxel edge (BHM_BLOCK_MESHES, e.g. "1,2" for a quick look; 3 per edge is
+// about 30,000 elements) and Richardson-extrapolated; BHM_BLOCK_NU picks the Poisson ratios.
+// Prints each mesh's tip (voxel centres and node mean), the order, the limit with its own
+// uncertainty (its distance from the finest mesh) and the engine against it.
+TEST_CASE("calculix: the 20x8x7 block's reference on three meshes" * doctest::skip()) {
+    if (skip_without_ccx()) return;
+    std::vector<int> meshes{1, 2, 3};
+    std::vector<double> nus{0.0, 0.35, 0.49};
+    auto parse = [](const char* text, auto& into) {
+        if (text == nullptr) return;
+        into.clear();
+        std::istringstream in(text);
+        std::string item;
+        while (std::getline(in, item, ','))
+            into.push_back(static_cast<std::decay_t<decltype(into[0])>>(std::stod(item)));
+    };
+    parse(std::getenv("BHM_BLOCK_MESHES"), meshes);
+    parse(std::getenv("BHM_BLOCK_NU"), nus);
+    for (double nu : nus) {
+        const double ours = engine_cantilever(20, 8, 7, nu);
+        const double coarse = calculix_cantilever(20, 8, 7, nu);
+        std::printf(
+            "nu %.2f: engine %.5f mm; the ctest mesh (node mean) %.5f mm, engine %+.2f %%\n", nu,
+            ours * 1e3, coarse * 1e3, 100.0 * (ours / coarse - 1.0));
+        std::vector<double> h, f;
+        for (int k : meshes) {
+            const BlockTip t = calculix_block_tip(k, nu);
+            std::printf(
+                "  %d per edge: %5d nodes on the tip plane, ccx %6.1f s CPU: centres %.6f mm "
+                "(engine %+.2f %%), "
+                "node mean %.6f mm\n",
+                k, t.node_count, t.cpu_s, t.centres * 1e3, 100.0 * (ours / t.centres - 1.0),
+                t.nodes * 1e3);
+            std::fflush(stdout);
+            h.push_back(1.0 / k);
+            f.push_back(t.centres);
+        }
+        if (f.size() != 3) continue;
+        const auto limit = richardson(h.data(), f.data());
+        if (!limit) {
+            std::printf("  not monotone: no limit\n");
+            continue;
+        }
+        std::printf("  limit %.5f mm (order %.2f, +-%.2f %%): engine %+.2f %%\n",
+                    limit->limit * 1e3, limit->order, 100.0 * std::fabs(limit->limit / f[2] - 1.0),
+                    100.0 * (ours / limit->limit - 1.0));
+    }
 }
 
 // Was 13.8 % too stiff at nu = 0.35 and 25.9 % at 0.49 (issue 24): a mixed link's strain was split

@@ -313,7 +313,7 @@ TEST_CASE("continuum: the halves are disjoint and every case has its references"
 
 // Before issue 40 (db6afc9) these were +12..+100 % (the engine sagged far more than the FEM).
 // The issue's target is 5 % at any nu; what holds today is the envelope below, which the test
-// keeps: worst 8.6 / 14.1 / 9.9 % at nu 0 / 0.35 / 0.49 (docs/physics.md lists the open cases:
+// keeps: worst 8.6 / 13.8 / 9.9 % at nu 0 / 0.35 / 0.49 (docs/physics.md lists the open cases:
 // 1x2 necks at nu 0.35 soft, held patches at nu 0 stiff; 2-voxel-tall stalks at nu 0.49 were
 // -19 % with the equal split of links of one material).
 TEST_CASE("continuum: held-out attachments and necks against CalculiX at nu 0, 0.35, 0.49") {
