@@ -1,6 +1,7 @@
 #include "evo/verify/verify_body.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -150,13 +151,17 @@ std::vector<FemLoad> loads_of(const engine::BodySpec& spec) {
     return loads;
 }
 
-// One ccx solve of every load, reporting its progress; throws on a missing block.
+// One ccx solve of every load, reporting its progress; throws on a missing block. `cost`, when
+// given, hears what the solve cost (a failed solve leaves it alone).
 CcxResult run_fem(const FemModel& model, const engine::BodySpec& spec,
                   const std::vector<FemLoad>& loads, bool nlgeom, const VerifyOptions& options,
-                  FemMaterialLaw law = FemMaterialLaw::Hooke) {
+                  FemMaterialLaw law = FemMaterialLaw::Hooke, FemSolveCost* cost = nullptr) {
     const VerifyControl& control = options.control;
     const int load_count = static_cast<int>(loads.size());
+    const auto deck_start = std::chrono::steady_clock::now();
     const std::string deck = ccx_deck(model, spec, loads, nlgeom, law);
+    const double deck_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - deck_start).count();
     control.report({VerifyPhase::Solving, 1, load_count});
     CcxWatch watch;
     watch.cancel = control.cancel;
@@ -168,6 +173,15 @@ CcxResult run_fem(const FemModel& model, const engine::BodySpec& spec,
         throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
                                  " displacement blocks for " + std::to_string(loads.size()) +
                                  " load steps");
+    if (cost) {
+        cost->nlgeom = nlgeom;
+        cost->law = nlgeom ? fem_material_law_name(law) : "";
+        cost->elements = static_cast<int>(model.elements.size());
+        cost->nodes = model.node_count();
+        cost->deck_s = deck_s;
+        cost->cpu_s = fem.cpu_s;
+        cost->wall_s = fem.wall_s;
+    }
     return fem;
 }
 
@@ -384,11 +398,18 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     out.fem_elements = static_cast<int>(out.fem_model.elements.size());
     const std::vector<FemLoad> loads = loads_of(spec);
     const int load_count = static_cast<int>(loads.size());
-    auto solve = [&](bool nlgeom, FemMaterialLaw law) {
-        CcxResult fem = run_fem(out.fem_model, spec, loads, nlgeom, options, law);
-        out.fem_cpu_s += fem.cpu_s;  // both solves when the automatic choice needs the second
+    // Every solve's cost is counted (fem_cpu_s: all of them) and recorded (fem_solves).
+    auto counted = [&](const FemModel& model, bool nlgeom, FemMaterialLaw law) {
+        FemSolveCost cost;
+        cost.coarse = &model != &out.fem_model;
+        CcxResult fem = run_fem(model, spec, loads, nlgeom, options, law, &cost);
+        out.fem_cpu_s += fem.cpu_s;
         out.fem_wall_s += fem.wall_s;
+        out.fem_solves.push_back(std::move(cost));
         return fem;
+    };
+    auto solve = [&](bool nlgeom, FemMaterialLaw law) {
+        return counted(out.fem_model, nlgeom, law);
     };
     // The nonlinear part from a coarse mesh needs this mesh's linear answer first.
     const bool from_coarse = options.nonlinear_from_coarse_mesh && out.mesh.mesh.subdivision > 1;
@@ -417,10 +438,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         auto second_law = [&](const std::vector<NodalDisplacements>& fine_linear,
                               const FemModel& coarse, const CcxResult& coarse_linear) {
             try {
-                const CcxResult nh =
-                    run_fem(coarse, spec, loads, true, options, FemMaterialLaw::NeoHookean);
-                out.fem_cpu_s += nh.cpu_s;
-                out.fem_wall_s += nh.wall_s;
+                const CcxResult nh = counted(coarse, true, FemMaterialLaw::NeoHookean);
                 for (std::size_t k = 0; k < fine_linear.size(); ++k)
                     neo_hookean.push_back(with_coarse_nonlinearity(out.fem_model, fine_linear[k],
                                                                    coarse, coarse_linear.blocks[k],
@@ -433,10 +451,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             }
         };
         auto coarse_linear_of = [&](const FemModel& coarse) {
-            const CcxResult linear = run_fem(coarse, spec, loads, false, options);
-            out.fem_cpu_s += linear.cpu_s;
-            out.fem_wall_s += linear.wall_s;
-            return linear;
+            return counted(coarse, false, FemMaterialLaw::Hooke);
         };
         auto in_full = [&]() {
             const CcxResult fine_linear =
@@ -456,7 +471,7 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         const CcxResult linear = coarse_linear_of(coarse);
         CcxResult nonlinear;
         try {
-            nonlinear = run_fem(coarse, spec, loads, true, options);
+            nonlinear = counted(coarse, true, FemMaterialLaw::Hooke);
         } catch (const std::runtime_error& e) {
             // One element per voxel edge can fail where the mesh converges (a 1x1 neck under
             // large rotations, measured: "too many cutbacks"): solve in full instead.
@@ -468,8 +483,6 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             in_full();
             return;
         }
-        out.fem_cpu_s += nonlinear.cpu_s;
-        out.fem_wall_s += nonlinear.wall_s;
         second_law(fem.blocks, coarse, linear);
         for (std::size_t k = 0; k < fem.blocks.size(); ++k)
             fem.blocks[k] = with_coarse_nonlinearity(out.fem_model, fem.blocks[k], coarse,

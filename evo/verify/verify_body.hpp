@@ -82,6 +82,18 @@ struct LoadComparison {
 
 enum class VerifyStatus { Compared, OutOfReach };
 
+//! One CalculiX solve of a verification and its cost: what a check's time is made of (the
+//! evolution loop's overhead, docs/verify.md "Overhead, measured"). Timings only: never part of
+//! a run's state.
+struct FemSolveCost {
+    bool coarse = false;  //!< on the coarse mesh (one element per voxel edge), else the mesh's own
+    bool nlgeom = false;
+    std::string law;  //!< the continuum law of a nonlinear solve, "" for a linear one
+    int elements = 0, nodes = 0;
+    double deck_s = 0.0;  //!< building the input deck's text (wall)
+    double cpu_s = 0.0, wall_s = 0.0;
+};
+
 //! What a muscle body's verdict adds: which loads it was judged at, and why no -A.
 inline constexpr const char* kMuscleLoadsNote =
     " at rest and peak activation (a muscle only contracts: no -A)";
@@ -107,6 +119,7 @@ struct BodyVerification {
     //! largest over +A and -A): what ranks bodies in a run's top K.
     double fem_score = 0.0, engine_score = 0.0;
     double fem_cpu_s = 0.0, fem_wall_s = 0.0, engine_cpu_s = 0.0;
+    std::vector<FemSolveCost> fem_solves;  //!< each successful ccx solve, in order
     int fem_nodes = 0, fem_elements = 0;
     FemMeshChoice mesh;           //!< the mesh solved, and why (automatic or the caller's)
     bool nlgeom = false;          //!< the FEM's steps were geometrically nonlinear

@@ -123,6 +123,17 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                 {"elements", v.fem_elements},
                 {"cpu_s", v.fem_cpu_s},
                 {"wall_s", v.fem_wall_s}};
+    nlohmann::json solves = nlohmann::json::array();
+    for (const FemSolveCost& c : v.fem_solves)
+        solves.push_back({{"mesh", c.coarse ? "coarse" : "mesh"},
+                          {"nlgeom", c.nlgeom},
+                          {"law", c.law.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.law)},
+                          {"elements", c.elements},
+                          {"nodes", c.nodes},
+                          {"deck_s", c.deck_s},
+                          {"cpu_s", c.cpu_s},
+                          {"wall_s", c.wall_s}});
+    j["fem"]["solves"] = solves;
     if (!v.material_law.empty()) {
         j["fem"]["material_law"] = v.material_law;
         if (!v.other_law.empty()) {
