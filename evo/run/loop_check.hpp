@@ -100,8 +100,10 @@ std::vector<LoopCheckRequest> pick_for_check(const std::vector<Individual>& popu
                                              const LoopVerifySettings& settings,
                                              const LoopCheckIndex& done);
 
-//! The factor penalise applies: the FEM's static score over ours, at most 1; 1 where the body
-//! was not compared or ours barely moves.
+//! The factor penalise applies: the FEM's static score over ours, at most 1, where the body
+//! differs; 1 where it agrees (within the check's tolerance the two answers are not told apart:
+//! the ratio there is the FEM's own uncertainty, and depends on which continuum law was solved,
+//! docs/verify.md), was not compared, or ours barely moves.
 double penalty_factor(const LoopCheck& check);
 
 //! Applies the policy to a member whose result and validity were just set under `rules` (from
