@@ -44,6 +44,9 @@ struct LoopCheck {
     //! The experiment's measure taken statically at +-A in both models (verify_body's scores).
     double fem_score = 0.0, engine_score = 0.0;
     std::string verdict;  //!< the one-line verdict, or why it could not be compared
+    //! The continuum laws solved for nonlinear steps, the one judged against first (a second
+    //! law is solved only where the first does not agree); empty for linear steps.
+    std::vector<std::string> laws;
     bool compared() const {
         return outcome == LoopCheckOutcome::Agrees || outcome == LoopCheckOutcome::Differs;
     }

@@ -326,6 +326,11 @@ std::string BodyVerification::verdict() const {
 
 std::string BodyVerification::laws() const {
     if (status == VerifyStatus::OutOfReach || material_law.empty() || other_law.empty()) return "";
+    if (other_law_skipped)
+        return "judged against the " + material_law + " continuum, solved first, which agrees; " +
+               other_law +
+               " not solved (the nearer of two laws cannot turn an agreement into a "
+               "difference)";
     std::string line = "judged against the " + material_law + " continuum, the nearer of two laws";
     if (other_law_worst) line += " (" + other_law + ": " + percent(*other_law_worst) + ")";
     if (law_spread && decision.decided_by)
@@ -464,10 +469,37 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     out.nlgeom = options.geometry == FemGeometry::Nonlinear;
     const bool solved_nonlinear = out.nlgeom && !from_coarse;
     CcxResult fem = solve(solved_nonlinear, FemMaterialLaw::Hooke);
+    // Our engine's answers at the loads (filled below, before any nonlinear solve), and every
+    // load's comparison of an FEM answer with them.
+    const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
+    out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
+    std::vector<QuasiStaticResult> answers;
+    auto compare_all = [&](const std::vector<NodalDisplacements>& blocks) {
+        std::vector<LoadComparison> all;
+        for (std::size_t k = 0; k < loads.size(); ++k) {
+            LoadComparison c = compare_load(spec, g, out.fem_model, blocks[k],
+                                            answers[k].displacement_m, loads[k]);
+            c.engine_shape = answers[k].shape;
+            c.fem_shape = fem_voxel_shape(out.fem_model, blocks[k], answers[k].rest_position_m);
+            all.push_back(std::move(c));
+        }
+        return all;
+    };
+    // Whether one law's answer alone agrees: then the other law need not be solved where
+    // options.second_law_only_where_first_differs, since the verdict is the nearer law's and the
+    // nearer of two cannot turn an agreement into a difference.
+    const bool lazy_second_law = options.second_law_only_where_first_differs;
+    auto agrees_alone = [&](const std::vector<NodalDisplacements>& blocks) {
+        const VerdictDecision d =
+            decide_verdict(compare_all(blocks), out.measure, options.tolerance, options.floors);
+        return d.decided_by.has_value() && d.agrees;
+    };
     // The nonlinear answers under each continuum law (ccx_deck.hpp): solved on this mesh, or its
     // linear one plus the coarse mesh's nonlinear part. The Neo-Hookean answer is empty where
-    // its solve failed (geometry_reason says why); the Hooke one is `fem`.
+    // its solve failed or was not needed (geometry_reason says why); the Saint Venant-Kirchhoff
+    // one is `fem`, unless it was not needed (hooke_skipped: `fem` is then the linear answer).
     std::vector<NodalDisplacements> neo_hookean;
+    bool neo_hookean_tried = false, hooke_skipped = false, neo_hookean_skipped = false;
     auto solve_nonlinear = [&]() {
         const double turned = std::max(out.engine_rotation_deg, out.engine_bend_deg);
         if (from_coarse && turned >= options.coarse_nonlinearity_below_deg) {
@@ -485,6 +517,8 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         // Where it fails, the first law alone, and the reason says so.
         auto second_law = [&](const std::vector<NodalDisplacements>& fine_linear,
                               const FemModel& coarse, const CcxResult& coarse_linear) {
+            if (neo_hookean_tried) return;  // solved first (options.first_law)
+            neo_hookean_tried = true;
             try {
                 const CcxResult nh = counted(coarse, true, FemMaterialLaw::NeoHookean);
                 for (std::size_t k = 0; k < fine_linear.size(); ++k)
@@ -498,6 +532,19 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                                        "), Saint Venant-Kirchhoff alone";
             }
         };
+        // The Neo-Hookean law after Saint Venant-Kirchhoff's answer `fem`: not solved where that
+        // agrees alone and the second law is solved only where the first differs.
+        auto skip_neo_hookean = [&]() {
+            neo_hookean_skipped = true;
+            out.geometry_reason += "; Neo-Hookean not solved, as Saint Venant-Kirchhoff agrees";
+        };
+        auto then_second_law = [&](const std::vector<NodalDisplacements>& fine_linear,
+                                   const FemModel& coarse, const CcxResult& coarse_linear) {
+            if (!neo_hookean_tried && lazy_second_law && agrees_alone(fem.blocks))
+                skip_neo_hookean();
+            else
+                second_law(fine_linear, coarse, coarse_linear);
+        };
         auto coarse_linear_of = [&](const FemModel& coarse) {
             return counted(coarse, false, FemMaterialLaw::Hooke);
         };
@@ -505,8 +552,12 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             const CcxResult fine_linear =
                 solved_nonlinear ? solve(false, FemMaterialLaw::Hooke) : fem;
             if (!solved_nonlinear) fem = solve(true, FemMaterialLaw::Hooke);
-            const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
-            second_law(fine_linear.blocks, coarse, coarse_linear_of(coarse));
+            if (!neo_hookean_tried && lazy_second_law && agrees_alone(fem.blocks)) {
+                skip_neo_hookean();
+            } else if (!neo_hookean_tried) {
+                const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
+                second_law(fine_linear.blocks, coarse, coarse_linear_of(coarse));
+            }
             if (!neo_hookean.empty())
                 out.geometry_reason +=
                     "; the Neo-Hookean answer's nonlinear part from 1 element per voxel edge";
@@ -517,6 +568,20 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         }
         const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
         const CcxResult linear = coarse_linear_of(coarse);
+        // The Neo-Hookean law first (the evolution loop's choice): Saint Venant-Kirchhoff is then
+        // solved only where the Neo-Hookean answer does not agree alone, or has none.
+        if (lazy_second_law && options.first_law == FemMaterialLaw::NeoHookean) {
+            second_law(fem.blocks, coarse, linear);
+            if (!neo_hookean.empty() && agrees_alone(neo_hookean)) {
+                hooke_skipped = true;
+                out.nlgeom_from_coarse_mesh = true;
+                out.geometry_reason += "; its nonlinear part from " +
+                                       fem_element_name(out.mesh.mesh.element) +
+                                       ", 1 per voxel edge, added to this mesh's linear answer; "
+                                       "Saint Venant-Kirchhoff not solved, as Neo-Hookean agrees";
+                return;
+            }
+        }
         CcxResult nonlinear;
         try {
             nonlinear = counted(coarse, true, FemMaterialLaw::Hooke);
@@ -531,21 +596,19 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             in_full();
             return;
         }
-        second_law(fem.blocks, coarse, linear);
+        const std::vector<NodalDisplacements> fine_linear = fem.blocks;
         for (std::size_t k = 0; k < fem.blocks.size(); ++k)
             fem.blocks[k] = with_coarse_nonlinearity(out.fem_model, fem.blocks[k], coarse,
                                                      linear.blocks[k], nonlinear.blocks[k]);
+        then_second_law(fine_linear, coarse, linear);
         out.nlgeom_from_coarse_mesh = true;
         out.geometry_reason += "; its nonlinear part from " +
                                fem_element_name(out.mesh.mesh.element) +
                                ", 1 per voxel edge, added to this mesh's linear answer";
     };
 
-    const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
-    out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
     QuasiStaticOptions engine_options = options.engine;
     if (!engine_options.cancel) engine_options.cancel = control.cancel;
-    std::vector<QuasiStaticResult> answers;
     std::string turned_at, bent_at;
     for (std::size_t k = 0; k < loads.size(); ++k) {
         control.report({VerifyPhase::Engine, static_cast<int>(k) + 1, load_count});
@@ -606,23 +669,25 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     }
     // Each law's comparison; the verdict is the nearer law's (docs/verify.md, "Two continuum
     // laws"), the other's and the laws' own spread reported beside it.
-    auto compare_all = [&](const std::vector<NodalDisplacements>& blocks) {
-        std::vector<LoadComparison> all;
-        for (std::size_t k = 0; k < loads.size(); ++k) {
-            LoadComparison c = compare_load(spec, g, out.fem_model, blocks[k],
-                                            answers[k].displacement_m, loads[k]);
-            c.engine_shape = answers[k].shape;
-            c.fem_shape = fem_voxel_shape(out.fem_model, blocks[k], answers[k].rest_position_m);
-            all.push_back(std::move(c));
-        }
-        return all;
-    };
-    out.fem_displacements = fem.blocks;
-    out.loads = compare_all(fem.blocks);
     control.report({VerifyPhase::Comparing, 0, load_count});
-    out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
-    out.material_law = out.nlgeom ? fem_material_law_name(FemMaterialLaw::Hooke) : "";
-    if (!neo_hookean.empty()) {
+    if (hooke_skipped) {  // the Neo-Hookean answer agrees alone
+        out.fem_displacements = neo_hookean;
+        out.loads = compare_all(neo_hookean);
+        out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+        out.material_law = fem_material_law_name(FemMaterialLaw::NeoHookean);
+        out.other_law = fem_material_law_name(FemMaterialLaw::Hooke);
+        out.other_law_skipped = true;
+    } else {
+        out.fem_displacements = fem.blocks;
+        out.loads = compare_all(fem.blocks);
+        out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+        out.material_law = out.nlgeom ? fem_material_law_name(FemMaterialLaw::Hooke) : "";
+    }
+    if (neo_hookean_skipped) {  // the Saint Venant-Kirchhoff answer agrees alone
+        out.other_law = fem_material_law_name(FemMaterialLaw::NeoHookean);
+        out.other_law_skipped = true;
+    }
+    if (!neo_hookean.empty() && !hooke_skipped) {
         std::vector<LoadComparison> nh = compare_all(neo_hookean);
         VerdictDecision nh_decision =
             decide_verdict(nh, out.measure, options.tolerance, options.floors);

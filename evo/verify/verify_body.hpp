@@ -11,6 +11,7 @@
 
 #include "engine/body_spec.hpp"
 #include "evo/experiment/experiment.hpp"
+#include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/fem_mesh_choice.hpp"
 #include "evo/verify/fem_model.hpp"
@@ -43,6 +44,15 @@ struct VerifyOptions {
     //! ... while our engine turns no voxel and bends no more than this; beyond, the correction
     //! drifts (docs/verify.md, "Linear or nonlinear") and the steps are solved in full.
     double coarse_nonlinearity_below_deg = 30.0;
+    //! Nonlinear steps: the second continuum law solved only where the first law's answer does
+    //! not agree alone (the verdict is the nearer law's, and the nearer of two cannot turn an
+    //! agreement into a difference; what is lost is the other law's figure and the laws' spread):
+    //! the evolution loop's checks; bhm verify solves both.
+    bool second_law_only_where_first_differs = false;
+    //! ... and the law solved first on the coarse mesh (where the steps are solved in full on the
+    //! mesh, Saint Venant-Kirchhoff is, and is first): the loop's, Neo-Hookean, the law our
+    //! engine has been nearer wherever both were solved (docs/verify.md, "Two continuum laws").
+    FemMaterialLaw first_law = FemMaterialLaw::Hooke;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     MeasureFloors floors;       //!< under these a measure is reported, never judged
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)
@@ -132,6 +142,9 @@ struct BodyVerification {
     //! verdict's measure (the reference's uncertainty from its unknown large-strain law).
     std::string material_law, other_law;
     std::optional<double> other_law_worst, law_spread;
+    //! The other law was not solved, as the first one's answer agrees alone
+    //! (VerifyOptions::second_law_only_where_first_differs).
+    bool other_law_skipped = false;
     double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
     double engine_bend_deg = 0.0;      //!< ... and largest bend angle
     FemModel fem_model;

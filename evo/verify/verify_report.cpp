@@ -137,7 +137,8 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
     if (!v.material_law.empty()) {
         j["fem"]["material_law"] = v.material_law;
         if (!v.other_law.empty()) {
-            j["fem"]["other_law"] = {{"law", v.other_law}, {"worst", nullptr}};
+            j["fem"]["other_law"] = {
+                {"law", v.other_law}, {"worst", nullptr}, {"solved", !v.other_law_skipped}};
             if (v.other_law_worst) j["fem"]["other_law"]["worst"] = *v.other_law_worst;
             j["fem"]["law_spread"] = v.law_spread ? nlohmann::json(*v.law_spread) : nullptr;
         }
