@@ -53,7 +53,7 @@ std::vector<LoopCheckRequest> pick_for_check(const std::vector<Individual>& popu
 }
 
 double penalty_factor(const LoopCheck& check) {
-    if (!check.compared() || !(check.engine_score > 0.0)) return 1.0;
+    if (check.outcome != LoopCheckOutcome::Differs || !(check.engine_score > 0.0)) return 1.0;
     return std::clamp(check.fem_score / check.engine_score, 0.0, 1.0);
 }
 

@@ -44,6 +44,9 @@ struct LoopCheck {
     //! The experiment's measure taken statically at +-A in both models (verify_body's scores).
     double fem_score = 0.0, engine_score = 0.0;
     std::string verdict;  //!< the one-line verdict, or why it could not be compared
+    //! The continuum laws solved for nonlinear steps, the one judged against first (a second
+    //! law is solved only where the first does not agree); empty for linear steps.
+    std::vector<std::string> laws;
     bool compared() const {
         return outcome == LoopCheckOutcome::Agrees || outcome == LoopCheckOutcome::Differs;
     }
@@ -100,8 +103,10 @@ std::vector<LoopCheckRequest> pick_for_check(const std::vector<Individual>& popu
                                              const LoopVerifySettings& settings,
                                              const LoopCheckIndex& done);
 
-//! The factor penalise applies: the FEM's static score over ours, at most 1; 1 where the body
-//! was not compared or ours barely moves.
+//! The factor penalise applies: the FEM's static score over ours, at most 1, where the body
+//! differs; 1 where it agrees (within the check's tolerance the two answers are not told apart:
+//! the ratio there is the FEM's own uncertainty, and depends on which continuum law was solved,
+//! docs/verify.md), was not compared, or ours barely moves.
 double penalty_factor(const LoopCheck& check);
 
 //! Applies the policy to a member whose result and validity were just set under `rules` (from

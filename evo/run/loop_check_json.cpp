@@ -40,7 +40,8 @@ nlohmann::json loop_check_to_json(const LoopCheck& c) {
             {"worst", c.worst},
             {"fem_score", c.fem_score},
             {"engine_score", c.engine_score},
-            {"verdict", c.verdict}};
+            {"verdict", c.verdict},
+            {"laws", c.laws}};
 }
 
 LoopCheck loop_check_from_json(const nlohmann::json& j, const std::string& path) {
@@ -54,6 +55,14 @@ LoopCheck loop_check_from_json(const nlohmann::json& j, const std::string& path)
     c.fem_score = f.number("fem_score");
     c.engine_score = f.number("engine_score");
     c.verdict = f.string("verdict");
+    if (f.has("laws")) {  // absent before the loop solved its laws one at a time
+        const auto& laws = f.array("laws");
+        for (std::size_t i = 0; i < laws.size(); ++i) {
+            if (!laws[i].is_string())
+                f.fail("laws", "item " + std::to_string(i) + " is not a string");
+            c.laws.push_back(laws[i].get<std::string>());
+        }
+    }
     return c;
 }
 

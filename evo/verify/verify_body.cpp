@@ -1,6 +1,7 @@
 #include "evo/verify/verify_body.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -150,24 +151,85 @@ std::vector<FemLoad> loads_of(const engine::BodySpec& spec) {
     return loads;
 }
 
-// One ccx solve of every load, reporting its progress; throws on a missing block.
+// Whether the loads are rest, +A and -A (not a muscle body's rest and peak).
+bool symmetric_loads(const std::vector<FemLoad>& loads) {
+    return loads.size() == 3 && loads[0].temperature_c == 0.0 &&
+           loads[2].temperature_c == -loads[1].temperature_c;
+}
+
+// One ccx solve of every load, reporting its progress; throws on a missing block. `cost`, when
+// given, hears what the solve cost (a failed solve leaves it alone).
+//
+// Two shortcuts where the loads are rest, +A and -A (docs/verify.md, "Overhead, measured"):
+// - linear steps: only rest and +A are solved, and -A is 2 rest - (+A). Each linear step costs
+//   ccx a factorisation of the same stiffness, and the answer is linear in the temperature, so
+//   this is the same answer (measured within ccx's printed 7 digits) for two thirds of the cost;
+// - nonlinear steps: -A is solved in a run of its own from the undeformed body, not as a step
+//   from +A. ccx's steps follow one another, so -A was reached across a swing of 2 A, which took
+//   it more Newton iterations than the whole way from rest (measured on a 238-voxel champion's
+//   coarse mesh: 22 against 9 under Neo-Hookean, 10 against 5 under Saint Venant-Kirchhoff).
+//   The equilibrium is the same (a hyperelastic body's answer does not depend on its path; the
+//   two differ by 1e-5 of the largest displacement, ccx's Newton tolerance).
 CcxResult run_fem(const FemModel& model, const engine::BodySpec& spec,
                   const std::vector<FemLoad>& loads, bool nlgeom, const VerifyOptions& options,
-                  FemMaterialLaw law = FemMaterialLaw::Hooke) {
+                  FemMaterialLaw law = FemMaterialLaw::Hooke, FemSolveCost* cost = nullptr) {
     const VerifyControl& control = options.control;
     const int load_count = static_cast<int>(loads.size());
-    const std::string deck = ccx_deck(model, spec, loads, nlgeom, law);
-    control.report({VerifyPhase::Solving, 1, load_count});
-    CcxWatch watch;
-    watch.cancel = control.cancel;
-    watch.steps_done = [&](int done) {
-        control.report({VerifyPhase::Solving, std::min(done + 1, load_count), load_count});
+    const bool symmetric = symmetric_loads(loads);
+    double deck_s = 0.0;
+    CcxResult fem;
+    // One ccx run of loads [first, last) (`first` > 0: steps from the undeformed body again).
+    auto run = [&](std::size_t first, std::size_t last) {
+        const std::vector<FemLoad> part(loads.begin() + static_cast<std::ptrdiff_t>(first),
+                                        loads.begin() + static_cast<std::ptrdiff_t>(last));
+        const auto deck_start = std::chrono::steady_clock::now();
+        const std::string deck = ccx_deck(model, spec, part, nlgeom, law);
+        deck_s +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - deck_start).count();
+        control.report({VerifyPhase::Solving, static_cast<int>(first) + 1, load_count});
+        CcxWatch watch;
+        watch.cancel = control.cancel;
+        watch.steps_done = [&](int done) {
+            control.report({VerifyPhase::Solving,
+                            std::min(static_cast<int>(first) + done + 1, load_count), load_count});
+        };
+        CcxResult part_result = run_ccx("body", deck, options.threads, options.keep_dir, watch);
+        if (part_result.blocks.size() != part.size())
+            throw std::runtime_error("ccx printed " + std::to_string(part_result.blocks.size()) +
+                                     " displacement blocks for " + std::to_string(part.size()) +
+                                     " load steps");
+        fem.cpu_s += part_result.cpu_s;
+        fem.wall_s += part_result.wall_s;
+        for (auto& b : part_result.blocks)
+            fem.blocks.push_back(std::move(b));
     };
-    CcxResult fem = run_ccx("body", deck, options.threads, options.keep_dir, watch);
-    if (fem.blocks.size() != loads.size())
-        throw std::runtime_error("ccx printed " + std::to_string(fem.blocks.size()) +
-                                 " displacement blocks for " + std::to_string(loads.size()) +
-                                 " load steps");
+    if (symmetric && !nlgeom) {
+        run(0, 2);
+        NodalDisplacements minus = fem.blocks[0];
+        for (auto& [id, u] : minus) {
+            const auto it = fem.blocks[1].find(id);
+            if (it == fem.blocks[1].end())
+                throw std::runtime_error("ccx printed no displacement for node " +
+                                         std::to_string(id) + " at +A");
+            for (int a = 0; a < 3; ++a)
+                u[a] = 2.0 * u[a] - it->second[a];
+        }
+        fem.blocks.push_back(std::move(minus));
+    } else if (symmetric) {
+        run(0, 2);
+        run(2, 3);
+    } else {
+        run(0, loads.size());
+    }
+    if (cost) {
+        cost->nlgeom = nlgeom;
+        cost->law = nlgeom ? fem_material_law_name(law) : "";
+        cost->elements = static_cast<int>(model.elements.size());
+        cost->nodes = model.node_count();
+        cost->deck_s = deck_s;
+        cost->cpu_s = fem.cpu_s;
+        cost->wall_s = fem.wall_s;
+    }
     return fem;
 }
 
@@ -264,6 +326,11 @@ std::string BodyVerification::verdict() const {
 
 std::string BodyVerification::laws() const {
     if (status == VerifyStatus::OutOfReach || material_law.empty() || other_law.empty()) return "";
+    if (other_law_skipped)
+        return "judged against the " + material_law + " continuum, solved first, which agrees; " +
+               other_law +
+               " not solved (the nearer of two laws cannot turn an agreement into a "
+               "difference)";
     std::string line = "judged against the " + material_law + " continuum, the nearer of two laws";
     if (other_law_worst) line += " (" + other_law + ": " + percent(*other_law_worst) + ")";
     if (law_spread && decision.decided_by)
@@ -384,21 +451,55 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     out.fem_elements = static_cast<int>(out.fem_model.elements.size());
     const std::vector<FemLoad> loads = loads_of(spec);
     const int load_count = static_cast<int>(loads.size());
-    auto solve = [&](bool nlgeom, FemMaterialLaw law) {
-        CcxResult fem = run_fem(out.fem_model, spec, loads, nlgeom, options, law);
-        out.fem_cpu_s += fem.cpu_s;  // both solves when the automatic choice needs the second
+    // Every solve's cost is counted (fem_cpu_s: all of them) and recorded (fem_solves).
+    auto counted = [&](const FemModel& model, bool nlgeom, FemMaterialLaw law) {
+        FemSolveCost cost;
+        cost.coarse = &model != &out.fem_model;
+        CcxResult fem = run_fem(model, spec, loads, nlgeom, options, law, &cost);
+        out.fem_cpu_s += fem.cpu_s;
         out.fem_wall_s += fem.wall_s;
+        out.fem_solves.push_back(std::move(cost));
         return fem;
+    };
+    auto solve = [&](bool nlgeom, FemMaterialLaw law) {
+        return counted(out.fem_model, nlgeom, law);
     };
     // The nonlinear part from a coarse mesh needs this mesh's linear answer first.
     const bool from_coarse = options.nonlinear_from_coarse_mesh && out.mesh.mesh.subdivision > 1;
     out.nlgeom = options.geometry == FemGeometry::Nonlinear;
     const bool solved_nonlinear = out.nlgeom && !from_coarse;
     CcxResult fem = solve(solved_nonlinear, FemMaterialLaw::Hooke);
+    // Our engine's answers at the loads (filled below, before any nonlinear solve), and every
+    // load's comparison of an FEM answer with them.
+    const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
+    out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
+    std::vector<QuasiStaticResult> answers;
+    auto compare_all = [&](const std::vector<NodalDisplacements>& blocks) {
+        std::vector<LoadComparison> all;
+        for (std::size_t k = 0; k < loads.size(); ++k) {
+            LoadComparison c = compare_load(spec, g, out.fem_model, blocks[k],
+                                            answers[k].displacement_m, loads[k]);
+            c.engine_shape = answers[k].shape;
+            c.fem_shape = fem_voxel_shape(out.fem_model, blocks[k], answers[k].rest_position_m);
+            all.push_back(std::move(c));
+        }
+        return all;
+    };
+    // Whether one law's answer alone agrees: then the other law need not be solved where
+    // options.second_law_only_where_first_differs, since the verdict is the nearer law's and the
+    // nearer of two cannot turn an agreement into a difference.
+    const bool lazy_second_law = options.second_law_only_where_first_differs;
+    auto agrees_alone = [&](const std::vector<NodalDisplacements>& blocks) {
+        const VerdictDecision d =
+            decide_verdict(compare_all(blocks), out.measure, options.tolerance, options.floors);
+        return d.decided_by.has_value() && d.agrees;
+    };
     // The nonlinear answers under each continuum law (ccx_deck.hpp): solved on this mesh, or its
     // linear one plus the coarse mesh's nonlinear part. The Neo-Hookean answer is empty where
-    // its solve failed (geometry_reason says why); the Hooke one is `fem`.
+    // its solve failed or was not needed (geometry_reason says why); the Saint Venant-Kirchhoff
+    // one is `fem`, unless it was not needed (hooke_skipped: `fem` is then the linear answer).
     std::vector<NodalDisplacements> neo_hookean;
+    bool neo_hookean_tried = false, hooke_skipped = false, neo_hookean_skipped = false;
     auto solve_nonlinear = [&]() {
         const double turned = std::max(out.engine_rotation_deg, out.engine_bend_deg);
         if (from_coarse && turned >= options.coarse_nonlinearity_below_deg) {
@@ -416,11 +517,10 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         // Where it fails, the first law alone, and the reason says so.
         auto second_law = [&](const std::vector<NodalDisplacements>& fine_linear,
                               const FemModel& coarse, const CcxResult& coarse_linear) {
+            if (neo_hookean_tried) return;  // solved first (options.first_law)
+            neo_hookean_tried = true;
             try {
-                const CcxResult nh =
-                    run_fem(coarse, spec, loads, true, options, FemMaterialLaw::NeoHookean);
-                out.fem_cpu_s += nh.cpu_s;
-                out.fem_wall_s += nh.wall_s;
+                const CcxResult nh = counted(coarse, true, FemMaterialLaw::NeoHookean);
                 for (std::size_t k = 0; k < fine_linear.size(); ++k)
                     neo_hookean.push_back(with_coarse_nonlinearity(out.fem_model, fine_linear[k],
                                                                    coarse, coarse_linear.blocks[k],
@@ -432,18 +532,32 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                                        "), Saint Venant-Kirchhoff alone";
             }
         };
+        // The Neo-Hookean law after Saint Venant-Kirchhoff's answer `fem`: not solved where that
+        // agrees alone and the second law is solved only where the first differs.
+        auto skip_neo_hookean = [&]() {
+            neo_hookean_skipped = true;
+            out.geometry_reason += "; Neo-Hookean not solved, as Saint Venant-Kirchhoff agrees";
+        };
+        auto then_second_law = [&](const std::vector<NodalDisplacements>& fine_linear,
+                                   const FemModel& coarse, const CcxResult& coarse_linear) {
+            if (!neo_hookean_tried && lazy_second_law && agrees_alone(fem.blocks))
+                skip_neo_hookean();
+            else
+                second_law(fine_linear, coarse, coarse_linear);
+        };
         auto coarse_linear_of = [&](const FemModel& coarse) {
-            const CcxResult linear = run_fem(coarse, spec, loads, false, options);
-            out.fem_cpu_s += linear.cpu_s;
-            out.fem_wall_s += linear.wall_s;
-            return linear;
+            return counted(coarse, false, FemMaterialLaw::Hooke);
         };
         auto in_full = [&]() {
             const CcxResult fine_linear =
                 solved_nonlinear ? solve(false, FemMaterialLaw::Hooke) : fem;
             if (!solved_nonlinear) fem = solve(true, FemMaterialLaw::Hooke);
-            const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
-            second_law(fine_linear.blocks, coarse, coarse_linear_of(coarse));
+            if (!neo_hookean_tried && lazy_second_law && agrees_alone(fem.blocks)) {
+                skip_neo_hookean();
+            } else if (!neo_hookean_tried) {
+                const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
+                second_law(fine_linear.blocks, coarse, coarse_linear_of(coarse));
+            }
             if (!neo_hookean.empty())
                 out.geometry_reason +=
                     "; the Neo-Hookean answer's nonlinear part from 1 element per voxel edge";
@@ -454,9 +568,23 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         }
         const FemModel coarse = build_fem_model(spec, coarse_mesh_of(out.mesh.mesh));
         const CcxResult linear = coarse_linear_of(coarse);
+        // The Neo-Hookean law first (the evolution loop's choice): Saint Venant-Kirchhoff is then
+        // solved only where the Neo-Hookean answer does not agree alone, or has none.
+        if (lazy_second_law && options.first_law == FemMaterialLaw::NeoHookean) {
+            second_law(fem.blocks, coarse, linear);
+            if (!neo_hookean.empty() && agrees_alone(neo_hookean)) {
+                hooke_skipped = true;
+                out.nlgeom_from_coarse_mesh = true;
+                out.geometry_reason += "; its nonlinear part from " +
+                                       fem_element_name(out.mesh.mesh.element) +
+                                       ", 1 per voxel edge, added to this mesh's linear answer; "
+                                       "Saint Venant-Kirchhoff not solved, as Neo-Hookean agrees";
+                return;
+            }
+        }
         CcxResult nonlinear;
         try {
-            nonlinear = run_fem(coarse, spec, loads, true, options);
+            nonlinear = counted(coarse, true, FemMaterialLaw::Hooke);
         } catch (const std::runtime_error& e) {
             // One element per voxel edge can fail where the mesh converges (a 1x1 neck under
             // large rotations, measured: "too many cutbacks"): solve in full instead.
@@ -468,23 +596,19 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
             in_full();
             return;
         }
-        out.fem_cpu_s += nonlinear.cpu_s;
-        out.fem_wall_s += nonlinear.wall_s;
-        second_law(fem.blocks, coarse, linear);
+        const std::vector<NodalDisplacements> fine_linear = fem.blocks;
         for (std::size_t k = 0; k < fem.blocks.size(); ++k)
             fem.blocks[k] = with_coarse_nonlinearity(out.fem_model, fem.blocks[k], coarse,
                                                      linear.blocks[k], nonlinear.blocks[k]);
+        then_second_law(fine_linear, coarse, linear);
         out.nlgeom_from_coarse_mesh = true;
         out.geometry_reason += "; its nonlinear part from " +
                                fem_element_name(out.mesh.mesh.element) +
                                ", 1 per voxel edge, added to this mesh's linear answer";
     };
 
-    const Geometry g = geometry_of(spec, out.fem_model.voxel_cells);
-    out.tip_cell = g.cells[static_cast<std::size_t>(g.tip)];
     QuasiStaticOptions engine_options = options.engine;
     if (!engine_options.cancel) engine_options.cancel = control.cancel;
-    std::vector<QuasiStaticResult> answers;
     std::string turned_at, bent_at;
     for (std::size_t k = 0; k < loads.size(); ++k) {
         control.report({VerifyPhase::Engine, static_cast<int>(k) + 1, load_count});
@@ -545,23 +669,25 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     }
     // Each law's comparison; the verdict is the nearer law's (docs/verify.md, "Two continuum
     // laws"), the other's and the laws' own spread reported beside it.
-    auto compare_all = [&](const std::vector<NodalDisplacements>& blocks) {
-        std::vector<LoadComparison> all;
-        for (std::size_t k = 0; k < loads.size(); ++k) {
-            LoadComparison c = compare_load(spec, g, out.fem_model, blocks[k],
-                                            answers[k].displacement_m, loads[k]);
-            c.engine_shape = answers[k].shape;
-            c.fem_shape = fem_voxel_shape(out.fem_model, blocks[k], answers[k].rest_position_m);
-            all.push_back(std::move(c));
-        }
-        return all;
-    };
-    out.fem_displacements = fem.blocks;
-    out.loads = compare_all(fem.blocks);
     control.report({VerifyPhase::Comparing, 0, load_count});
-    out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
-    out.material_law = out.nlgeom ? fem_material_law_name(FemMaterialLaw::Hooke) : "";
-    if (!neo_hookean.empty()) {
+    if (hooke_skipped) {  // the Neo-Hookean answer agrees alone
+        out.fem_displacements = neo_hookean;
+        out.loads = compare_all(neo_hookean);
+        out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+        out.material_law = fem_material_law_name(FemMaterialLaw::NeoHookean);
+        out.other_law = fem_material_law_name(FemMaterialLaw::Hooke);
+        out.other_law_skipped = true;
+    } else {
+        out.fem_displacements = fem.blocks;
+        out.loads = compare_all(fem.blocks);
+        out.decision = decide_verdict(out.loads, out.measure, options.tolerance, options.floors);
+        out.material_law = out.nlgeom ? fem_material_law_name(FemMaterialLaw::Hooke) : "";
+    }
+    if (neo_hookean_skipped) {  // the Saint Venant-Kirchhoff answer agrees alone
+        out.other_law = fem_material_law_name(FemMaterialLaw::NeoHookean);
+        out.other_law_skipped = true;
+    }
+    if (!neo_hookean.empty() && !hooke_skipped) {
         std::vector<LoadComparison> nh = compare_all(neo_hookean);
         VerdictDecision nh_decision =
             decide_verdict(nh, out.measure, options.tolerance, options.floors);

@@ -11,6 +11,7 @@
 
 #include "engine/body_spec.hpp"
 #include "evo/experiment/experiment.hpp"
+#include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/ccx_run.hpp"
 #include "evo/verify/fem_mesh_choice.hpp"
 #include "evo/verify/fem_model.hpp"
@@ -43,6 +44,15 @@ struct VerifyOptions {
     //! ... while our engine turns no voxel and bends no more than this; beyond, the correction
     //! drifts (docs/verify.md, "Linear or nonlinear") and the steps are solved in full.
     double coarse_nonlinearity_below_deg = 30.0;
+    //! Nonlinear steps: the second continuum law solved only where the first law's answer does
+    //! not agree alone (the verdict is the nearer law's, and the nearer of two cannot turn an
+    //! agreement into a difference; what is lost is the other law's figure and the laws' spread):
+    //! the evolution loop's checks; bhm verify solves both.
+    bool second_law_only_where_first_differs = false;
+    //! ... and the law solved first on the coarse mesh (where the steps are solved in full on the
+    //! mesh, Saint Venant-Kirchhoff is, and is first): the loop's, Neo-Hookean, the law our
+    //! engine has been nearer wherever both were solved (docs/verify.md, "Two continuum laws").
+    FemMaterialLaw first_law = FemMaterialLaw::Hooke;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     MeasureFloors floors;       //!< under these a measure is reported, never judged
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)
@@ -82,6 +92,18 @@ struct LoadComparison {
 
 enum class VerifyStatus { Compared, OutOfReach };
 
+//! One CalculiX solve of a verification and its cost: what a check's time is made of (the
+//! evolution loop's overhead, docs/verify.md "Overhead, measured"). Timings only: never part of
+//! a run's state.
+struct FemSolveCost {
+    bool coarse = false;  //!< on the coarse mesh (one element per voxel edge), else the mesh's own
+    bool nlgeom = false;
+    std::string law;  //!< the continuum law of a nonlinear solve, "" for a linear one
+    int elements = 0, nodes = 0;
+    double deck_s = 0.0;  //!< building the input deck's text (wall)
+    double cpu_s = 0.0, wall_s = 0.0;
+};
+
 //! What a muscle body's verdict adds: which loads it was judged at, and why no -A.
 inline constexpr const char* kMuscleLoadsNote =
     " at rest and peak activation (a muscle only contracts: no -A)";
@@ -107,6 +129,7 @@ struct BodyVerification {
     //! largest over +A and -A): what ranks bodies in a run's top K.
     double fem_score = 0.0, engine_score = 0.0;
     double fem_cpu_s = 0.0, fem_wall_s = 0.0, engine_cpu_s = 0.0;
+    std::vector<FemSolveCost> fem_solves;  //!< each successful ccx solve, in order
     int fem_nodes = 0, fem_elements = 0;
     FemMeshChoice mesh;           //!< the mesh solved, and why (automatic or the caller's)
     bool nlgeom = false;          //!< the FEM's steps were geometrically nonlinear
@@ -119,6 +142,9 @@ struct BodyVerification {
     //! verdict's measure (the reference's uncertainty from its unknown large-strain law).
     std::string material_law, other_law;
     std::optional<double> other_law_worst, law_spread;
+    //! The other law was not solved, as the first one's answer agrees alone
+    //! (VerifyOptions::second_law_only_where_first_differs).
+    bool other_law_skipped = false;
     double engine_rotation_deg = 0.0;  //!< our engine's largest voxel rotation over the loads
     double engine_bend_deg = 0.0;      //!< ... and largest bend angle
     FemModel fem_model;

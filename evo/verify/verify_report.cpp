@@ -123,10 +123,22 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
                 {"elements", v.fem_elements},
                 {"cpu_s", v.fem_cpu_s},
                 {"wall_s", v.fem_wall_s}};
+    nlohmann::json solves = nlohmann::json::array();
+    for (const FemSolveCost& c : v.fem_solves)
+        solves.push_back({{"mesh", c.coarse ? "coarse" : "mesh"},
+                          {"nlgeom", c.nlgeom},
+                          {"law", c.law.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.law)},
+                          {"elements", c.elements},
+                          {"nodes", c.nodes},
+                          {"deck_s", c.deck_s},
+                          {"cpu_s", c.cpu_s},
+                          {"wall_s", c.wall_s}});
+    j["fem"]["solves"] = solves;
     if (!v.material_law.empty()) {
         j["fem"]["material_law"] = v.material_law;
         if (!v.other_law.empty()) {
-            j["fem"]["other_law"] = {{"law", v.other_law}, {"worst", nullptr}};
+            j["fem"]["other_law"] = {
+                {"law", v.other_law}, {"worst", nullptr}, {"solved", !v.other_law_skipped}};
             if (v.other_law_worst) j["fem"]["other_law"]["worst"] = *v.other_law_worst;
             j["fem"]["law_spread"] = v.law_spread ? nlohmann::json(*v.law_spread) : nullptr;
         }

@@ -54,6 +54,8 @@ class FakeChecker : public ContinuumChecker {
         c.worst = odd ? 0.4 : 0.02;
         c.outcome = odd ? LoopCheckOutcome::Differs : LoopCheckOutcome::Agrees;
         c.verdict = odd ? "differs by 40.0 %" : "agrees within 2.0 %";
+        c.laws = odd ? std::vector<std::string>{"Neo-Hookean", "Saint Venant-Kirchhoff"}
+                     : std::vector<std::string>{"Neo-Hookean"};
         std::lock_guard lock(mutex);
         checked.push_back(body.id);
         return c;
@@ -155,6 +157,14 @@ TEST_CASE("loop checks: flag leaves a member alone, penalise scales its fitness 
     LoopCheck generous = c;
     generous.fem_score = 2.0;
     CHECK(penalty_factor(generous) == 1.0);
+    // A body that agrees within the tolerance keeps its fitness: the ratio there is the FEM's
+    // own uncertainty (and depends on the continuum law solved).
+    LoopCheck agrees = c;
+    agrees.outcome = LoopCheckOutcome::Agrees;
+    agrees.worst = 0.08;
+    agrees.fem_score = 0.93;
+    CHECK(penalty_factor(agrees) == 1.0);
+    CHECK(penalty_factor(c) == 0.75);
 
     rules.evolution.verify.policy = VerifyPolicy::Reject;
     Individual rejected = m;

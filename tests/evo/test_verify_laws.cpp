@@ -9,10 +9,13 @@
 
 #include "support/ccx_skip.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "evo/verify/ccx_deck.hpp"
+#include "evo/verify/ccx_run.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/verify_body.hpp"
 #include "verify_test_bodies.hpp"
@@ -89,4 +92,91 @@ TEST_CASE("verify laws: agree at small strain, part at large, and the verdict is
     CHECK(linear.material_law.empty());
     CHECK(linear.laws().empty());
     CHECK(!linear.law_spread);
+}
+
+TEST_CASE("verify laws: the loop's second law only where the first differs, the same verdict") {
+    if (skip_without_ccx()) return;
+    // The loop's check (continuum_checker.cpp): nonlinear part from the coarse mesh, Neo-Hookean
+    // first. Truth: the same verification with both laws solved. The nonlinear steps chosen by
+    // the paper's 14.5 % strain alone.
+    evo::VerifyOptions both;
+    both.mesh = evo::FemMeshOptions{evo::FemElement::C3D8I, 2};
+    both.nonlinear_from_coarse_mesh = true;
+    both.nlgeom_above_deg = 90.0;
+    both.coarse_nonlinearity_below_deg = 180.0;  // this bilayer turns further than the loop's 30
+    both.tolerance = 1e-4;                       // nothing agrees: the verdict is the nearer law's
+    const auto full = evo::verify_body(bilayer(14.47), evo::FitnessMeasure::ComFinal3d, both);
+    REQUIRE(full.nlgeom_from_coarse_mesh);
+    REQUIRE(full.other_law_worst.has_value());
+    const double nh_worst = full.material_law == "Neo-Hookean" ? full.worst : *full.other_law_worst;
+
+    evo::VerifyOptions lazy = both;
+    lazy.second_law_only_where_first_differs = true;
+    lazy.first_law = evo::FemMaterialLaw::NeoHookean;
+    // Differs under the first law: both are solved, and the verdict is the full one's.
+    const auto differs = evo::verify_body(bilayer(14.47), evo::FitnessMeasure::ComFinal3d, lazy);
+    CHECK_FALSE(differs.other_law_skipped);
+    CHECK(differs.material_law == full.material_law);
+    CHECK(std::fabs(differs.worst - full.worst) < 1e-12);
+    CHECK(differs.fem_solves.size() == full.fem_solves.size());
+
+    // Agrees under the first law (a tolerance above its difference): Saint Venant-Kirchhoff is
+    // not solved, the verdict agrees as the full one would, on the Neo-Hookean figure.
+    lazy.tolerance = nh_worst + 0.01;
+    const auto agrees = evo::verify_body(bilayer(14.47), evo::FitnessMeasure::ComFinal3d, lazy);
+    CHECK(agrees.agrees);
+    CHECK(agrees.other_law_skipped);
+    CHECK(agrees.material_law == "Neo-Hookean");
+    CHECK(agrees.other_law == "Saint Venant-Kirchhoff");
+    CHECK(!agrees.other_law_worst);
+    CHECK(!agrees.law_spread);
+    CHECK(std::fabs(agrees.worst - nh_worst) < 1e-12);
+    CHECK(agrees.fem_solves.size() + 1 == full.fem_solves.size());
+    for (const auto& solve : agrees.fem_solves)
+        CHECK(solve.law != "Saint Venant-Kirchhoff");
+    CHECK(agrees.laws().find("Saint Venant-Kirchhoff not solved") != std::string::npos);
+    CHECK(agrees.geometry_reason.find("Saint Venant-Kirchhoff not solved") != std::string::npos);
+}
+
+TEST_CASE(
+    "verify laws: -A from the linear superposition and from its own nonlinear run equals "
+    "ccx's -A solved as a step after +A") {
+    if (skip_without_ccx()) return;
+    // Truth: ccx solving the three loads as consecutive steps in one deck (what verify did).
+    const auto spec = bilayer(14.47);
+    const auto model = evo::build_fem_model(spec, {evo::FemElement::C3D8I, 1});
+    const std::vector<evo::FemLoad> loads = {{"rest", 0.0}, {"+A", 14.47}, {"-A", -14.47}};
+    // The largest difference at any node, over the largest displacement at +A.
+    auto largest_difference = [](const evo::NodalDisplacements& a, const evo::NodalDisplacements& b,
+                                 const evo::NodalDisplacements& scale) {
+        double difference = 0.0, largest = 0.0;
+        for (const auto& [id, u] : b) {
+            const auto& v = a.at(id);
+            for (int k = 0; k < 3; ++k) {
+                difference = std::max(difference, std::fabs(u[k] - v[k]));
+                largest = std::max(largest, std::fabs(scale.at(id)[k]));
+            }
+        }
+        return difference / largest;
+    };
+    for (const bool nlgeom : {false, true}) {
+        CAPTURE(nlgeom);
+        const auto v = evo::verify_body(
+            spec, evo::FitnessMeasure::ComFinal3d,
+            coarse_options(nlgeom ? evo::FemGeometry::Nonlinear : evo::FemGeometry::Linear));
+        REQUIRE(v.fem_displacements.size() == 3);
+        // The verdict's answer is the nearer law's: the deck of that law.
+        const auto law = v.material_law == "Neo-Hookean" ? evo::FemMaterialLaw::NeoHookean
+                                                         : evo::FemMaterialLaw::Hooke;
+        const auto direct = evo::run_ccx("body", evo::ccx_deck(model, spec, loads, nlgeom, law));
+        REQUIRE(direct.blocks.size() == 3);
+        // Linear: ccx prints 7 digits; nonlinear: its Newton tolerance (measured 1e-5).
+        const double within = nlgeom ? 1e-3 : 1e-5;
+        CHECK(largest_difference(v.fem_displacements[0], direct.blocks[0], direct.blocks[1]) <
+              within);
+        CHECK(largest_difference(v.fem_displacements[1], direct.blocks[1], direct.blocks[1]) <
+              within);
+        CHECK(largest_difference(v.fem_displacements[2], direct.blocks[2], direct.blocks[1]) <
+              within);
+    }
 }
