@@ -35,6 +35,7 @@
 #include "evo/verify/ccx_deck.hpp"
 #include "evo/verify/fem_model.hpp"
 #include "evo/verify/quasi_static.hpp"
+#include "richardson.hpp"
 #include "support/ccx_skip.hpp"
 
 using namespace bhm;
@@ -226,25 +227,13 @@ const SixthReference kSixthReferences[] = {
 #include "continuum_references_six.inc"
 };
 
-// Richardson's limit of f(h) = f0 + C h^p through h = 1/2, 1/4, 1/6 (the order p solved by
-// bisection); nullopt where the three are not monotone.
+// Richardson's limit through the meshes of h = 1/2, 1/4, 1/6 (richardson.hpp); nullopt where the
+// three are not monotone.
 std::optional<double> richardson_limit(double f2, double f4, double f6) {
-    const double h[3] = {0.5, 0.25, 1.0 / 6.0};
-    if ((f2 - f4) * (f4 - f6) <= 0.0) return std::nullopt;
-    const double ratio = (f2 - f4) / (f4 - f6);
-    auto gap = [&](double p) {
-        return (std::pow(h[0], p) - std::pow(h[1], p)) / (std::pow(h[1], p) - std::pow(h[2], p)) -
-               ratio;
-    };
-    double lo = 0.1, hi = 8.0;
-    if (gap(lo) * gap(hi) > 0.0) return std::nullopt;
-    for (int i = 0; i < 100; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (gap(lo) * gap(mid) <= 0.0 ? hi : lo) = mid;
-    }
-    const double p = 0.5 * (lo + hi);
-    const double c = (f4 - f6) / (std::pow(h[1], p) - std::pow(h[2], p));
-    return f6 - c * std::pow(h[2], p);
+    const double h[3] = {0.5, 0.25, 1.0 / 6.0}, f[3] = {f2, f4, f6};
+    const auto extrapolated = bhm::test::richardson(h, f);
+    if (!extrapolated) return std::nullopt;
+    return extrapolated->limit;
 }
 
 // Prints "case nu ours / CalculiX (uncertainty) difference" and returns the worst difference.
