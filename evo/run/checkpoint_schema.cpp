@@ -256,8 +256,10 @@ constexpr std::array kRunState = {
           "bodies picked for checking whose results land later", write_pending_checks,
           read_pending_checks},
     Field{"loop_checks", "array", 3, kChecking,
-          "every check applied so far (evo/run/loop_check_json.hpp)", write_loop_checks,
-          read_loop_checks},
+          "every check applied so far (evo/run/loop_check_json.hpp); each check's `laws`, the "
+          "continuum laws solved (the judged one first), is absent in checkpoints written before "
+          "it and then read as none",
+          write_loop_checks, read_loop_checks},
     Field{"champion", "object or null", 1, "", "the best individual so far", write_champion,
           read_champion, describe_champion},
 };
