@@ -197,9 +197,9 @@ struct NoveltySettings {
 };
 
 //! What a continuum check in the evolution loop does to a body it found out (docs/verify.md,
-//! "CalculiX in the evolution loop"): flag records and shows it; penalise scales its fitness by
-//! the FEM's static score over ours (at most 1); reject makes a body that differs beyond the
-//! tolerance invalid, so it can be neither selected nor champion.
+//! "CalculiX in the evolution loop"): flag records and shows it; penalise scales the fitness of a
+//! body that differs beyond the tolerance by the FEM's static score over ours (at most 1); reject
+//! makes such a body invalid, so it can be neither selected nor champion.
 enum class VerifyPolicy { Flag, Penalise, Reject };
 inline constexpr std::array<const char*, 3> kVerifyPolicyNames = {"flag", "penalise", "reject"};
 

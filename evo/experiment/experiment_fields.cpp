@@ -270,8 +270,9 @@ const ExperimentField kExperimentFields[] = {
      .help = "best distinct bodies checked each time (those checked before are skipped)",
      .range = {1, 1000}, BHM_INTEGER(evolution.verify.top_k)},
     {.path = "evolution.verify.policy", .label = "Verify policy", .unit = "",
-     .help = "flag: record and show; penalise: fitness times the FEM's static score over ours "
-             "(at most 1); reject: a body that differs beyond the tolerance is invalid",
+     .help = "flag: record and show; penalise: a body that differs has its fitness times the "
+             "FEM's static score over ours (at most 1); reject: a body that differs beyond the "
+             "tolerance is invalid",
      BHM_CHOICE(evolution.verify.policy, VerifyPolicy, kVerifyPolicyNames)},
     {.path = "evolution.verify.tolerance", .label = "Verify tolerance", .unit = "",
      .help = "largest relative difference from the FEM that still agrees; 0.1 = 10 %",
