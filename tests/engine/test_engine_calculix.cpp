@@ -125,6 +125,20 @@ BarStrains engine_bar(int n, double nu, double stress) {
 
 // ---- clamped block under gravity ------------------------------------------------------------
 
+// The deck's clamp (every node at x = 0), its own weight as the load and the PROBE set (the nodes
+// of the plane x = probe_x), whose displacements the step prints; returns the probe's nodes.
+std::vector<int> write_clamped_under_gravity(std::ostream& inp, const ccx::Mesh& m,
+                                             double probe_x) {
+    ccx::write_set(inp, "NSET", "CLAMP",
+                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
+    auto probe = ccx::nodes_where(
+        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
+    ccx::write_set(inp, "NSET", "PROBE", probe);
+    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
+           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    return probe;
+}
+
 // CalculiX: the continuum of an nx x ny x nz voxel cantilever, clamped at the fixed voxels'
 // centre plane (x = 0 here) and loaded by its own weight; mean vertical displacement of the
 // section through the last voxels' centres (x = (nx - 1) L).
@@ -136,14 +150,7 @@ double calculix_cantilever(int nx, int ny, int nz, const std::vector<ccx::Materi
     ccx::Mesh m{{length, ny * kL, nz * kL}, {2 * nx - 1, (ny + 1) / 2, z_elements}};
     std::ostringstream inp;
     ccx::write_mesh(inp, m, materials, [&](int, int, int ez) { return layer_material(ez); });
-    ccx::write_set(inp, "NSET", "CLAMP",
-                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
-    const double probe_x = (nx - 1) * kL;
-    const auto probe = ccx::nodes_where(
-        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
-    ccx::write_set(inp, "NSET", "PROBE", probe);
-    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
-           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    const auto probe = write_clamped_under_gravity(inp, m, (nx - 1) * kL);
     return -ccx::mean(ccx::solve(name, inp.str()), probe, 2);
 }
 
@@ -197,14 +204,7 @@ BlockTip calculix_block_tip(int k, double nu) {
     m.corners[0] = xs;
     std::ostringstream inp;
     ccx::write_mesh(inp, m, {{kE, nu, 1000.0, 0.0}}, [](int, int, int) { return 0; });
-    ccx::write_set(inp, "NSET", "CLAMP",
-                   ccx::nodes_where(m, [](double x, double, double) { return x < 1e-9; }));
-    const double probe_x = (nx - 1) * kL;
-    const auto probe = ccx::nodes_where(
-        m, [&](double x, double, double) { return std::fabs(x - probe_x) < 1e-9; });
-    ccx::write_set(inp, "NSET", "PROBE", probe);
-    inp << "*BOUNDARY\nCLAMP, 1, 3\n*STEP\n*STATIC\n*DLOAD\nEALL, GRAV, 9.81, 0., 0., -1.\n"
-           "*NODE PRINT, NSET=PROBE\nU\n*END STEP\n";
+    const auto probe = write_clamped_under_gravity(inp, m, (nx - 1) * kL);
     const auto result = bhm::evo::run_ccx("block" + std::to_string(k), inp.str());
     const auto& u = result.blocks.back();
     BlockTip out;
