@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "../engine/muscle_test_support.hpp"
 #include "app/gui/actions/studio_actions.hpp"
 #include "app/gui/session/body_analysis.hpp"
 #include "app/gui/session/replay_player.hpp"
@@ -160,11 +161,7 @@ TEST_CASE("studio analysis: a muscle voxel's actuation colour is its delayed act
     auto& muscle = e.materials[1].physics;
     muscle.cte_per_c = 0.0;
     muscle.actuation_model = engine::ActuationModel::Muscle;
-    muscle.muscle.contraction_strain = 0.1;
-    muscle.muscle.frequency_hz = 1.0;
-    muscle.muscle.pulse_width_s = 0.01;
-    muscle.muscle.rise_s = 0.02;
-    muscle.muscle.decay_s = 0.06;
+    muscle.muscle = engine::test::skeletal();
     auto r = rod_replay(3, 0.01, 0.1);
     r.voxel_material = {1, 2, 2};
     r.frames = {rod_frame(3, 0.01, 0.0, 0.0), rod_frame(3, 0.01, 0.1 + 0.26, 0.0)};
