@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Champions against the continuum (issue 40): how true the engine is where evolution goes.
 
-For each paper preset, N short runs (a shortened copy of the preset: population 10, G
-generations, 0.25 s settle + 1.25 s evaluation, seeds 1..N, or from --first-seed) each hand over their champion, and
-`bhm verify` compares that body, under the preset's own experiment, with CalculiX at rest and at
+For each paper preset, short runs (a shortened copy of the preset: population 10, G
+generations, 0.25 s settle + 1.25 s evaluation, seeds 1, 2, ..., or from --first-seed) each hand over their
+champion until N distinct bodies are in hand (short runs often hand over the same body, most often
+the full workspace; a body equal to an earlier seed's is named on stderr and not verified again; at
+most --max-seeds runs per preset), and `bhm verify` compares each body, under the preset's own experiment, with CalculiX at rest and at
 +A and -A (docs/verify.md). One row per champion: the verdict's measure, ours / CalculiX on the
 tip and the centre of mass (vertical component, signed: > 0 is ours moving more) at rest, +A
 and -A, the verdict's worst relative difference (its own measures, docs/verify.md), and for
@@ -18,6 +20,7 @@ so a report can be opened in the studio; the table goes to stdout and, with --cs
 """
 import argparse
 import csv
+import hashlib
 import json
 import os
 import subprocess
@@ -72,7 +75,9 @@ def main():
     p.add_argument("--build", default="build")
     p.add_argument("--per-preset", type=int, default=10)
     p.add_argument("--first-seed", type=int, default=1,
-                   help="seeds first-seed .. first-seed + per-preset - 1 (to add champions to a table)")
+                   help="the first seed (to add champions to a table)")
+    p.add_argument("--max-seeds", type=int, default=0,
+                   help="runs per preset at most, to find --per-preset distinct bodies (default 3 x per-preset)")
     p.add_argument("--generations", type=int, default=3)
     p.add_argument("--presets", default=",".join(PRESETS))
     p.add_argument("--work")
@@ -93,7 +98,11 @@ def main():
             sys.exit(f"champions_truth.py: --presets: no preset {preset_path}")
         short = os.path.join(work, preset + "-short.json")
         shortened(preset_path, short, a.generations)
-        for seed in range(a.first_seed, a.first_seed + a.per_preset):
+        seen = {}  # body file's digest -> the first seed that handed it over
+        max_seeds = a.max_seeds or 3 * a.per_preset
+        for seed in range(a.first_seed, a.first_seed + max_seeds):
+            if len(seen) >= a.per_preset:
+                break
             run_dir = os.path.join(work, f"{preset}-{seed}")
             body = run_dir + ".body.json"
             report_dir = run_dir + "-verify"
@@ -105,6 +114,14 @@ def main():
                     print(f"# {preset} seed {seed}: evolve or export failed (see {log})",
                           file=sys.stderr)
                     continue
+            # The body file holds only the body (size, layers, fibres, controller), so equal
+            # files are equal bodies.
+            digest = hashlib.sha256(open(body, "rb").read()).hexdigest()
+            if digest in seen:
+                print(f"# {preset} seed {seed}: the same body as seed {seen[digest]}, not verified again",
+                      file=sys.stderr)
+                continue
+            seen[digest] = seed
             code = run(["nice", bhm, "verify", preset_path, "--body", body, "--out", report_dir]
                        + extra, log)
             report_path = os.path.join(report_dir, "report.json")
@@ -152,7 +169,7 @@ def main():
         def spread(key):
             v = [float(r[key]) for r in mine if r[key] != ""]
             return f"{min(v):+.1f}..{max(v):+.1f} %" if v else "-"
-        print(f"# {preset}: {agrees}/{len(mine)} agree; tip at rest {spread('rest_tip_pct')}, "
+        print(f"# {preset}: {agrees}/{len(mine)} distinct bodies agree; tip at rest {spread('rest_tip_pct')}, "
               f"at +A {spread('plusA_tip_pct')}", file=sys.stderr)
     print(f"# runs and reports kept in {work}", file=sys.stderr)
 
