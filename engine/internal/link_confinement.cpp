@@ -31,7 +31,12 @@ void visit_lateral_cells(const Model::Data& d, int v, int axis, Visit visit) {
 
 }  // namespace
 
-int confining_neighbours(const Model::Data& d, int v, int axis, int side) {
+namespace {
+
+// Calls visit(neighbour cell) for each of v's lateral neighbours across `axis` that is a voxel and
+// has no link on `side` along `axis` (the confining neighbours).
+template <typename Visit>
+void visit_confining(const Model::Data& d, int v, int axis, int side, Visit visit) {
     const BodySpec& spec = d.spec;
     const int c = d.voxel_cell[v];
     const std::array<int, 3> xyz{c % spec.nx, (c / spec.nx) % spec.ny, c / (spec.nx * spec.ny)};
@@ -39,20 +44,59 @@ int confining_neighbours(const Model::Data& d, int v, int axis, int side) {
     const std::array<int, 3> stride{1, spec.nx, spec.nx * spec.ny};
     const int along = xyz[axis] + side;
     const bool in_lattice = along >= 0 && along < limit[axis];
-    int count = 0;
     visit_lateral_cells(d, v, axis, [&](int neighbour) {
         if (spec.material[neighbour] == 0) return;
-        if (!in_lattice || spec.material[neighbour + side * stride[axis]] == 0) ++count;
+        if (!in_lattice || spec.material[neighbour + side * stride[axis]] == 0) visit(neighbour);
     });
+}
+
+}  // namespace
+
+int confining_neighbours(const Model::Data& d, int v, int axis, int side) {
+    int count = 0;
+    visit_confining(d, v, axis, side, [&](int) { ++count; });
     return count;
+}
+
+bool held_confining_neighbour(const Model::Data& d, int v, int axis, int side) {
+    const std::vector<std::uint8_t>& fixed = d.spec.fixed;
+    bool held = false;
+    if (fixed.empty()) return false;
+    visit_confining(d, v, axis, side, [&](int neighbour) { held = held || fixed[neighbour] != 0; });
+    return held;
 }
 
 namespace {
 
-// 2 / (1 / kappa_a + 1 / kappa_b) with kappa = 1 + c n g, at most kConfinedLinkCap.
-double series_factor(int n_a, double g_a, int n_b, double g_b) {
-    const double kappa_a = 1.0 + kConfinedHalfStiffening * n_a * g_a;
-    const double kappa_b = 1.0 + kConfinedHalfStiffening * n_b * g_b;
+// The stiffening kappa of one confined half, per mode.
+struct ConfinedHalf {
+    double axial = 1.0, bending = 1.0;
+};
+
+// The half of the link inside voxel `w`, confined by n of its neighbours on `side`; `narrow` is
+// the link's other end. A neck end (neither end held, no held neighbour confining it) takes the
+// lateral stress form of the header, every other confined end kappa = 1 + c n g with g = 1 axial
+// and sqrt(M / E) in bending.
+ConfinedHalf confined_half(const Model::Data& d, int w, int narrow, int axis, int side, int n,
+                           double nu, bool free_link) {
+    if (n == 0) return {};
+    if (!free_link || held_confining_neighbour(d, w, axis, side))
+        return {1.0 + kConfinedHalfStiffening * n * 1.0,
+                1.0 + kConfinedHalfStiffening * n * std::sqrt(poisson_wave_factor(nu))};
+    int beside_narrow = 0;  // the narrow end's lateral neighbours: its faces that are not free
+    visit_lateral_cells(d, narrow, axis, [&](int c) { beside_narrow += d.spec.material[c] != 0; });
+    // n > 0 leaves the narrow end at least one free lateral face (a confining neighbour's cell
+    // beside `narrow` is empty).
+    const double shape_factor = 1.0 / (4 - beside_narrow);
+    // K0; an auxetic end (nu < 0, outside the fitted range) keeps K0 = 0, so kappa >= 1.
+    const double lateral_stress_ratio = std::max(0.0, nu) / (1.0 - nu);
+    return {1.0 + kConfinedHalfStiffening * n / poisson_wave_factor(nu),
+            1.0 + kNeckHalfStiffening * n *
+                      (1.0 + kNeckLateralStress * shape_factor * lateral_stress_ratio)};
+}
+
+// 2 / (1 / kappa_a + 1 / kappa_b), at most kConfinedLinkCap.
+double series_factor(double kappa_a, double kappa_b) {
     return std::min(kConfinedLinkCap, 2.0 / (1.0 / kappa_a + 1.0 / kappa_b));
 }
 
@@ -63,11 +107,11 @@ ConfinedLinkFactors confined_link_factors(const Model::Data& d, int v, int b, in
     const int n_v = confining_neighbours(d, v, axis, +1);
     const int n_b = confining_neighbours(d, b, axis, -1);
     if (n_v == 0 && n_b == 0) return {};
-    const double root_v = std::sqrt(poisson_wave_factor(nu_v));
-    const double root_b = std::sqrt(poisson_wave_factor(nu_b));
-    // The axial mode takes g = 1 (its normal stress carries the Poisson coupling's volumetric
-    // term, which the relaxed split no longer locks), bending and torsion sqrt(M / E).
-    return {series_factor(n_v, 1.0, n_b, 1.0), series_factor(n_v, root_v, n_b, root_b)};
+    const bool free_link = d.voxel_fixed[v] == 0 && d.voxel_fixed[b] == 0;
+    const ConfinedHalf half_v = confined_half(d, v, b, axis, +1, n_v, nu_v, free_link);
+    const ConfinedHalf half_b = confined_half(d, b, v, axis, -1, n_b, nu_b, free_link);
+    return {series_factor(half_v.axial, half_b.axial),
+            series_factor(half_v.bending, half_b.bending)};
 }
 
 int same_material_lateral_neighbours(const Model::Data& d, int v, int axis) {

@@ -25,16 +25,40 @@
 // continuum suite (tests/engine/test_engine_continuum.cpp), which also lists the held-out half
 // they are judged on. (With the equal split, which locked 2-voxel-tall sections at nu 0.49, the
 // axial exponent was -1/2; docs/physics.md, "The relaxed split on every link".)
+//
+// Necks (issue 40; docs/physics.md, "Necks: the lateral stress of a confined end"). Where neither
+// end of the link is held and no held voxel confines the half-link (a neck or a step inside the
+// free body, not a held patch, whose clamp has its own lateral constraint in poisson.cpp), the
+// confined half's stiffening follows the neck's lateral restraint. A short neck bonded to wide
+// blocks cannot contract freely at its ends: there the block holds it in uniaxial strain, whose
+// lateral stress is K0 = nu / (1 - nu) times the axial one (lambda / (lambda + 2 G)), and the
+// restraint reaches further into a neck the wider it is against its length (a bonded layer's shape
+// factor S = loaded area / free area; one voxel long, S = 1 / (free lateral faces of the narrow
+// voxel): 1/4 for a 1x1 neck, 1/3 for 1x2, 1/2 for 2x2). So the bending and torsion g is
+//   g = 1 + a S K0,
+// which rises steeply from nu 0 and stays bounded as nu -> 1/2 (the continuum's necks stiffen by
+// 5 % from nu 0 to 0.35 and 6 % more to 0.49, where sqrt(M / E) went 1 -> 1.27 -> 4.1), with c_neck
+// for c; the axial g is E / M: the normal stress of the confined half already carries the wide
+// voxel's laterally coupled octants (up to M), which the spread would otherwise count twice (it
+// locked 2-voxel-tall necks at nu 0.49). An auxetic end (nu < 0) takes K0 = 0 (not measured; a
+// negative K0 made kappa negative and 16 of the muscle envelope fuzz's 80 bodies diverge). c_neck,
+// a and the axial exponent were swept on the fitting necks (neck1, neck2x2) only; neck1x2 and
+// neck2x1 are held out.
 #include "engine/internal/model_data.hpp"
 
 namespace bhm::engine {
 
 inline constexpr double kConfinedHalfStiffening = 1.0 / 3.0;  //!< c above
 inline constexpr double kConfinedLinkCap = 2.0;               //!< at most this times the plain link
+inline constexpr double kNeckHalfStiffening = 1.4 / 3.0;      //!< c_neck above (bending, torsion)
+inline constexpr double kNeckLateralStress = 7.0;             //!< a above
 
 //! Lateral neighbours of voxel `v` (across `axis`) that have no link on `side` (+1 or -1) along
 //! `axis`: the material beside the half-link that the half-link's stress spreads into.
 int confining_neighbours(const Model::Data& d, int v, int axis, int side);
+
+//! Whether any of those confining neighbours is held (the half-link sits at the clamp).
+bool held_confining_neighbour(const Model::Data& d, int v, int axis, int side);
 
 struct ConfinedLinkFactors {
     double axial = 1.0;    //!< on the axial stiffness (and the link's normal stress)

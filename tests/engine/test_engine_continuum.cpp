@@ -286,6 +286,18 @@ double compare_actuated(const std::string& name, double nu) {
     return std::max(std::abs(tip), std::abs(com));
 }
 
+// "a,b,c" (BHM_CONTINUUM_CASES) as a list of case names.
+std::vector<std::string> case_list(const std::string& list) {
+    std::vector<std::string> names;
+    std::string rest = list;
+    while (!rest.empty()) {
+        const std::size_t comma = rest.find(',');
+        names.push_back(rest.substr(0, comma));
+        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+    }
+    return names;
+}
+
 }  // namespace
 
 TEST_CASE("continuum: the halves are disjoint and every case has its references") {
@@ -301,16 +313,18 @@ TEST_CASE("continuum: the halves are disjoint and every case has its references"
 }
 
 // Before issue 40 (db6afc9) these were +12..+100 % (the engine sagged far more than the FEM).
-// The issue's target is 5 % at any nu; what holds today is the envelope below, which the test
-// keeps: worst 8.6 / 13.8 / 9.9 % at nu 0 / 0.35 / 0.49 (docs/physics.md lists the open cases:
-// 1x2 necks at nu 0.35 soft, held patches at nu 0 stiff; 2-voxel-tall stalks at nu 0.49 were
-// -19 % with the equal split of links of one material).
+// The issue's target is 5 % at any nu. The held-out necks hold it since their ends take the
+// lateral stress form (link_confinement.hpp; worst 3.6 %, they were 6.3 / 13.8 / 8.2 % at nu 0 /
+// 0.35 / 0.49); the held patches keep the envelope below: worst 8.6 / 10.5 / 9.9 % at nu 0 / 0.35
+// / 0.49 (docs/physics.md lists the open cases: held patches at nu 0 stiff; 2-voxel-tall stalks
+// at nu 0.49 were -19 % with the equal split of links of one material).
 TEST_CASE("continuum: held-out attachments and necks against CalculiX at nu 0, 0.35, 0.49") {
     for (const std::string& name : kHeldOutHalf)
         for (double nu : {0.0, 0.35, 0.49}) {
             CAPTURE(name);
             CAPTURE(nu);
-            const double tolerance = nu == 0.0 ? 0.10 : nu < 0.4 ? 0.15 : 0.11;
+            const bool neck = name.starts_with("neck");
+            const double tolerance = neck ? 0.05 : nu == 0.0 ? 0.10 : 0.11;
             CHECK(compare(name, nu) <= tolerance);
         }
 }
@@ -334,6 +348,7 @@ TEST_CASE("continuum: every case of both halves" * doctest::skip()) {
     const bool actuated_body = std::getenv("BHM_CONTINUUM_ACTUATED_REST") != nullptr;
     std::vector<std::string> all = kFittingHalf;
     all.insert(all.end(), kHeldOutHalf.begin(), kHeldOutHalf.end());
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) all = case_list(list);
     double worst_fitting = 0.0, worst_held_out = 0.0;
     for (const std::string& name : all)
         for (double nu : {0.0, 0.35, 0.49}) {
@@ -378,21 +393,15 @@ TEST_CASE("continuum: third mesh of named cases" * doctest::skip()) {
 }
 
 // The actuated references (continuum_actuated_references.inc): what a 1 % expansion of the upper
-// half adds, at 2 and 4 elements per voxel edge, for the held-out half (the constants are fitted
-// at rest only, so every actuated case is held out). About 40 minutes on one core:
+// half adds, at 2 and 4 elements per voxel edge, for the held-out half and the full face, and
+// since 2026-12-07 the fitting necks (neck1, neck2x2: BHM_CONTINUUM_CASES=neck1,neck2x2, 35 minutes
+// on a shared core) (the constants are fitted at rest only, so every actuated case is held out).
+// About 40 minutes on one core:
 //   BHM_CONTINUUM_RESOLVE=1 build/bin/test_engine -tc="continuum: actuated references" --no-skip
 // BHM_CONTINUUM_CASES="full,p2z" solves those instead.
 TEST_CASE("continuum: actuated references" * doctest::skip()) {
     std::vector<std::string> names = kHeldOutHalf;
-    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) {
-        names.clear();
-        std::string rest = list;
-        while (!rest.empty()) {
-            const std::size_t comma = rest.find(',');
-            names.push_back(rest.substr(0, comma));
-            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
-        }
-    }
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) names = case_list(list);
     for (const std::string& name : names)
         for (double nu : {0.0, 0.35, 0.49}) {
             const auto s = continuum_body(name, nu, true);
@@ -428,13 +437,18 @@ TEST_CASE("continuum: held-out bodies under a small actuation" * doctest::skip()
 // +84 / +110 % (tip / com) too far at nu 0.49, a 2x1 neck +48 %, an L of 4 +39 %, a 2x2 patch at
 // the bottom edge -136 %. Nothing in the change is fitted, so every case here is held out. The
 // bounds are today's envelope (the issue's target is 5 %; the one-voxel-tall patches at the bottom
-// edge, p1e and p2ye, are 31-44 % off on the tip, half of it the lattice's resolution).
+// edge, p1e and p2ye, are 31-44 % off on the tip, half of it the lattice's resolution). The 2x1
+// neck holds 5 % since the neck ends' lateral stress form (it was 9.3 %), the 2x2 neck 6.5 % (was
+// 11.2 %); the 1x1 and 1x2 necks, one voxel tall under the active layer, whose error at nu 0 no
+// confinement moves (-22 / -23 % on the tip; the 1x2 neck -7..-9 % on the lattice refined
+// 2 x 2 x 2), are kept at their envelope.
 TEST_CASE("continuum: actuated narrow parts against CalculiX (active and passive halves split)") {
     struct Bound {
         const char* name;
         double worst;  // of tip and com, at nu 0.35 and 0.49
     };
-    for (const Bound& b : {Bound{"full", 0.10}, Bound{"neck2x1", 0.10}, Bound{"p4L", 0.10},
+    for (const Bound& b : {Bound{"full", 0.10}, Bound{"neck2x1", 0.05}, Bound{"neck2x2", 0.07},
+                           Bound{"neck1", 0.20}, Bound{"neck1x2", 0.20}, Bound{"p4L", 0.10},
                            Bound{"p8z", 0.15}, Bound{"p2z", 0.30}, Bound{"p4sqe", 0.35}})
         for (double nu : {0.35, 0.49}) {
             CAPTURE(b.name);
@@ -492,15 +506,7 @@ LayerProfile layer_profile(const engine::BodySpec& s, UOf u_of) {
 TEST_CASE("continuum: actuated layer profiles" * doctest::skip()) {
     if (bhm::test::skip_without_ccx()) return;
     std::vector<std::string> names = {"p1e", "p2z", "p4sqe", "neck1x2", "neck2x1", "full"};
-    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) {
-        names.clear();
-        std::string rest = list;
-        while (!rest.empty()) {
-            const std::size_t comma = rest.find(',');
-            names.push_back(rest.substr(0, comma));
-            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
-        }
-    }
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) names = case_list(list);
     const char* sub = std::getenv("BHM_CONTINUUM_SUBDIVISION");
     const int subdivision = sub != nullptr ? std::atoi(sub) : 2;
     for (const std::string& name : names)
@@ -597,15 +603,7 @@ Measures refined_actuation(const engine::BodySpec& coarse, bool hold_both) {
 //   build/bin/test_engine -tc="continuum: actuated on a refined lattice" --no-skip
 TEST_CASE("continuum: actuated on a refined lattice" * doctest::skip()) {
     std::vector<std::string> names = {"p1e", "p2z", "p4sqe", "neck1x2", "neck2x1", "full"};
-    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) {
-        names.clear();
-        std::string rest = list;
-        while (!rest.empty()) {
-            const std::size_t comma = rest.find(',');
-            names.push_back(rest.substr(0, comma));
-            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
-        }
-    }
+    if (const char* list = std::getenv("BHM_CONTINUUM_CASES")) names = case_list(list);
     for (const std::string& name : names)
         for (double nu : {0.0, 0.35, 0.49}) {
             const Reference* ref = nullptr;
