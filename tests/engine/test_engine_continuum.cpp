@@ -429,7 +429,7 @@ TEST_CASE("continuum: held-out bodies under a small actuation" * doctest::skip()
 // the bottom edge -136 %. Nothing in the change is fitted, so every case here is held out. The
 // bounds are today's envelope (the target is 5 %; the one-voxel-tall patches at the bottom
 // edge, p1e and p2ye, are 31-44 % off on the tip, most of it the lattice's resolution: on the same
-// engine 3 times finer, "continuum: refined by an odd factor", they are within 5.5-9.5 %).
+// engine 3 times finer, "continuum: refined by an odd factor", they are within 4.4-9.5 %).
 TEST_CASE("continuum: actuated narrow parts against CalculiX (active and passive halves split)") {
     struct Bound {
         const char* name;
