@@ -125,7 +125,15 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
     const double g = spec.environment.gravity_m_s2;
     for (const FemLoad& load : loads) {
         out << "** load " << load.name << "\n*STEP" << (nlgeom ? ", NLGEOM, INC=200" : "")
-            << "\n*STATIC\n" << (nlgeom ? "1., 1., 1e-5, 1.\n" : "");
+            << "\n*STATIC\n";
+        // Saint Venant-Kirchhoff's nonlinear +A step after rest starts at an eighth: whole, ccx
+        // abandoned it after 3-7 Newton iterations on every body measured and went on from a
+        // quarter; so a third fewer iterations (fitted on three bodies, held on a fourth).
+        // Neo-Hookean's did not gain on the held-out body, and the other steps converge whole
+        // (docs/verify.md, "loop40b"). The same equilibrium, within the Newton tolerance.
+        const bool from_an_eighth =
+            nlgeom && law == FemMaterialLaw::Hooke && load.name == "+A" && &load != &loads.front();
+        if (nlgeom) out << (from_an_eighth ? "0.125" : "1.") << ", 1., 1e-5, 1.\n";
         if (g != 0.0) {
             std::snprintf(line, sizeof line, "*DLOAD\nEALL, GRAV, %.10g, 0., 0., %d.\n",
                           std::fabs(g), g < 0.0 ? -1 : 1);
