@@ -286,7 +286,7 @@ double compare_actuated(const std::string& name, double nu) {
     return std::max(std::abs(tip), std::abs(com));
 }
 
-// "a,b,c" (BHM_CONTINUUM_CASES) as a list of case names.
+// "a,b,c" (BHM_CONTINUUM_CASES and the other list variables) as a list of its items.
 std::vector<std::string> case_list(const std::string& list) {
     std::vector<std::string> names;
     std::string rest = list;
@@ -376,11 +376,7 @@ TEST_CASE("continuum: every case of both halves" * doctest::skip()) {
 TEST_CASE("continuum: third mesh of named cases" * doctest::skip()) {
     const char* list = std::getenv("BHM_CONTINUUM_SIX");
     REQUIRE_MESSAGE(list != nullptr, "set BHM_CONTINUUM_SIX=name@nu,...");
-    std::string rest = list;
-    while (!rest.empty()) {
-        const std::size_t comma = rest.find(',');
-        const std::string item = rest.substr(0, comma);
-        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+    for (const std::string& item : case_list(list)) {
         const std::size_t at = item.find('@');
         REQUIRE(at != std::string::npos);
         const std::string name = item.substr(0, at);
@@ -770,14 +766,7 @@ Measures refined_odd_measures(const engine::BodySpec& coarse, int k, bool actuat
 TEST_CASE("continuum: refined by an odd factor" * doctest::skip()) {
     auto list = [](const char* variable, const char* fallback) {
         const char* value = std::getenv(variable);
-        std::string rest = value != nullptr ? value : fallback;
-        std::vector<std::string> items;
-        while (!rest.empty()) {
-            const std::size_t comma = rest.find(',');
-            items.push_back(rest.substr(0, comma));
-            rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
-        }
-        return items;
+        return case_list(value != nullptr ? value : fallback);
     };
     const std::vector<std::string> names = list("BHM_CONTINUUM_CASES", "p1e,p2ye,p1corner,p1c");
     const std::vector<std::string> nus = list("BHM_NUS", "0,0.35,0.49");
