@@ -228,7 +228,8 @@ const Reference& reference(const std::string& name, double nu) {
 }
 
 // The third mesh (6 elements per voxel edge) of the held-out cases furthest from the engine,
-// CalculiX 2.20, 2026-12-06 ("continuum: third mesh of named cases"; 6-10 minutes each).
+// CalculiX 2.20, 2026-12-06 ("continuum: third mesh of named cases"; 6-10 minutes each), and of
+// the fitting twisted case p1side at nu 0.35 (2026-12-07, 40 minutes on a shared core).
 struct SixthReference {
     const char* name;
     double nu;
@@ -407,8 +408,9 @@ TEST_CASE("continuum: third mesh of named cases" * doctest::skip()) {
 // The actuated references (continuum_actuated_references.inc): what a 1 % expansion of the upper
 // half adds, at 2 and 4 elements per voxel edge, for the held-out half and the full face, and
 // since 2026-12-07 the fitting necks (neck1, neck2x2: BHM_CONTINUUM_CASES=neck1,neck2x2, 35 minutes
-// on a shared core) (the constants are fitted at rest only, so every actuated case is held out).
-// About 40 minutes on one core:
+// on a shared core) and the twisted cases p1side and p2zside (BHM_CONTINUUM_CASES=p1side,p2zside,
+// 35 minutes on a shared core) (the constants are fitted at rest only, so every actuated case is
+// held out). About 40 minutes on one core:
 //   BHM_CONTINUUM_RESOLVE=1 build/bin/test_engine -tc="continuum: actuated references" --no-skip
 // BHM_CONTINUUM_CASES="full,p2z" solves those instead.
 TEST_CASE("continuum: actuated references" * doctest::skip()) {
