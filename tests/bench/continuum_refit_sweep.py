@@ -13,7 +13,7 @@ kappa = 1 + c n (M / E)^q (unset: the build's own constants). A value "=NAME" co
   python3 tests/bench/continuum_refit_sweep.py '{"BHM_PROBE_X": [3, 10, 30], "BHM_PROBE_QA": [-0.5, 0, 0.5]}'
 """
 import itertools, json, os, re, subprocess, sys
-FIT = ["p1c", "p2y", "p4sq", "p4liney", "neck1", "neck2x2", "p8", "full"]
+FIT = ["p1c", "p2y", "p4sq", "p4liney", "neck1", "neck2x2", "p8", "full", "p1side"]  # as kFittingHalf
 BIN = os.environ.get("BHM_TEST_ENGINE", "build/bin/test_engine")
 ROW = re.compile(r"^(\S+)\s+nu (\S+)\s+tip .*?(?<!\+)([+-]\d+\.\d) %(?!\)).*com .*?(?<!\+)([+-]\d+\.\d) %(?!\))")
 
