@@ -45,11 +45,15 @@ const char* fem_material_law_name(FemMaterialLaw law) {
 }
 
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
-                     const std::vector<FemLoad>& loads, bool nlgeom, FemMaterialLaw law) {
+                     const std::vector<FemLoad>& loads, bool nlgeom, FemMaterialLaw law,
+                     FemNewtonControls newton, bool full_integration) {
     std::ostringstream out;
     char line[256];
-    out << "** bhm verify: " << model.elements.size() << " "
-        << fem_element_name(model.options.element) << " elements\n*NODE, NSET=NALL\n";
+    const std::string element = full_integration && model.options.element == FemElement::C3D20R
+                                    ? std::string("C3D20")
+                                    : fem_element_name(model.options.element);
+    out << "** bhm verify: " << model.elements.size() << " " << element
+        << " elements\n*NODE, NSET=NALL\n";
     for (int id = 1; id <= model.node_count(); ++id) {
         const auto p = model.node_position_m(id);
         std::snprintf(line, sizeof line, "%d, %.10g, %.10g, %.10g\n", id, p[0], p[1], p[2]);
@@ -64,8 +68,7 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
                        e < model.element_fibre.size() ? model.element_fibre[e] : -1};
     const std::set<Group> used(group_of.begin(), group_of.end());
     for (const Group& group : used) {
-        out << "*ELEMENT, TYPE=" << fem_element_name(model.options.element) << ", ELSET=M"
-            << group.name() << "\n";
+        out << "*ELEMENT, TYPE=" << element << ", ELSET=M" << group.name() << "\n";
         for (std::size_t e = 0; e < model.elements.size(); ++e) {
             if (group_of[e] != group) continue;
             out << e + 1;
@@ -134,6 +137,12 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
         const bool from_an_eighth =
             nlgeom && law == FemMaterialLaw::Hooke && load.name == "+A" && &load != &loads.front();
         if (nlgeom) out << (from_an_eighth ? "0.125" : "1.") << ", 1., 1e-5, 1.\n";
+        // ccx's *CONTROLS, PARAMETERS=TIME INCREMENTATION (ccx 2.20 manual; its controlss.f and
+        // checkconvergence.c): I_0, I_R, I_P, I_C, I_L, I_G, I_S, I_A, then D_F, D_C, D_B, D_A,
+        // D_S, D_H, D_D; only I_G (4) and D_D (1.5) differ from ccx's defaults.
+        if (nlgeom && newton == FemNewtonControls::Loose)
+            out << "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 16, 10, 6, 0, 5\n"
+                   "0.25, 0.5, 0.75, 0.85, , , 2.\n";
         if (g != 0.0) {
             std::snprintf(line, sizeof line, "*DLOAD\nEALL, GRAV, %.10g, 0., 0., %d.\n",
                           std::fabs(g), g < 0.0 ? -1 : 1);

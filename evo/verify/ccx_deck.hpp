@@ -41,10 +41,26 @@ enum class FemMaterialLaw { Hooke, NeoHookean };
 //! "Saint Venant-Kirchhoff" or "Neo-Hookean" (the report's and the verdict's name).
 const char* fem_material_law_name(FemMaterialLaw law);
 
+//! ccx's Newton controls of the nonlinear steps (ignored for linear steps).
+//! - CcxDefaults: ccx's own (*CONTROLS not written): an increment converges once the largest
+//!   residual force is within 0.5 % of the average force and the largest correction within 1 %
+//!   of the increment's displacement; an increment is enlarged by 1.5 after two in a row that
+//!   converged in at most 4 iterations.
+//! - Loose: the coarse mesh's nonlinear part (docs/verify.md, "loop40c"): an increment is doubled
+//!   after two in a row that converged in at most 6 iterations; the convergence tolerances stay
+//!   ccx's (loosening them moved one answer by 11 %). Measured on the loop's picks: 9-14 % fewer
+//!   Newton iterations, the answers within 2e-3 of the largest displacement.
+enum class FemNewtonControls { CcxDefaults, Loose };
+
 //! The deck; `nlgeom` solves each step geometrically nonlinear (large rotations), in increments,
-//! with `law`'s material (ignored for linear steps).
+//! with `law`'s material and `newton`'s controls (both ignored for linear steps).
+//! `full_integration` writes a C3D20R model's elements as C3D20 (the same 20 nodes and shape
+//! functions, 27 integration points instead of 8): the coarse mesh's fallback where its
+//! reduced-integration nonlinear solve fails (docs/verify.md, "loop40c").
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
                      const std::vector<FemLoad>& loads, bool nlgeom,
-                     FemMaterialLaw law = FemMaterialLaw::Hooke);
+                     FemMaterialLaw law = FemMaterialLaw::Hooke,
+                     FemNewtonControls newton = FemNewtonControls::CcxDefaults,
+                     bool full_integration = false);
 
 }  // namespace bhm::evo

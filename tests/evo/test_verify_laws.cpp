@@ -180,3 +180,88 @@ TEST_CASE(
               within);
     }
 }
+
+TEST_CASE("verify laws: the coarse part's loose Newton controls are in its nonlinear steps only") {
+    const auto s = bilayer(14.47);
+    const auto model = evo::build_fem_model(s, {evo::FemElement::C3D20R, 1});
+    const std::vector<evo::FemLoad> loads = {{"rest", 0.0}, {"+A", 14.47}};
+    auto count = [](const std::string& deck, const std::string& what) {
+        int n = 0;
+        for (auto at = deck.find(what); at != std::string::npos; at = deck.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    for (const auto law : {evo::FemMaterialLaw::Hooke, evo::FemMaterialLaw::NeoHookean}) {
+        const std::string loose =
+            evo::ccx_deck(model, s, loads, true, law, evo::FemNewtonControls::Loose);
+        // One incrementation block per step, I_G 6 and D_D 2; ccx's own convergence tolerances.
+        CHECK(count(loose, "PARAMETERS=FIELD") == 0);
+        CHECK(count(loose,
+                    "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 16, 10, 6, 0, 5\n"
+                    "0.25, 0.5, 0.75, 0.85, , , 2.\n") == 2);
+        // ccx's defaults: no *CONTROLS, the deck as before; linear steps never carry them.
+        CHECK(count(evo::ccx_deck(model, s, loads, true, law), "*CONTROLS") == 0);
+        CHECK(count(evo::ccx_deck(model, s, loads, false, law, evo::FemNewtonControls::Loose),
+                    "*CONTROLS") == 0);
+    }
+}
+
+TEST_CASE("verify laws: the loose Newton controls move a coarse nonlinear answer by under 0.5 %") {
+    if (skip_without_ccx()) return;
+    // Truth: ccx's own Newton controls on the same deck (a 6 x 2 x 2 bilayer under gravity at the
+    // paper's 14.5 % strain, C3D20R, one element per voxel edge, as the loop's coarse part; it
+    // turns its tip by about 60 degrees). Measured (2026-12-07): up to 2e-3 of the largest
+    // displacement on the loop's picks' coarse decks ("loop40c" in docs/verify.md).
+    auto spec = bilayer(14.47);
+    spec.environment.gravity_m_s2 = -9.81;
+    const auto model = evo::build_fem_model(spec, {evo::FemElement::C3D20R, 1});
+    for (const auto law : {evo::FemMaterialLaw::Hooke, evo::FemMaterialLaw::NeoHookean}) {
+        CAPTURE(evo::fem_material_law_name(law));
+        for (const auto& loads : std::vector<std::vector<evo::FemLoad>>{
+                 {{"rest", 0.0}, {"+A", 14.47}}, {{"-A", -14.47}}}) {
+            const auto tight = evo::run_ccx("body", evo::ccx_deck(model, spec, loads, true, law));
+            const auto loose = evo::run_ccx("body", evo::ccx_deck(model, spec, loads, true, law,
+                                                                  evo::FemNewtonControls::Loose));
+            REQUIRE(tight.blocks.size() == loads.size());
+            REQUIRE(loose.blocks.size() == loads.size());
+            double largest = 0.0;
+            for (const auto& [id, u] : tight.blocks.back())
+                largest = std::max(largest, std::hypot(u[0], u[1], u[2]));
+            REQUIRE(largest > 1e-3);  // it bends: 14.5 % strain on a 6 cm bilayer
+            for (std::size_t k = 0; k < loads.size(); ++k) {
+                CAPTURE(loads[k].name);
+                double difference = 0.0;
+                for (const auto& [id, u] : tight.blocks[k]) {
+                    const auto& v = loose.blocks[k].at(id);
+                    difference =
+                        std::max(difference, std::hypot(u[0] - v[0], u[1] - v[1], u[2] - v[2]));
+                }
+                CHECK(difference / largest < 5e-3);
+            }
+        }
+    }
+}
+
+TEST_CASE("verify laws: full integration writes a C3D20R model's elements as C3D20, nothing else") {
+    const auto s = bilayer(14.47);
+    const std::vector<evo::FemLoad> loads = {{"rest", 0.0}, {"+A", 14.47}};
+    const auto quadratic = evo::build_fem_model(s, {evo::FemElement::C3D20R, 1});
+    const std::string reduced = evo::ccx_deck(quadratic, s, loads, true);
+    const std::string full = evo::ccx_deck(quadratic, s, loads, true, evo::FemMaterialLaw::Hooke,
+                                           evo::FemNewtonControls::CcxDefaults, true);
+    CHECK(full.find("TYPE=C3D20R") == std::string::npos);
+    CHECK(full.find("*ELEMENT, TYPE=C3D20, ELSET=M") != std::string::npos);
+    // The same deck otherwise: the element name is all that differs.
+    std::string back = full;
+    for (const std::string tail : {" ", ","}) {
+        for (auto at = back.find("C3D20" + tail); at != std::string::npos;
+             at = back.find("C3D20" + tail, at + 6))
+            back.insert(at + 5, "R");
+    }
+    CHECK(back == reduced);
+    // C3D8I has no reduced-integration twin: unchanged.
+    const auto linear = evo::build_fem_model(s, {evo::FemElement::C3D8I, 1});
+    CHECK(evo::ccx_deck(linear, s, loads, true, evo::FemMaterialLaw::Hooke,
+                        evo::FemNewtonControls::CcxDefaults,
+                        true) == evo::ccx_deck(linear, s, loads, true));
+}
