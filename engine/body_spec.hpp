@@ -105,6 +105,11 @@ struct BodySpec {
     Damping damping;
     Actuation actuation;
     double dt_fraction = 0.9;  //!< fraction of the largest stable step
+    //! Each voxel's rotational inertia over a solid cube's, m L^2 / 6 (rotary inertia scaling, as
+    //! explicit FEM codes scale beams' and shells' rotary inertia so that their rotational modes
+    //! do not bound the step): the rotational modes slow by 1 / sqrt(s), the stable step follows.
+    //! 1 = the cube's, the default (issue 42, docs/benchmarks.md "the step size itself").
+    double rotary_inertia_scale = 1.0;
 
     int cell_count() const { return nx * ny * nz; }
     int cell_index(int x, int y, int z) const { return x + nx * (y + ny * z); }

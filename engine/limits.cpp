@@ -98,6 +98,10 @@ std::vector<Problem> settings_problems(const BodySpec& spec) {
     if (!finite(spec.dt_fraction) || spec.dt_fraction <= 0.0 || spec.dt_fraction > kMaxDtFraction)
         out.push_back({"dt_fraction", "must be in (0, " + number(kMaxDtFraction) +
                                           "] (a fraction of the largest stable step)"});
+    // At least the cube's own inertia: scaling it down would only shorten the step.
+    if (!finite(spec.rotary_inertia_scale) || spec.rotary_inertia_scale < 1.0 ||
+        spec.rotary_inertia_scale > 100.0)
+        out.push_back({"rotary_inertia_scale", "must be in [1, 100] (times a cube's m L^2 / 6)"});
     return out;
 }
 
@@ -188,9 +192,10 @@ double largest_scale(const Material& m, double temperature_amplitude_c) {
 }
 }  // namespace
 
-double voxel_omega2(const Material& m, double L, double temperature_amplitude_c) {
+double voxel_omega2(const Material& m, double L, double temperature_amplitude_c,
+                    double rotary_inertia_scale) {
     const double mass = m.density_kg_m3 * (L * L * L);
-    const double inertia = mass * L * L / 6.0;
+    const double inertia = rotary_inertia_scale * mass * L * L / 6.0;
     const double k_axial = m.youngs_modulus_pa * L;              // E A / L
     const double k_rot = m.youngs_modulus_pa * L * L * L / 3.0;  // 4 E I / L
     const double scale = largest_scale(m, temperature_amplitude_c);
@@ -203,11 +208,11 @@ namespace {
 // in series; its bending and torsion the materials' in series times bending_factor.
 double link_mode_omega2(const Material& a, const Material& b, double L,
                         double temperature_amplitude_c, double (*axial_factor)(double),
-                        double bending_factor) {
+                        double bending_factor, double rotary_inertia_scale) {
     const double e = bending_factor * series(a.youngs_modulus_pa, b.youngs_modulus_pa);
     const double g = bending_factor * series(shear_modulus(a), shear_modulus(b));
     const double m_min = std::min(a.density_kg_m3, b.density_kg_m3) * (L * L * L);
-    const double inertia = m_min * L * L / 6.0;
+    const double inertia = rotary_inertia_scale * m_min * L * L / 6.0;
     const double k_axial = series(a.youngs_modulus_pa * axial_factor(a.poisson_ratio),
                                   b.youngs_modulus_pa * axial_factor(b.poisson_ratio)) *
                            L;
@@ -222,16 +227,18 @@ double link_mode_omega2(const Material& a, const Material& b, double L,
 }  // namespace
 
 double link_omega2(const Material& a, const Material& b, double L, double temperature_amplitude_c,
-                   double bending_factor) {
+                   double bending_factor, double rotary_inertia_scale) {
     // The Poisson coupling stiffens the axial modes up to the P-wave modulus M = lambda + 2 G.
-    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_wave_factor, bending_factor);
+    return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_wave_factor, bending_factor,
+                            rotary_inertia_scale);
 }
 
 double link_damping_omega2(const Material& a, const Material& b, double L,
-                           double temperature_amplitude_c, double bending_factor) {
+                           double temperature_amplitude_c, double bending_factor,
+                           double rotary_inertia_scale) {
     // With the volumetric 3 K where it is stiffer than M (nu > 0.25).
     return link_mode_omega2(a, b, L, temperature_amplitude_c, poisson_stiffness_factor,
-                            bending_factor);
+                            bending_factor, rotary_inertia_scale);
 }
 
 double stable_step_for(double omega2) {
@@ -243,15 +250,17 @@ double step_multiple(int implicit_sweeps) {
 }
 
 StepRange step_range(const std::vector<Material>& materials, double L, double dt_fraction,
-                     double temperature_amplitude_c, int implicit_sweeps) {
+                     double temperature_amplitude_c, int implicit_sweeps,
+                     double rotary_inertia_scale) {
     const double A = temperature_amplitude_c;
     double stiffest = 0.0, softest = 0.0;
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        const double alone = voxel_omega2(materials[i], L, A);
+        const double alone = voxel_omega2(materials[i], L, A, rotary_inertia_scale);
         softest = i == 0 ? alone : std::min(softest, alone);
         stiffest = std::max(stiffest, alone);
         for (std::size_t j = i; j < materials.size(); ++j)
-            stiffest = std::max(stiffest, link_omega2(materials[i], materials[j], L, A));
+            stiffest = std::max(
+                stiffest, link_omega2(materials[i], materials[j], L, A, 1.0, rotary_inertia_scale));
     }
     if (materials.empty()) return {};
     const double fraction = dt_fraction * step_multiple(implicit_sweeps);

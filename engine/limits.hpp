@@ -60,19 +60,23 @@ std::vector<Problem> body_spec_problems(const BodySpec& spec);
 
 //! Squared angular frequency of the stiffest mode of a lone voxel of material m (rad^2/s^2), at
 //! its largest actuated size s = 1 + |cte A| (axial stiffness ~ s, bending and torsion ~ s^2).
-double voxel_omega2(const Material& m, double voxel_size_m, double temperature_amplitude_c);
+//! rotary_inertia_scale: the voxels' rotational inertia over a cube's (BodySpec), here and below.
+double voxel_omega2(const Material& m, double voxel_size_m, double temperature_amplitude_c,
+                    double rotary_inertia_scale = 1.0);
 //! Squared angular frequency of the stiffest mode of the link between materials a and b, on the
 //! lighter end: axial (stiffened by the Poisson coupling up to the P-wave modulus M), bending and
 //! torsion, at the largest actuated size of either end. Sets the stable step. bending_factor: the
 //! link's bending and torsion stiffness over the two materials' in series (a mixed link whose
 //! lateral neighbours are stiffer, engine/internal/link_confinement.hpp), 1 for a plain link.
 double link_omega2(const Material& a, const Material& b, double voxel_size_m,
-                   double temperature_amplitude_c, double bending_factor = 1.0);
+                   double temperature_amplitude_c, double bending_factor = 1.0,
+                   double rotary_inertia_scale = 1.0);
 //! The same with the volumetric modulus 3 K where it is stiffer than M (nu > 0.25): bounds the
 //! modes the explicit bond damping acts on (Model::build's damping cap). Capping with M instead
 //! let bodies of two stiffnesses diverge (docs/physics.md, "Known limits").
 double link_damping_omega2(const Material& a, const Material& b, double voxel_size_m,
-                           double temperature_amplitude_c, double bending_factor = 1.0);
+                           double temperature_amplitude_c, double bending_factor = 1.0,
+                           double rotary_inertia_scale = 1.0);
 //! Voxelyze's recommended step 1 / (2 pi sqrt(omega2)).
 double stable_step_for(double omega2);
 
@@ -88,7 +92,8 @@ struct StepRange {
     double longest_s = 0.0;
 };
 StepRange step_range(const std::vector<Material>& materials, double voxel_size_m,
-                     double dt_fraction, double temperature_amplitude_c, int implicit_sweeps);
+                     double dt_fraction, double temperature_amplitude_c, int implicit_sweeps,
+                     double rotary_inertia_scale = 1.0);
 
 //! The number of steps run(world, total_s, ...) takes at step dt_s.
 std::int64_t steps_for(double total_s, double dt_s);

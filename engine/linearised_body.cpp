@@ -207,7 +207,7 @@ LinearisedBody::LinearisedBody(const World& world, const Options& options)
     int count = 0;
     for (int v = 0; v < n; ++v) {
         auto& f = dof[static_cast<std::size_t>(v)];
-        const double inertia = d.mass[v] * L * L / 6.0;
+        const double inertia = d.rotary_inertia_scale * d.mass[v] * L * L / 6.0;
         for (int i = 0; i < 6; ++i) {
             const bool moves = i < 3
                                    ? d.dt_inv_mass[v] > 0.0 && d.linear_keep[v] * d.movable[v] > 0.0

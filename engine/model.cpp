@@ -47,8 +47,10 @@ double actuation_reach(const Model::Data& d, int v) {
 // the size, bending and torsion with its square, l with it. Being proportional to M per end
 // (isotropic per 3-vector), the bound holds in any rotated frame.
 double link_damping_rate_bound(double beta, double k_axial, double k_bend, double k_torsion,
-                               double m_a, double m_b, double L, double scale) {
-    const double i_a = m_a * L * L / 6.0, i_b = m_b * L * L / 6.0;
+                               double m_a, double m_b, double L, double scale,
+                               double rotary_inertia_scale) {
+    const double i_a = rotary_inertia_scale * m_a * L * L / 6.0;
+    const double i_b = rotary_inertia_scale * m_b * L * L / 6.0;
     const double ka = k_axial * scale, kb = k_bend * scale * scale;
     const double kt = k_torsion * scale * scale;
     const double ks = std::min(static_cast<double>(kShearPerTorsion) * kt, 3.0 * kb);
@@ -306,6 +308,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     d.spec = spec;
     const double L = spec.voxel_size_m;
     d.voxel_size_m = L;
+    const double rot_scale = spec.rotary_inertia_scale;
+    d.rotary_inertia_scale = rot_scale;
     build_layout(d);
     const int n = d.voxels;
 
@@ -331,8 +335,9 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
         d.act_sin[v] = amplitude * std::cos(phase);
         d.act_cos[v] = amplitude * std::sin(phase);
         if (amplitude != 0.0) d.any_active = true;
-        max_omega2 = std::max(max_omega2,
-                              limits::voxel_omega2(mat, L, spec.actuation.temperature_amplitude_c));
+        max_omega2 = std::max(
+            max_omega2,
+            limits::voxel_omega2(mat, L, spec.actuation.temperature_amplitude_c, rot_scale));
         // A turning held voxel's spring to the clamp. It needs no bound of its own: with its
         // links (at most six of E L^3 / 3) it is at most 1.15 times the rotational stiffness of a
         // free voxel inside the body, whose step is already set by the links.
@@ -360,7 +365,8 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     // otherwise take the step below it).
     const double envelope_omega2 = [&] {
         const double shortest =
-            limits::step_range(spec.materials, L, 1.0, spec.actuation.temperature_amplitude_c, 0)
+            limits::step_range(spec.materials, L, 1.0, spec.actuation.temperature_amplitude_c, 0,
+                               rot_scale)
                 .shortest_s;
         return 1.0 / (4.0 * std::numbers::pi * std::numbers::pi * shortest * shortest);
     }();
@@ -394,7 +400,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
                 // Past the envelope only the bending and torsion modes can be (the plain link's
                 // are inside it), and they scale with the factor.
                 const double omega2 = limits::link_omega2(
-                    ma, mb, L, spec.actuation.temperature_amplitude_c, mixed_bending);
+                    ma, mb, L, spec.actuation.temperature_amplitude_c, mixed_bending, rot_scale);
                 if (omega2 > envelope_omega2)
                     mixed_bending = std::max(1.0, mixed_bending * envelope_omega2 / omega2);
             }
@@ -425,15 +431,16 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
             if (implicit) {
                 const double lambda = link_damping_rate_bound(
                     beta, k_axial, bending * e * beam_inertia_over_l, bending * g * torsion_over_l,
-                    m_a, m_b, L, 1.0 + std::max(actuation_reach(d, v), actuation_reach(d, b)));
+                    m_a, m_b, L, 1.0 + std::max(actuation_reach(d, v), actuation_reach(d, b)),
+                    rot_scale);
                 damping_rate[v] += lambda;
                 damping_rate[b] += lambda;
             }
             const double amplitude_c = spec.actuation.temperature_amplitude_c;
             link_omega2[axis][v] =
-                limits::link_damping_omega2(ma, mb, L, amplitude_c, mixed_bending);
-            max_omega2 =
-                std::max(max_omega2, limits::link_omega2(ma, mb, L, amplitude_c, mixed_bending));
+                limits::link_damping_omega2(ma, mb, L, amplitude_c, mixed_bending, rot_scale);
+            max_omega2 = std::max(
+                max_omega2, limits::link_omega2(ma, mb, L, amplitude_c, mixed_bending, rot_scale));
         }
     }
 
@@ -498,7 +505,7 @@ std::shared_ptr<const Model> Model::build(const BodySpec& spec) {
     }
     for (int v = 0; v < n; ++v) {
         const double m = d.mass[v];
-        const double inertia = m * L * L / 6.0;
+        const double inertia = rot_scale * m * L * L / 6.0;
         const Material& mat = spec.materials[d.voxel_material[v] - 1];
         const double c_lin =
             2.0 * spec.damping.global_ratio * std::sqrt(m * mat.youngs_modulus_pa * L);

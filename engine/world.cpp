@@ -328,7 +328,7 @@ double World::kinetic_energy_j() const {
     const double L = d.voxel_size_m;
     double e = 0.0;
     for (int c = 0; c < d.voxels; ++c) {
-        const double m = d.mass[c], inertia = m * L * L / 6.0;
+        const double m = d.mass[c], inertia = d.rotary_inertia_scale * m * L * L / 6.0;
         for (int i = 0; i < 3; ++i)
             e += 0.5 * (m * s.vel[i][c] * s.vel[i][c] + inertia * s.omega[i][c] * s.omega[i][c]);
     }
@@ -351,7 +351,7 @@ std::array<double, 3> World::angular_momentum() const {
     const double L = d.voxel_size_m;
     std::array<double, 3> h{0.0, 0.0, 0.0};
     for (int c = 0; c < d.voxels; ++c) {
-        const double m = d.mass[c], inertia = m * L * L / 6.0;
+        const double m = d.mass[c], inertia = d.rotary_inertia_scale * m * L * L / 6.0;
         const double r[3] = {s.pos[0][c] + d.origin_m[0], s.pos[1][c] + d.origin_m[1],
                              s.pos[2][c] + d.origin_m[2]};
         const double v[3] = {s.vel[0][c], s.vel[1][c], s.vel[2][c]};

@@ -145,6 +145,7 @@ struct PoissonParams {
 struct Model::Data {
     BodySpec spec;
     double voxel_size_m = 0.0;
+    double rotary_inertia_scale = 1.0;  //!< BodySpec::rotary_inertia_scale
     double dt_s = 0.0;
     double stable_dt_s = 0.0;  //!< the largest stable step (before dt_fraction)
     double total_mass_kg = 0.0;
@@ -176,7 +177,7 @@ struct Model::Data {
     std::vector<double> movable;         //!< 1 = integrated (a voxel and not fixed)
     std::vector<double> mass;            //!< kg (0 for dummies)
     std::vector<double> dt_inv_mass;     //!< dt / m (0 for dummies or fixed)
-    std::vector<double> dt_inv_inertia;  //!< dt / I, I = m L^2 / 6
+    std::vector<double> dt_inv_inertia;  //!< dt / I, I = s m L^2 / 6
     std::vector<double> linear_keep;     //!< 1 / (1 + dt c_g / m): implicit global damping
     //! Per axis: 1 / (1 + dt c_g,rot / I) where the voxel turns about that world axis, 0 where
     //! it may not (a held voxel's locked axes, model.cpp "Held voxels' rotation")
