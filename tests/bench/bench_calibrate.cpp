@@ -26,6 +26,7 @@
 #include "evo/evaluate/worker_pool.hpp"
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "tests/bench/bench_machine.hpp"
 
 using namespace bhm::evo;
 
@@ -140,10 +141,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::cerr << "bench_calibrate: " << e.what() << "\n";
-        return 1;
-    }
+    return bhm::bench::run_guarded("bench_calibrate", run, argc, argv);
 }

@@ -152,10 +152,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::cerr << "bench_evolved: " << e.what() << "\n";
-        return 1;
-    }
+    return bhm::bench::run_guarded("bench_evolved", run, argc, argv);
 }

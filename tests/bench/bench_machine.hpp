@@ -1,9 +1,12 @@
 #pragma once
-// What every benchmark writes beside its figures: the machine (one CSV field) and wall time.
+// What every benchmark writes beside its figures: the machine (one CSV field) and wall time;
+// and the guarded entry point its main() shares.
 #include <sys/utsname.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <exception>
 #include <fstream>
 #include <string>
 
@@ -27,6 +30,16 @@ inline std::string machine_description() {
         }
     std::replace(text.begin(), text.end(), ',', ' ');
     return text;
+}
+
+//! run(argc, argv)'s exit status, or 1 with "NAME: what went wrong" on stderr when it throws.
+inline int run_guarded(const char* name, int (*run)(int, char**), int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", name, e.what());
+        return 1;
+    }
 }
 
 }  // namespace bhm::bench

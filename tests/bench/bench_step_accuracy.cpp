@@ -22,6 +22,7 @@
 
 #include "evo/experiment/body_spec_of.hpp"
 #include "evo/experiment/experiment_io.hpp"
+#include "tests/bench/bench_machine.hpp"
 #include "tests/engine/engine_test_bodies.hpp"
 #include "tests/support/step_accuracy.hpp"
 
@@ -150,10 +151,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench_step_accuracy: %s\n", e.what());
-        return 1;
-    }
+    return bhm::bench::run_guarded("bench_step_accuracy", run, argc, argv);
 }

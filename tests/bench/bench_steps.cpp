@@ -23,6 +23,7 @@
 
 #include "engine/model.hpp"
 #include "engine/world.hpp"
+#include "tests/bench/bench_machine.hpp"
 #include "tests/support/engine_fingerprint.hpp"
 
 namespace {
@@ -102,10 +103,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench_steps: %s\n", e.what());
-        return 1;
-    }
+    return bhm::bench::run_guarded("bench_steps", run, argc, argv);
 }
