@@ -99,9 +99,11 @@ std::vector<Problem> settings_problems(const BodySpec& spec) {
         out.push_back({"dt_fraction", "must be in (0, " + number(kMaxDtFraction) +
                                           "] (a fraction of the largest stable step)"});
     // At least the cube's own inertia: scaling it down would only shorten the step.
-    if (!finite(spec.rotary_inertia_scale) || spec.rotary_inertia_scale < 1.0 ||
-        spec.rotary_inertia_scale > 100.0)
-        out.push_back({"rotary_inertia_scale", "must be in [1, 100] (times a cube's m L^2 / 6)"});
+    if (!finite(spec.rotary_inertia_scale) || spec.rotary_inertia_scale < kMinRotaryInertiaScale ||
+        spec.rotary_inertia_scale > kMaxRotaryInertiaScale)
+        out.push_back({"rotary_inertia_scale", "must be in [" + bound(kMinRotaryInertiaScale) +
+                                                   ", " + bound(kMaxRotaryInertiaScale) +
+                                                   "] (times a cube's m L^2 / 6)"});
     return out;
 }
 

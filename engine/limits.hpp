@@ -22,6 +22,10 @@ inline constexpr double kMaxPoissonRatio = 0.49;     //!< inclusive; 0.5 is inco
 //! measured: all three survive 0.6, the banded block diverges at 0.65).
 inline constexpr double kMaxActuationStrain = 0.6;
 inline constexpr double kMaxDtFraction = 1.0;
+//! BodySpec::rotary_inertia_scale: at least a cube's own inertia (less would only shorten the
+//! step), at most 100x (issue 42: S 4 already moves free walkers by 0.3-0.5 % of their swing).
+inline constexpr double kMinRotaryInertiaScale = 1.0;
+inline constexpr double kMaxRotaryInertiaScale = 100.0;
 inline constexpr double kMaxFrequencyHz = 1000.0;
 inline constexpr double kMaxTemperatureAmplitudeC = 1000.0;
 inline constexpr double kMaxGravityMS2 = 1000.0;  //!< |gravity| along z

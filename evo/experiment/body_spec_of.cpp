@@ -96,6 +96,7 @@ engine::BodySpec make_settings_spec(const Experiment& e) {
     spec.actuation.temperature_amplitude_c = e.actuation.temperature_amplitude_c;
     spec.actuation.start_s = e.simulation.settle_s;
     spec.dt_fraction = e.simulation.dt_fraction;
+    spec.rotary_inertia_scale = e.simulation.rotary_inertia_scale;
     return spec;
 }
 
@@ -107,6 +108,7 @@ std::string experiment_field_of(const std::string& field) {
         {"damping.collision_ratio", "simulation.collision_damping_ratio"},
         {"damping.implicit_sweeps", "simulation.implicit_damping_sweeps"},
         {"dt_fraction", "simulation.dt_fraction"},
+        {"rotary_inertia_scale", "simulation.rotary_inertia_scale"},
         {"actuation.start_s", "simulation.settle_s"},
     };
     for (const auto& [spec_name, file_name] : kNames)

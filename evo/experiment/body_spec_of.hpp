@@ -23,7 +23,8 @@ engine::BodySpec make_body_spec(const Experiment& experiment, const Body& framed
                                 std::uint64_t phase_seed = 0);
 
 //! The engine settings of an experiment without a body (voxel size, damping, actuation with its
-//! start at settle_s, environment, dt_fraction): make_body_spec fills the rest.
+//! start at settle_s, environment, dt_fraction, rotary_inertia_scale): make_body_spec fills the
+//! rest.
 engine::BodySpec make_settings_spec(const Experiment& experiment);
 
 //! The experiment file's field for a BodySpec field named by engine::limits ("dt_fraction" ->

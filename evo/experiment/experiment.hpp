@@ -67,6 +67,10 @@ struct Simulation {
     double settle_s = 1.0;
     double evaluate_s = 10.0;
     double dt_fraction = 0.9;
+    //! Each voxel's rotational inertia over a cube's (engine BodySpec::rotary_inertia_scale):
+    //! above 1 the rotational modes slow and the stable step lengthens (issue 42,
+    //! docs/benchmarks.md "the step size itself"). 1 (the default; a file without it) = the cube's.
+    double rotary_inertia_scale = 1.0;
     double bond_damping_ratio = 1.0;
     double global_damping_ratio = 0.01;
     double collision_damping_ratio = 0.8;

@@ -358,6 +358,9 @@ json experiment_to_json(const Experiment& e) {
     j["boundary"]["voxel_overrides"] = overrides;
     // A phase offset only when set: experiments without one stay byte for byte as they were.
     if (e.actuation.phase_offset_rad == 0.0) j["actuation"].erase("phase_offset_rad");
+    // The rotary inertia scale only when set (issue 42): experiments, run directories and the
+    // evaluation wire without it stay byte for byte as they were.
+    if (e.simulation.rotary_inertia_scale == 1.0) j["simulation"].erase("rotary_inertia_scale");
     // NEAT's and novelty's blocks only where they say something: AFPO files stay as they were.
     const auto& ev = e.evolution;
     if (!uses_neat(ev.algorithm) && ev.neat == NeatSettings{}) j["evolution"].erase("neat");

@@ -224,7 +224,7 @@ void step_budget_rule(const RuleCheck& c) {
         physics.push_back(m.physics);
     const auto range =
         lim::step_range(physics, e.voxel_size_m, s.dt_fraction, e.actuation.temperature_amplitude_c,
-                        s.implicit_damping_sweeps);
+                        s.implicit_damping_sweeps, s.rotary_inertia_scale);
     const std::string why =
         lim::step_budget_problem(range, evaluation_seconds(e), e.actuation.frequency_hz,
                                  has_active(e) && e.actuation.temperature_amplitude_c > 0, *cells);

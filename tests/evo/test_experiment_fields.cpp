@@ -249,6 +249,7 @@ TEST_CASE("the table's physics ranges are the engine's: what it accepts, Model::
                                     "actuation.temperature_amplitude_c",
                                     "environment.gravity_m_s2",
                                     "simulation.dt_fraction",
+                                    "simulation.rotary_inertia_scale",
                                     "simulation.bond_damping_ratio",
                                     "simulation.global_damping_ratio",
                                     "simulation.collision_damping_ratio"};

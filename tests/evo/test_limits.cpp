@@ -2,6 +2,7 @@
 // not validate, and the step budget is refused up front with an estimate.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -106,6 +107,8 @@ TEST_CASE("limits: what the engine refuses, validate refuses on the same field")
         {"damping", [](Experiment& e) { e.simulation.bond_damping_ratio = 11.0; },
          "simulation.bond_damping_ratio"},
         {"dt", [](Experiment& e) { e.simulation.dt_fraction = 1.5; }, "simulation.dt_fraction"},
+        {"rotary", [](Experiment& e) { e.simulation.rotary_inertia_scale = 0.5; },
+         "simulation.rotary_inertia_scale"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.what);
@@ -192,4 +195,54 @@ TEST_CASE("limits: the step range brackets every body's actual step") {
         CHECK(dt >= range.shortest_s * (1.0 - 1e-12));
         CHECK(dt <= range.longest_s * (1.0 + 1e-12));
     }
+}
+
+// simulation.rotary_inertia_scale (issue 42): absent reads as the cube's inertia and a file at 1 is
+// written without it (existing experiments and run directories byte for byte); set, it reaches the
+// engine, whose step lengthens by at most sqrt(s) (every rotational mode's omega ~ 1 / sqrt(I); the
+// axial mode does not move) and stays inside the validated step range.
+TEST_CASE("limits: the rotary inertia scale is read, written, refused and carried to the step") {
+    Experiment e = test::tiny_experiment({4, 3, 3});
+    nlohmann::json j = experiment_to_json(e);
+    CHECK_FALSE(j["simulation"].contains("rotary_inertia_scale"));
+    CHECK(parse_experiment(j, "e.json").simulation.rotary_inertia_scale == 1.0);
+
+    e.simulation.rotary_inertia_scale = 1.5;
+    j = experiment_to_json(e);
+    CHECK(j["simulation"]["rotary_inertia_scale"] == 1.5);
+    CHECK(parse_experiment(j, "e.json") == e);
+
+    for (double bad : {0.5, 101.0}) {
+        CAPTURE(bad);
+        j["simulation"]["rotary_inertia_scale"] = bad;
+        try {
+            (void)parse_experiment(j, "e.json");
+            FAIL("a rotary inertia scale outside [1, 100] was accepted");
+        } catch (const ValidationError& error) {
+            const std::string what = error.what();
+            CHECK(what.find('\n') == std::string::npos);  // one line, one problem
+            CHECK(what.find("simulation.rotary_inertia_scale") != std::string::npos);
+            CHECK(what.find("must be in [1, 100]") != std::string::npos);
+        }
+    }
+
+    const Body body = solid_workspace(e, 2);
+    const auto dt_at = [&](double scale) {
+        Experiment at = e;
+        at.simulation.rotary_inertia_scale = scale;
+        const auto spec = make_body_spec(at, apply_frame_and_overrides(at, body));
+        CHECK(spec.rotary_inertia_scale == scale);
+        return engine::Model::build(spec)->dt_s();
+    };
+    const double dt1 = dt_at(1.0), dt15 = dt_at(1.5);
+    CHECK(dt15 > dt1 * 1.01);
+    CHECK(dt15 <= dt1 * std::sqrt(1.5) * (1.0 + 1e-12));
+    std::vector<engine::Material> physics;
+    for (const auto& m : e.materials)
+        physics.push_back(m.physics);
+    const auto range = engine::limits::step_range(physics, e.voxel_size_m, e.simulation.dt_fraction,
+                                                  e.actuation.temperature_amplitude_c,
+                                                  e.simulation.implicit_damping_sweeps, 1.5);
+    CHECK(dt15 >= range.shortest_s * (1.0 - 1e-12));
+    CHECK(dt15 <= range.longest_s * (1.0 + 1e-12));
 }
