@@ -77,6 +77,10 @@ evo::VerifyOptions options_of(const ArgParser& parser) {
         o.second_law_only_where_first_differs = true;
         o.first_law = evo::FemMaterialLaw::NeoHookean;
     }
+    // The coarse mesh of a body with a section 1 voxel across: C3D20 from the start (the default),
+    // or C3D20R first and C3D20 only where its nonlinear solve fails (the loop before 2026-12-08;
+    // docs/verify.md, "loop40d"), to compare the two.
+    o.coarse_full_integration_where_narrow = !parser.has("--coarse-reduced-first");
     o.tolerance = parser.get_double("--tolerance", 10.0) / 100.0;
     if (!(o.tolerance > 0.0)) throw UsageError("--tolerance: must be a percentage above 0");
     o.max_voxels = static_cast<int>(parser.get_int("--max-voxels", 4000));
@@ -291,6 +295,9 @@ int cmd_verify(const Args& args) {
     parser.flag("--loop-check",
                 "the evolution loop's check exactly: --coarse-nonlinearity, Neo-Hookean first "
                 "and the second law only where the first differs");
+    parser.flag("--coarse-reduced-first",
+                "the coarse mesh of a body with a 1-voxel section as C3D20R first, C3D20 only "
+                "where its nonlinear solve fails (default: C3D20 from the start)");
     parser.flag("--no-mesh-error",
                 "skip the second mesh (twice the subdivision, up to 4) that estimates the FEM's "
                 "own error beside the verdict");
