@@ -144,7 +144,9 @@ std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
         const bool actuated = load.name == "-A" || (load.name == "+A" && &load != &loads.front());
         const bool from_a_quarter = nlgeom && full_integration && actuated && !from_an_eighth;
         if (nlgeom)
-            out << (from_an_eighth ? "0.125" : from_a_quarter ? "0.25" : "1.")
+            out << (from_an_eighth   ? "0.125"
+                    : from_a_quarter ? "0.25"
+                                     : "1.")
                 << ", 1., 1e-5, 1.\n";
         // ccx's *CONTROLS, PARAMETERS=TIME INCREMENTATION (ccx 2.20 manual; its controlss.f and
         // checkconvergence.c): I_0, I_R, I_P, I_C, I_L, I_G, I_S, I_A, then D_F, D_C, D_B, D_A,
