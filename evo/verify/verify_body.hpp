@@ -55,9 +55,10 @@ struct VerifyOptions {
     FemMaterialLaw first_law = FemMaterialLaw::Hooke;
     //! The coarse mesh's nonlinear solves with full integration (C3D20) from the start where the
     //! mesh is C3D20R for a section 1 voxel across (fem_mesh_choice.hpp): there one C3D20R across
-    //! a section has spurious modes, its nonlinear solve failed on two of the loop's three picks,
-    //! and the failed attempt cost 3-5 s of a 25 s check (docs/verify.md, "loop40d"). Off, C3D20R
-    //! first and C3D20 only after it fails.
+    //! a section has spurious modes, its nonlinear solve failed on 3 of 7 such bodies measured,
+    //! and a failed attempt cost 5-55 s (a check is 4-27 s); where C3D20R converges C3D20 costs
+    //! up to 1.9x, a loss that the failures outweigh (docs/verify.md, "loop40d"). Off, C3D20R
+    //! first and C3D20 only after it fails (bhm verify --coarse-reduced-first).
     bool coarse_full_integration_where_narrow = true;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     MeasureFloors floors;       //!< under these a measure is reported, never judged
