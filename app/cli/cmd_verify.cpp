@@ -68,6 +68,19 @@ evo::VerifyOptions options_of(const ArgParser& parser) {
     if (parser.has("--coarse-nonlinearity") && parser.has("--linear"))
         throw UsageError("--coarse-nonlinearity and --linear exclude each other");
     o.nonlinear_from_coarse_mesh = parser.has("--coarse-nonlinearity");
+    // The evolution loop's own check (evo/verify/continuum_checker): what one of its checks costs
+    // and decides, repeated by hand (docs/verify.md, "CalculiX in the evolution loop").
+    if (parser.has("--loop-check")) {
+        if (parser.has("--linear") || parser.has("--nlgeom"))
+            throw UsageError("--loop-check chooses linear or nonlinear steps itself");
+        o.nonlinear_from_coarse_mesh = true;
+        o.second_law_only_where_first_differs = true;
+        o.first_law = evo::FemMaterialLaw::NeoHookean;
+    }
+    // The coarse mesh of a body with a section 1 voxel across: C3D20 from the start (the default),
+    // or C3D20R first and C3D20 only where its nonlinear solve fails (the loop before 2026-12-08;
+    // docs/verify.md, "loop40d"), to compare the two.
+    o.coarse_full_integration_where_narrow = !parser.has("--coarse-reduced-first");
     o.tolerance = parser.get_double("--tolerance", 10.0) / 100.0;
     if (!(o.tolerance > 0.0)) throw UsageError("--tolerance: must be a percentage above 0");
     o.max_voxels = static_cast<int>(parser.get_int("--max-voxels", 4000));
@@ -279,6 +292,12 @@ int cmd_verify(const Args& args) {
     parser.flag("--coarse-nonlinearity",
                 "nonlinear steps solved on 1 element per voxel edge, their nonlinear part added "
                 "to the mesh's linear answer: quicker, what the evolution loop's checks do");
+    parser.flag("--loop-check",
+                "the evolution loop's check exactly: --coarse-nonlinearity, Neo-Hookean first "
+                "and the second law only where the first differs");
+    parser.flag("--coarse-reduced-first",
+                "the coarse mesh of a body with a 1-voxel section as C3D20R first, C3D20 only "
+                "where its nonlinear solve fails (default: C3D20 from the start)");
     parser.flag("--no-mesh-error",
                 "skip the second mesh (twice the subdivision, up to 4) that estimates the FEM's "
                 "own error beside the verdict");

@@ -55,8 +55,10 @@ enum class FemNewtonControls { CcxDefaults, Loose };
 //! The deck; `nlgeom` solves each step geometrically nonlinear (large rotations), in increments,
 //! with `law`'s material and `newton`'s controls (both ignored for linear steps).
 //! `full_integration` writes a C3D20R model's elements as C3D20 (the same 20 nodes and shape
-//! functions, 27 integration points instead of 8): the coarse mesh's fallback where its
-//! reduced-integration nonlinear solve fails (docs/verify.md, "loop40c").
+//! functions, 27 integration points instead of 8): the coarse mesh of a body with a section 1
+//! voxel across, and the coarse mesh's fallback where its reduced-integration nonlinear solve
+//! fails (docs/verify.md, "loop40c", "loop40d"); its actuated nonlinear steps that would start
+//! whole start at a quarter, where ccx went on after abandoning them whole.
 std::string ccx_deck(const FemModel& model, const engine::BodySpec& spec,
                      const std::vector<FemLoad>& loads, bool nlgeom,
                      FemMaterialLaw law = FemMaterialLaw::Hooke,

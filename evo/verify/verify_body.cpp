@@ -226,6 +226,9 @@ CcxResult run_fem(const FemModel& model, const engine::BodySpec& spec,
     if (cost) {
         cost->nlgeom = nlgeom;
         cost->law = nlgeom ? fem_material_law_name(law) : "";
+        cost->element = full_integration && model.options.element == FemElement::C3D20R
+                            ? std::string("C3D20")
+                            : std::string(fem_element_name(model.options.element));
         cost->elements = static_cast<int>(model.elements.size());
         cost->nodes = model.node_count();
         cost->deck_s = deck_s;
@@ -453,9 +456,14 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
     out.fem_elements = static_cast<int>(out.fem_model.elements.size());
     const std::vector<FemLoad> loads = loads_of(spec);
     const int load_count = static_cast<int>(loads.size());
-    // The coarse mesh's elements with full integration (C3D20 for C3D20R), from its first failed
+    // The coarse mesh's elements with full integration (C3D20 for C3D20R): from the start where
+    // the mesh is C3D20R for a section 1 voxel across (VerifyOptions), else from its first failed
     // nonlinear solve on (coarse_nonlinear below).
-    bool coarse_full_integration = false;
+    const bool coarse_full_integration_up_front =
+        options.coarse_full_integration_where_narrow &&
+        out.mesh.mesh.element == FemElement::C3D20R &&
+        narrowest_section(spec).width_voxels <= kNarrowSectionVoxels;
+    bool coarse_full_integration = coarse_full_integration_up_front;
     // Every solve's cost is counted (fem_cpu_s: all of them) and recorded (fem_solves).
     auto counted = [&](const FemModel& model, bool nlgeom, FemMaterialLaw law) {
         FemSolveCost cost;
@@ -553,6 +561,8 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
         };
         // The coarse part's element, as the reason names it.
         auto coarse_element = [&]() {
+            if (coarse_full_integration_up_front)
+                return std::string("C3D20 (full integration, as a section is 1 voxel across)");
             return coarse_full_integration ? std::string("C3D20")
                                            : fem_element_name(out.mesh.mesh.element);
         };
@@ -599,8 +609,8 @@ BodyVerification verify_body(const engine::BodySpec& spec, FitnessMeasure fitnes
                 second_law(fine_linear.blocks, coarse, coarse_linear);
             }
             if (!neo_hookean.empty())
-                out.geometry_reason +=
-                    "; the Neo-Hookean answer's nonlinear part from 1 element per voxel edge";
+                out.geometry_reason += "; the Neo-Hookean answer's nonlinear part from " +
+                                       coarse_element() + ", 1 per voxel edge";
         };
         if (!from_coarse || turned >= options.coarse_nonlinearity_below_deg) {
             in_full();

@@ -53,6 +53,13 @@ struct VerifyOptions {
     //! mesh, Saint Venant-Kirchhoff is, and is first): the loop's, Neo-Hookean, the law our
     //! engine has been nearer wherever both were solved (docs/verify.md, "Two continuum laws").
     FemMaterialLaw first_law = FemMaterialLaw::Hooke;
+    //! The coarse mesh's nonlinear solves with full integration (C3D20) from the start where the
+    //! mesh is C3D20R for a section 1 voxel across (fem_mesh_choice.hpp): there one C3D20R across
+    //! a section has spurious modes, its nonlinear solve failed on 3 of 7 such bodies measured,
+    //! and a failed attempt cost 5-55 s (a check is 4-27 s); where C3D20R converges C3D20 costs
+    //! up to 1.9x, a loss that the failures outweigh (docs/verify.md, "loop40d"). Off, C3D20R
+    //! first and C3D20 only after it fails (bhm verify --coarse-reduced-first).
+    bool coarse_full_integration_where_narrow = true;
     double tolerance = 0.10;    //!< largest relative difference that still "agrees"
     MeasureFloors floors;       //!< under these a measure is reported, never judged
     int max_voxels = 4000;      //!< larger bodies are refused (time and memory of the solve)
@@ -99,6 +106,7 @@ struct FemSolveCost {
     bool coarse = false;  //!< on the coarse mesh (one element per voxel edge), else the mesh's own
     bool nlgeom = false;
     std::string law;  //!< the continuum law of a nonlinear solve, "" for a linear one
+    std::string element;  //!< as written in the deck: "C3D20R", "C3D20" (full integration), "C3D8I"
     int elements = 0, nodes = 0;
     double deck_s = 0.0;  //!< building the input deck's text (wall)
     double cpu_s = 0.0, wall_s = 0.0;

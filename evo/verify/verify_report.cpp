@@ -128,6 +128,7 @@ nlohmann::json verification_to_json(const BodyVerification& v, const VerifyOptio
         solves.push_back({{"mesh", c.coarse ? "coarse" : "mesh"},
                           {"nlgeom", c.nlgeom},
                           {"law", c.law.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.law)},
+                          {"element", c.element},
                           {"elements", c.elements},
                           {"nodes", c.nodes},
                           {"deck_s", c.deck_s},

@@ -87,6 +87,13 @@ TEST_CASE("bhm verify: usage and input errors are one line and a non-zero exit")
     CHECK(both.status == 2);
     CHECK(both.output.find("--nlgeom and --linear exclude each other") != std::string::npos);
 
+    // The loop's check chooses its steps itself (the free-strain rule), as the loop does.
+    const auto loop_linear = bhm_run("verify " + f.experiment + " --body " + f.body +
+                                     " --loop-check --linear");
+    CHECK(loop_linear.status == 2);
+    CHECK(loop_linear.output.find("--loop-check chooses linear or nonlinear steps itself") !=
+          std::string::npos);
+
     const auto missing = bhm_run("verify " + f.path("nope.json") + " --body " + f.body);
     CHECK(missing.status == 1);
     CHECK(missing.output.find("nope.json") != std::string::npos);

@@ -1,7 +1,8 @@
 // The FEM's nonlinear part from a coarse mesh (evo/verify/coarse_nonlinearity, what the evolution
 // loop's checks use): the interpolation reproduces an affine field exactly and leaves held nodes
 // at rest; on a curling bilayer the corrected answer matches the fine mesh's own nonlinear solve;
-// past the rotation where the correction drifts the fine mesh is solved in full.
+// past the rotation where the correction drifts the fine mesh is solved in full; a body one voxel
+// across gets its coarse part from C3D20 from the start, as near the full solve.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -101,4 +102,55 @@ TEST_CASE(
                                       evo::FitnessMeasure::ComFinal3d, coarse);
     CHECK_FALSE(big.nlgeom_from_coarse_mesh);
     CHECK(big.geometry_reason.find("solved in full") != std::string::npos);
+}
+
+TEST_CASE(
+    "coarse nonlinearity: a body one voxel across gets C3D20 on the coarse mesh from the start, "
+    "within 2 % of the fine mesh's own nonlinear solve") {
+    if (bhm::test::skip_without_ccx()) return;
+    // A 10 x 1 x 2 bilayer: a section 1 voxel across, so the automatic mesh is C3D20R with 2 per
+    // voxel edge and one coarse element spans the section (docs/verify.md, "loop40d").
+    const auto spec = bhm::test::verify_bilayer(5.0, 10, 2, 1);
+    evo::VerifyOptions full;
+    full.geometry = evo::FemGeometry::Nonlinear;
+    // One law (Saint Venant-Kirchhoff, solved first), compared under itself: the second is solved
+    // only where the first differs, and nothing differs at this tolerance.
+    full.second_law_only_where_first_differs = true;
+    full.tolerance = 10.0;
+    evo::VerifyOptions coarse = full;
+    coarse.nonlinear_from_coarse_mesh = true;
+    evo::VerifyOptions reduced_first = coarse;
+    reduced_first.coarse_full_integration_where_narrow = false;
+
+    const auto f = evo::verify_body(spec, evo::FitnessMeasure::ComFinal3d, full);
+    const auto c = evo::verify_body(spec, evo::FitnessMeasure::ComFinal3d, coarse);
+    const auto r = evo::verify_body(spec, evo::FitnessMeasure::ComFinal3d, reduced_first);
+    MESSAGE("full: " << f.verdict() << "; C3D20 up front: " << c.verdict() << " ("
+                     << c.geometry_reason << "); C3D20R first: " << r.verdict());
+    REQUIRE(f.mesh.mesh.element == evo::FemElement::C3D20R);
+    REQUIRE(f.mesh.narrowest.width_voxels == 1);
+    REQUIRE(c.nlgeom_from_coarse_mesh);
+    REQUIRE(r.nlgeom_from_coarse_mesh);
+    int coarse_solves = 0;
+    for (const auto& solve : c.fem_solves) {
+        CAPTURE(solve.law);
+        CHECK(solve.element == (solve.coarse ? "C3D20" : "C3D20R"));
+        coarse_solves += solve.coarse ? 1 : 0;
+    }
+    CHECK(coarse_solves >= 2);  // the coarse linear answer and at least one law's nonlinear one
+    CHECK(c.geometry_reason.find("C3D20 (full integration") != std::string::npos);
+    for (const auto& solve : r.fem_solves)
+        CHECK(solve.element == "C3D20R");
+    // Truth: the fine mesh's own nonlinear solve, under the same law.
+    REQUIRE(f.material_law == "Saint Venant-Kirchhoff");
+    REQUIRE(c.material_law == "Saint Venant-Kirchhoff");
+    REQUIRE(f.loads.size() == 3);
+    REQUIRE(c.loads.size() == 3);
+    for (std::size_t k = 0; k < f.loads.size(); ++k) {
+        CAPTURE(f.loads[k].load);
+        const auto& a = f.loads[k].fem.com_m;
+        const auto& b = c.loads[k].fem.com_m;
+        const double size = std::hypot(a[0], a[1], a[2]);
+        CHECK(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) < 0.02 * size);
+    }
 }

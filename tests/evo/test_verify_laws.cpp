@@ -242,7 +242,9 @@ TEST_CASE("verify laws: the loose Newton controls move a coarse nonlinear answer
     }
 }
 
-TEST_CASE("verify laws: full integration writes a C3D20R model's elements as C3D20, nothing else") {
+TEST_CASE(
+    "verify laws: full integration writes a C3D20R model's elements as C3D20, and starts the "
+    "actuated steps ccx would start whole at a quarter") {
     const auto s = bilayer(14.47);
     const std::vector<evo::FemLoad> loads = {{"rest", 0.0}, {"+A", 14.47}};
     const auto quadratic = evo::build_fem_model(s, {evo::FemElement::C3D20R, 1});
@@ -258,7 +260,33 @@ TEST_CASE("verify laws: full integration writes a C3D20R model's elements as C3D
              at = back.find("C3D20" + tail, at + 6))
             back.insert(at + 5, "R");
     }
-    CHECK(back == reduced);
+    CHECK(back == reduced);  // Saint Venant-Kirchhoff's +A after rest starts at an eighth in both
+    // Neo-Hookean's +A after rest, and -A from the undeformed body under either law: whole with
+    // C3D20R, a quarter with C3D20 (docs/verify.md, "loop40d"); rest stays whole.
+    auto first_increments = [](const std::string& deck) {
+        std::vector<std::string> out;
+        for (auto at = deck.find("*STATIC\n"); at != std::string::npos;
+             at = deck.find("*STATIC\n", at + 1)) {
+            const auto start = at + 8;
+            out.push_back(deck.substr(start, deck.find(',', start) - start));
+        }
+        return out;
+    };
+    const auto nh = evo::FemMaterialLaw::NeoHookean;
+    const auto defaults = evo::FemNewtonControls::CcxDefaults;
+    using List = std::vector<std::string>;
+    CHECK(first_increments(evo::ccx_deck(quadratic, s, loads, true, nh, defaults, false)) ==
+          List{"1.", "1."});
+    CHECK(first_increments(evo::ccx_deck(quadratic, s, loads, true, nh, defaults, true)) ==
+          List{"1.", "0.25"});
+    const std::vector<evo::FemLoad> minus = {{"-A", -14.47}};
+    for (const auto law : {evo::FemMaterialLaw::Hooke, nh}) {
+        CAPTURE(evo::fem_material_law_name(law));
+        CHECK(first_increments(evo::ccx_deck(quadratic, s, minus, true, law, defaults, false)) ==
+              List{"1."});
+        CHECK(first_increments(evo::ccx_deck(quadratic, s, minus, true, law, defaults, true)) ==
+              List{"0.25"});
+    }
     // C3D8I has no reduced-integration twin: unchanged.
     const auto linear = evo::build_fem_model(s, {evo::FemElement::C3D8I, 1});
     CHECK(evo::ccx_deck(linear, s, loads, true, evo::FemMaterialLaw::Hooke,

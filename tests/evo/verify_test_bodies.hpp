@@ -7,12 +7,12 @@
 
 namespace bhm::test {
 
-//! An nx x 2 x nz bar (E 5 MPa, voxel 1 cm): its z = 0 layer active (cte 0.01 /degC), held at its
+//! An nx x ny x nz bar (E 5 MPa, voxel 1 cm): its z = 0 layer active (cte 0.01 /degC), held at its
 //! x = 0 layer, actuated by +-amplitude_c.
-inline engine::BodySpec verify_bilayer(double amplitude_c, int nx = 10, int nz = 2) {
+inline engine::BodySpec verify_bilayer(double amplitude_c, int nx = 10, int nz = 2, int ny = 2) {
     engine::BodySpec s;
     s.nx = nx;
-    s.ny = 2;
+    s.ny = ny;
     s.nz = nz;
     s.voxel_size_m = 0.01;
     engine::Material passive;
