@@ -190,7 +190,9 @@ TrackSample TrackSampler::sample_at(const engine::World& world, double due_s) {
     const bool interpolate = before_step_ >= 0 && before_step_ + 1 == world.steps();
     const double t_after = world.time_s(), t_before = before_.t_s;
     // The weight of the step at or past due_s: 1 there (the sample is that step's, bit for bit),
-    // 0 at the step before; (1 - f) a + f b is exact at both ends.
+    // 0 at the step before. a + f (b - a) keeps a track that does not move exactly constant (a
+    // held layer's centroid: the settling test reads a spread of exactly 0 as at rest, and
+    // (1 - f) a + f a can differ from a in the last bit).
     const double f =
         interpolate ? std::clamp((due_s - t_before) / (t_after - t_before), 0.0, 1.0) : 1.0;
     before_step_ = -1;
@@ -208,7 +210,8 @@ TrackSample TrackSampler::sample_at(const engine::World& world, double due_s) {
                 const auto p = world.voxel_position_m(v);
                 for (std::size_t k = 0; k < 3; ++k)
                     reference_[i][k] =
-                        have_before ? (1.0 - f) * before_positions_[i][k] + f * p[k] : p[k];
+                        have_before ? before_positions_[i][k] + f * (p[k] - before_positions_[i][k])
+                                    : p[k];
             }
             before_positions_.clear();
             before_positions_.shrink_to_fit();
@@ -223,7 +226,7 @@ TrackSample TrackSampler::sample_at(const engine::World& world, double due_s) {
         Vec3& x = s.track(t);
         const Vec3& a = before_.track(t);
         for (std::size_t c = 0; c < 3; ++c)
-            x[c] = (1.0 - f) * a[c] + f * x[c];
+            x[c] = a[c] + f * (x[c] - a[c]);
     }
     return s;
 }
