@@ -95,9 +95,14 @@ std::vector<Problem> settings_problems(const BodySpec& spec) {
         std::fabs(spec.environment.gravity_m_s2) > kMaxGravityMS2)
         out.push_back({"environment.gravity_m_s2", "must be in [" + bound(-kMaxGravityMS2) + ", " +
                                                        bound(kMaxGravityMS2) + "] m/s^2"});
-    if (!finite(spec.dt_fraction) || spec.dt_fraction <= 0.0 || spec.dt_fraction > kMaxDtFraction)
-        out.push_back({"dt_fraction", "must be in (0, " + number(kMaxDtFraction) +
-                                          "] (a fraction of the largest stable step)"});
+    const double max_dt_fraction =
+        spec.damping.implicit_sweeps > 0 ? kMaxDtFraction : kMaxExplicitDtFraction;
+    if (!finite(spec.dt_fraction) || spec.dt_fraction <= 0.0 || spec.dt_fraction > max_dt_fraction)
+        out.push_back({"dt_fraction",
+                       "must be in (0, " + number(max_dt_fraction) +
+                           (spec.damping.implicit_sweeps > 0
+                                ? "] (a fraction of the implicit damping's stable step)"
+                                : "] with the explicit damping (a fraction of the stable step)")});
     // At least the cube's own inertia: scaling it down would only shorten the step.
     if (!finite(spec.rotary_inertia_scale) || spec.rotary_inertia_scale < kMinRotaryInertiaScale ||
         spec.rotary_inertia_scale > kMaxRotaryInertiaScale)

@@ -95,8 +95,9 @@ const ExperimentField kExperimentFields[] = {
      .help = "actuated time; paper: 10 s", .range = {0, 1e5, kOpen},
      BHM_NUMBER(simulation.evaluate_s)},
     {.path = "simulation.dt_fraction", .label = "dt fraction", .unit = "",
-     .help = "time step as a fraction of the largest stable step",
-     .range = {0, lim::kMaxDtFraction, kOpen}, .note = "(a fraction of the largest stable step)",
+     .help = "time step as a fraction of the stable step; past 1 only with the implicit damping "
+             "(presets: 1.2 with rotary inertia scale 1.5, docs/benchmarks.md)",
+     .range = {0, lim::kMaxDtFraction, kOpen}, .note = "(a fraction of the stable step)",
      .format = "%.3f", BHM_NUMBER(simulation.dt_fraction)},
     {.path = "simulation.rotary_inertia_scale", .label = "Rotary inertia scale", .unit = "",
      .help = "each voxel's rotational inertia over a cube's m L^2 / 6; above 1 the rotational "

@@ -8,8 +8,12 @@
 //
 //   bench_step_accuracy [--dt-fraction F] [--rot-scale S] [--sweeps N] [--nu0] [--mu0]
 //                       [--no-floor] [--no-gravity] [--only NAME] [--anchors-only] [--corpus-only]
+//                       [--trials F:S,F:S,...]
 //
 // One CSV line per body: name, dt_s of the trial, RMS error (m), swing (m), error % of swing.
+// --trials runs several (dt_fraction, rotary_inertia_scale) trials against one reference run per
+// body (the reference at dt_fraction 0.2 costs several trials), one line per body and trial with
+// the trial's F and S first, and the worst per trial at the end.
 // Run from the repository root.
 #include <cstdio>
 #include <cstdlib>
@@ -68,7 +72,7 @@ int run(int argc, char** argv) {
     int sweeps = -1;
     bool nu0 = false, mu0 = false, no_floor = false, no_gravity = false, anchors = true,
          corpus = true;
-    std::string only;
+    std::string only, trials_arg;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -95,6 +99,8 @@ int run(int argc, char** argv) {
             corpus = false;
         else if (a == "--corpus-only")
             anchors = false;
+        else if (a == "--trials")
+            trials_arg = value();
         else
             throw std::runtime_error("unknown argument " + a);
     }
@@ -114,8 +120,23 @@ int run(int argc, char** argv) {
              {"paper-exp1-champions", "paper-exp2-champions", "paper-exp1-attached-champions"})
             add_corpus(bodies, file, 10, 450, 2);
     }
-    std::puts("body,dt_s,rms_m,swing_m,error_pct");
-    double worst = 0.0;
+    struct Trial {
+        double dt_fraction, rot_scale, worst;
+    };
+    std::vector<Trial> trials;
+    for (std::size_t at = 0; at < trials_arg.size();) {
+        std::size_t end = trials_arg.find(',', at);
+        if (end == std::string::npos) end = trials_arg.size();
+        const std::string t = trials_arg.substr(at, end - at);
+        const std::size_t colon = t.find(':');
+        if (colon == std::string::npos) throw std::runtime_error("--trials wants F:S, got " + t);
+        trials.push_back({std::stod(t.substr(0, colon)), std::stod(t.substr(colon + 1)), 0.0});
+        at = end + 1;
+    }
+    const bool listed = !trials.empty();
+    if (!listed) trials.push_back({dt_fraction, rot_scale, 0.0});
+    std::puts(listed ? "dt_fraction,rot_scale,body,dt_s,rms_m,swing_m,error_pct"
+                     : "body,dt_s,rms_m,swing_m,error_pct");
     for (Named& b : bodies) {
         if (!only.empty() && b.name.find(only) == std::string::npos) continue;
         BodySpec& s = b.spec;
@@ -129,22 +150,31 @@ int run(int argc, char** argv) {
         reference.dt_fraction = bhm::test::kReferenceDtFraction;
         reference.damping.implicit_sweeps = 0;
         reference.rotary_inertia_scale = 1.0;
-        BodySpec trial = s;
-        trial.dt_fraction = dt_fraction;
-        trial.rotary_inertia_scale = rot_scale;
-        if (sweeps >= 0) trial.damping.implicit_sweeps = sweeps;
         const auto ref = bhm::test::sampled_positions(reference, b.end_s, b.samples);
-        const auto got = bhm::test::sampled_positions(trial, b.end_s, b.samples);
-        const double dt = bhm::engine::Model::build(trial)->dt_s();
-        bhm::test::TrajectoryError e{INFINITY, 1.0};
-        if (!ref.empty() && got.size() == ref.size())
-            e = bhm::test::trajectory_error(got, ref, b.samples);
-        std::printf("%s,%.6g,%.6g,%.6g,%.4f\n", b.name.c_str(), dt, e.rms_m, e.swing_m,
-                    100.0 * e.relative());
-        std::fflush(stdout);
-        worst = std::max(worst, e.relative());
+        for (Trial& t : trials) {
+            BodySpec trial = s;
+            trial.dt_fraction = t.dt_fraction;
+            trial.rotary_inertia_scale = t.rot_scale;
+            if (sweeps >= 0) trial.damping.implicit_sweeps = sweeps;
+            const auto got = bhm::test::sampled_positions(trial, b.end_s, b.samples);
+            const double dt = bhm::engine::Model::build(trial)->dt_s();
+            bhm::test::TrajectoryError e{INFINITY, 1.0};
+            if (!ref.empty() && got.size() == ref.size())
+                e = bhm::test::trajectory_error(got, ref, b.samples);
+            if (listed) std::printf("%g,%g,", t.dt_fraction, t.rot_scale);
+            std::printf("%s,%.6g,%.6g,%.6g,%.4f\n", b.name.c_str(), dt, e.rms_m, e.swing_m,
+                        100.0 * e.relative());
+            std::fflush(stdout);
+            t.worst = std::max(t.worst, e.relative());
+        }
     }
-    std::printf("# worst %.4f %%\n", 100.0 * worst);
+    for (const Trial& t : trials) {
+        if (listed)
+            std::printf("# worst F %g S %g: %.4f %%\n", t.dt_fraction, t.rot_scale,
+                        100.0 * t.worst);
+        else
+            std::printf("# worst %.4f %%\n", 100.0 * t.worst);
+    }
     return 0;
 }
 

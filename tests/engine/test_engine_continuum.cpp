@@ -228,8 +228,11 @@ const Reference& reference(const std::string& name, double nu) {
 }
 
 // The third mesh (6 elements per voxel edge) of the held-out cases furthest from the engine,
-// CalculiX 2.20, 2026-12-06 ("continuum: third mesh of named cases"; 6-10 minutes each), and of
-// the fitting twisted case p1side at nu 0.35 (2026-12-07, 40 minutes on a shared core).
+// CalculiX 2.20, 2026-12-06 ("continuum: third mesh of named cases"; 6-10 minutes each), of
+// the fitting twisted case p1side at nu 0.35 (2026-12-07, 40 minutes on a shared core), and of
+// the one-voxel patches p1corner, p1c and p1side at every nu (2026-12-08, 9-12 minutes each on a
+// shared core, 5.0 GB peak): whether their nu 0.35 "bump" is the references' own error (it is not;
+// docs/physics.md, "The held patches' nu 0.35 bump against converged references").
 struct SixthReference {
     const char* name;
     double nu;

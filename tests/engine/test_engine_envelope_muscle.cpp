@@ -292,10 +292,11 @@ TEST_CASE("envelope muscle fuzz: 600 random muscle bodies, 40,000 steps" * docte
 
 // The same with the rotary inertia scale that lets the axial mode bound the step (issue 42,
 // docs/benchmarks.md "the step size itself"): build/bin/test_engine -tc="rotary inertia envelope
-// muscle fuzz*" --no-skip
+// muscle fuzz*" --no-skip; BHM_FUZZ_ROT_SCALE and BHM_FUZZ_DT_STRETCH as
+// tests/engine/fuzz_random.hpp
 TEST_CASE("rotary inertia envelope muscle fuzz: 600 random muscle bodies at scale 1.5" *
           doctest::skip()) {
-    const FuzzResult f = muscle_fuzz(1, 600, 40000, 1.5);
+    const FuzzResult f = muscle_fuzz(1, 600, 40000, fuzz_rotary_scale());
     MESSAGE(f.failed << " of 600 failed, " << f.known << " of the " << f.of_known_kind
                      << " of the known limit's kind tripped the guard; largest kinetic energy "
                         "over its bound "

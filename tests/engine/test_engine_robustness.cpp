@@ -139,6 +139,16 @@ TEST_CASE("bad specs are rejected with a one-line reason naming the field") {
     s = solid_box(2, 2, 2);
     s.dt_fraction = 0.0;
     CHECK(reason(s).find("dt_fraction") != std::string::npos);
+    // Past 1 only with the implicit damping, whose stable step is longer (issue 42).
+    s.dt_fraction = 1.2;
+    CHECK(reason(s).empty());
+    s.dt_fraction = limits::kMaxDtFraction * 1.01;
+    CHECK(reason(s).find("dt_fraction") != std::string::npos);
+    s.dt_fraction = 1.2;
+    s.damping.implicit_sweeps = 0;
+    CHECK(reason(s).find("dt_fraction") != std::string::npos);
+    s.dt_fraction = 1.0;
+    CHECK(reason(s).empty());
     s = solid_box(2, 2, 2);
     s.material.assign(8, 0);
     CHECK(reason(s).find("no voxels") != std::string::npos);

@@ -106,7 +106,7 @@ TEST_CASE("limits: what the engine refuses, validate refuses on the same field")
          "actuation.temperature_amplitude_c"},
         {"damping", [](Experiment& e) { e.simulation.bond_damping_ratio = 11.0; },
          "simulation.bond_damping_ratio"},
-        {"dt", [](Experiment& e) { e.simulation.dt_fraction = 1.5; }, "simulation.dt_fraction"},
+        {"dt", [](Experiment& e) { e.simulation.dt_fraction = 1.7; }, "simulation.dt_fraction"},
         {"rotary", [](Experiment& e) { e.simulation.rotary_inertia_scale = 0.5; },
          "simulation.rotary_inertia_scale"},
     };

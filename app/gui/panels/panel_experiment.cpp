@@ -132,9 +132,10 @@ void actuation_section(Studio& s) {
 void simulation_section(Studio& s) {
     for (const char* path :
          {"simulation.settle_s", "simulation.evaluate_s", "simulation.dt_fraction",
-          "simulation.bond_damping_ratio", "simulation.global_damping_ratio",
-          "simulation.collision_damping_ratio", "simulation.implicit_damping_sweeps",
-          "simulation.record_fps", "simulation.end_when_periodic", "simulation.periodic_tolerance"})
+          "simulation.rotary_inertia_scale", "simulation.bond_damping_ratio",
+          "simulation.global_damping_ratio", "simulation.collision_damping_ratio",
+          "simulation.implicit_damping_sweeps", "simulation.record_fps",
+          "simulation.end_when_periodic", "simulation.periodic_tolerance"})
         experiment_field(s, path);
 }
 
