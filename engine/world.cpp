@@ -232,16 +232,21 @@ bool World::advance_to(double target_s) {
     return !s.diverged;
 }
 
+std::int64_t first_step_at_or_past(double time_s, double dt_s) {
+    auto n = static_cast<std::int64_t>(std::ceil(time_s / dt_s));
+    while (n > 0 && static_cast<double>(n - 1) * dt_s >= time_s)
+        --n;
+    while (static_cast<double>(n) * dt_s < time_s)
+        ++n;
+    return n;
+}
+
 void World::rest_until(double target_s) {
     State& s = *state_;
     const double dt = s.data->dt_s;
     if (s.diverged) return;
     // The same first step at or past target_s as advance_to reaches.
-    auto n = static_cast<std::int64_t>(std::ceil(target_s / dt));
-    while (n > 0 && static_cast<double>(n - 1) * dt >= target_s)
-        --n;
-    while (static_cast<double>(n) * dt < target_s)
-        ++n;
+    const std::int64_t n = first_step_at_or_past(target_s, dt);
     if (n <= s.steps) return;
     s.rested_steps += n - s.steps;
     s.steps = n;
@@ -412,6 +417,17 @@ void run(World& world, double total_s, double sample_hz, const RunHooks& hooks) 
                                     " s is longer than twice the " + std::to_string(total_s) +
                                     " s to simulate: zero steps would run");
     auto poll = [&] { return hooks.poll && hooks.poll(world) == RunVerdict::Stop; };
+    // Steps to the first step at or past target, polling every poll_steps steps; false when the
+    // world diverged or a poll said Stop.
+    auto advance = [&](double target) {
+        if (!hooks.poll) return world.advance_to(target);
+        while (world.time_s() < target) {
+            const double slice_end = static_cast<double>(world.steps() + hooks.poll_steps) * dt;
+            if (!world.advance_to(std::min(target, slice_end))) return false;
+            if (world.time_s() < target && poll()) return false;
+        }
+        return true;
+    };
     if (hooks.observe) hooks.observe(world);
     if (poll()) return;
     if (world.time_s() >= total_s - half_step) return;
@@ -419,15 +435,15 @@ void run(World& world, double total_s, double sample_hz, const RunHooks& hooks) 
         double due = static_cast<double>(k) * period;
         const bool last = due >= total_s - half_step;
         if (last) due = total_s;
-        if (hooks.poll) {
-            while (world.time_s() < due) {
-                const double slice_end = static_cast<double>(world.steps() + hooks.poll_steps) * dt;
-                if (!world.advance_to(std::min(due, slice_end))) return;  // diverged
-                if (world.time_s() < due && poll()) return;
+        if (hooks.before_sample) {
+            // The step before the due time, then the one that reaches or passes it.
+            const std::int64_t n = first_step_at_or_past(due, dt);
+            if (world.steps() < n) {
+                if (!advance(static_cast<double>(n - 1) * dt)) return;
+                hooks.before_sample(world, due);
             }
-        } else if (!world.advance_to(due)) {
-            return;  // diverged: stop, the caller reads the reason
         }
+        if (!advance(due)) return;  // diverged (the caller reads the reason) or stopped
         if (hooks.observe) hooks.observe(world);
         if (poll() || last) return;
     }
@@ -435,7 +451,9 @@ void run(World& world, double total_s, double sample_hz, const RunHooks& hooks) 
 
 void run(World& world, double total_s, double sample_hz,
          const std::function<void(const World&)>& observe) {
-    run(world, total_s, sample_hz, RunHooks{observe, nullptr});
+    RunHooks hooks;
+    hooks.observe = observe;
+    run(world, total_s, sample_hz, hooks);
 }
 
 }  // namespace bhm::engine

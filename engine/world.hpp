@@ -68,14 +68,23 @@ enum class RunVerdict { Continue, Stop };
 struct RunHooks {
     //! At t = 0, every 1/sample_hz seconds of simulated time and at the end.
     std::function<void(const World&)> observe;
+    //! At the last step before each sample's due time (t < due), just before the step that
+    //! reaches or passes it, with that due time: a caller that interpolates its samples to the
+    //! due time keeps what it reads here (evo/evaluate/tracks.hpp). Not called for a sample
+    //! whose step was reached before this run began (t = 0, a world handed over part way).
+    std::function<void(const World&, double due_s)> before_sample;
     //! Every poll_steps steps and right after each observe: a caller pauses here (by waiting),
     //! cancels (by throwing) or ends the run early (Stop). It never changes the steps taken.
     std::function<RunVerdict(const World&)> poll;
     int poll_steps = 64;  //!< a few milliseconds even for large bodies
 };
 
+//! The index of the first step at or past time_s (what advance_to and rest_until reach).
+std::int64_t first_step_at_or_past(double time_s, double dt_s);
+
 //! Runs a world from t = 0 to total_s, calling hooks.observe(world) at t = 0 and every
-//! 1/sample_hz seconds of simulated time (and at the end). Stops early on divergence or when
+//! 1/sample_hz seconds of simulated time (and at the end), at the first step at or past each due
+//! time (hooks.before_sample one step earlier). Stops early on divergence or when
 //! hooks.poll says Stop. Polling slices the advance without changing it: dt is fixed and
 //! advance_to stops at the first step at or past its target, so the same steps are taken.
 void run(World& world, double total_s, double sample_hz, const RunHooks& hooks);

@@ -84,7 +84,7 @@ PeriodicEnd::PeriodicEnd(const Experiment& experiment, double dt_s, const Exploi
 }
 
 double PeriodicEnd::due_time(std::int64_t k) const {
-    return sample_time_s(k, sample_period_s_, total_s_, dt_s_);
+    return sample_due_s(k, sample_period_s_, total_s_, dt_s_);
 }
 
 namespace {

@@ -26,7 +26,7 @@
 // direction's terms as an angle against the tolerance x (1 degree + its largest angle so far).
 // The samples the full run would still have taken are extrapolated,
 //   x[k + q S - i] = x[k - i] + q D,  0 <= i < S,
-// at the times the full run would have sampled (the first step at or after each due time), and
+// at the times the full run would have sampled (each due time, evo/evaluate/tracks.hpp), and
 // fed to the same trackers, so every measure (final, max, YZ, bend angle, exploit measures,
 // descriptor) is what the full run would have measured, within the tolerance.
 // It applies only when a period and the whole run are each a whole number of samples; otherwise
@@ -71,7 +71,7 @@ class PeriodicEnd {
     double residual_voxels() const { return residual_voxels_; }
 
   private:
-    double due_time(std::int64_t k) const;  //!< the time the full run observes sample k
+    double due_time(std::int64_t k) const;  //!< the time sample k of the full run is due
     double settle_s_, voxel_size_m_, total_mass_kg_, tolerance_;
     double dt_s_, sample_period_s_, total_s_;
     int samples_per_period_ = 0;

@@ -57,10 +57,19 @@ SimulationResult simulate(const Experiment& experiment_in,
         resting = rest.observe(sample);
         last = sample;
     };
+    // Each sample at its due time (evo/evaluate/tracks.hpp): the tracks one step before it are
+    // kept, and the sample interpolated between them and the step at or past it. A run's first
+    // sample (t = 0, or where simulation resumes after resting) has no step before it: it is due
+    // at `due`, set before each engine::run.
+    double due = 0.0;
     engine::RunHooks run_hooks;
+    run_hooks.before_sample = [&](const engine::World& w, double due_s) {
+        sampler.before(w, due_s);
+        due = due_s;
+    };
     run_hooks.observe = [&](const engine::World& w) {
         if (hooks.record) hooks.record(w);
-        take(sampler.sample(w));
+        take(sampler.sample_at(w, due));
     };
     run_hooks.poll = [&](const engine::World& w) {
         if (hooks.poll) hooks.poll(w);
@@ -75,11 +84,13 @@ SimulationResult simulate(const Experiment& experiment_in,
         const double dt = model->dt_s();
         for (std::int64_t k = rest.next_sample(); k < rest.settled_sample(); ++k) {
             TrackSample still = last;
-            still.t_s = sample_time_s(k, 1.0 / sample_hz, total_s, dt);
+            still.t_s = sample_due_s(k, 1.0 / sample_hz, total_s, dt);
             take(still);
         }
         resting = false;
-        world.rest_until(sample_time_s(rest.settled_sample(), 1.0 / sample_hz, total_s, dt));
+        // At rest the step before the due time is the state itself: the sample is the world's.
+        due = sample_due_s(rest.settled_sample(), 1.0 / sample_hz, total_s, dt);
+        world.rest_until(due);
         engine::run(world, total_s, sample_hz, run_hooks);
     }
     const bool ended_early = repeats && !world.diverged();

@@ -130,7 +130,7 @@ TrackSampler::TrackSampler(const Experiment& experiment, const engine::World& wo
     }
 }
 
-TrackSample TrackSampler::sample(const engine::World& world) {
+TrackSample TrackSampler::positions_of(const engine::World& world) const {
     TrackSample s;
     s.t_s = world.time_s();
     s.com_m = world.centre_of_mass_m();
@@ -141,15 +141,11 @@ TrackSample TrackSampler::sample(const engine::World& world) {
     s.behaviour_tip_m = centroid_of(world, behaviour_tip_);
     s.exploit_base_m = centroid_of(world, groups_.base);
     s.exploit_moving_m = centroid_of(world, groups_.moving);
-    if (!settled(s.t_s, settle_s_)) return s;
+    return s;
+}
+
+void TrackSampler::add_moments(const engine::World& world, TrackSample& s) const {
     const int count = world.model().voxel_count();
-    if (!has_reference_) {
-        has_reference_ = true;
-        reference_.resize(static_cast<std::size_t>(count));
-        for (int v = 0; v < count; ++v)
-            reference_[static_cast<std::size_t>(v)] = world.voxel_position_m(v);
-        return s;  // both sums are zero at the reference
-    }
     for (int v = 0; v < count; ++v) {
         const auto i = static_cast<std::size_t>(v);
         const auto p = world.voxel_position_m(v);
@@ -159,18 +155,85 @@ TrackSample TrackSampler::sample(const engine::World& world) {
             if (groups_.thin[i]) s.thin_mass_moment[k] += part;
         }
     }
+}
+
+TrackSample TrackSampler::sample(const engine::World& world) {
+    TrackSample s = positions_of(world);
+    if (!settled(s.t_s, settle_s_)) return s;
+    const int count = world.model().voxel_count();
+    if (!has_reference_) {
+        has_reference_ = true;
+        reference_.resize(static_cast<std::size_t>(count));
+        for (int v = 0; v < count; ++v)
+            reference_[static_cast<std::size_t>(v)] = world.voxel_position_m(v);
+        return s;  // both sums are zero at the reference
+    }
+    add_moments(world, s);
     return s;
 }
 
-double sample_time_s(std::int64_t k, double sample_period_s, double total_s, double dt_s) {
-    double due = static_cast<double>(k) * sample_period_s;
-    if (due >= total_s - 0.5 * dt_s) due = total_s;
-    auto n = static_cast<std::int64_t>(std::ceil(due / dt_s));
-    while (n > 0 && static_cast<double>(n - 1) * dt_s >= due)
-        --n;
-    while (static_cast<double>(n) * dt_s < due)
-        ++n;
-    return static_cast<double>(n) * dt_s;
+void TrackSampler::before(const engine::World& world, double due_s) {
+    before_ = positions_of(world);
+    before_step_ = world.steps();
+    if (has_reference_) {
+        add_moments(world, before_);
+    } else if (settled(due_s, settle_s_)) {
+        // The next sample is the reference: its positions are interpolated too.
+        const int count = world.model().voxel_count();
+        before_positions_.resize(static_cast<std::size_t>(count));
+        for (int v = 0; v < count; ++v)
+            before_positions_[static_cast<std::size_t>(v)] = world.voxel_position_m(v);
+    }
+}
+
+TrackSample TrackSampler::sample_at(const engine::World& world, double due_s) {
+    const bool interpolate = before_step_ >= 0 && before_step_ + 1 == world.steps();
+    const double t_after = world.time_s(), t_before = before_.t_s;
+    // The weight of the step at or past due_s: 1 there (the sample is that step's, bit for bit),
+    // 0 at the step before. a + f (b - a) keeps a track that does not move exactly constant (a
+    // held layer's centroid: the settling test reads a spread of exactly 0 as at rest, and
+    // (1 - f) a + f a can differ from a in the last bit).
+    const double f =
+        interpolate ? std::clamp((due_s - t_before) / (t_after - t_before), 0.0, 1.0) : 1.0;
+    before_step_ = -1;
+    TrackSample s = positions_of(world);
+    s.t_s = due_s;
+    if (settled(due_s, settle_s_)) {
+        if (!has_reference_) {
+            has_reference_ = true;
+            const int count = world.model().voxel_count();
+            const bool have_before =
+                interpolate && before_positions_.size() == static_cast<std::size_t>(count);
+            reference_.resize(static_cast<std::size_t>(count));
+            for (int v = 0; v < count; ++v) {
+                const auto i = static_cast<std::size_t>(v);
+                const auto p = world.voxel_position_m(v);
+                for (std::size_t k = 0; k < 3; ++k)
+                    reference_[i][k] =
+                        have_before ? before_positions_[i][k] + f * (p[k] - before_positions_[i][k])
+                                    : p[k];
+            }
+            before_positions_.clear();
+            before_positions_.shrink_to_fit();
+        } else {
+            add_moments(world, s);
+        }
+    }
+    if (!interpolate || f == 1.0) return s;
+    // Linear in time between the two steps (positions, and so every centroid and moment; the
+    // mass moments of the reference sample stay zero: neither end has any).
+    for (int t = 0; t < TrackSample::kTracks; ++t) {
+        Vec3& x = s.track(t);
+        const Vec3& a = before_.track(t);
+        for (std::size_t c = 0; c < 3; ++c)
+            x[c] = a[c] + f * (x[c] - a[c]);
+    }
+    return s;
+}
+
+double sample_due_s(std::int64_t k, double sample_period_s, double total_s, double dt_s) {
+    const double due = static_cast<double>(k) * sample_period_s;
+    return due >= total_s - 0.5 * dt_s ? total_s : due;
 }
 
 }  // namespace bhm::evo
